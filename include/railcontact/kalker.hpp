@@ -1,0 +1,31 @@
+#pragma once
+// Kalker's linear theory of rolling contact for elliptical patches: the creepage coefficients
+// C11, C22, C23 (Kalker 1990, Table E.3, compiled in from data/kalker_creepage_coefficients.csv)
+// and the flexibility parameters of original FastSim (paper Eq 9).
+#include "railcontact/material.hpp"
+
+namespace railcontact {
+
+struct KalkerCoefficients {
+  double C11 = 0.0;
+  double C22 = 0.0;
+  double C23 = 0.0;
+};
+
+// Kalker's coefficients for semi-axis ratio a/b (a along X1) and Poisson's ratio nu in [0, 0.5):
+// interpolated in the table for 0.1 <= a/b <= 10 (bilinear in nu and in the table's
+// abscissa), asymptotic expressions outside it (a/b in [0.01, 0.1) and (10, 100]).
+KalkerCoefficients kalker_coefficients(double a_over_b, double nu);
+
+// FastSim flexibility parameters (m/Pa), paper Eq 9.
+struct Flexibility {
+  double L1 = 0.0;  // longitudinal
+  double L2 = 0.0;  // lateral
+  double L3 = 0.0;  // spin
+};
+
+// Original FastSim flexibilities of an ellipse with semi-axes a (along X1) and b (Eq 9):
+// L1 = 8a/(3 C11 G), L2 = 8a/(3 C22 G), L3 = pi a^1.5 / (4 sqrt(b) C23 G).
+Flexibility fastsim_flexibility(double a_m, double b_m, const Material& material);
+
+}  // namespace railcontact
