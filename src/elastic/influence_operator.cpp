@@ -1,0 +1,176 @@
+#include "elastic/influence_operator.hpp"
+
+#include <algorithm>
+
+#include "elastic/rectangle_antiderivatives.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/influence.hpp"
+
+namespace railcontact {
+namespace {
+
+// Influence coefficients of one element at the points (m1 + shift) dx1, m2 dx2 for
+// m1 = m1_lo..m1_hi and m2 = -(n2-1)..(n2-1), sharing the corner antiderivatives between
+// neighbouring offsets (one evaluation per corner instead of four per offset).
+struct ElementTable {
+  std::vector<double> a33, a11, a12, a22;  // (2 n2 - 1) rows of (m1_hi - m1_lo + 1), m1 fastest
+};
+
+ElementTable tabulate_element_influence(const Mesh& mesh, const Material& material, double shift, int m1_lo,
+                                        int m1_hi) {
+  const int c1_count = m1_hi - m1_lo + 2;  // corner columns
+  const int c2_count = 2 * mesh.n2;        // corner rows, m2 - 1/2 .. m2 + 1/2
+  const int m2_lo = -(mesh.n2 - 1);
+  const std::size_t corners = static_cast<std::size_t>(c1_count) * c2_count;
+  std::vector<double> f_one(corners), f_x2(corners), f_y2(corners), f_xy(corners);
+  for (int c2 = 0; c2 < c2_count; ++c2) {
+    const double Y = (m2_lo + c2 - 0.5) * mesh.dx2_m;
+    for (int c1 = 0; c1 < c1_count; ++c1) {
+      const double X = (m1_lo + c1 + shift - 0.5) * mesh.dx1_m;
+      const RectangleAntiderivatives F = rectangle_antiderivatives(X, Y);
+      const std::size_t q = static_cast<std::size_t>(c2) * c1_count + c1;
+      f_one[q] = F.one_over_r;
+      f_x2[q] = F.x2_over_r3;
+      f_y2[q] = F.y2_over_r3;
+      f_xy[q] = F.xy_over_r3;
+    }
+  }
+  const double nu = material.poisson_ratio;
+  const double G = material.shear_modulus_Pa();
+  const double normal_scale = (1.0 - nu) / (M_PI * G);
+  const double tangential_scale = 1.0 / (M_PI * G);
+  const std::size_t w1 = static_cast<std::size_t>(m1_hi - m1_lo + 1);
+  const std::size_t w2 = static_cast<std::size_t>(2 * mesh.n2 - 1);
+  ElementTable t;
+  t.a33.resize(w1 * w2);
+  t.a11.resize(w1 * w2);
+  t.a12.resize(w1 * w2);
+  t.a22.resize(w1 * w2);
+  auto integral = [&](const std::vector<double>& F, std::size_t j1, std::size_t j2) {
+    const std::size_t mm = j2 * c1_count + j1;  // corner (m1 - 1/2, m2 - 1/2)
+    const std::size_t pm = mm + 1;
+    const std::size_t mp = mm + c1_count;
+    const std::size_t pp = mp + 1;
+    return F[pp] - F[mp] - F[pm] + F[mm];
+  };
+  for (std::size_t j2 = 0; j2 < w2; ++j2) {
+    for (std::size_t j1 = 0; j1 < w1; ++j1) {
+      const double one = integral(f_one, j1, j2);
+      const std::size_t q = j2 * w1 + j1;
+      t.a33[q] = normal_scale * one;
+      t.a11[q] = tangential_scale * ((1.0 - nu) * one + nu * integral(f_x2, j1, j2));
+      t.a12[q] = tangential_scale * nu * integral(f_xy, j1, j2);
+      t.a22[q] = tangential_scale * ((1.0 - nu) * one + nu * integral(f_y2, j1, j2));
+    }
+  }
+  return t;
+}
+
+std::vector<double> tabulate(const Mesh& mesh, int components, const BlockKernel& kernel) {
+  const std::size_t w1 = static_cast<std::size_t>(2 * mesh.n1 - 1);
+  const std::size_t w2 = static_cast<std::size_t>(2 * mesh.n2 - 1);
+  std::vector<double> table(static_cast<std::size_t>(components * components) * w1 * w2);
+  std::size_t q = 0;
+  for (int k = 0; k < components; ++k)
+    for (int l = 0; l < components; ++l)
+      for (int m2 = -(mesh.n2 - 1); m2 <= mesh.n2 - 1; ++m2)
+        for (int m1 = -(mesh.n1 - 1); m1 <= mesh.n1 - 1; ++m1) table[q++] = kernel(k, l, m1, m2);
+  return table;
+}
+
+}  // namespace
+
+InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, const BlockKernel& kernel)
+    : mesh_(mesh),
+      components_(components),
+      table_(tabulate(mesh, components, kernel)),
+      convolution_(mesh.n1, mesh.n2, components,
+                   [this](int k, int l, int m1, int m2) { return this->kernel(k, l, m1, m2); }),
+      grid_in_(static_cast<std::size_t>(components) * mesh.size()),
+      grid_out_(static_cast<std::size_t>(components) * mesh.size()) {}
+
+InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table)
+    : mesh_(mesh),
+      components_(components),
+      table_(std::move(table)),
+      convolution_(mesh.n1, mesh.n2, components,
+                   [this](int k, int l, int m1, int m2) { return this->kernel(k, l, m1, m2); }),
+      grid_in_(static_cast<std::size_t>(components) * mesh.size()),
+      grid_out_(static_cast<std::size_t>(components) * mesh.size()) {
+  require(table_.size() == static_cast<std::size_t>(components * components) * (2 * mesh.n1 - 1) * (2 * mesh.n2 - 1),
+          "influence operator: kernel table of the wrong size");
+}
+
+void InfluenceOperator::apply_on_grid(std::span<const double> in, std::span<double> out) {
+  convolution_.apply(in, out);
+}
+
+void InfluenceOperator::apply(const std::vector<std::size_t>& elements, std::span<const double> x,
+                              std::span<double> y) {
+  const std::size_t n = elements.size();
+  const std::size_t grid = mesh_.size();
+  require(x.size() == n * components_ && y.size() == n * components_, "influence operator: wrong vector size");
+  std::fill(grid_in_.begin(), grid_in_.end(), 0.0);
+  for (int c = 0; c < components_; ++c) {
+    double* field = grid_in_.data() + static_cast<std::size_t>(c) * grid;
+    const double* values = x.data() + static_cast<std::size_t>(c) * n;
+    for (std::size_t e = 0; e < n; ++e) field[elements[e]] = values[e];
+  }
+  convolution_.apply(grid_in_, grid_out_);
+  for (int c = 0; c < components_; ++c) {
+    const double* field = grid_out_.data() + static_cast<std::size_t>(c) * grid;
+    double* values = y.data() + static_cast<std::size_t>(c) * n;
+    for (std::size_t e = 0; e < n; ++e) values[e] = field[elements[e]];
+  }
+}
+
+Eigen::MatrixXd InfluenceOperator::dense(const std::vector<std::size_t>& elements) const {
+  const auto n = static_cast<Eigen::Index>(elements.size());
+  Eigen::MatrixXd matrix(components_ * n, components_ * n);
+  const auto n1 = static_cast<std::size_t>(mesh_.n1);
+  for (int k = 0; k < components_; ++k) {
+    for (int l = 0; l < components_; ++l) {
+      for (Eigen::Index j = 0; j < n; ++j) {
+        const int j1 = static_cast<int>(elements[j] % n1);
+        const int j2 = static_cast<int>(elements[j] / n1);
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const int i1 = static_cast<int>(elements[i] % n1);
+          const int i2 = static_cast<int>(elements[i] / n1);
+          matrix(k * n + i, l * n + j) = kernel(k, l, i1 - j1, i2 - j2);
+        }
+      }
+    }
+  }
+  return matrix;
+}
+
+InfluenceOperator make_normal_operator(const Mesh& mesh, const Material& material) {
+  validate(mesh);
+  const ElementTable a = tabulate_element_influence(mesh, material, 0.0, -(mesh.n1 - 1), mesh.n1 - 1);
+  return InfluenceOperator(mesh, 1, a.a33);
+}
+
+InfluenceOperator make_steady_rolling_operator(const Mesh& mesh, const Material& material, double alpha) {
+  validate(mesh);
+  // Influence at the collocation points x + alpha dx1/2 for offsets m1 = -(n1-1) .. n1: the
+  // upwind difference needs the point one element ahead as well.
+  const int lo = -(mesh.n1 - 1), hi = mesh.n1;
+  const ElementTable a = tabulate_element_influence(mesh, material, 0.5 * alpha, lo, hi);
+  const std::size_t w1 = static_cast<std::size_t>(2 * mesh.n1 - 1);
+  const std::size_t w2 = static_cast<std::size_t>(2 * mesh.n2 - 1);
+  const std::size_t aw1 = static_cast<std::size_t>(hi - lo + 1);
+  std::vector<double> table(4 * w1 * w2);
+  const double inv_dx1 = 1.0 / mesh.dx1_m;
+  const std::vector<double>* blocks[4] = {&a.a11, &a.a12, &a.a12, &a.a22};
+  for (std::size_t b = 0; b < 4; ++b) {
+    const std::vector<double>& src = *blocks[b];
+    for (std::size_t j2 = 0; j2 < w2; ++j2) {
+      const double* row = src.data() + j2 * aw1;
+      double* out = table.data() + (b * w2 + j2) * w1;
+      for (std::size_t j1 = 0; j1 < w1; ++j1) out[j1] = (row[j1 + 1] - row[j1]) * inv_dx1;
+    }
+  }
+  return InfluenceOperator(mesh, 2, std::move(table));
+}
+
+}  // namespace railcontact
