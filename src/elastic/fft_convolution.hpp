@@ -22,6 +22,8 @@ class RealFft2d {
   ~RealFft2d();
   RealFft2d(const RealFft2d&) = delete;
   RealFft2d& operator=(const RealFft2d&) = delete;
+  RealFft2d(RealFft2d&& other) noexcept;
+  RealFft2d& operator=(RealFft2d&&) = delete;
 
   [[nodiscard]] int n1() const { return n1_; }
   [[nodiscard]] int n2() const { return n2_; }
@@ -54,6 +56,10 @@ class FftConvolution {
 
   // in: components fields of grid_size() values each (component-major); out likewise.
   void apply(std::span<const double> in, std::span<double> out);
+
+  // Replaces the kernel by the inverse of its periodic (padded-grid) symbol, block by block
+  // per frequency: apply() then approximates the inverse operator on the whole padded grid.
+  void invert_symbol();
 
  private:
   int n1_, n2_, components_;

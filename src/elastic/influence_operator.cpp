@@ -150,6 +150,15 @@ InfluenceOperator make_normal_operator(const Mesh& mesh, const Material& materia
   return InfluenceOperator(mesh, 1, a.a33);
 }
 
+InfluenceOperator make_tangential_operator(const Mesh& mesh, const Material& material, double alpha) {
+  validate(mesh);
+  const ElementTable a = tabulate_element_influence(mesh, material, 0.5 * alpha, -(mesh.n1 - 1), mesh.n1 - 1);
+  std::vector<double> table;
+  table.reserve(4 * a.a11.size());
+  for (const std::vector<double>* block : {&a.a11, &a.a12, &a.a12, &a.a22}) table.insert(table.end(), block->begin(), block->end());
+  return InfluenceOperator(mesh, 2, std::move(table));
+}
+
 InfluenceOperator make_steady_rolling_operator(const Mesh& mesh, const Material& material, double alpha) {
   validate(mesh);
   // Influence at the collocation points x + alpha dx1/2 for offsets m1 = -(n1-1) .. n1: the

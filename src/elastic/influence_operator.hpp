@@ -41,6 +41,10 @@ class InfluenceOperator {
   // Restricted product on the elements with the given mesh indices (FFT path).
   void apply(const std::vector<std::size_t>& elements, std::span<const double> x, std::span<double> y);
 
+  // Replaces the FFT kernel by the inverse of its padded-grid symbol (for preconditioning):
+  // apply() then approximates the inverse of the operator on the whole plane.
+  void invert_symbol() { convolution_.invert_symbol(); }
+
   // Dense matrix of the restricted operator (reference path).
   [[nodiscard]] Eigen::MatrixXd dense(const std::vector<std::size_t>& elements) const;
 
@@ -54,6 +58,10 @@ class InfluenceOperator {
 
 // Normal operator: surface approach u3 at element centres per unit pressure (A33).
 InfluenceOperator make_normal_operator(const Mesh& mesh, const Material& material);
+
+// Tangential operator: displacements (u1, u2) at collocation points x + alpha dx1/2 per unit
+// tractions (p1, p2) (2 x 2 blocks A11, A12 = A21, A22).
+InfluenceOperator make_tangential_operator(const Mesh& mesh, const Material& material, double alpha);
 
 // Steady-rolling tangential operator R = (A(x + dx1) - A(x)) / dx1 (METHOD.md §6, Eq 10):
 // the upwind (leading-edge side) difference along X1 of the tangential displacements, at

@@ -1,0 +1,113 @@
+#pragma once
+// Matrix-free Krylov solves with Eigen's iterative solvers (GMRES from Eigen's unsupported
+// IterativeSolvers module, BiCGSTAB from Eigen's core): the operator and the preconditioner
+// are callables y = M x, wrapped as Eigen matrix-free types (Eigen's documented pattern).
+#include <Eigen/Core>
+#include <Eigen/IterativeLinearSolvers>
+#include <functional>
+#include <unsupported/Eigen/IterativeSolvers>
+
+namespace railcontact {
+
+using ApplyFunction = std::function<void(const double* x, double* y)>;
+
+class MatrixFreeOperator;
+class MatrixFreePreconditioner;
+
+}  // namespace railcontact
+
+namespace Eigen::internal {
+template <>
+struct traits<railcontact::MatrixFreeOperator> : public traits<Eigen::SparseMatrix<double>> {};
+}  // namespace Eigen::internal
+
+namespace railcontact {
+
+class MatrixFreeOperator : public Eigen::EigenBase<MatrixFreeOperator> {
+ public:
+  using Scalar = double;
+  using RealScalar = double;
+  using StorageIndex = int;
+  enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic, IsRowMajor = false };
+
+  MatrixFreeOperator(Eigen::Index size, ApplyFunction apply) : size_(size), apply_(std::move(apply)) {}
+  [[nodiscard]] Eigen::Index rows() const { return size_; }
+  [[nodiscard]] Eigen::Index cols() const { return size_; }
+
+  template <typename Rhs>
+  Eigen::Product<MatrixFreeOperator, Rhs, Eigen::AliasFreeProduct> operator*(const Eigen::MatrixBase<Rhs>& x) const {
+    return Eigen::Product<MatrixFreeOperator, Rhs, Eigen::AliasFreeProduct>(*this, x.derived());
+  }
+  void apply(const double* x, double* y) const { apply_(x, y); }
+
+ private:
+  Eigen::Index size_;
+  ApplyFunction apply_;
+};
+
+// Preconditioner z = P r (an approximate inverse), in the interface Eigen's solvers expect.
+class MatrixFreePreconditioner {
+ public:
+  using StorageIndex = int;
+  enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic };
+
+  MatrixFreePreconditioner() = default;
+  void set(ApplyFunction apply) { apply_ = std::move(apply); }
+  template <typename M>
+  MatrixFreePreconditioner& analyzePattern(const M&) { return *this; }
+  template <typename M>
+  MatrixFreePreconditioner& factorize(const M&) { return *this; }
+  template <typename M>
+  MatrixFreePreconditioner& compute(const M&) { return *this; }
+  template <typename Rhs>
+  Eigen::VectorXd solve(const Rhs& b) const {
+    Eigen::VectorXd rhs = b;
+    if (!apply_) return rhs;
+    Eigen::VectorXd z(rhs.size());
+    apply_(rhs.data(), z.data());
+    return z;
+  }
+  [[nodiscard]] Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+ private:
+  ApplyFunction apply_;
+};
+
+enum class KrylovMethod { gmres, bicgstab, idrs };
+
+struct KrylovOptions {
+  KrylovMethod method = KrylovMethod::gmres;
+  double tolerance = 1e-10;  // relative residual ||b - M x|| / ||b||
+  int max_iterations = 500;
+  int gmres_restart = 60;
+  int idrs_s = 4;
+};
+
+struct KrylovReport {
+  int iterations = 0;
+  double relative_residual = 0.0;  // true residual, recomputed after the solve
+  bool converged = false;
+};
+
+// Solves M x = b from the initial guess in x.
+KrylovReport solve_krylov(const MatrixFreeOperator& M, const ApplyFunction& preconditioner, const Eigen::VectorXd& b,
+                          Eigen::VectorXd& x, const KrylovOptions& options);
+
+}  // namespace railcontact
+
+namespace Eigen::internal {
+template <typename Rhs>
+struct generic_product_impl<railcontact::MatrixFreeOperator, Rhs, SparseShape, DenseShape, GemvProduct>
+    : generic_product_impl_base<railcontact::MatrixFreeOperator, Rhs,
+                                generic_product_impl<railcontact::MatrixFreeOperator, Rhs>> {
+  using Scalar = typename Product<railcontact::MatrixFreeOperator, Rhs>::Scalar;
+  template <typename Dest>
+  static void scaleAndAddTo(Dest& dst, const railcontact::MatrixFreeOperator& lhs, const Rhs& rhs,
+                            const Scalar& alpha) {
+    Eigen::VectorXd x = rhs;
+    Eigen::VectorXd y(x.size());
+    lhs.apply(x.data(), y.data());
+    dst += alpha * y;
+  }
+};
+}  // namespace Eigen::internal

@@ -1,0 +1,111 @@
+// Full-adhesion steady-state rolling: K2 (paper Eq 14, 18).
+#include <Eigen/LU>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "elastic/influence_operator.hpp"
+#include "elastic/krylov.hpp"
+#include "railcontact/adhesion.hpp"
+#include "railcontact/error.hpp"
+#include "tangential/steady_rolling_preconditioner.hpp"
+
+namespace railcontact {
+namespace {
+
+// D^T for the three unit creepages (Eq 11-12) at the rigid-slip points: 2N x 3.
+Eigen::MatrixXd rigid_slip_columns(const ContactElements& elements, double x1_offset_m) {
+  const Mesh& mesh = elements.mesh();
+  const auto n = static_cast<Eigen::Index>(elements.count());
+  Eigen::MatrixXd w = Eigen::MatrixXd::Zero(2 * n, 3);
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const std::size_t k = elements.indices()[e];
+    const double x1 = mesh.x1(static_cast<int>(k % mesh.n1)) + x1_offset_m;
+    const double x2 = mesh.x2(static_cast<int>(k / mesh.n1));
+    w(e, 0) = 1.0;       // xi  -> w1
+    w(n + e, 1) = 1.0;   // eta -> w2
+    w(e, 2) = -x2;       // phi -> w1 = -phi x2
+    w(n + e, 2) = x1;    //        w2 =  phi x1
+  }
+  return w;
+}
+
+// S D: forces and spin moment of piecewise-constant tractions (Eq 13), moment arms at the
+// element centres (exact for constant traction per element).
+Eigen::MatrixXd force_rows(const ContactElements& elements) {
+  const Mesh& mesh = elements.mesh();
+  const auto n = static_cast<Eigen::Index>(elements.count());
+  const double S = mesh.element_area_m2();
+  Eigen::MatrixXd SD = Eigen::MatrixXd::Zero(3, 2 * n);
+  for (Eigen::Index e = 0; e < n; ++e) {
+    const std::size_t k = elements.indices()[e];
+    const double x1 = mesh.x1(static_cast<int>(k % mesh.n1));
+    const double x2 = mesh.x2(static_cast<int>(k / mesh.n1));
+    SD(0, e) = S;
+    SD(1, n + e) = S;
+    SD(2, e) = -x2 * S;
+    SD(2, n + e) = x1 * S;
+  }
+  return SD;
+}
+
+}  // namespace
+
+AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
+                                     const AdhesionOptions& options) {
+  validate(material);
+  validate(elements.mesh());
+  require(elements.count() > 0, "adhesion solver: no elements in contact");
+  require(std::isfinite(options.collocation_offset) && std::fabs(options.collocation_offset) <= 1.0,
+          "adhesion solver: the collocation offset alpha must lie in [-1, 1]");
+  const Mesh& mesh = elements.mesh();
+  const auto n = static_cast<Eigen::Index>(elements.count());
+  const double alpha = options.collocation_offset;
+  const double slip_offset = options.rigid_slip_point == RigidSlipPoint::collocation
+                                 ? 0.5 * alpha * mesh.dx1_m
+                                 : 0.5 * (alpha + 1.0) * mesh.dx1_m;
+  const Eigen::MatrixXd W = rigid_slip_columns(elements, slip_offset);
+
+  InfluenceOperator R = make_steady_rolling_operator(mesh, material, alpha);
+  AdhesionSolution solution;
+  solution.unit_tractions.resize(2 * n, 3);
+  if (options.solver == LinearSolver::dense) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(R.dense(elements.indices()));
+    solution.unit_tractions = lu.solve(W);
+  } else {
+    require(options.tolerance > 0 && options.max_iterations > 0,
+            "adhesion solver: the Krylov tolerance and iteration limit must be positive");
+    const MatrixFreeOperator M(2 * n, [&R, &elements, n](const double* x, double* y) {
+      R.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
+    });
+    const SteadyRollingPreconditioner preconditioner(elements);
+    const ApplyFunction precondition = [&preconditioner](const double* r, double* z) { preconditioner.apply(r, z); };
+    KrylovOptions krylov;
+    krylov.tolerance = options.tolerance;
+    krylov.max_iterations = options.max_iterations;
+    for (int j = 0; j < 3; ++j) {
+      Eigen::VectorXd rhs = W.col(j);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n);
+      const KrylovReport report = solve_krylov(M, precondition, rhs, x, krylov);
+      solution.iterations += report.iterations;
+      solution.relative_residual = std::max(solution.relative_residual, report.relative_residual);
+      if (!report.converged) {
+        throw Error("adhesion solver: GMRES did not converge for creepage " + std::to_string(j + 1) + " in " +
+                    std::to_string(report.iterations) + " iterations (relative residual " +
+                    fmt::format("{:.2e}", report.relative_residual) + ")");
+      }
+      solution.unit_tractions.col(j) = x;
+    }
+  }
+  solution.creepage_matrix = force_rows(elements) * solution.unit_tractions;
+  return solution;
+}
+
+CreepageCoefficients creepage_coefficients(const Eigen::Matrix3d& K2, double G, double c) {
+  require(G > 0 && c > 0, "creepage coefficients: G and c must be positive");
+  return {-K2(0, 0) / (G * c * c), -K2(1, 1) / (G * c * c), -K2(1, 2) / (G * c * c * c),
+          -K2(2, 2) / (G * c * c * c * c)};
+}
+
+}  // namespace railcontact
