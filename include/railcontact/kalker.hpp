@@ -13,8 +13,11 @@ struct KalkerCoefficients {
 };
 
 // Kalker's coefficients for semi-axis ratio a/b (a along X1) and Poisson's ratio nu in [0, 0.5):
-// interpolated in the table for 0.1 <= a/b <= 10 (bilinear in nu and in the table's
-// abscissa), asymptotic expressions outside it (a/b in [0.01, 0.1) and (10, 100]).
+// interpolated in the table for 0.1 <= a/b <= 10 (quadratic Lagrange in nu through 0, 0.25, 0.5;
+// shape-preserving cubic (PCHIP) of ln C against ln(a/b); exact at the table's rows), Kalker's
+// slender-ellipse asymptotes outside it (a/b in [0.01, 0.1) and (10, 100]), blended onto the table
+// so that the coefficients are continuous at a/b = 0.1 and 10 (details in
+// src/hertz/kalker_coefficients.cpp). Throws railcontact::Error for a/b or nu out of range.
 KalkerCoefficients kalker_coefficients(double a_over_b, double nu);
 
 // FastSim flexibility parameters (m/Pa), paper Eq 9.

@@ -1,0 +1,115 @@
+// Hertz's solution for an elliptical contact between two quasi-identical elastic bodies,
+// Johnson, Contact Mechanics (1985) §4.2, eq. (4.39)-(4.42), rewritten with the associate
+// elliptic integrals B, D (see hertz/elliptic_integrals.hpp) so that nothing cancels near the
+// circle. Notation: A' <= B' the principal relative curvatures (h = A' x² + B' y²), a >= b the
+// semi-axes, a along the axis of the smaller curvature A', g = b/a, e² = 1 - g² = m, mc = g².
+//
+//   B'/A' = [(a/b)² E - K] / (K - E)          (4.39)  =  B(m) / (g² D(m))   since K - E = m D,
+//                                                                           E/g² - K = m B / g²
+//   a³ = 3 F (K - E) / (2π E* e² A')          (4.40)  =  3 F D(m) / (2π E* A')
+//   p0 = 3 F / (2π a b)                       (4.41)
+//   δ  = (p0 / E*) b K(e)                     (4.42)
+#include "railcontact/hertz.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "hertz/elliptic_integrals.hpp"
+#include "railcontact/error.hpp"
+
+namespace railcontact {
+namespace {
+
+void require_positive_finite(double value, const char* what) {
+  require(std::isfinite(value) && value > 0.0, fmt::format("hertz: {} must be positive and finite (got {})", what, value));
+}
+
+// Ratio of the larger to the smaller curvature, B'/A', for axis ratio g = b/a in (0, 1]: eq. (4.39).
+// Decreases monotonically from +inf (g -> 0) to 1 (g = 1, circle).
+double curvature_ratio(double g) {
+  const detail::CompleteEllipticIntegrals ell = detail::complete_elliptic_integrals(g * g);
+  return ell.B / (g * g * ell.D);
+}
+
+// Solves curvature_ratio(g) = ratio >= 1 for g in (0, 1] by bisection on ln g. The function is
+// monotone, so the bracket is kept and the result is accurate to a few ulp of g.
+double axis_ratio_for_curvature_ratio(double ratio) {
+  if (ratio == 1.0) return 1.0;
+  // Upper bound: D >= B for m >= 0, so curvature_ratio(g) <= 1/g², hence the root g* <= 1/sqrt(ratio).
+  double g_high = std::min(1.0, 1.0 / std::sqrt(ratio));
+  // Lower bound: curvature_ratio(g) ~ 1/(g² (ln(4/g) - 1)) for g -> 0, so a few halvings suffice.
+  double g_low = 0.5 * g_high;
+  constexpr double kSmallestAxisRatio = 1e-150;
+  while (curvature_ratio(g_low) < ratio) {
+    g_low *= 0.5;
+    require(g_low > kSmallestAxisRatio, fmt::format("hertz: curvature ratio {} is too extreme", ratio));
+  }
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  for (int iteration = 0; iteration < 200 && g_high - g_low > 2.0 * kEps * g_high; ++iteration) {
+    const double g_mid = std::sqrt(g_low * g_high);  // bisection in ln g
+    if (curvature_ratio(g_mid) < ratio) {
+      g_high = g_mid;
+    } else {
+      g_low = g_mid;
+    }
+  }
+  return 0.5 * (g_low + g_high);
+}
+
+}  // namespace
+
+HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal_force_N, const Material& material) {
+  validate(material);
+  require_positive_finite(A_per_m, "curvature A");
+  require_positive_finite(B_per_m, "curvature B");
+  require_positive_finite(normal_force_N, "normal force");
+  const double e_star_Pa = material.contact_modulus_Pa();
+
+  // The major semi-axis lies along the axis of the smaller curvature.
+  const double small_curvature = std::min(A_per_m, B_per_m);
+  const double ratio = std::max(A_per_m, B_per_m) / small_curvature;
+  require(std::isfinite(ratio), fmt::format("hertz: curvature ratio B/A = {} / {} is too extreme", B_per_m, A_per_m));
+  const double g = axis_ratio_for_curvature_ratio(ratio);  // b/a <= 1
+  const detail::CompleteEllipticIntegrals ell = detail::complete_elliptic_integrals(g * g);
+
+  const double major_m =
+      std::cbrt(3.0 * normal_force_N * ell.D / (2.0 * std::numbers::pi * e_star_Pa * small_curvature));  // (4.40)
+  const double minor_m = g * major_m;
+
+  HertzContact contact;
+  contact.normal_force_N = normal_force_N;
+  contact.a_m = A_per_m <= B_per_m ? major_m : minor_m;  // a is always the semi-axis along X1
+  contact.b_m = A_per_m <= B_per_m ? minor_m : major_m;
+  contact.max_pressure_Pa = 3.0 * normal_force_N / (2.0 * std::numbers::pi * major_m * minor_m);  // (4.41)
+  contact.approach_m = contact.max_pressure_Pa / e_star_Pa * minor_m * ell.K;                     // (4.42)
+  return contact;
+}
+
+HertzCurvatures hertz_curvatures_for_semi_axes(double a_m, double b_m, double normal_force_N, const Material& material) {
+  validate(material);
+  require_positive_finite(a_m, "semi-axis a");
+  require_positive_finite(b_m, "semi-axis b");
+  require_positive_finite(normal_force_N, "normal force");
+  const double e_star_Pa = material.contact_modulus_Pa();
+
+  const double major_m = std::max(a_m, b_m);
+  const double g = std::min(a_m, b_m) / major_m;
+  require(g > 1e-150, fmt::format("hertz: semi-axis ratio {} / {} is too extreme", a_m, b_m));
+  const detail::CompleteEllipticIntegrals ell = detail::complete_elliptic_integrals(g * g);
+
+  // (4.40) solved for the smaller curvature (along the major axis), then (4.39) for the larger.
+  const double small_curvature =
+      3.0 * normal_force_N * ell.D / (2.0 * std::numbers::pi * e_star_Pa * major_m * major_m * major_m);
+  const double large_curvature = small_curvature * ell.B / (g * g * ell.D);
+
+  HertzCurvatures curvatures;
+  curvatures.A_per_m = a_m >= b_m ? small_curvature : large_curvature;
+  curvatures.B_per_m = a_m >= b_m ? large_curvature : small_curvature;
+  return curvatures;
+}
+
+}  // namespace railcontact
