@@ -10,6 +10,7 @@
 // With this sign convention K2 has the pattern of Kalker's K1 (Eq 16): negative diagonal.
 // Coordinates are the mesh's: put the origin at the pressure centre (METHOD.md §2).
 #include <Eigen/Core>
+#include <optional>
 
 #include "railcontact/creepage.hpp"
 #include "railcontact/material.hpp"
@@ -29,7 +30,11 @@ enum class RigidSlipPoint {
 };
 
 struct AdhesionOptions {
-  double collocation_offset = 0.0;  // alpha in [-1, 1]: collocation point at x1 + alpha dx1/2 (METHOD.md §3)
+  double collocation_offset = 0.0;  // alpha in (-1, 1]: collocation point at x1 + alpha dx1/2 (METHOD.md §3)
+  // Collocation offset for the spin column of K2 only (unit phi); unset = collocation_offset.
+  // The paper (Fig 3) finds alpha = 0 best for C11, C22 and alpha = 0.5 best for C23; each
+  // column of K2 is a separate solve, so each may use its own offset.
+  std::optional<double> spin_collocation_offset;
   RigidSlipPoint rigid_slip_point = RigidSlipPoint::collocation;
   LinearSolver solver = LinearSolver::krylov;
   double tolerance = 1e-10;         // Krylov: relative residual
@@ -46,7 +51,8 @@ struct AdhesionSolution {
   double relative_residual = 0.0;   // largest over the right-hand sides
 };
 
-// Throws railcontact::Error on bad input (no elements, bad material, alpha outside [-1, 1])
+// Throws railcontact::Error on bad input (no elements, bad material, alpha outside (-1, 1];
+// alpha = -1 centres the difference on the element and decouples odd and even elements)
 // or when the Krylov solver does not converge.
 AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
                                      const AdhesionOptions& options = {});

@@ -2,18 +2,32 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <exception>
+
+#include "cli/commands.hpp"
 #include "railcontact/error.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"railcontact: wheel-rail rolling contact (nH-FastSim and exact reference solvers)"};
   app.require_subcommand(1);
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string("railcontact: error: ") + e.what() + "\n"; });
+  railcontact::cli::Action action;
+  railcontact::cli::add_run_command(app, action);
+  railcontact::cli::add_coefficients_command(app, action);
+  railcontact::cli::add_study_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  }
+  try {
+    return action ? action() : 0;
   } catch (const railcontact::Error& e) {
     fmt::print(stderr, "railcontact: error: {}\n", e.what());
-    return 1;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "railcontact: error: out of memory (reduce the number of elements)\n");
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "railcontact: error: {}\n", e.what());
   }
-  return 0;
+  return 1;
 }

@@ -50,6 +50,50 @@ Eigen::MatrixXd force_rows(const ContactElements& elements) {
   return SD;
 }
 
+void require_valid_offset(double alpha) {
+  require(std::isfinite(alpha) && alpha > -1.0 && alpha <= 1.0,
+          "adhesion solver: the collocation offset alpha must lie in (-1, 1] (got " + fmt::format("{}", alpha) + ")");
+}
+
+// Solves R(alpha) P = W for the given columns of W (the unit creepages), writing into P.
+void solve_columns(const ContactElements& elements, const Material& material, double alpha,
+                   RigidSlipPoint rigid_slip_point, const std::vector<int>& columns, const AdhesionOptions& options,
+                   AdhesionSolution& solution) {
+  const Mesh& mesh = elements.mesh();
+  const auto n = static_cast<Eigen::Index>(elements.count());
+  const double slip_offset =
+      rigid_slip_point == RigidSlipPoint::collocation ? 0.5 * alpha * mesh.dx1_m : 0.5 * (alpha + 1.0) * mesh.dx1_m;
+  const Eigen::MatrixXd W = rigid_slip_columns(elements, slip_offset);
+  InfluenceOperator R = make_steady_rolling_operator(mesh, material, alpha);
+  if (options.solver == LinearSolver::dense) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(R.dense(elements.indices()));
+    for (int j : columns) solution.unit_tractions.col(j) = lu.solve(W.col(j));
+    return;
+  }
+  const MatrixFreeOperator M(2 * n, [&R, &elements, n](const double* x, double* y) {
+    R.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
+  });
+  const SteadyRollingPreconditioner preconditioner(elements);
+  const ApplyFunction precondition = [&preconditioner](const double* r, double* z) { preconditioner.apply(r, z); };
+  KrylovOptions krylov;
+  krylov.tolerance = options.tolerance;
+  krylov.max_iterations = options.max_iterations;
+  for (int j : columns) {
+    const Eigen::VectorXd rhs = W.col(j);
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n);
+    const KrylovReport report = solve_krylov(M, precondition, rhs, x, krylov);
+    solution.iterations += report.iterations;
+    solution.relative_residual = std::max(solution.relative_residual, report.relative_residual);
+    if (!report.converged) {
+      static const char* const names[] = {"xi", "eta", "phi"};
+      throw Error(fmt::format(
+          "adhesion solver: GMRES did not converge for unit {} in {} iterations (relative residual {:.2e} > {:.1e})",
+          names[j], report.iterations, report.relative_residual, options.tolerance));
+    }
+    solution.unit_tractions.col(j) = x;
+  }
+}
+
 }  // namespace
 
 AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
@@ -57,46 +101,24 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
   validate(material);
   validate(elements.mesh());
   require(elements.count() > 0, "adhesion solver: no elements in contact");
-  require(std::isfinite(options.collocation_offset) && std::fabs(options.collocation_offset) <= 1.0,
-          "adhesion solver: the collocation offset alpha must lie in [-1, 1]");
-  const Mesh& mesh = elements.mesh();
-  const auto n = static_cast<Eigen::Index>(elements.count());
-  const double alpha = options.collocation_offset;
-  const double slip_offset = options.rigid_slip_point == RigidSlipPoint::collocation
-                                 ? 0.5 * alpha * mesh.dx1_m
-                                 : 0.5 * (alpha + 1.0) * mesh.dx1_m;
-  const Eigen::MatrixXd W = rigid_slip_columns(elements, slip_offset);
-
-  InfluenceOperator R = make_steady_rolling_operator(mesh, material, alpha);
-  AdhesionSolution solution;
-  solution.unit_tractions.resize(2 * n, 3);
-  if (options.solver == LinearSolver::dense) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(R.dense(elements.indices()));
-    solution.unit_tractions = lu.solve(W);
-  } else {
+  require_valid_offset(options.collocation_offset);
+  const double spin_alpha = options.spin_collocation_offset.value_or(options.collocation_offset);
+  require_valid_offset(spin_alpha);
+  if (options.solver == LinearSolver::krylov) {
     require(options.tolerance > 0 && options.max_iterations > 0,
             "adhesion solver: the Krylov tolerance and iteration limit must be positive");
-    const MatrixFreeOperator M(2 * n, [&R, &elements, n](const double* x, double* y) {
-      R.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
-    });
-    const SteadyRollingPreconditioner preconditioner(elements);
-    const ApplyFunction precondition = [&preconditioner](const double* r, double* z) { preconditioner.apply(r, z); };
-    KrylovOptions krylov;
-    krylov.tolerance = options.tolerance;
-    krylov.max_iterations = options.max_iterations;
-    for (int j = 0; j < 3; ++j) {
-      Eigen::VectorXd rhs = W.col(j);
-      Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n);
-      const KrylovReport report = solve_krylov(M, precondition, rhs, x, krylov);
-      solution.iterations += report.iterations;
-      solution.relative_residual = std::max(solution.relative_residual, report.relative_residual);
-      if (!report.converged) {
-        throw Error("adhesion solver: GMRES did not converge for creepage " + std::to_string(j + 1) + " in " +
-                    std::to_string(report.iterations) + " iterations (relative residual " +
-                    fmt::format("{:.2e}", report.relative_residual) + ")");
-      }
-      solution.unit_tractions.col(j) = x;
-    }
+  } else {
+    require(elements.count() <= 20000, "adhesion solver: " + std::to_string(elements.count()) +
+                                           " elements are too many for the dense solver (at most 20000)");
+  }
+  const auto n = static_cast<Eigen::Index>(elements.count());
+  AdhesionSolution solution;
+  solution.unit_tractions.resize(2 * n, 3);
+  if (spin_alpha == options.collocation_offset) {
+    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {0, 1, 2}, options, solution);
+  } else {
+    solve_columns(elements, material, options.collocation_offset, options.rigid_slip_point, {0, 1}, options, solution);
+    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {2}, options, solution);
   }
   solution.creepage_matrix = force_rows(elements) * solution.unit_tractions;
   return solution;
