@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <exception>
+#include <string>
 
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
@@ -15,6 +16,17 @@ int main(int argc, char** argv) {
   railcontact::cli::add_run_command(app, action);
   railcontact::cli::add_coefficients_command(app, action);
   railcontact::cli::add_study_command(app, action);
+  if (argc > 1 && argv[1][0] != '-') {
+    try {
+      app.get_subcommand(argv[1]);
+    } catch (const CLI::OptionNotFound&) {
+      std::string names;
+      for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+      fmt::print(stderr, "railcontact: error: unknown command '{}' (commands: {})\n", argv[1], names);
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,0 +1,91 @@
+// The command-line tool, run as a user would: JSON output, readable errors, exit codes.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+CommandResult run_cli(const std::string& arguments) {
+  const std::string err_file = ::testing::TempDir() + "railcontact_cli_stderr.txt";
+  const std::string command = std::string(RAILCONTACT_CLI) + " " + arguments + " 2>" + err_file;
+  CommandResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.out += buffer.data();
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (FILE* f = fopen(err_file.c_str(), "r")) {
+    while (fgets(buffer.data(), buffer.size(), f) != nullptr) result.err += buffer.data();
+    fclose(f);
+  }
+  return result;
+}
+
+int count_lines(const std::string& text) {
+  int lines = 0;
+  for (char c : text) lines += c == '\n';
+  return lines;
+}
+
+TEST(Cli, CoefficientsJsonIsOneObjectWithTheDocumentedKeys) {
+  const CommandResult r = run_cli("coefficients --a-over-b 1 --nu 0.25 --elements 1500 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  for (const char* key : {"a_over_b", "nu", "alpha", "solver", "elements_in_contact", "C11", "C22", "C23", "C33", "table",
+                          "rel_error", "solve_time_s"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_NEAR(j["C11"].get<double>(), 4.12, 0.02 * 4.12);
+  EXPECT_NEAR(j["C22"].get<double>(), 3.67, 0.02 * 3.67);
+  EXPECT_NEAR(j["C23"].get<double>(), 1.47, 0.02 * 1.47);
+  EXPECT_DOUBLE_EQ(j["table"]["C11"].get<double>(), 4.12);
+  EXPECT_NEAR(j["rel_error"]["C11"].get<double>(), j["C11"].get<double>() / 4.12 - 1, 1e-12);
+  EXPECT_GT(j["elements_in_contact"].get<int>(), 1300);
+}
+
+TEST(Cli, DenseSolverGivesTheSameCoefficients) {
+  const auto krylov = nlohmann::json::parse(run_cli("coefficients --a-over-b 2 --nu 0.3 --elements 400 --json").out);
+  const auto dense =
+      nlohmann::json::parse(run_cli("coefficients --a-over-b 2 --nu 0.3 --elements 400 --solver dense --json").out);
+  for (const char* key : {"C11", "C22", "C23", "C33"})
+    EXPECT_NEAR(krylov[key].get<double>(), dense[key].get<double>(), 1e-6 * dense[key].get<double>()) << key;
+}
+
+class CliBadInput : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};
+
+TEST_P(CliBadInput, OneClearErrorLineAndNonZeroExit) {
+  const auto [arguments, expected_word] = GetParam();
+  const CommandResult r = run_cli(arguments);
+  EXPECT_NE(r.exit_code, 0) << arguments;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("error"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(expected_word), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Coefficients, CliBadInput,
+    ::testing::Values(std::pair{"coefficients --a-over-b 1 --nu 0.5", "--nu"},
+                      std::pair{"coefficients --a-over-b 1 --nu -0.1", "--nu"},
+                      std::pair{"coefficients --a-over-b 0 --nu 0.3", "--a-over-b"},
+                      std::pair{"coefficients --a-over-b 1000 --nu 0.3", "--a-over-b"},
+                      std::pair{"coefficients --a-over-b nan --nu 0.3", "a-over-b"},
+                      std::pair{"coefficients --a-over-b 1 --nu 0.3 --elements 0", "--elements"},
+                      std::pair{"coefficients --a-over-b 1 --nu 0.3 --elements 100000000", "--elements"},
+                      std::pair{"coefficients --a-over-b 1 --nu 0.3 --alpha -1", "alpha"},
+                      std::pair{"coefficients --a-over-b 1 --nu 0.3 --solver magic", "solver"},
+                      std::pair{"coefficients --a-over-b 1 --nu 0.3 --bogus", "bogus"},
+                      std::pair{"coefficients --nu 0.3", "a-over-b"},
+                      std::pair{"frobnicate", "frobnicate"}));
+
+}  // namespace
