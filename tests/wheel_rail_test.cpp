@@ -207,6 +207,29 @@ TEST(WheelRail, PotentialContactAreaHoldsTheMarginRegion) {
   }
 }
 
+TEST(WheelRail, PotentialContactAreaIncludesSecondRegionNearTwoPointContact) {
+  const WheelRailPair& pair = s1002_uic60();
+  const WheelRailContactPoint c = pair.contact_point(-0.225 * kMm);
+  ASSERT_LT(c.secondary_gap_m, 1e-6);  // two minima of the vertical gap ~10 mm apart
+  const double approach = 0.03 * kMm;
+  const PotentialContactArea area = potential_contact_area(pair, c, approach);
+  const Mesh& m = area.mesh;
+  // Lateral position of the second minimum in the tangent plane: x2 = (P - C)·X2.
+  const double x2_second = (c.secondary_y_rail_m - c.y_rail_m) * -std::cos(c.contact_angle_rad) +
+                           (pair.rail().z(c.secondary_y_rail_m) - c.z_rail_m) * std::sin(c.contact_angle_rad);
+  EXPECT_LT(std::abs(x2_second), 15.0 * kMm);
+  EXPECT_GT(std::abs(x2_second), 5.0 * kMm);
+  EXPECT_LT(m.x2(0), x2_second);
+  EXPECT_GT(m.x2(m.n2 - 1), x2_second);
+  // Around x2_second, on the row x1 ≈ 0, h comes down to about the secondary gap.
+  const int i1 = m.n1 / 2;
+  double h_min_there = 1.0;
+  for (int i2 = 0; i2 < m.n2; ++i2) {
+    if (std::abs(m.x2(i2) - x2_second) < 1.0 * kMm) h_min_there = std::min(h_min_there, area.h_m[m.index(i1, i2)]);
+  }
+  EXPECT_LT(h_min_there, 0.5 * approach);
+}
+
 TEST(WheelRail, ProfilesThatNeverTouchThrow) {
   const WheelRailPair& pair = s1002_uic60();
   for (const double y : {1.0, -1.0}) {

@@ -1,12 +1,17 @@
 // Choice of the potential contact area of a wheel–rail contact (docs/GEOMETRY.md §6): a regular
 // mesh around the region where the undeformed distance h is below margin × approach, with a
 // border of a few elements, grown until that region no longer reaches into the border.
+//
+// Since the wheel only rises away from x1 = 0 (h(x1, x2) >= h(0, x2)), the lateral extent of the
+// region is that of {x2 : h(0, x2) < level}; it is found by a scan over the whole reach of the
+// profiles, so a second interpenetration region (near a two-point contact) is included too.
 #include <fmt/core.h>
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
+#include "geometry/tangent_section.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
 
@@ -14,30 +19,31 @@ namespace railcontact {
 
 namespace {
 
-// Distance from 0 along direction `sign` (±1) of the first point where h(t) reaches `level`,
-// for h(0) < level: stepping outwards, then bisection. max_distance bounds the search.
-double reach(const std::function<double(double)>& h, double level, double sign, double first_step, double max_distance) {
-  double inside = 0.0;
-  double step = first_step;
-  double outside = step;
-  while (h(sign * outside) < level) {
-    inside = outside;
-    step *= 1.5;
-    outside += step;
-    require(outside < max_distance,
-            fmt::format("potential contact area: h stays below {:.3g} mm over more than {:.1f} mm", level * 1e3,
-                        max_distance * 1e3));
-  }
-  for (int k = 0; k < 60 && outside - inside > 1e-4 * first_step; ++k) {
+// Point between `inside` (h < level) and `outside` (h >= level) where h crosses level.
+double crossing(const std::function<double(double)>& h, double level, double inside, double outside) {
+  for (int k = 0; k < 50 && std::abs(outside - inside) > 1e-9; ++k) {
     const double mid = 0.5 * (inside + outside);
-    if (h(sign * mid) < level) {
-      inside = mid;
-    } else {
-      outside = mid;
-    }
+    (h(mid) < level ? inside : outside) = mid;
   }
   return 0.5 * (inside + outside);
 }
+
+// Distance along +x1 (h even in x1) at which h(x1, 0) reaches level.
+double x1_reach(const std::function<double(double)>& h, double level, double first_step) {
+  double inside = 0.0, outside = first_step, step = first_step;
+  while (h(outside) < level) {
+    inside = outside;
+    step *= 1.5;
+    outside += step;
+    require(outside < 0.2, fmt::format("potential contact area: h stays below {:.3g} mm along X1 over more than 200 mm",
+                                       level * 1e3));
+  }
+  return crossing(h, level, inside, outside);
+}
+
+struct Interval {
+  double lo, hi;
+};
 
 }  // namespace
 
@@ -52,32 +58,56 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
   require(std::isfinite(options.dx1_m) && std::isfinite(options.dx2_m) && options.dx1_m >= 0.0 && options.dx2_m >= 0.0,
           "potential contact area: element sizes must be non-negative");
 
+  const geometry::TangentPlaneSection section(pair, contact);
   const double level = options.margin_factor * approach_m;
-  const auto h_x1 = [&](double x1) { return pair.undeformed_distance(contact, x1, 0.0); };
-  const auto h_x2 = [&](double x2) { return pair.undeformed_distance(contact, 0.0, x2); };
-  // First steps from the quadratic form h ≈ A x1² + B x2².
-  const double step1 = 0.1 * std::sqrt(approach_m / std::max(contact.A_per_m, 1e-6));
-  const double step2 = 0.1 * std::sqrt(approach_m / std::max(std::abs(contact.B_per_m), 1e-2));
-  const double max_distance = 0.2;
+  const std::function<double(double)> h_x1 = [&](double x1) { return section.undeformed_distance_m(x1, 0.0); };
+  const std::function<double(double)> h_x2 = [&](double x2) { return section.undeformed_distance_m(0.0, x2); };
 
-  // Interpenetration region (h < approach) for the element sizes.
-  const double a1 = reach(h_x1, approach_m, 1.0, step1, max_distance);
-  const double b2 = reach(h_x2, approach_m, 1.0, step2, max_distance) + reach(h_x2, approach_m, -1.0, step2, max_distance);
+  // Lateral scan of h(0, x2) over the reach of the profiles.
+  const double reach_lo = section.x2_min_m(), reach_hi = section.x2_max_m();
+  require(reach_lo < 0.0 && reach_hi > 0.0, "potential contact area: the contact point lies at the edge of a profile");
+  const int n_lo = static_cast<int>(std::ceil(-reach_lo / 0.05e-3));
+  const int n_hi = static_cast<int>(std::ceil(reach_hi / 0.05e-3));
+  const double step_lo = -reach_lo / n_lo * (1.0 - 1e-9), step_hi = reach_hi / n_hi * (1.0 - 1e-9);
+  std::vector<double> xs, hs;
+  for (int k = -n_lo; k <= n_hi; ++k) {
+    xs.push_back(k < 0 ? k * step_lo : k * step_hi);
+    hs.push_back(h_x2(xs.back()));
+  }
+  const auto k0 = static_cast<std::size_t>(n_lo);  // x2 = 0
+  // The interpenetration region around the contact (h < approach) sets the element width ...
+  std::size_t a = k0, b = k0;
+  while (a > 0 && hs[a - 1] < approach_m) --a;
+  while (b + 1 < xs.size() && hs[b + 1] < approach_m) ++b;
+  require(a > 0 && b + 1 < xs.size(),
+          "potential contact area: the interpenetration region reaches beyond the profiles; reduce the approach");
+  const Interval patch{crossing(h_x2, approach_m, xs[a], xs[a - 1]), crossing(h_x2, approach_m, xs[b], xs[b + 1])};
+  // ... and every x2 with h(0, x2) < level is covered.
+  std::size_t first = k0, last = k0;
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    if (hs[k] < level) {
+      first = std::min(first, k);
+      last = std::max(last, k);
+    }
+  }
+  require(first > 0 && last + 1 < xs.size(),
+          fmt::format("potential contact area: the region h < {:.3g} mm reaches beyond the profiles; reduce the approach",
+                      level * 1e3));
+  const Interval margin2{crossing(h_x2, level, xs[first], xs[first - 1]), crossing(h_x2, level, xs[last], xs[last + 1])};
+
+  const double first_step1 = 0.1 * std::sqrt(approach_m / std::max(contact.A_per_m, 1e-6));
+  const double a1 = x1_reach(h_x1, approach_m, first_step1);
+  const double m1 = x1_reach(h_x1, level, first_step1);
   const double dx1 = options.dx1_m > 0.0 ? options.dx1_m : 2.0 * a1 / options.elements_across;
-  const double dx2 = options.dx2_m > 0.0 ? options.dx2_m : b2 / options.elements_across;
+  const double dx2 = options.dx2_m > 0.0 ? options.dx2_m : (patch.hi - patch.lo) / options.elements_across;
 
-  // Margin region, plus the border.
   const int border = options.border_elements;
-  const double m1 = reach(h_x1, level, 1.0, step1, max_distance);
-  const double m2_hi = reach(h_x2, level, 1.0, step2, max_distance);
-  const double m2_lo = -reach(h_x2, level, -1.0, step2, max_distance);
-  int n1_lo = static_cast<int>(std::ceil(m1 / dx1)) + border;  // elements on each side of x1 = 0
-  int n1_hi = n1_lo;
-  const double x2_centre = 0.5 * (m2_lo + m2_hi);
-  int n2_lo = static_cast<int>(std::ceil((x2_centre - m2_lo) / dx2)) + border;
-  int n2_hi = static_cast<int>(std::ceil((m2_hi - x2_centre) / dx2)) + border;
+  int n1_lo = static_cast<int>(std::ceil(m1 / dx1)) + border;  // elements below x1 = 0
+  int n1_hi = n1_lo;                                            // and above
+  const double x2_centre = 0.5 * (margin2.lo + margin2.hi);
+  int n2_lo = static_cast<int>(std::ceil((x2_centre - margin2.lo) / dx2)) + border;
+  int n2_hi = static_cast<int>(std::ceil((margin2.hi - x2_centre) / dx2)) + border;
 
-  PotentialContactArea area;
   for (int step = 0;; ++step) {
     Mesh mesh;
     mesh.n1 = n1_lo + n1_hi;
@@ -101,14 +131,11 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
       }
     }
     if (!(low1 || high1 || low2 || high2)) {
-      area.mesh = mesh;
-      area.h_m = std::move(h);
-      area.growth_steps = step;
-      return area;
+      return PotentialContactArea{mesh, std::move(h), step};
     }
     require(step < options.max_growth_steps,
-            fmt::format("potential contact area: the region h < {:.3g} mm still reaches the border after {} enlargements "
-                        "({} x {} elements)",
+            fmt::format("potential contact area: the region h < {:.3g} mm still reaches the border after {} "
+                        "enlargements ({} x {} elements)",
                         level * 1e3, step, mesh.n1, mesh.n2));
     const int grow1 = std::max(border, mesh.n1 / 4);
     const int grow2 = std::max(border, mesh.n2 / 4);

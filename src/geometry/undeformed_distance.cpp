@@ -10,29 +10,20 @@
 #include <cmath>
 
 #include "geometry/root_finding.hpp"
+#include "geometry/tangent_section.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/wheel_rail.hpp"
 
 namespace railcontact {
 
+namespace geometry {
+
 namespace {
 
-// The tangent-plane section of one contact: contact point C, tangent t (= X2) and normal n
-// (= X3) in the rail profile frame (y_p, z_p), and the parameter ranges around the contact on
-// which each profile's projection onto t is monotone.
-struct Section {
-  double cy = 0.0, cz = 0.0;  // C
-  double ty = 0.0, tz = 0.0;  // t = (-cos γ, sin γ)
-  double ny = 0.0, nz = 0.0;  // n = (-sin γ, -cos γ)
-  double rail_s_lo = 0.0, rail_s_hi = 0.0, rail_s_contact = 0.0;
-  double wheel_s_lo = 0.0, wheel_s_hi = 0.0, wheel_s_contact = 0.0;
-};
-
-// Parameter range around s_contact where the tangent's projection on t stays below
-// -min_projection (the curve runs against t), limited by the ends of the profile.
+// Parameter range around s_contact on which the curve runs against t (its tangent makes an
+// angle of less than about 87 degrees with -t), limited by the ends of the profile.
 std::pair<double, double> monotone_range(const SmoothProfile& profile, double s_contact, double ty, double tz) {
   const double step = 0.1e-3;
-  const double min_projection = 0.05;  // |angle to the contact tangent| < about 87 degrees
+  const double min_projection = 0.05;
   const auto runs_against_t = [&](double s) {
     const auto p = profile.at(s);
     return (p.dy_ds * ty + p.dz_ds * tz) / std::hypot(p.dy_ds, p.dz_ds) < -min_projection;
@@ -47,99 +38,104 @@ std::pair<double, double> monotone_range(const SmoothProfile& profile, double s_
   return {lo, hi};
 }
 
-Section make_section(const WheelRailPair& pair, const WheelRailContactPoint& c) {
-  Section sec;
-  const double g = c.contact_angle_rad;
-  sec.cy = c.y_rail_m;
-  sec.cz = c.z_rail_m;
-  sec.ty = -std::cos(g);
-  sec.tz = std::sin(g);
-  sec.ny = -std::sin(g);
-  sec.nz = -std::cos(g);
-  sec.rail_s_contact = pair.rail().parameter_at(c.y_rail_m);
-  sec.wheel_s_contact = pair.wheel().parameter_at(c.y_wheel_m);
-  std::tie(sec.rail_s_lo, sec.rail_s_hi) = monotone_range(pair.rail(), sec.rail_s_contact, sec.ty, sec.tz);
-  std::tie(sec.wheel_s_lo, sec.wheel_s_hi) = monotone_range(pair.wheel(), sec.wheel_s_contact, sec.ty, sec.tz);
-  return sec;
-}
-
 [[noreturn]] void beyond_reach(const char* which, double x2) {
   throw Error(fmt::format("undeformed distance: the normal line through x2 = {:.4f} mm misses the {} profile "
                           "(beyond its reach in the tangent plane)",
                           x2 * 1e3, which));
 }
 
-// Normal coordinate of the rail surface on the line through x2, and its parameter.
-std::pair<double, double> rail_crossing(const WheelRailPair& pair, const Section& sec, double x2, double guess) {
-  const SmoothProfile& rail = pair.rail();
-  const auto f = [&](double s) {
-    const auto p = rail.at(s);
-    return std::pair{(p.y_m - sec.cy) * sec.ty + (p.z_m - sec.cz) * sec.tz - x2, p.dy_ds * sec.ty + p.dz_ds * sec.tz};
+}  // namespace
+
+TangentPlaneSection::TangentPlaneSection(const WheelRailPair& pair, const WheelRailContactPoint& contact)
+    : pair_(&pair), contact_(contact) {
+  const double g = contact.contact_angle_rad;
+  cy_ = contact.y_rail_m;
+  cz_ = contact.z_rail_m;
+  ty_ = -std::cos(g);
+  tz_ = std::sin(g);
+  ny_ = -std::sin(g);
+  nz_ = -std::cos(g);
+  rail_s_contact_ = pair.rail().parameter_at(contact.y_rail_m);
+  wheel_s_contact_ = pair.wheel().parameter_at(contact.y_wheel_m);
+  std::tie(rail_s_lo_, rail_s_hi_) = monotone_range(pair.rail(), rail_s_contact_, ty_, tz_);
+  std::tie(wheel_s_lo_, wheel_s_hi_) = monotone_range(pair.wheel(), wheel_s_contact_, ty_, tz_);
+  // The projection on t decreases along both curves.
+  const auto rail_x2 = [&](double s) {
+    const auto p = pair.rail().at(s);
+    return (p.y_m - cy_) * ty_ + (p.z_m - cz_) * tz_;
   };
-  const auto s = geometry::solve_bracketed(f, sec.rail_s_lo, sec.rail_s_hi, guess, 1e-15);
-  if (!s) beyond_reach("rail", x2);
-  const auto p = rail.at(*s);
-  return {(p.y_m - sec.cy) * sec.ny + (p.z_m - sec.cz) * sec.nz, *s};
+  const auto wheel_x2 = [&](double s) {
+    const auto p = pair.wheel().at(s);
+    return (p.y_m + contact.wheel_to_rail_offset_m - cy_) * ty_ + (p.z_m + contact.wheel_drop_m - cz_) * tz_;
+  };
+  x2_min_m_ = std::max(rail_x2(rail_s_hi_), wheel_x2(wheel_s_hi_));
+  x2_max_m_ = std::min(rail_x2(rail_s_lo_), wheel_x2(wheel_s_lo_));
 }
 
-// Normal coordinate of the wheel surface (cross-section x1) on the line through x2.
-std::pair<double, double> wheel_crossing(const WheelRailPair& pair, const WheelRailContactPoint& c, const Section& sec,
-                                         double x1, double x2, double guess) {
-  const SmoothProfile& wheel = pair.wheel();
-  const double r_offset = pair.parameters().nominal_rolling_radius_m - pair.taping_line_z_m();
-  const double x1_sq = x1 * x1;
-  // Wheel point in the rail frame at parameter s and its derivative.
-  const auto point = [&](double s, double& y, double& z, double& dy, double& dz) {
+double TangentPlaneSection::rail_normal_m(double x2_m) const {
+  const SmoothProfile& rail = pair_->rail();
+  const auto f = [&](double s) {
+    const auto p = rail.at(s);
+    return std::pair{(p.y_m - cy_) * ty_ + (p.z_m - cz_) * tz_ - x2_m, p.dy_ds * ty_ + p.dz_ds * tz_};
+  };
+  const auto s = solve_bracketed(f, rail_s_lo_, rail_s_hi_, rail_s_contact_ - x2_m, 1e-15);
+  if (!s) beyond_reach("rail", x2_m);
+  const auto p = rail.at(*s);
+  return (p.y_m - cy_) * ny_ + (p.z_m - cz_) * nz_;
+}
+
+double TangentPlaneSection::wheel_normal_m(double x1_m, double x2_m, double& parameter) const {
+  const SmoothProfile& wheel = pair_->wheel();
+  const double r_offset = pair_->parameters().nominal_rolling_radius_m - pair_->taping_line_z_m();
+  const double x1_sq = x1_m * x1_m;
+  // Wheel surface point in the cross-section x1 (rail profile frame) at parameter s, and its
+  // derivative: the profile point raised by r - sqrt(r^2 - x1^2), r = wheel radius there.
+  struct Point {
+    double y, z, dy, dz;
+  };
+  const auto point = [&](double s) {
     const auto p = wheel.at(s);
     const double r = r_offset + p.z_m;
     if (!(r * r > x1_sq)) {
-      throw Error(fmt::format("undeformed distance: x1 = {:.3f} mm exceeds the wheel radius", x1 * 1e3));
+      throw Error(fmt::format("undeformed distance: |x1| = {:.3f} mm exceeds the wheel radius", std::abs(x1_m) * 1e3));
     }
     const double root = std::sqrt(r * r - x1_sq);
-    const double lift = r - root;
-    const double dlift = p.dz_ds * (1.0 - r / root);
-    y = p.y_m + c.wheel_to_rail_offset_m;
-    z = p.z_m + c.wheel_drop_m - lift;
-    dy = p.dy_ds;
-    dz = p.dz_ds - dlift;
+    return Point{p.y_m + contact_.wheel_to_rail_offset_m, p.z_m + contact_.wheel_drop_m - (r - root), p.dy_ds,
+                 p.dz_ds - p.dz_ds * (1.0 - r / root)};
   };
   const auto f = [&](double s) {
-    double y, z, dy, dz;
-    point(s, y, z, dy, dz);
-    return std::pair{(y - sec.cy) * sec.ty + (z - sec.cz) * sec.tz - x2, dy * sec.ty + dz * sec.tz};
+    const Point w = point(s);
+    return std::pair{(w.y - cy_) * ty_ + (w.z - cz_) * tz_ - x2_m, w.dy * ty_ + w.dz * tz_};
   };
-  const auto s = geometry::solve_bracketed(f, sec.wheel_s_lo, sec.wheel_s_hi, guess, 1e-15);
-  if (!s) beyond_reach("wheel", x2);
-  double y, z, dy, dz;
-  point(*s, y, z, dy, dz);
-  return {(y - sec.cy) * sec.ny + (z - sec.cz) * sec.nz, *s};
+  const auto s = solve_bracketed(f, wheel_s_lo_, wheel_s_hi_, parameter, 1e-15);
+  if (!s) beyond_reach("wheel", x2_m);
+  parameter = *s;
+  const Point w = point(*s);
+  return (w.y - cy_) * ny_ + (w.z - cz_) * nz_;
 }
 
-}  // namespace
+double TangentPlaneSection::undeformed_distance_m(double x1_m, double x2_m) const {
+  double parameter = wheel_parameter_guess(x2_m);
+  return wheel_normal_m(x1_m, x2_m, parameter) - rail_normal_m(x2_m);
+}
+
+}  // namespace geometry
 
 double WheelRailPair::undeformed_distance(const WheelRailContactPoint& contact, double x1_m, double x2_m) const {
   require(std::isfinite(x1_m) && std::isfinite(x2_m), "undeformed distance: x1 and x2 must be finite");
-  const Section sec = make_section(*this, contact);
-  const auto [zeta_rail, s_rail] = rail_crossing(*this, sec, x2_m, sec.rail_s_contact - x2_m);
-  (void)s_rail;
-  const auto [zeta_wheel, s_wheel] = wheel_crossing(*this, contact, sec, x1_m, x2_m, sec.wheel_s_contact - x2_m);
-  (void)s_wheel;
-  return zeta_wheel - zeta_rail;
+  return geometry::TangentPlaneSection(*this, contact).undeformed_distance_m(x1_m, x2_m);
 }
 
 std::vector<double> WheelRailPair::undeformed_distance(const WheelRailContactPoint& contact, const Mesh& mesh) const {
   validate(mesh);
-  const Section sec = make_section(*this, contact);
+  const geometry::TangentPlaneSection section(*this, contact);
   std::vector<double> h(mesh.size());
   for (int i2 = 0; i2 < mesh.n2; ++i2) {
     const double x2 = mesh.x2(i2);
-    const auto [zeta_rail, s_rail] = rail_crossing(*this, sec, x2, sec.rail_s_contact - x2);
-    (void)s_rail;
-    double guess = sec.wheel_s_contact - x2;
+    const double rail = section.rail_normal_m(x2);
+    double parameter = section.wheel_parameter_guess(x2);
     for (int i1 = 0; i1 < mesh.n1; ++i1) {
-      const auto [zeta_wheel, s_wheel] = wheel_crossing(*this, contact, sec, mesh.x1(i1), x2, guess);
-      guess = s_wheel;
-      h[mesh.index(i1, i2)] = zeta_wheel - zeta_rail;
+      h[mesh.index(i1, i2)] = section.wheel_normal_m(mesh.x1(i1), x2, parameter) - rail;
     }
   }
   return h;
