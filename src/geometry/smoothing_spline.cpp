@@ -11,6 +11,10 @@
 #include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
 #include <unsupported/Eigen/Splines>
 
 #include "geometry/root_finding.hpp"

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "geometry/root_finding.hpp"
 #include "railcontact/error.hpp"
@@ -41,8 +44,8 @@ double lowest_z_parameter(const SmoothProfile& profile) {
   return root ? *root : s0 + best * ds;
 }
 
-// First parameter from the start of the curve (first == true) or from its end where z_p rises
-// to `level` (coming up from below, z_p down); nothing if the curve never reaches it.
+// First parameter, searching from the start of the curve (from_start) or from its end, where the
+// curve rises to z_p = level (z_p points down); nothing if it never gets that high.
 std::optional<double> crossing_from_end(const SmoothProfile& profile, double level, bool from_start) {
   const int samples = 4000;
   const double s0 = profile.s_begin_m(), s1 = profile.s_end_m();
