@@ -1,0 +1,148 @@
+#pragma once
+// Wheel–rail contact geometry of one wheel–rail pair (METHOD.md §2, §9; docs/GEOMETRY.md):
+// wheelset position on the track, the contact point, contact angle, rolling radius, and the
+// undeformed distance h(x1, x2) in the tangent plane of the contact.
+//
+// Frames (docs/GEOMETRY.md §1–3):
+// - Track frame: x along the track in the direction of travel, y lateral to the LEFT, z UP.
+// - The modelled pair is the RIGHT wheel on the RIGHT rail (looking in the direction of travel).
+// - Both profiles are given in their profile frames (profile.hpp): y_p to the right (away from
+//   the track centre, towards the field side), z_p down — the track frame turned by 180° about x.
+// - Wheelset lateral displacement y (m) along the track y axis: y < 0 moves the wheelset to the
+//   right, the right wheel's flange towards the right rail's gauge face, and the contact point
+//   towards the flange (on the rail: towards the gauge corner).
+// - Contact frame: X1 = x (rolling direction); X3 = the contact normal pointing into the wheel;
+//   X2 = X3 × X1 lies in the tangent plane and points towards the flange / gauge side. Origin:
+//   the point of first touch (the normal solver may move it to the centre of pressure).
+// - Contact angle γ: the angle of the common tangent from the horizontal track plane, positive
+//   when the normal into the wheel leans towards the track centre (the flange side), so
+//   X3 = (0, sin γ, cos γ) and X2 = (0, cos γ, −sin γ) in the track frame.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "railcontact/mesh.hpp"
+#include "railcontact/profile.hpp"
+
+namespace railcontact {
+
+// Track and wheelset data (METHOD.md §9 defaults). The rail inclination (1:40) is part of the
+// rail profile's coordinates and is not applied again.
+struct TrackWheelsetParameters {
+  double track_gauge_m = 1.435;               // between the gauge faces ...
+  double gauge_measuring_depth_m = 0.014;     // ... measured this far below the top of the rails
+  double flange_back_distance_m = 1.360;      // between the flange backs of the wheelset
+  double flange_back_y_m = -0.070;            // the flange back in the wheel profile frame
+  double taping_line_from_flange_back_m = 0.070;  // lateral distance flange back -> taping line
+  double nominal_rolling_radius_m = 0.46;     // wheel radius at the taping line
+};
+
+// Throws Error unless all lengths are positive and finite (flange_back_y finite).
+void validate(const TrackWheelsetParameters& parameters);
+
+// The geometric contact point of one lateral displacement.
+struct WheelRailContactPoint {
+  double lateral_displacement_m = 0.0;  // wheelset y (track frame, positive to the left)
+  double y_rail_m = 0.0;    // contact point in the rail profile frame
+  double z_rail_m = 0.0;
+  double y_wheel_m = 0.0;   // contact point in the wheel profile frame
+  double z_wheel_m = 0.0;
+  double y_track_m = 0.0;   // lateral position in the track frame (from the centreline, left +)
+  double contact_angle_rad = 0.0;   // γ, see above
+  double rolling_radius_m = 0.0;    // wheel radius at the contact point
+  // Vertical position of the wheel profile frame in the rail profile frame after lowering the
+  // wheel onto the rail (z_p of the wheel origin; z_p points down).
+  double wheel_drop_m = 0.0;
+  // Offset from wheel to rail profile coordinates: y_rail = y_wheel + wheel_to_rail_offset.
+  double wheel_to_rail_offset_m = 0.0;
+  // Lateral curvatures of the profiles at the contact (signed, profile frame, 1/m; see
+  // SmoothProfile::curvature_at) and the quadratic form of h at the contact:
+  // h ≈ A x1² + B x2² with A = cos γ / (2 r), B = (κ_rail − κ_wheel) / 2.
+  double rail_curvature_per_m = 0.0;
+  double wheel_curvature_per_m = 0.0;
+  double A_per_m = 0.0;
+  double B_per_m = 0.0;
+  // Contact frame axes in the track frame (x, y, z).
+  std::array<double, 3> x2_axis_track{};
+  std::array<double, 3> x3_axis_track{};
+  // Second-lowest local minimum of the vertical gap more than 1 mm away laterally (a candidate
+  // second contact point): its gap (m) and rail position; gap = +inf when there is none.
+  double secondary_gap_m = 0.0;
+  double secondary_y_rail_m = 0.0;
+};
+
+// One wheel–rail pair: the two smoothed profiles placed on the track.
+class WheelRailPair {
+ public:
+  // Throws Error when a profile is not oriented as documented (flange / gauge side at -y, z
+  // down) or the taping line / gauge point cannot be found.
+  WheelRailPair(const Profile& wheel, const Profile& rail, const TrackWheelsetParameters& parameters = {},
+                const SmoothingOptions& smoothing = {});
+
+  [[nodiscard]] const SmoothProfile& wheel() const { return wheel_; }
+  [[nodiscard]] const SmoothProfile& rail() const { return rail_; }
+  [[nodiscard]] const TrackWheelsetParameters& parameters() const { return parameters_; }
+
+  // Rail: highest point (z_p minimum) and the gauge point (gauge side, measuring depth below
+  // the top), profile frame. Wheel: taping line (y_p, z_p) in the wheel profile frame.
+  [[nodiscard]] double rail_top_z_m() const { return rail_top_z_m_; }
+  [[nodiscard]] double rail_gauge_point_y_m() const { return rail_gauge_y_m_; }
+  [[nodiscard]] double taping_line_y_m() const { return taping_y_m_; }
+  [[nodiscard]] double taping_line_z_m() const { return taping_z_m_; }
+  // Wheel radius at wheel profile position y (r0 + z_w(y) − z_w(taping line)).
+  [[nodiscard]] double wheel_radius_m(double y_wheel_m) const;
+
+  // Lowers the wheel (vertically, zero roll and yaw) onto the rail until first touch at
+  // wheelset displacement y. Throws Error when the profiles never touch (no lateral overlap) or
+  // first touch is at the end of a profile (no common tangent).
+  [[nodiscard]] WheelRailContactPoint contact_point(double lateral_displacement_m) const;
+
+  // Exact undeformed distance (m) at tangent-plane point (x1, x2) of a contact: the distance
+  // along the contact normal between the rail surface and the wheel surface on the line
+  // through (x1, x2) (docs/GEOMETRY.md §4). Throws Error when the line misses a profile.
+  [[nodiscard]] double undeformed_distance(const WheelRailContactPoint& contact, double x1_m, double x2_m) const;
+
+  // h at every element centre of the mesh (X1 rolling, X2 as above), stored as mesh.index().
+  [[nodiscard]] std::vector<double> undeformed_distance(const WheelRailContactPoint& contact, const Mesh& mesh) const;
+
+ private:
+  SmoothProfile wheel_;
+  SmoothProfile rail_;
+  TrackWheelsetParameters parameters_;
+  double rail_top_z_m_ = 0.0;
+  double rail_gauge_y_m_ = 0.0;
+  double taping_y_m_ = 0.0;
+  double taping_z_m_ = 0.0;
+  double wheel_origin_lateral_m_ = 0.0;  // wheel profile origin from the track centreline, outward
+  double rail_origin_lateral_m_ = 0.0;   // rail profile origin from the track centreline, outward
+};
+
+// Choice of the potential contact area.
+struct PotentialAreaOptions {
+  // The area holds the region where h < margin_factor × approach (the undeformed
+  // interpenetration h < approach holds every contact patch of the normal problem).
+  double margin_factor = 1.5;
+  // Element sizes: if positive they are used as given; otherwise the interpenetration region
+  // (h < approach) spans about elements_across elements along X1 and along X2.
+  double dx1_m = 0.0;
+  double dx2_m = 0.0;
+  int elements_across = 30;
+  // Extra elements around the margin region; the area grows while the margin region reaches
+  // into this border ring, at most max_growth_steps times.
+  int border_elements = 3;
+  int max_growth_steps = 10;
+};
+
+// A potential contact area with the undeformed distance on it.
+struct PotentialContactArea {
+  Mesh mesh;
+  std::vector<double> h_m;  // at the element centres, mesh.index() order
+  int growth_steps = 0;     // how often the area had to be enlarged
+};
+
+// Mesh and h for an approach estimate (m), e.g. Hertz's approach for the local curvatures
+// A_per_m, B_per_m of the contact point (hertz_from_curvatures in hertz.hpp).
+PotentialContactArea potential_contact_area(const WheelRailPair& pair, const WheelRailContactPoint& contact,
+                                            double approach_m, const PotentialAreaOptions& options = {});
+
+}  // namespace railcontact

@@ -1,0 +1,83 @@
+#include "geometry/profile_text.hpp"
+
+#include <fmt/core.h>
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+
+#include "railcontact/error.hpp"
+
+namespace railcontact::geometry {
+
+std::vector<NumberedLine> read_lines(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open the file for reading");
+  std::vector<NumberedLine> lines;
+  std::string text;
+  std::size_t number = 0;
+  while (std::getline(in, text)) {
+    ++number;
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    lines.push_back({number, std::move(text)});
+    text.clear();
+  }
+  if (in.bad()) fail(path, "read error");
+  return lines;
+}
+
+void fail(const std::filesystem::path& path, const std::string& message) {
+  throw Error(fmt::format("profile {}: {}", path.string(), message));
+}
+
+void fail(const std::filesystem::path& path, std::size_t line, const std::string& message) {
+  throw Error(fmt::format("profile {}:{}: {}", path.string(), line, message));
+}
+
+std::string_view strip_comment(std::string_view text, std::string_view comment_chars) {
+  const auto pos = text.find_first_of(comment_chars);
+  return pos == std::string_view::npos ? text : text.substr(0, pos);
+}
+
+std::string_view trim(std::string_view text) {
+  const auto is_blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; };
+  while (!text.empty() && is_blank(text.front())) text.remove_prefix(1);
+  while (!text.empty() && is_blank(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+std::optional<double> parse_number(std::string_view text) {
+  text = trim(text);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty()) return std::nullopt;
+  double value = 0.0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::optional<std::vector<double>> parse_numbers(std::string_view text) {
+  std::vector<double> values;
+  std::size_t pos = 0;
+  const auto is_separator = [](char c) { return c == ' ' || c == '\t' || c == ',' || c == ';'; };
+  while (pos < text.size()) {
+    while (pos < text.size() && is_separator(text[pos])) ++pos;
+    if (pos >= text.size()) break;
+    std::size_t end = pos;
+    while (end < text.size() && !is_separator(text[end])) ++end;
+    const auto value = parse_number(text.substr(pos, end - pos));
+    if (!value) return std::nullopt;
+    values.push_back(*value);
+    pos = end;
+  }
+  return values;
+}
+
+std::string lower_case(std::string_view text) {
+  std::string result(text);
+  for (char& c : result) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return result;
+}
+
+}  // namespace railcontact::geometry

@@ -1,0 +1,194 @@
+// SIMPACK rail/wheel profile reader (.prr/.prw). The format: '!' starts a comment; sections
+// header.begin/header.end (type = 0 rail, 1 wheel) and spline.begin/spline.end with the
+// processing flags "key = value" and the point list point.begin/point.end (y z [weight] per line,
+// in the file's length unit). The flags are applied in the order numbered in the files' own
+// comments: 1 point.dist.min, 2 shift.y/z, 3 rotate (only 0 supported), 4 bound.y/z (active when
+// min < max), 5 mirror.y/z, 6 inversion, 7 units.len.f (length unit per metre).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "geometry/profile_text.hpp"
+#include "railcontact/profile.hpp"
+
+namespace railcontact {
+
+namespace {
+
+using geometry::fail;
+
+struct KeyValue {
+  std::string value;
+  std::size_t line = 0;
+};
+
+double numeric_value(const std::filesystem::path& path, const std::map<std::string, KeyValue>& keys,
+                     const std::string& key, double fallback) {
+  const auto it = keys.find(key);
+  if (it == keys.end()) return fallback;
+  const auto value = geometry::parse_number(it->second.value);
+  if (!value) fail(path, it->second.line, fmt::format("'{}' must be a number, got '{}'", key, it->second.value));
+  return *value;
+}
+
+bool flag_value(const std::filesystem::path& path, const std::map<std::string, KeyValue>& keys,
+                const std::string& key) {
+  const double value = numeric_value(path, keys, key, 0.0);
+  if (value != 0.0 && value != 1.0) {
+    fail(path, keys.at(key).line, fmt::format("'{}' must be 0 or 1, got '{}'", key, keys.at(key).value));
+  }
+  return value == 1.0;
+}
+
+}  // namespace
+
+Profile read_simpack_profile(const std::filesystem::path& path) {
+  const auto lines = geometry::read_lines(path);
+
+  enum class Section { none, header, spline, points };
+  Section section = Section::none;
+  std::map<std::string, KeyValue> header_keys;
+  std::map<std::string, KeyValue> spline_keys;
+  std::vector<double> y, z;
+  std::size_t points_begin_line = 0;
+  bool points_seen = false;
+  bool points_closed = false;
+
+  for (const auto& line : lines) {
+    const std::string_view text = geometry::trim(geometry::strip_comment(line.text, "!"));
+    if (text.empty()) continue;
+    const std::string lower = geometry::lower_case(text);
+
+    if (section == Section::points) {
+      if (lower == "point.end") {
+        section = Section::spline;
+        points_closed = true;
+        continue;
+      }
+      const auto values = geometry::parse_numbers(text);
+      if (!values || values->size() < 2 || values->size() > 3) {
+        fail(path, line.number, fmt::format("expected a point 'y z [weight]', got '{}'", text));
+      }
+      y.push_back((*values)[0]);
+      z.push_back((*values)[1]);
+      continue;
+    }
+
+    if (lower == "header.begin") {
+      section = Section::header;
+    } else if (lower == "header.end") {
+      if (section != Section::header) fail(path, line.number, "header.end without header.begin");
+      section = Section::none;
+    } else if (lower == "spline.begin") {
+      section = Section::spline;
+    } else if (lower == "spline.end") {
+      if (section != Section::spline) fail(path, line.number, "spline.end without spline.begin");
+      section = Section::none;
+    } else if (lower == "point.begin") {
+      if (section != Section::spline) fail(path, line.number, "point.begin outside spline.begin/spline.end");
+      if (points_seen) fail(path, line.number, "a second point.begin (one point list per file)");
+      section = Section::points;
+      points_seen = true;
+      points_begin_line = line.number;
+    } else if (lower == "point.end") {
+      fail(path, line.number, "point.end without point.begin");
+    } else {
+      const auto eq = text.find('=');
+      if (eq == std::string_view::npos) {
+        fail(path, line.number, fmt::format("expected 'key = value' or a section keyword, got '{}'", text));
+      }
+      const std::string key = geometry::lower_case(geometry::trim(text.substr(0, eq)));
+      KeyValue value{std::string(geometry::trim(text.substr(eq + 1))), line.number};
+      if (section == Section::header) {
+        header_keys[key] = value;
+      } else if (section == Section::spline) {
+        spline_keys[key] = value;
+      }
+      // Keys outside the sections are ignored.
+    }
+  }
+  if (!points_seen) fail(path, "no point list (point.begin ... point.end)");
+  if (!points_closed) fail(path, points_begin_line, "point.begin without point.end");
+  if (y.size() < 4) fail(path, points_begin_line, fmt::format("{} points; at least 4 are needed", y.size()));
+
+  Profile profile;
+  profile.source = path.string();
+  if (header_keys.count("type") != 0) {
+    const double type = numeric_value(path, header_keys, "type", -1.0);
+    if (type == 0.0) {
+      profile.kind = ProfileKind::rail;
+    } else if (type == 1.0) {
+      profile.kind = ProfileKind::wheel;
+    } else {
+      fail(path, header_keys.at("type").line, "header 'type' must be 0 (rail) or 1 (wheel)");
+    }
+  }
+
+  // 1: minimum point distance.
+  const double dist_min = numeric_value(path, spline_keys, "point.dist.min", 0.0);
+  if (dist_min > 0.0) {
+    std::vector<double> ky{y.front()}, kz{z.front()};
+    for (std::size_t i = 1; i < y.size(); ++i) {
+      if (std::hypot(y[i] - ky.back(), z[i] - kz.back()) >= dist_min) {
+        ky.push_back(y[i]);
+        kz.push_back(z[i]);
+      }
+    }
+    y = std::move(ky);
+    z = std::move(kz);
+  }
+  // 2: shift.
+  const double shift_y = numeric_value(path, spline_keys, "shift.y", 0.0);
+  const double shift_z = numeric_value(path, spline_keys, "shift.z", 0.0);
+  for (auto& v : y) v += shift_y;
+  for (auto& v : z) v += shift_z;
+  // 3: rotation (not supported).
+  if (numeric_value(path, spline_keys, "rotate", 0.0) != 0.0) {
+    fail(path, spline_keys.at("rotate").line, "a non-zero 'rotate' is not supported");
+  }
+  // 4: bounds, active when min < max.
+  const double y_lo = numeric_value(path, spline_keys, "bound.y.min", 1.0);
+  const double y_hi = numeric_value(path, spline_keys, "bound.y.max", 0.0);
+  const double z_lo = numeric_value(path, spline_keys, "bound.z.min", 1.0);
+  const double z_hi = numeric_value(path, spline_keys, "bound.z.max", 0.0);
+  if (y_lo < y_hi || z_lo < z_hi) {
+    std::vector<double> ky, kz;
+    for (std::size_t i = 0; i < y.size(); ++i) {
+      const bool inside_y = !(y_lo < y_hi) || (y[i] >= y_lo && y[i] <= y_hi);
+      const bool inside_z = !(z_lo < z_hi) || (z[i] >= z_lo && z[i] <= z_hi);
+      if (inside_y && inside_z) {
+        ky.push_back(y[i]);
+        kz.push_back(z[i]);
+      }
+    }
+    y = std::move(ky);
+    z = std::move(kz);
+  }
+  // 5: mirroring, 6: inversion of the point order.
+  if (flag_value(path, spline_keys, "mirror.y")) {
+    for (auto& v : y) v = -v;
+  }
+  if (flag_value(path, spline_keys, "mirror.z")) {
+    for (auto& v : z) v = -v;
+  }
+  if (flag_value(path, spline_keys, "inversion")) {
+    std::reverse(y.begin(), y.end());
+    std::reverse(z.begin(), z.end());
+  }
+  // 7: length unit (file units per metre).
+  const double per_metre = numeric_value(path, spline_keys, "units.len.f", 1.0);
+  if (!(per_metre > 0.0)) {
+    fail(path, spline_keys.at("units.len.f").line, "'units.len.f' must be positive");
+  }
+  for (auto& v : y) v /= per_metre;
+  for (auto& v : z) v /= per_metre;
+
+  if (y.size() < 4) fail(path, fmt::format("{} points left after the bounds/point distance; at least 4 are needed", y.size()));
+  profile.y_m = std::move(y);
+  profile.z_m = std::move(z);
+  return profile;
+}
+
+}  // namespace railcontact

@@ -1,0 +1,223 @@
+// The smooth representation of a profile: a penalised least-squares cubic B-spline curve
+// in chord-length parameter s, with the exact integral penalty of a smoothing spline on the
+// m-th derivative (Reinsch 1967; de Boor, A Practical Guide to Splines, ch. XIV; on a uniform
+// knot grid as in the P-splines of Eilers & Marx 1996). Basis functions and curve evaluation come from Eigen's
+// Splines module (unsupported/Eigen/Splines); the banded normal equations are solved with
+// Eigen's sparse Cholesky (SimplicialLDLT). See docs/GEOMETRY.md §5.
+//
+//   minimise  sum_i w_i |C(s_i) - P_i|^2 + L^(2m) ∫ |C^(m)(s)|^2 ds,   w_i = arc length per point.
+#include <fmt/core.h>
+
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+#include <unsupported/Eigen/Splines>
+
+#include "geometry/root_finding.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/profile.hpp"
+
+namespace railcontact {
+
+using Curve = Eigen::Spline<double, 2, 3>;
+
+struct SmoothProfile::Impl {
+  Curve curve;
+  double s_begin_m = 0.0;
+  double s_end_m = 0.0;
+  // Samples of y(s) with their running maximum, for inverting y(s) (graph form).
+  std::vector<double> table_s_m;
+  std::vector<double> table_y_max_m;
+  std::string source;
+  ProfileKind kind = ProfileKind::unknown;
+};
+
+namespace {
+
+constexpr int kDegree = 3;
+
+std::string name_of(const Profile& profile) {
+  return profile.source.empty() ? std::string("(unnamed)") : profile.source;
+}
+
+}  // namespace
+
+SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& options) {
+  validate(profile);
+  require(std::isfinite(options.smoothing_length_m) && options.smoothing_length_m >= 0.0,
+          "smoothing: the smoothing length must be non-negative");
+  require(std::isfinite(options.knot_spacing_m) && options.knot_spacing_m > 0.0,
+          "smoothing: the knot spacing must be positive");
+  require(options.penalty_derivative >= 1 && options.penalty_derivative <= kDegree,
+          "smoothing: the penalised derivative must be of order 1, 2 or 3");
+
+  // Points ordered so that y grows along the curve; coincident points dropped.
+  std::vector<double> py = profile.y_m, pz = profile.z_m;
+  if (py.front() > py.back()) {
+    std::reverse(py.begin(), py.end());
+    std::reverse(pz.begin(), pz.end());
+  }
+  std::vector<double> y{py.front()}, z{pz.front()}, s{0.0};
+  for (std::size_t i = 1; i < py.size(); ++i) {
+    const double ds = std::hypot(py[i] - y.back(), pz[i] - z.back());
+    if (ds <= 1e-12) continue;
+    y.push_back(py[i]);
+    z.push_back(pz[i]);
+    s.push_back(s.back() + ds);
+  }
+  const std::size_t n = s.size();
+  require(n >= 4, fmt::format("profile {}: fewer than 4 distinct points", name_of(profile)));
+  const double length = s.back();
+
+  // Clamped uniform knot vector on [0, length].
+  const int intervals = std::max(4, static_cast<int>(std::ceil(length / options.knot_spacing_m)));
+  const double h = length / intervals;
+  const int n_ctrl = intervals + kDegree;
+  Curve::KnotVectorType knots(intervals + 2 * kDegree + 1);
+  for (int j = 0; j < knots.size(); ++j) {
+    const int b = std::clamp(j - kDegree, 0, intervals);
+    knots(j) = b == intervals ? length : b * h;
+  }
+
+  // Normal equations (B' W B + L^(2m) P) c = B' W p, with two right-hand sides (y, z).
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(static_cast<std::size_t>(16) * (n + static_cast<std::size_t>(intervals)));
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n_ctrl, 2);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = 0.5 * (s[std::min(i + 1, n - 1)] - s[i == 0 ? 0 : i - 1]);
+    const auto span = Curve::Span(s[i], kDegree, knots);
+    const auto basis = Curve::BasisFunctions(s[i], kDegree, knots);
+    for (int a = 0; a <= kDegree; ++a) {
+      const auto ia = static_cast<int>(span) - kDegree + a;
+      rhs(ia, 0) += w * basis(a) * y[i];
+      rhs(ia, 1) += w * basis(a) * z[i];
+      for (int b = 0; b <= kDegree; ++b) {
+        triplets.emplace_back(ia, static_cast<int>(span) - kDegree + b, w * basis(a) * basis(b));
+      }
+    }
+  }
+  // Penalty L^(2m) ∫ |C^(m)|^2 ds, integrated exactly on every knot interval by 2-point Gauss
+  // quadrature (C^(m) is a polynomial of degree 3 - m there).
+  const int m = options.penalty_derivative;
+  const double lambda = std::pow(options.smoothing_length_m, 2 * m);
+  if (lambda > 0.0) {
+    const double gauss = 0.5 / std::sqrt(3.0);
+    for (int k = 0; k < intervals; ++k) {
+      for (const double offset : {0.5 - gauss, 0.5 + gauss}) {
+        const double u = (k + offset) * h;
+        const auto span = Curve::Span(u, kDegree, knots);
+        const auto derivatives = Curve::BasisFunctionDerivatives(u, m, kDegree, knots);
+        for (int a = 0; a <= kDegree; ++a) {
+          for (int b = 0; b <= kDegree; ++b) {
+            triplets.emplace_back(static_cast<int>(span) - kDegree + a, static_cast<int>(span) - kDegree + b,
+                                  lambda * 0.5 * h * derivatives(m, a) * derivatives(m, b));
+          }
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> normal(n_ctrl, n_ctrl);
+  normal.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
+  require(solver.info() == Eigen::Success,
+          fmt::format("profile {}: the smoothing spline system is singular (too few points for the knot "
+                      "spacing; increase the smoothing length)",
+                      name_of(profile)));
+  const Eigen::MatrixX2d coefficients = solver.solve(rhs);
+  require(solver.info() == Eigen::Success && coefficients.allFinite(),
+          fmt::format("profile {}: the smoothing spline could not be computed", name_of(profile)));
+
+  auto impl = std::make_shared<Impl>();
+  impl->curve = Curve(knots, coefficients.transpose());
+  impl->s_begin_m = 0.0;
+  impl->s_end_m = length;
+  impl->source = profile.source;
+  impl->kind = profile.kind;
+  const int samples = 4 * intervals;
+  impl->table_s_m.resize(static_cast<std::size_t>(samples) + 1);
+  impl->table_y_max_m.resize(static_cast<std::size_t>(samples) + 1);
+  double y_max = -std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= samples; ++k) {
+    const double sk = k == samples ? length : k * (length / samples);
+    y_max = std::max(y_max, impl->curve(sk)(0));
+    impl->table_s_m[static_cast<std::size_t>(k)] = sk;
+    impl->table_y_max_m[static_cast<std::size_t>(k)] = y_max;
+  }
+  impl_ = std::move(impl);
+}
+
+const SmoothProfile::Impl& SmoothProfile::impl() const {
+  require(impl_ != nullptr, "smooth profile: used before construction");
+  return *impl_;
+}
+
+const std::string& SmoothProfile::source() const { return impl().source; }
+ProfileKind SmoothProfile::kind() const { return impl().kind; }
+double SmoothProfile::s_begin_m() const { return impl().s_begin_m; }
+double SmoothProfile::s_end_m() const { return impl().s_end_m; }
+
+ProfileCurvePoint SmoothProfile::at(double s_m) const {
+  const Impl& im = impl();
+  const double s = std::clamp(s_m, im.s_begin_m, im.s_end_m);
+  const auto d = im.curve.derivatives<2>(s);
+  ProfileCurvePoint p;
+  p.s_m = s;
+  p.y_m = d(0, 0);
+  p.z_m = d(1, 0);
+  p.dy_ds = d(0, 1);
+  p.dz_ds = d(1, 1);
+  p.d2y_ds2_per_m = d(0, 2);
+  p.d2z_ds2_per_m = d(1, 2);
+  return p;
+}
+
+double SmoothProfile::curvature_at(double s_m) const {
+  const ProfileCurvePoint p = at(s_m);
+  const double speed2 = p.dy_ds * p.dy_ds + p.dz_ds * p.dz_ds;
+  return (p.dy_ds * p.d2z_ds2_per_m - p.dz_ds * p.d2y_ds2_per_m) / (speed2 * std::sqrt(speed2));
+}
+
+double SmoothProfile::y_min_m() const { return impl().table_y_max_m.front(); }
+double SmoothProfile::y_max_m() const { return impl().table_y_max_m.back(); }
+
+double SmoothProfile::parameter_at(double y_m) const {
+  const Impl& im = impl();
+  const auto& ys = im.table_y_max_m;
+  const double tolerance = 1e-12;
+  require(y_m >= ys.front() - tolerance && y_m <= ys.back() + tolerance,
+          fmt::format("profile {}: y = {:.6f} mm lies outside the profile [{:.6f}, {:.6f}] mm", im.source,
+                      y_m * 1e3, ys.front() * 1e3, ys.back() * 1e3));
+  const auto it = std::lower_bound(ys.begin(), ys.end(), y_m);
+  if (it == ys.begin()) return im.table_s_m.front();
+  if (it == ys.end()) return im.table_s_m.back();
+  const auto j = static_cast<std::size_t>(it - ys.begin());
+  const double lo = im.table_s_m[j - 1];
+  const double hi = im.table_s_m[j];
+  const auto root = geometry::solve_bracketed(
+      [&](double s) {
+        const auto d = im.curve.derivatives<1>(s);
+        return std::pair{d(0, 0) - y_m, d(0, 1)};
+      },
+      lo, hi, 0.5 * (lo + hi), 1e-14);
+  return root ? *root : 0.5 * (lo + hi);
+}
+
+double SmoothProfile::z(double y_m) const { return at(parameter_at(y_m)).z_m; }
+
+double SmoothProfile::dz_dy(double y_m) const {
+  const ProfileCurvePoint p = at(parameter_at(y_m));
+  return p.dz_ds / p.dy_ds;
+}
+
+double SmoothProfile::d2z_dy2_per_m(double y_m) const {
+  const ProfileCurvePoint p = at(parameter_at(y_m));
+  return (p.dy_ds * p.d2z_ds2_per_m - p.dz_ds * p.d2y_ds2_per_m) / (p.dy_ds * p.dy_ds * p.dy_ds);
+}
+
+double SmoothProfile::curvature_per_m(double y_m) const { return curvature_at(parameter_at(y_m)); }
+
+}  // namespace railcontact
