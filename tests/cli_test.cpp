@@ -6,6 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
 
 namespace {
 
@@ -16,7 +19,10 @@ struct CommandResult {
 };
 
 CommandResult run_cli(const std::string& arguments) {
-  const std::string err_file = ::testing::TempDir() + "railcontact_cli_stderr.txt";
+  // One file per call: ctest runs the tests of this file in parallel processes.
+  std::string err_file = ::testing::TempDir() + "railcontact_cli_stderr_XXXXXX";
+  const int fd = mkstemp(err_file.data());
+  if (fd >= 0) close(fd);
   const std::string command = std::string(RAILCONTACT_CLI) + " " + arguments + " 2>" + err_file;
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
@@ -29,6 +35,7 @@ CommandResult run_cli(const std::string& arguments) {
     while (fgets(buffer.data(), buffer.size(), f) != nullptr) result.err += buffer.data();
     fclose(f);
   }
+  std::remove(err_file.c_str());
   return result;
 }
 
