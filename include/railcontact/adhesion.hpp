@@ -29,6 +29,12 @@ enum class RigidSlipPoint {
   difference_centre,   // at the centre of the upwind difference, x1 + (alpha + 1) dx1/2
 };
 
+// Preconditioner of the Krylov path (see src/tangential/steady_rolling_preconditioner.hpp).
+enum class AdhesionPreconditioner {
+  marching_half_laplacian,  // FastSim marching followed by c0 - Laplacian (default)
+  marching,                 // FastSim marching alone
+};
+
 struct AdhesionOptions {
   double collocation_offset = 0.0;  // alpha in (-1, 1]: collocation point at x1 + alpha dx1/2 (METHOD.md §3)
   // Collocation offset for the spin column of K2 only (unit phi); unset = collocation_offset.
@@ -39,6 +45,7 @@ struct AdhesionOptions {
   LinearSolver solver = LinearSolver::krylov;
   double tolerance = 1e-10;         // Krylov: relative residual
   int max_iterations = 400;         // Krylov
+  AdhesionPreconditioner preconditioner = AdhesionPreconditioner::marching_half_laplacian;
 };
 
 struct AdhesionSolution {

@@ -73,7 +73,8 @@ void solve_columns(const ContactElements& elements, const Material& material, do
   const MatrixFreeOperator M(2 * n, [&R, &elements, n](const double* x, double* y) {
     R.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
   });
-  const SteadyRollingPreconditioner preconditioner(elements);
+  const SteadyRollingPreconditioner preconditioner(
+      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : 3.0);
   const ApplyFunction precondition = [&preconditioner](const double* r, double* z) { preconditioner.apply(r, z); };
   KrylovOptions krylov;
   krylov.tolerance = options.tolerance;

@@ -47,6 +47,10 @@ void SteadyRollingPreconditioner::march(const double* r, double* u) const {
 
 void SteadyRollingPreconditioner::apply(const double* r, double* z) const {
   const std::size_t n = count_;
+  if (c0_ <= 0.0) {
+    march(r, z);
+    return;
+  }
   march(r, work_.data());
   for (std::size_t c = 0; c < 2; ++c) {
     const double* u = work_.data() + c * n;

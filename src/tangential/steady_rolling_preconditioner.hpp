@@ -21,6 +21,7 @@ namespace railcontact {
 
 class SteadyRollingPreconditioner {
  public:
+  // gamma <= 0: the marching factor alone (FastSim's constant flexibility instead of c0 - Laplacian).
   explicit SteadyRollingPreconditioner(const ContactElements& elements, double gamma = 3.0);
   // z = approximate R^-1 r; vectors [c1 on elements; c2 on elements].
   void apply(const double* r, double* z) const;
