@@ -1,0 +1,138 @@
+// Exact Coulomb friction in steady rolling: semismooth Newton on the projection form of the
+// friction law (docs/ROLLING.md; Alart & Curnier 1991, in the spirit of Kalker's TANG active sets).
+//
+// With z = p - c s, Coulomb's law (adhesion: s = 0, |p| <= g; slip: p = -g s/|s|, g = mu p3)
+// is  Phi(p) = p - proj_{|.| <= g}(z) = 0  element by element, s = w - R p.
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "railcontact/error.hpp"
+#include "railcontact/rolling.hpp"
+#include "tangential/rolling_system.hpp"
+
+namespace railcontact {
+namespace {
+
+struct ExactState {
+  std::vector<double> p, s, phi;
+  std::vector<std::uint8_t> slip;
+  double residual = 0.0;  // max |Phi_e| / (mu max p3): the convergence test
+  double merit = 0.0;     // sum |Phi_e|^2: the line search's (smooth away from the kinks)
+};
+
+// Evaluates s, Phi and the slip set at p.
+void evaluate(RollingSystem& system, const std::vector<double>& w, const std::vector<double>& bound, double c,
+              double scale, ExactState& st) {
+  const std::size_t n = system.count();
+  system.apply_R(st.p.data(), st.s.data());
+  st.residual = 0.0;
+  st.merit = 0.0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const double s1 = w[e] - st.s[e], s2 = w[n + e] - st.s[n + e];
+    st.s[e] = s1;
+    st.s[n + e] = s2;
+    const double p1 = st.p[e], p2 = st.p[n + e];
+    const double z1 = p1 - c * s1, z2 = p2 - c * s2;
+    const double zn = std::hypot(z1, z2);
+    double f1, f2;
+    if (zn <= bound[e]) {
+      st.slip[e] = 0;
+      f1 = c * s1;
+      f2 = c * s2;
+    } else {
+      st.slip[e] = 1;
+      f1 = p1 - bound[e] * z1 / zn;
+      f2 = p2 - bound[e] * z2 / zn;
+    }
+    st.phi[e] = f1;
+    st.phi[n + e] = f2;
+    st.residual = std::max(st.residual, std::hypot(f1, f2) / scale);
+    st.merit += f1 * f1 + f2 * f2;
+  }
+}
+
+}  // namespace
+
+RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& creepage, double mu,
+                                    const RollingOptions& options) {
+  validate_rolling_input(patch, creepage, mu, options);
+  RollingSystem system(patch, options.collocation_offset);
+  const std::size_t n = system.count();
+  const std::vector<double> w = system.rigid_slip(creepage);
+  std::vector<double> bound(n);
+  double max_bound = 0.0;
+  for (std::size_t e = 0; e < n; ++e) {
+    bound[e] = mu * patch.pressure_Pa()[e];
+    max_bound = std::max(max_bound, bound[e]);
+  }
+  // c scales slip to traction: c R ~ -I locally.
+  const double c = 2.0 / (system.lambda1() + system.lambda2());
+
+  ExactState st{std::vector<double>(2 * n, 0.0), std::vector<double>(2 * n), std::vector<double>(2 * n),
+                std::vector<std::uint8_t>(n, 0), 0.0, 0.0};
+  NewtonMatrix J(system);
+  std::vector<double> rhs(2 * n), dp(2 * n);
+  RollingSolution solution;
+  {
+    // Initial guess: the full-adhesion tractions (R p = w, Eq 14) limited to the traction bound.
+    for (std::size_t e = 0; e < n; ++e) {
+      J.A()[e] = {1, 0, 0, 1};
+      J.B()[e] = {0, 0, 0, 0};
+    }
+    const NewtonStepReport step = solve_newton_step(J, w, st.p, options.krylov_tolerance, options.max_krylov_iterations);
+    solution.krylov_iterations += step.krylov_iterations;
+    for (std::size_t e = 0; e < n; ++e) {
+      const double magnitude = std::hypot(st.p[e], st.p[n + e]);
+      if (magnitude > bound[e]) {
+        st.p[e] *= bound[e] / magnitude;
+        st.p[n + e] *= bound[e] / magnitude;
+      }
+    }
+  }
+  evaluate(system, w, bound, c, max_bound, st);
+  ExactState trial = st;
+  while (st.residual > options.tolerance) {
+    require(solution.newton_iterations < options.max_newton_iterations,
+            fmt::format("exact rolling solver: Newton did not converge in {} iterations (residual {:.2e})",
+                        options.max_newton_iterations, st.residual));
+    ++solution.newton_iterations;
+    // Generalised Jacobian of Phi, row blocks A_e (R dp)_e + B_e dp_e = rhs_e.
+    for (std::size_t e = 0; e < n; ++e) {
+      if (st.slip[e] == 0) {  // Phi_e = c s_e: -c (R dp)_e = -c s_e
+        J.A()[e] = {1, 0, 0, 1};
+        J.B()[e] = {0, 0, 0, 0};
+        rhs[e] = st.s[e];
+        rhs[n + e] = st.s[n + e];
+      } else {  // Phi_e = p_e - g z/|z|: (I - M) dp_e - c M (R dp)_e = -Phi_e, M = g/|z| (I - zz^T/|z|^2)
+        const double z1 = st.p[e] - c * st.s[e], z2 = st.p[n + e] - c * st.s[n + e];
+        const double zn = std::hypot(z1, z2);
+        const double u1 = z1 / zn, u2 = z2 / zn, m = bound[e] / zn;
+        const Block2 M{m * (1 - u1 * u1), -m * u1 * u2, -m * u1 * u2, m * (1 - u2 * u2)};
+        J.A()[e] = {-c * M[0], -c * M[1], -c * M[2], -c * M[3]};
+        J.B()[e] = {1 - M[0], -M[1], -M[2], 1 - M[3]};
+        rhs[e] = -st.phi[e];
+        rhs[n + e] = -st.phi[n + e];
+      }
+    }
+    const NewtonStepReport step =
+        solve_newton_step(J, rhs, dp, options.krylov_tolerance, options.max_krylov_iterations);
+    solution.krylov_iterations += step.krylov_iterations;
+    // Backtracking line search on max |Phi|.
+    double t = 1.0;
+    for (int k = 0;; ++k) {
+      for (std::size_t i = 0; i < 2 * n; ++i) trial.p[i] = st.p[i] + t * dp[i];
+      evaluate(system, w, bound, c, max_bound, trial);
+      if (trial.merit < (1.0 - 1e-4 * t) * st.merit || k == 30) break;
+      t *= 0.5;
+    }
+    std::swap(st, trial);
+  }
+  solution.residual = st.residual;
+  solution.converged = true;
+  fill_rolling_solution(system, st.p, st.s, st.slip, solution);
+  return solution;
+}
+
+}  // namespace railcontact

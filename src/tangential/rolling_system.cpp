@@ -1,0 +1,139 @@
+#include "tangential/rolling_system.hpp"
+
+#include <cmath>
+
+#include "elastic/krylov.hpp"
+
+namespace railcontact {
+
+RollingSystem::RollingSystem(const ContactPatch& patch, double alpha)
+    : patch_(patch),
+      count_(patch.elements().count()),
+      alpha_(alpha),
+      R_(make_steady_rolling_operator(patch.mesh(), patch.material(), alpha)),
+      ahead_(count_, 0) {
+  const int behind = patch.mesh().n1 > 1 ? -1 : 0;
+  lambda1_ = 0.5 * (R_.kernel(0, 0, behind, 0) - R_.kernel(0, 0, 0, 0));
+  lambda2_ = 0.5 * (R_.kernel(1, 1, behind, 0) - R_.kernel(1, 1, 0, 0));
+  const auto& idx = patch.elements().indices();
+  const auto n1 = static_cast<std::size_t>(patch.mesh().n1);
+  for (std::size_t e = 0; e + 1 < count_; ++e)
+    ahead_[e] = (idx[e + 1] == idx[e] + 1 && (idx[e] % n1) + 1 < n1) ? 1 : 0;
+}
+
+std::vector<double> RollingSystem::rigid_slip(const Creepage& c) const {
+  std::vector<double> w(2 * count_);
+  const double shift = 0.5 * alpha_ * patch_.mesh().dx1_m;
+  for (std::size_t e = 0; e < count_; ++e) {
+    const double x1 = patch_.x1(e) + shift;
+    const double x2 = patch_.x2(e);
+    w[e] = c.xi - c.phi * x2;
+    w[count_ + e] = c.eta + c.phi * x1;
+  }
+  return w;
+}
+
+void RollingSystem::apply_R(const double* x, double* y) {
+  R_.apply(patch_.elements().indices(), {x, 2 * count_}, {y, 2 * count_});
+}
+
+TangentialForces RollingSystem::forces(const std::vector<double>& p) const {
+  const double S = patch_.mesh().element_area_m2();
+  TangentialForces f;
+  for (std::size_t e = 0; e < count_; ++e) {
+    const double p1 = p[e], p2 = p[count_ + e];
+    f.F1_N += S * p1;
+    f.F2_N += S * p2;
+    f.M3_Nm += S * (patch_.x1(e) * p2 - patch_.x2(e) * p1);
+  }
+  return f;
+}
+
+NewtonMatrix::NewtonMatrix(RollingSystem& system)
+    : system_(system), A_(system.count()), B_(system.count()), Rx_(2 * system.count()) {}
+
+void NewtonMatrix::apply(const double* x, double* y) {
+  const std::size_t n = system_.count();
+  system_.apply_R(x, Rx_.data());
+  for (std::size_t e = 0; e < n; ++e) {
+    const Block2& a = A_[e];
+    const Block2& b = B_[e];
+    const double r1 = Rx_[e], r2 = Rx_[n + e], x1 = x[e], x2 = x[n + e];
+    y[e] = a[0] * r1 + a[1] * r2 + b[0] * x1 + b[1] * x2;
+    y[n + e] = a[2] * r1 + a[3] * r2 + b[2] * x1 + b[3] * x2;
+  }
+}
+
+void NewtonMatrix::precondition(const double* r, double* z) const {
+  // Row e of A R_local + B: A_e Lambda (z_{e+1} - z_e) + B_e z_e = r_e, Lambda = diag(l1, l2).
+  const std::size_t n = system_.count();
+  const double l1 = system_.lambda1(), l2 = system_.lambda2();
+  for (std::size_t e = n; e-- > 0;) {
+    const Block2& a = A_[e];
+    const Block2& b = B_[e];
+    double v1 = r[e], v2 = r[n + e];
+    if (system_.ahead_in_contact(e)) {
+      const double q1 = l1 * z[e + 1], q2 = l2 * z[n + e + 1];
+      v1 -= a[0] * q1 + a[1] * q2;
+      v2 -= a[2] * q1 + a[3] * q2;
+    }
+    // M = B - A Lambda
+    const double m11 = b[0] - a[0] * l1, m12 = b[1] - a[1] * l2;
+    const double m21 = b[2] - a[2] * l1, m22 = b[3] - a[3] * l2;
+    const double det = m11 * m22 - m12 * m21;
+    z[e] = (m22 * v1 - m12 * v2) / det;
+    z[n + e] = (m11 * v2 - m21 * v1) / det;
+  }
+}
+
+NewtonStepReport solve_newton_step(NewtonMatrix& J, const std::vector<double>& rhs, std::vector<double>& dx,
+                                   double tolerance, int max_iterations) {
+  const auto size = static_cast<Eigen::Index>(rhs.size());
+  const MatrixFreeOperator M(size, [&J](const double* x, double* y) { J.apply(x, y); });
+  const ApplyFunction P = [&J](const double* r, double* z) { J.precondition(r, z); };
+  const Eigen::VectorXd b = Eigen::Map<const Eigen::VectorXd>(rhs.data(), size);
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(size);
+  KrylovOptions options;
+  options.tolerance = tolerance;
+  options.max_iterations = max_iterations;
+  const KrylovReport report = solve_krylov(M, P, b, x, options);
+  dx.assign(x.data(), x.data() + size);
+  return {report.iterations, report.converged};
+}
+
+}  // namespace railcontact
+
+#include <fmt/format.h>
+
+#include "railcontact/error.hpp"
+
+namespace railcontact {
+
+void validate_rolling_input(const ContactPatch& patch, const Creepage& c, double mu, const RollingOptions& o) {
+  require(patch.elements().count() > 0, "rolling solver: the patch has no element in contact");
+  require(std::isfinite(mu) && mu > 0.0, fmt::format("rolling solver: the friction coefficient must be positive (got {})", mu));
+  require(std::isfinite(c.xi) && std::isfinite(c.eta) && std::isfinite(c.phi),
+          "rolling solver: creepages must be finite numbers");
+  require(std::isfinite(o.collocation_offset) && o.collocation_offset > -1.0 && o.collocation_offset <= 1.0,
+          "rolling solver: the collocation offset alpha must lie in (-1, 1]");
+  require(o.tolerance > 0 && o.krylov_tolerance > 0 && o.max_newton_iterations > 0 && o.max_krylov_iterations > 0,
+          "rolling solver: tolerances and iteration limits must be positive");
+  require(std::isfinite(o.regularisation) && o.regularisation > 0,
+          "rolling solver: the regularisation epsilon must be positive");
+}
+
+void fill_rolling_solution(const RollingSystem& system, const std::vector<double>& p, const std::vector<double>& s,
+                           const std::vector<std::uint8_t>& slip, RollingSolution& solution) {
+  const std::size_t n = system.count();
+  solution.p1_Pa.assign(p.begin(), p.begin() + static_cast<std::ptrdiff_t>(n));
+  solution.p2_Pa.assign(p.begin() + static_cast<std::ptrdiff_t>(n), p.end());
+  solution.s1.assign(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(n));
+  solution.s2.assign(s.begin() + static_cast<std::ptrdiff_t>(n), s.end());
+  solution.slip = slip;
+  std::size_t sticking = 0;
+  for (std::uint8_t flag : slip) sticking += flag == 0 ? 1 : 0;
+  solution.adhesion_fraction = n > 0 ? static_cast<double>(sticking) / static_cast<double>(n) : 0.0;
+  solution.forces = system.forces(p);
+}
+
+}  // namespace railcontact
