@@ -20,7 +20,7 @@ struct NormalContactSolver::Plan {
       : mesh(m),
         options(o),
         A(make_normal_operator(m, material)),
-        cg(m.size()),
+        cg(m),
         relative_distance(m.size()),
         work(m.size()) {}
   Mesh mesh;
