@@ -8,7 +8,8 @@
 // A33 the normal influence coefficients of two quasi-identical half-spaces (METHOD.md §4).
 //
 // Method: Polonsky & Keer's constrained conjugate gradients (Wear 231, 1999, 206-219) on the
-// zero-padded FFT operator, started from a Hertz-like pressure on an interpenetration region
+// zero-padded FFT operator, preconditioned by a stencil approximation of the inverse influence
+// operator on the contact set, started from a Hertz-like pressure on an interpenetration region
 // fitted to the load. See docs/NORMAL.md.
 #include <cstddef>
 #include <memory>
@@ -20,9 +21,11 @@
 namespace railcontact {
 
 struct NormalOptions {
-  // Relative tolerance on the complementarity residual (see NormalSolution::residual).
+  // Relative tolerance on the complementarity residual (see NormalSolution::residual). The
+  // rounding level of the FFT product is ~1e-13: smaller tolerances cannot be met (the solver
+  // then runs to max_iterations and reports converged = false).
   double tolerance = 1e-10;
-  // Conjugate-gradient iterations (each one FFT convolution, two when the contact set changes).
+  // Conjugate-gradient iterations (each one FFT product, two when the contact set changes).
   int max_iterations = 1000;
 };
 

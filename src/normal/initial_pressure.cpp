@@ -39,7 +39,7 @@ void hertz_like_initial_pressure(InfluenceOperator& A, std::span<const double> h
   if (!(d > 0.0)) d = z_max;
   fill_ellipsoidal(h, h_min, d, pressure_sum, p);
 
-  constexpr int kUpdates = 2;
+  constexpr int kUpdates = 1;
   for (int update = 0; update < kUpdates; ++update) {
     A.apply_on_grid(p, work);
     // Least-squares slope of u = A p against z over the region p > 0.

