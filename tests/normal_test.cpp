@@ -42,7 +42,8 @@ std::vector<double> dense_gap(const Mesh& mesh, const std::vector<double>& h, co
   std::vector<std::size_t> all(mesh.size());
   std::iota(all.begin(), all.end(), std::size_t{0});
   const Eigen::MatrixXd A = make_normal_operator(mesh, kSteel).dense(all);
-  const Eigen::VectorXd u = A * Eigen::Map<const Eigen::VectorXd>(s.pressure_Pa.data(), static_cast<Eigen::Index>(mesh.size()));
+  const auto n = static_cast<Eigen::Index>(mesh.size());
+  const Eigen::VectorXd u = A * Eigen::Map<const Eigen::VectorXd>(s.pressure_Pa.data(), n);
   std::vector<double> g(mesh.size());
   for (std::size_t k = 0; k < mesh.size(); ++k) g[k] = h[k] - s.approach_m + u[static_cast<Eigen::Index>(k)];
   return g;
@@ -160,7 +161,9 @@ INSTANTIATE_TEST_SUITE_P(Ellipses, NormalHertz,
                              HertzCase{"WheelOnRailCrown", 1.0 / (2 * 0.46), 1.0 / (2 * 0.3)},
                              semi_axes_case("Circle", 6e-3, 6e-3), semi_axes_case("Narrow", 4e-3, 8e-3),
                              semi_axes_case("Long", 8e-3, 4e-3)),
-                         [](const ::testing::TestParamInfo<HertzCase>& param_info) { return std::string(param_info.param.name); });
+                         [](const ::testing::TestParamInfo<HertzCase>& param_info) {
+                           return std::string(param_info.param.name);
+                         });
 
 // Complementarity on a coarser Hertz case, checked with the dense influence matrix on every element.
 TEST(NormalContact, ComplementarityWithDenseMatrix) {
@@ -224,7 +227,8 @@ DenseSolution dense_active_set_solution(const Mesh& mesh, const std::vector<doub
       }
     }
     if (changed) continue;
-    const Eigen::VectorXd u = A * Eigen::Map<const Eigen::VectorXd>(d.pressure_Pa.data(), static_cast<Eigen::Index>(mesh.size()));
+    const auto n = static_cast<Eigen::Index>(mesh.size());
+    const Eigen::VectorXd u = A * Eigen::Map<const Eigen::VectorXd>(d.pressure_Pa.data(), n);
     for (std::size_t k = 0; k < mesh.size(); ++k) {
       if (in[k] == 0 && h[k] - d.approach_m + u[static_cast<Eigen::Index>(k)] < -1e-14) {
         in[k] = 1;

@@ -69,7 +69,12 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, st
       u_fresh = true;
       continue;
     }
-    if (iterations >= max_iterations) break;
+    if (iterations >= max_iterations) {
+      if (u_fresh) break;
+      A.apply_on_grid(p, u_);  // report the residual of a freshly computed A p
+      u_fresh = true;
+      continue;
+    }
     ++iterations;
 
     // Preconditioned residual z = M r, projected on sum z = 0 (the load is kept by the step);
