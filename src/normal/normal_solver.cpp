@@ -43,7 +43,8 @@ void validate_options(const NormalOptions& options) {
 void validate_problem(const Mesh& mesh, const std::vector<double>& h, double normal_force_N) {
   validate(mesh);
   require(h.size() == mesh.size(),
-          fmt::format("normal contact: {} undeformed distances given for a mesh of {} elements", h.size(), mesh.size()));
+          fmt::format("normal contact: {} undeformed distances given for a mesh of {} elements", h.size(),
+                      mesh.size()));
   const auto bad = std::find_if(h.begin(), h.end(), [](double value) { return !std::isfinite(value); });
   require(bad == h.end(), fmt::format("normal contact: the undeformed distance of element {} is not finite",
                                       static_cast<std::size_t>(bad - h.begin())));
