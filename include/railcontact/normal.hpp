@@ -1,0 +1,73 @@
+#pragma once
+// The normal contact problem on a regular mesh (METHOD.md §5): given the undeformed distance
+// h(x1, x2) between the two profiles at the element centres (X3 points into the wheel; h > 0
+// means separated, h < 0 interpenetration before the approach) and the normal force F3, find
+// the approach delta and the pressure p3 with
+//   g = h - delta + A33 p3 >= 0,   p3 >= 0,   p3 g = 0   (every element),
+//   sum_I S p3_I = F3                                    (S = dx1 dx2),
+// A33 the normal influence coefficients of two quasi-identical half-spaces (METHOD.md §4).
+//
+// Method: Polonsky & Keer's constrained conjugate gradients (Wear 231, 1999, 206-219) on the
+// zero-padded FFT operator, preconditioned by a stencil approximation of the inverse influence
+// operator on the contact set, started from a Hertz-like pressure on an interpenetration region
+// fitted to the load. See docs/NORMAL.md.
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "railcontact/material.hpp"
+#include "railcontact/mesh.hpp"
+
+namespace railcontact {
+
+struct NormalOptions {
+  // Relative tolerance on the complementarity residual (see NormalSolution::residual). The
+  // rounding level of the FFT product is ~1e-13: smaller tolerances cannot be met (the solver
+  // then runs to max_iterations and reports converged = false).
+  double tolerance = 1e-10;
+  // Conjugate-gradient iterations (each one FFT product, two when the contact set changes).
+  int max_iterations = 1000;
+};
+
+struct NormalSolution {
+  std::vector<double> pressure_Pa;  // p3 per mesh element (0 outside contact)
+  double approach_m = 0.0;          // delta
+  double normal_force_N = 0.0;      // sum S p3 (equals the prescribed load)
+  int iterations = 0;               // conjugate-gradient iterations
+  bool converged = false;           // residual <= tolerance and the contact set stable
+  // max( max_{p3>0} |g|, max_{p3=0} max(0, -g) ) / max_I (A33 p3)_I, from a freshly computed
+  // A33 p3 (not the recursively updated one of the iteration).
+  double residual = 0.0;
+  std::size_t elements_in_contact = 0;  // elements with p3 > 0
+  bool touches_border = false;          // a contact element lies on the outer row/column of the mesh
+};
+
+// Solves the normal problem above. undeformed_distance_m holds one h per mesh element (mesh
+// index order, see Mesh). Non-convergence is reported (converged = false), not thrown.
+// Throws railcontact::Error on bad input: invalid mesh or material, h of the wrong size or not
+// finite, F3 not positive and finite, options out of range, or no contact forming.
+NormalSolution solve_normal_contact(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
+                                    double normal_force_N, const Material& material,
+                                    const NormalOptions& options = {});
+
+// The same solver as a reusable plan: the influence operator (kernel table, FFT plans) and the
+// iteration workspace are built once for a mesh and material and reused by every solve()
+// (e.g. along a wheel-rail contact sweep on a fixed mesh). Not thread-safe: one per thread.
+class NormalContactSolver {
+ public:
+  NormalContactSolver(const Mesh& mesh, const Material& material, const NormalOptions& options = {});
+  ~NormalContactSolver();
+  NormalContactSolver(NormalContactSolver&&) noexcept;
+  NormalContactSolver& operator=(NormalContactSolver&&) noexcept;
+  NormalContactSolver(const NormalContactSolver&) = delete;
+  NormalContactSolver& operator=(const NormalContactSolver&) = delete;
+
+  [[nodiscard]] const Mesh& mesh() const;
+  [[nodiscard]] NormalSolution solve(const std::vector<double>& undeformed_distance_m, double normal_force_N);
+
+ private:
+  struct Plan;
+  std::unique_ptr<Plan> plan_;
+};
+
+}  // namespace railcontact

@@ -1,0 +1,118 @@
+// Normal contact solver (METHOD.md §5): input checks, the reusable plan (influence operator and
+// workspace), and the solution record. The iteration is in constrained_cg.cpp, the starting
+// pressure in initial_pressure.cpp.
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "elastic/influence_operator.hpp"
+#include "normal/constrained_cg.hpp"
+#include "normal/initial_pressure.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/normal.hpp"
+
+namespace railcontact {
+
+struct NormalContactSolver::Plan {
+  Plan(const Mesh& m, const Material& material, const NormalOptions& o)
+      : mesh(m),
+        options(o),
+        A(make_normal_operator(m, material)),
+        cg(m),
+        relative_distance(m.size()),
+        work(m.size()) {}
+  Mesh mesh;
+  NormalOptions options;
+  InfluenceOperator A;  // A33 on the whole mesh (zero-padded FFT)
+  detail::ConstrainedConjugateGradient cg;
+  std::vector<double> relative_distance;  // h - min(h): the iteration works on O(A p) numbers
+  std::vector<double> work;
+};
+
+namespace {
+
+void validate_options(const NormalOptions& options) {
+  require(std::isfinite(options.tolerance) && options.tolerance > 0.0,
+          "normal contact: the tolerance must be positive and finite");
+  require(options.max_iterations > 0, "normal contact: the iteration limit must be positive");
+}
+
+// Checks of the problem data (the mesh first: its size is needed for h).
+void validate_problem(const Mesh& mesh, const std::vector<double>& h, double normal_force_N) {
+  validate(mesh);
+  require(h.size() == mesh.size(),
+          fmt::format("normal contact: {} undeformed distances given for a mesh of {} elements", h.size(),
+                      mesh.size()));
+  const auto bad = std::find_if(h.begin(), h.end(), [](double value) { return !std::isfinite(value); });
+  require(bad == h.end(), fmt::format("normal contact: the undeformed distance of element {} is not finite",
+                                      static_cast<std::size_t>(bad - h.begin())));
+  require(std::isfinite(normal_force_N) && normal_force_N > 0.0,
+          fmt::format("normal contact: the normal force must be positive and finite (got {} N)", normal_force_N));
+}
+
+bool on_border(const Mesh& mesh, std::size_t k) {
+  const auto i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
+  const auto i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+  return i1 == 0 || i2 == 0 || i1 == mesh.n1 - 1 || i2 == mesh.n2 - 1;
+}
+
+}  // namespace
+
+NormalContactSolver::NormalContactSolver(const Mesh& mesh, const Material& material, const NormalOptions& options) {
+  validate(mesh);
+  validate(material);
+  validate_options(options);
+  plan_ = std::make_unique<Plan>(mesh, material, options);
+}
+
+NormalContactSolver::~NormalContactSolver() = default;
+NormalContactSolver::NormalContactSolver(NormalContactSolver&&) noexcept = default;
+NormalContactSolver& NormalContactSolver::operator=(NormalContactSolver&&) noexcept = default;
+
+const Mesh& NormalContactSolver::mesh() const { return plan_->mesh; }
+
+NormalSolution NormalContactSolver::solve(const std::vector<double>& h, double normal_force_N) {
+  const Mesh& mesh = plan_->mesh;
+  validate_problem(mesh, h, normal_force_N);
+
+  // The problem is invariant under h -> h - c, delta -> delta - c: solve with min(h) = 0.
+  const double h_min = *std::min_element(h.begin(), h.end());
+  std::vector<double>& z = plan_->relative_distance;
+  for (std::size_t k = 0; k < h.size(); ++k) z[k] = h[k] - h_min;
+
+  const double S = mesh.element_area_m2();
+  const double pressure_sum = normal_force_N / S;  // sum S p3 = F3
+  NormalSolution solution;
+  solution.pressure_Pa.resize(mesh.size());
+  detail::hertz_like_initial_pressure(plan_->A, z, pressure_sum, solution.pressure_Pa, plan_->work);
+  const detail::ConstrainedCgReport report = plan_->cg.solve(
+      plan_->A, z, pressure_sum, solution.pressure_Pa, plan_->options.tolerance, plan_->options.max_iterations);
+
+  double sum = 0.0;
+  for (std::size_t k = 0; k < mesh.size(); ++k) {
+    const double p = solution.pressure_Pa[k];
+    if (p > 0.0) {
+      sum += p;
+      ++solution.elements_in_contact;
+      if (on_border(mesh, k)) solution.touches_border = true;
+    }
+  }
+  require(solution.elements_in_contact > 0, "normal contact: no contact formed (no element carries pressure)");
+  solution.normal_force_N = S * sum;
+  solution.approach_m = report.approach_m + h_min;
+  solution.iterations = report.iterations;
+  solution.converged = report.converged;
+  solution.residual = report.residual;
+  return solution;
+}
+
+NormalSolution solve_normal_contact(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
+                                    double normal_force_N, const Material& material, const NormalOptions& options) {
+  validate_problem(mesh, undeformed_distance_m, normal_force_N);  // before building the operator
+  NormalContactSolver solver(mesh, material, options);
+  return solver.solve(undeformed_distance_m, normal_force_N);
+}
+
+}  // namespace railcontact
