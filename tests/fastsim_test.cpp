@@ -181,7 +181,7 @@ TEST(FastSimMarching, MatchesIndependentScalarImplementation) {
         }
         slipping += result.slip[e];
       }
-      EXPECT_DOUBLE_EQ(result.adhesion_fraction, 1.0 - static_cast<double>(slipping) / result.p1_Pa.size());
+      EXPECT_DOUBLE_EQ(result.adhesion_fraction, 1.0 - static_cast<double>(slipping) / static_cast<double>(result.p1_Pa.size()));
       const double fscale = std::hypot(ref.forces.F1_N, ref.forces.F2_N) + 1e-300;
       EXPECT_NEAR(result.forces.F1_N, ref.forces.F1_N, 1e-11 * fscale);
       EXPECT_NEAR(result.forces.F2_N, ref.forces.F2_N, 1e-11 * fscale);

@@ -13,7 +13,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <limits>
 #include <new>
 #include <numeric>
 #include <string>
@@ -56,8 +55,6 @@ struct AlignedAllocator {
 template <class T>
 using AlignedVector = std::vector<T, AlignedAllocator<T>>;
 
-constexpr std::size_t kPadding = std::numeric_limits<std::size_t>::max();  // slot without element
-
 }  // namespace
 
 struct FastSim::Layout {
@@ -70,7 +67,7 @@ struct FastSim::Layout {
   AlignedVector<double> step_m;               // x1 step from the upstream point (fastsim_strips.hpp)
   AlignedVector<double> x1_m;                 // element centre
   AlignedVector<double> bound_Pa;             // parabolic pressure p3e (Eq 1)
-  std::vector<std::size_t> slot_element;      // element position in patch order, or kPadding
+  std::vector<std::size_t> slot_element;      // element position in patch order; element_count for padding
   AlignedVector<double> lane_x2_m;            // per block and lane: the run's x2
   // Patch order:
   std::vector<double> parabolic_pressure_Pa;
@@ -79,10 +76,12 @@ struct FastSim::Layout {
 
 namespace {
 
-// Per-slot output of a recorded march.
+// Per-element output of a recorded march, in patch order, with one extra element at the end that
+// receives the padding slots.
 struct MarchRecord {
-  AlignedVector<double> p1_Pa, p2_Pa;
-  std::unique_ptr<bool[]> slip;
+  std::vector<double> p1_Pa, p2_Pa;
+  std::vector<std::uint8_t> slip;
+  std::size_t slipping = 0;
 };
 
 // Coefficients of the adhesion increments (Eq 2-3): xi/L1, eta/L2 (Pa/m), phi/L3 (Pa/m^2).
@@ -98,6 +97,7 @@ TangentialForces march(const FastSim::Layout& layout, const MarchCoefficients& k
   const double* step_m = layout.step_m.data();
   const double* x1_m = layout.x1_m.data();
   const double* bound_Pa = layout.bound_Pa.data();
+  const std::size_t* slot_element = layout.slot_element.data();
   for (std::size_t b = 0; b < layout.blocks; ++b) {
     const Lanes x2(&layout.lane_x2_m[b * kLanes], stdx::vector_aligned);
     // dp1 = (xi/L1 - phi x2/L3) step: one coefficient per lane (Eq 2).
@@ -121,10 +121,17 @@ TangentialForces march(const FastSim::Layout& layout, const MarchCoefficients& k
       const Lanes scale = limit / stdx::sqrt(norm2);  // used in the slipping lanes only
       stdx::where(slip, p1) *= scale;
       stdx::where(slip, p2) *= scale;
-      if constexpr (kRecord) {
-        p1.copy_to(record->p1_Pa.data() + s, stdx::vector_aligned);
-        p2.copy_to(record->p2_Pa.data() + s, stdx::vector_aligned);
-        slip.copy_to(record->slip.get() + s, stdx::element_aligned);
+      if constexpr (kRecord) {  // scatter to patch order
+        alignas(kAlignment) double q1[kLanes], q2[kLanes];
+        p1.copy_to(q1, stdx::vector_aligned);
+        p2.copy_to(q2, stdx::vector_aligned);
+        for (std::size_t r = 0; r < kLanes; ++r) {
+          const std::size_t e = slot_element[s + r];
+          record->p1_Pa[e] = q1[r];
+          record->p2_Pa[e] = q2[r];
+          record->slip[e] = slip[r] ? 1 : 0;
+        }
+        record->slipping += static_cast<std::size_t>(stdx::popcount(slip));  // padding never slips
       }
       sum_p1 += p1;
       sum_p2 += p2;
@@ -180,7 +187,7 @@ FastSim::FastSim(const ContactPatch& patch) {
   layout->step_m.assign(slots, 0.0);
   layout->x1_m.assign(slots, 0.0);
   layout->bound_Pa.assign(slots, 0.0);
-  layout->slot_element.assign(slots, kPadding);
+  layout->slot_element.assign(slots, layout->element_count);
   layout->lane_x2_m.assign(layout->blocks * kLanes, 0.0);
   for (std::size_t r = 0; r < runs.size(); ++r) {
     const StripRun& run = runs[order[r]];
@@ -212,25 +219,18 @@ TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& fl
 
 FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
   const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
-  const std::size_t slots = layout_->slot_element.size();
-  MarchRecord record{AlignedVector<double>(slots), AlignedVector<double>(slots), std::make_unique<bool[]>(slots)};
+  const std::size_t n = layout_->element_count;
+  MarchRecord record{std::vector<double>(n + 1), std::vector<double>(n + 1), std::vector<std::uint8_t>(n + 1), 0};
   FastSimResult result;
   result.forces = creepage.phi != 0.0 ? march<true, true>(*layout_, k, mu, &record)
                                       : march<false, true>(*layout_, k, mu, &record);
-  const std::size_t n = layout_->element_count;
-  result.p1_Pa.assign(n, 0.0);
-  result.p2_Pa.assign(n, 0.0);
-  result.slip.assign(n, 0);
-  std::size_t slipping = 0;
-  for (std::size_t s = 0; s < slots; ++s) {
-    const std::size_t e = layout_->slot_element[s];
-    if (e == kPadding) continue;
-    result.p1_Pa[e] = record.p1_Pa[s];
-    result.p2_Pa[e] = record.p2_Pa[s];
-    result.slip[e] = record.slip[s] ? 1 : 0;
-    slipping += record.slip[s] ? 1 : 0;
-  }
-  result.adhesion_fraction = static_cast<double>(n - slipping) / static_cast<double>(n);
+  record.p1_Pa.pop_back();  // drop the padding sink
+  record.p2_Pa.pop_back();
+  record.slip.pop_back();
+  result.p1_Pa = std::move(record.p1_Pa);
+  result.p2_Pa = std::move(record.p2_Pa);
+  result.slip = std::move(record.slip);
+  result.adhesion_fraction = static_cast<double>(n - record.slipping) / static_cast<double>(n);
   return result;
 }
 
