@@ -110,7 +110,7 @@ TangentialForces march(const FastSim::Layout& layout, const MarchCoefficients& k
       const Lanes limit = mu * Lanes(bound_Pa + s, stdx::vector_aligned);  // mu p3e
       p1 += c1 * step;
       if constexpr (kSpin) {
-        // dp2 = (eta/L2) step + (phi/L3) (x1^2 - x1_upstream^2)/2   (Eq 3)
+        // dp2 = (eta/L2) step + (phi/L3) (x1^2 - x1_upstream^2)/2   (Eq 3; fastsim_detail::spin_step_m2)
         p2 += k.eta_over_L2 * step + k.phi_over_L3 * (step * (x1 - 0.5 * step));
       } else {
         p2 += k.eta_over_L2 * step;
