@@ -1,0 +1,97 @@
+#pragma once
+// FastSim on a regular mesh (paper §2.1, Eq 1-9; METHOD.md §7) and the nH-FastSim
+// flexibilities matched to the full-adhesion creepage matrix K2 (paper §2.3, Eq 19-21).
+//
+// Frame and signs (METHOD.md §2): X1 rolling direction, the leading edge of a strip run at its
+// largest x1; Kalker's sign convention, F1 = -f11 xi, F2 = -f22 eta - f23 phi,
+// M3 = f23 eta - f33 phi in the linear regime. Forces are those on the wheel (upper body).
+//
+// The algorithm, per strip run (consecutive contact elements at one x2):
+//  1. the normal pressure is replaced by a parabola with the run's own leading and trailing
+//     edges and the same discrete strip force (Eq 1): the traction bound mu p3e;
+//  2. the run is marched from the leading edge: the leading element gets the adhesion traction
+//     of Eq 2-3 at its centre, each following element the previous element's traction plus the
+//     increment of Eq 2-3 between the two centres; the sum is limited to |p| <= mu p3e by
+//     scaling (Eq 7-8), and the limited traction is the start of the next increment (Kalker's
+//     FASTSIM). Elements where the limit is active slip.
+// For pure creepage (phi = 0) this equals element-wise clipping of Eq 2-3; with spin it does not.
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "railcontact/adhesion.hpp"
+#include "railcontact/creepage.hpp"
+#include "railcontact/kalker.hpp"
+#include "railcontact/patch.hpp"
+
+namespace railcontact {
+
+struct FastSimResult {
+  TangentialForces forces;
+  // Per contact element, in the order of patch.elements().indices():
+  std::vector<double> p1_Pa, p2_Pa;  // tangential traction on the wheel
+  std::vector<std::uint8_t> slip;    // 1 where the traction bound mu p3e is active (Eq 8)
+  double adhesion_fraction = 1.0;    // elements in adhesion / elements in contact (= area fraction)
+};
+
+// FastSim prepared for one contact patch: the parabolic bound and the marching geometry are
+// computed once, so each evaluation costs only the marching. Immutable after construction;
+// copies share the prepared data; evaluations are thread-safe.
+class FastSim {
+ public:
+  // Throws railcontact::Error if the patch has no element in contact.
+  explicit FastSim(const ContactPatch& patch);
+
+  // Forces only (no per-element output is allocated). Throws railcontact::Error unless mu > 0,
+  // L1, L2, L3 > 0 (all finite) and the creepages are finite.
+  [[nodiscard]] TangentialForces forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
+  // Forces, tractions, slip flags. Same checks as forces().
+  [[nodiscard]] FastSimResult solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
+
+  [[nodiscard]] std::size_t element_count() const;
+  // Parabolic normal pressure p3e (Pa) of Eq 1 per contact element (patch order): the bound
+  // on |p| is mu p3e.
+  [[nodiscard]] const std::vector<double>& parabolic_pressure_Pa() const;
+  // S D B of Eq 19: (F1, F2, M3) of FastSim's full-adhesion traction with L1 = L2 = L3 = 1
+  // (units N, N, N m per unit creepage per Pa/m of 1/L), column j for creepage j (xi, eta,
+  // phi). Without slip FastSim gives F = (S D B) diag(1/L1, 1/L2, 1/L3) (xi, eta, phi).
+  [[nodiscard]] const Eigen::Matrix3d& adhesion_force_matrix() const;
+
+  struct Layout;  // the marching data, lane-interleaved (fastsim.cpp)
+
+ private:
+  std::shared_ptr<const Layout> layout_;
+};
+
+// One-shot conveniences (prepare, then evaluate once).
+FastSimResult fastsim(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility, double mu);
+TangentialForces fastsim_forces(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility,
+                                double mu);
+
+// How nH-FastSim's flexibilities are matched to K2 (paper §2.3; METHOD.md §7 Decision).
+enum class FlexibilityMatch {
+  // L1 = S(DB)_11 / K2_11 (F1 per xi), L2 = S(DB)_22 / K2_22 (F2 per eta),
+  // L3 = S(DB)_23 / K2_23 (F2 per phi, as Kalker's L3 comes from C23). Reproduces K2_11, K2_22
+  // and K2_23 exactly in the small-creepage limit. The default.
+  term_by_term,
+  // Eq 21: L = S K2^-1 D B, its diagonal entries (the paper found it inaccurate).
+  full_matrix,
+  // As term_by_term, but L3 = S(DB)_33 / K2_33 (M3 per phi).
+  spin_from_moment,
+};
+
+// nH-FastSim flexibilities (m/Pa) from the full-adhesion creepage matrix K2 (Eq 18, Kalker's
+// sign convention, as returned by solve_full_adhesion) of the same patch. Throws
+// railcontact::Error if K2 is not finite or a resulting flexibility is not positive and finite
+// (e.g. K2_23 of the wrong sign), or, for full_matrix, if K2 is singular.
+Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d& K2,
+                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
+Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2,
+                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
+// The same with K2 = solve_full_adhesion(patch.elements(), patch.material(), options).
+Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options = {},
+                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
+
+}  // namespace railcontact

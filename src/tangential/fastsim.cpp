@@ -1,0 +1,246 @@
+// FastSim on a regular mesh: Kalker's strip marching with the parabolic bound (paper Eq 1-3,
+// 7-8; METHOD.md §7), vectorised across strip runs.
+//
+// Data layout. The march along a run is sequential (each element starts from the previous,
+// possibly limited, traction), so the runs are marched in lock-step, kLanes runs at a time, one
+// SIMD lane per run. The runs are sorted by length (longest first) and grouped in blocks of
+// kLanes; a block has as many steps as its longest run, and shorter runs are padded at their
+// leading side with empty slots (step 0, bound 0: the traction stays 0 there). Slot
+// (block, step j, lane r) holds the j-th element, counted from the leading side, of the block's
+// r-th run; a block's slots are contiguous, step after step (structure of arrays, aligned).
+#include "railcontact/fastsim.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <new>
+#include <numeric>
+#include <string>
+
+#include <fmt/format.h>
+
+// GCC 12's AVX-512 intrinsics (used by <experimental/simd>) trigger a spurious -Wuninitialized
+// on _mm512_undefined_pd (GCC PR 105593, fixed in GCC 13).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#include <experimental/simd>
+#pragma GCC diagnostic pop
+
+#include "railcontact/error.hpp"
+#include "tangential/fastsim_strips.hpp"
+
+namespace railcontact {
+namespace {
+
+namespace stdx = std::experimental;
+
+// Two native vectors per lane group (16 doubles with AVX-512): two independent dependency
+// chains per step hide the latency of the sqrt/div of the limiting (Eq 8).
+constexpr std::size_t kLanes = 2 * stdx::native_simd<double>::size();
+using Lanes = stdx::fixed_size_simd<double, kLanes>;
+constexpr std::size_t kAlignment = 64;  // bytes: one cache line, one AVX-512 vector
+
+// Minimal allocator for cache-line aligned arrays (aligned SIMD loads and stores).
+template <class T>
+struct AlignedAllocator {
+  using value_type = T;
+  AlignedAllocator() = default;
+  template <class U>
+  explicit AlignedAllocator(const AlignedAllocator<U>& /*other*/) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t{kAlignment})); }
+  void deallocate(T* p, std::size_t /*n*/) { ::operator delete(p, std::align_val_t{kAlignment}); }
+  template <class U>
+  bool operator==(const AlignedAllocator<U>& /*other*/) const { return true; }
+};
+template <class T>
+using AlignedVector = std::vector<T, AlignedAllocator<T>>;
+
+}  // namespace
+
+struct FastSim::Layout {
+  std::size_t element_count = 0;
+  double element_area_m2 = 0.0;
+  std::size_t blocks = 0;
+  std::vector<std::size_t> block_first_slot;  // per block; slot of (step 0, lane 0)
+  std::vector<std::size_t> block_steps;       // per block
+  // Per slot (padding: 0):
+  AlignedVector<double> step_m;               // x1 step from the upstream point (fastsim_strips.hpp)
+  AlignedVector<double> x1_m;                 // element centre
+  AlignedVector<double> bound_Pa;             // parabolic pressure p3e (Eq 1)
+  std::vector<std::size_t> slot_element;      // element position in patch order; element_count for padding
+  AlignedVector<double> lane_x2_m;            // per block and lane: the run's x2
+  // Patch order:
+  std::vector<double> parabolic_pressure_Pa;
+  Eigen::Matrix3d adhesion_force_matrix;      // S D B (Eq 19)
+};
+
+namespace {
+
+// Per-element output of a recorded march, in patch order, with one extra element at the end that
+// receives the padding slots.
+struct MarchRecord {
+  std::vector<double> p1_Pa, p2_Pa;
+  std::vector<std::uint8_t> slip;
+  std::size_t slipping = 0;
+};
+
+// Coefficients of the adhesion increments (Eq 2-3): xi/L1, eta/L2 (Pa/m), phi/L3 (Pa/m^2).
+struct MarchCoefficients {
+  double xi_over_L1, eta_over_L2, phi_over_L3;
+};
+
+// The march of every run (Eq 2-3 increments, Eq 7-8 limit), forces summed per Eq 13:
+// F1 = S sum p1, F2 = S sum p2, M3 = S sum (x1 p2 - x2 p1).
+template <bool kSpin, bool kRecord>
+TangentialForces march(const FastSim::Layout& layout, const MarchCoefficients& k, double mu, MarchRecord* record) {
+  Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
+  const double* step_m = layout.step_m.data();
+  const double* x1_m = layout.x1_m.data();
+  const double* bound_Pa = layout.bound_Pa.data();
+  const std::size_t* slot_element = layout.slot_element.data();
+  for (std::size_t b = 0; b < layout.blocks; ++b) {
+    const Lanes x2(&layout.lane_x2_m[b * kLanes], stdx::vector_aligned);
+    // dp1 = (xi/L1 - phi x2/L3) step: one coefficient per lane (Eq 2).
+    const Lanes c1 = kSpin ? Lanes(k.xi_over_L1) - k.phi_over_L3 * x2 : Lanes(k.xi_over_L1);
+    Lanes p1 = 0.0, p2 = 0.0, sum_p1 = 0.0, sum_p2 = 0.0, sum_x1p2 = 0.0;
+    const std::size_t end = layout.block_first_slot[b] + layout.block_steps[b] * kLanes;
+    for (std::size_t s = layout.block_first_slot[b]; s < end; s += kLanes) {
+      const Lanes step(step_m + s, stdx::vector_aligned);
+      const Lanes x1(x1_m + s, stdx::vector_aligned);
+      const Lanes limit = mu * Lanes(bound_Pa + s, stdx::vector_aligned);  // mu p3e
+      p1 += c1 * step;
+      if constexpr (kSpin) {
+        // dp2 = (eta/L2) step + (phi/L3) (x1^2 - x1_upstream^2)/2   (Eq 3; fastsim_detail::spin_step_m2)
+        p2 += k.eta_over_L2 * step + k.phi_over_L3 * (step * (x1 - 0.5 * step));
+      } else {
+        p2 += k.eta_over_L2 * step;
+      }
+      // Eq 7-8: |p| <= mu p3e, else scale p onto the bound.
+      const Lanes norm2 = p1 * p1 + p2 * p2;
+      const auto slip = norm2 > limit * limit;
+      const Lanes scale = limit / stdx::sqrt(norm2);  // used in the slipping lanes only
+      stdx::where(slip, p1) *= scale;
+      stdx::where(slip, p2) *= scale;
+      if constexpr (kRecord) {  // scatter to patch order
+        alignas(kAlignment) double q1[kLanes], q2[kLanes];
+        p1.copy_to(q1, stdx::vector_aligned);
+        p2.copy_to(q2, stdx::vector_aligned);
+        for (std::size_t r = 0; r < kLanes; ++r) {
+          const std::size_t e = slot_element[s + r];
+          record->p1_Pa[e] = q1[r];
+          record->p2_Pa[e] = q2[r];
+          record->slip[e] = slip[r] ? 1 : 0;
+        }
+        record->slipping += static_cast<std::size_t>(stdx::popcount(slip));  // padding never slips
+      }
+      sum_p1 += p1;
+      sum_p2 += p2;
+      sum_x1p2 += x1 * p2;
+    }
+    F1 += sum_p1;
+    F2 += sum_p2;
+    M3 += sum_x1p2 - x2 * sum_p1;  // x2 is constant along a run
+  }
+  const double S = layout.element_area_m2;
+  return {S * stdx::reduce(F1), S * stdx::reduce(F2), S * stdx::reduce(M3)};
+}
+
+bool positive_finite(double value) { return std::isfinite(value) && value > 0.0; }
+
+MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibility& flexibility, double mu) {
+  require(positive_finite(mu), fmt::format("fastsim: the friction coefficient mu = {} must be positive and finite", mu));
+  require(positive_finite(flexibility.L1) && positive_finite(flexibility.L2) && positive_finite(flexibility.L3),
+          fmt::format("fastsim: the flexibilities L1 = {}, L2 = {}, L3 = {} m/Pa must be positive and finite",
+                      flexibility.L1, flexibility.L2, flexibility.L3));
+  require(std::isfinite(creepage.xi) && std::isfinite(creepage.eta) && std::isfinite(creepage.phi),
+          fmt::format("fastsim: the creepages xi = {}, eta = {}, phi = {} 1/m must be finite", creepage.xi,
+                      creepage.eta, creepage.phi));
+  return {creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3};
+}
+
+}  // namespace
+
+FastSim::FastSim(const ContactPatch& patch) {
+  require(patch.elements().count() > 0, "fastsim: the contact patch has no element in contact");
+  auto layout = std::make_shared<Layout>();
+  layout->element_count = patch.elements().count();
+  layout->element_area_m2 = patch.mesh().element_area_m2();
+  layout->parabolic_pressure_Pa = fastsim_detail::parabolic_bound_Pa(patch);
+  layout->adhesion_force_matrix = fastsim_detail::adhesion_force_matrix(patch);
+  const std::vector<double> step = fastsim_detail::march_steps_m(patch);
+
+  // Runs, longest first (stable: ties keep the patch order).
+  const std::vector<StripRun>& runs = patch.runs();
+  std::vector<std::size_t> order(runs.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&runs](std::size_t i, std::size_t j) { return runs[i].length() > runs[j].length(); });
+
+  layout->blocks = (runs.size() + kLanes - 1) / kLanes;
+  std::size_t slots = 0;
+  for (std::size_t b = 0; b < layout->blocks; ++b) {
+    const auto steps = static_cast<std::size_t>(runs[order[b * kLanes]].length());
+    layout->block_first_slot.push_back(slots);
+    layout->block_steps.push_back(steps);
+    slots += steps * kLanes;
+  }
+  layout->step_m.assign(slots, 0.0);
+  layout->x1_m.assign(slots, 0.0);
+  layout->bound_Pa.assign(slots, 0.0);
+  layout->slot_element.assign(slots, layout->element_count);
+  layout->lane_x2_m.assign(layout->blocks * kLanes, 0.0);
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const StripRun& run = runs[order[r]];
+    const std::size_t b = r / kLanes, lane = r % kLanes;
+    const auto length = static_cast<std::size_t>(run.length());
+    const std::size_t pad = layout->block_steps[b] - length;
+    layout->lane_x2_m[b * kLanes + lane] = patch.x2(run.first);
+    for (std::size_t j = 0; j < length; ++j) {
+      const std::size_t e = run.first + length - 1 - j;  // j-th element from the leading edge
+      const std::size_t s = layout->block_first_slot[b] + (pad + j) * kLanes + lane;
+      layout->step_m[s] = step[e];
+      layout->x1_m[s] = patch.x1(e);
+      layout->bound_Pa[s] = layout->parabolic_pressure_Pa[e];
+      layout->slot_element[s] = e;
+    }
+  }
+  layout_ = std::move(layout);
+}
+
+std::size_t FastSim::element_count() const { return layout_->element_count; }
+const std::vector<double>& FastSim::parabolic_pressure_Pa() const { return layout_->parabolic_pressure_Pa; }
+const Eigen::Matrix3d& FastSim::adhesion_force_matrix() const { return layout_->adhesion_force_matrix; }
+
+TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
+  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
+  return creepage.phi != 0.0 ? march<true, false>(*layout_, k, mu, nullptr)
+                             : march<false, false>(*layout_, k, mu, nullptr);
+}
+
+FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
+  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
+  const std::size_t n = layout_->element_count;
+  MarchRecord record{std::vector<double>(n + 1), std::vector<double>(n + 1), std::vector<std::uint8_t>(n + 1), 0};
+  FastSimResult result;
+  result.forces = creepage.phi != 0.0 ? march<true, true>(*layout_, k, mu, &record)
+                                      : march<false, true>(*layout_, k, mu, &record);
+  record.p1_Pa.pop_back();  // drop the padding sink
+  record.p2_Pa.pop_back();
+  record.slip.pop_back();
+  result.p1_Pa = std::move(record.p1_Pa);
+  result.p2_Pa = std::move(record.p2_Pa);
+  result.slip = std::move(record.slip);
+  result.adhesion_fraction = static_cast<double>(n - record.slipping) / static_cast<double>(n);
+  return result;
+}
+
+FastSimResult fastsim(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility, double mu) {
+  return FastSim(patch).solve(creepage, flexibility, mu);
+}
+
+TangentialForces fastsim_forces(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility,
+                                double mu) {
+  return FastSim(patch).forces(creepage, flexibility, mu);
+}
+
+}  // namespace railcontact

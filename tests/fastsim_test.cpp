@@ -1,0 +1,456 @@
+// Tests of FastSim on a regular mesh and of the nH-FastSim flexibilities (src/tangential/fastsim.cpp,
+// flexibility.cpp; paper Eq 1-9, 19-21; METHOD.md §7). References: an independent scalar
+// implementation of the marching written from the paper's equations (below), the closed-form
+// creep curve of the simplified theory on a Hertzian patch (derived below), Kalker's linear-theory
+// flexibilities (Eq 9), and K2 from the full-adhesion solver.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <iostream>
+#include <limits>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "railcontact/adhesion.hpp"
+#include "railcontact/ellipse.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/fastsim.hpp"
+#include "railcontact/kalker.hpp"
+#include "railcontact/patch.hpp"
+
+namespace railcontact {
+namespace {
+
+constexpr double kNormalForce_N = 98.1e3;
+constexpr double kMu = 0.3;
+
+ContactPatch ellipse_patch(double a_m, double b_m, int elements) {
+  return hertzian_patch(elliptical_contact_with_count(a_m, b_m, elements), a_m, b_m, kNormalForce_N, Material{});
+}
+
+// A non-Hertzian patch: two separated lobes along X1 of different size and height, the second one
+// shifted in X2, so that many strips hold two runs and the patch has no symmetry.
+ContactPatch two_lobe_patch() {
+  const Mesh mesh = Mesh::covering(-10e-3, 10e-3, -6e-3, 6e-3, 64, 36);
+  std::vector<double> pressure(mesh.size(), 0.0);
+  for (int i2 = 0; i2 < mesh.n2; ++i2) {
+    for (int i1 = 0; i1 < mesh.n1; ++i1) {
+      const double x = mesh.x1(i1), y = mesh.x2(i2);
+      const double lobe1 = 1.0 - std::pow((x + 5e-3) / 4e-3, 2) - std::pow(y / 4.5e-3, 2);
+      const double lobe2 = 1.0 - std::pow((x - 5e-3) / 3.5e-3, 2) - std::pow((y - 1e-3) / 3e-3, 2);
+      pressure[mesh.index(i1, i2)] = 1.2e9 * std::sqrt(std::max(0.0, lobe1)) + 0.8e9 * std::sqrt(std::max(0.0, lobe2));
+    }
+  }
+  return ContactPatch(mesh, pressure, Material{});
+}
+
+double rel_diff(double value, double reference) { return std::abs(value / reference - 1.0); }
+
+// ---------------------------------------------------------------------------------------------
+// Independent scalar FastSim, written directly from the paper: Eq 1 per run, then Kalker's march
+// from the leading edge with the increments of Eq 2-3 between consecutive element centres, and
+// the limit of Eq 7-8 applied to the running traction.
+struct Reference {
+  std::vector<double> p3e, p1, p2;
+  std::vector<std::uint8_t> slip;
+  TangentialForces forces;
+};
+
+std::vector<double> parabolic_pressure(const ContactPatch& patch) {  // Eq 1
+  std::vector<double> p3e(patch.elements().count(), 0.0);
+  for (const StripRun& run : patch.runs()) {
+    const double xl = run.x1_leading_m, xt = run.x1_trailing_m, xc = 0.5 * (xl + xt);
+    double strip_force = 0.0, shape_sum = 0.0;
+    for (int k = 0; k < run.length(); ++k) {
+      const std::size_t e = run.first + static_cast<std::size_t>(k);
+      const double u = (patch.x1(e) - xc) / (xl - xt);
+      strip_force += patch.pressure_Pa()[e];
+      shape_sum += 1.0 - 4.0 * u * u;
+    }
+    for (int k = 0; k < run.length(); ++k) {
+      const std::size_t e = run.first + static_cast<std::size_t>(k);
+      const double u = (patch.x1(e) - xc) / (xl - xt);
+      p3e[e] = strip_force / shape_sum * (1.0 - 4.0 * u * u);
+    }
+  }
+  return p3e;
+}
+
+// Adhesion traction of Eq 2-3 at (x1, x2) for a run with leading edge xl.
+std::pair<double, double> adhesion_traction(const Creepage& c, const Flexibility& L, double x1, double x2, double xl) {
+  return {(c.xi / L.L1 - c.phi / L.L3 * x2) * (x1 - xl), (c.eta / L.L2 + 0.5 * c.phi / L.L3 * (x1 + xl)) * (x1 - xl)};
+}
+
+enum class Limiting { marching, elementwise };
+
+Reference reference_fastsim(const ContactPatch& patch, const Creepage& c, const Flexibility& L, double mu,
+                            Limiting limiting = Limiting::marching) {
+  Reference ref;
+  ref.p3e = parabolic_pressure(patch);
+  const std::size_t n = patch.elements().count();
+  ref.p1.assign(n, 0.0);
+  ref.p2.assign(n, 0.0);
+  ref.slip.assign(n, 0);
+  double F1 = 0, F2 = 0, M3 = 0;
+  for (const StripRun& run : patch.runs()) {
+    double p1 = 0.0, p2 = 0.0, x_up = run.x1_leading_m;
+    const double xl = run.x1_leading_m;
+    for (int k = run.length() - 1; k >= 0; --k) {  // leading -> trailing
+      const std::size_t e = run.first + static_cast<std::size_t>(k);
+      const double x1 = patch.x1(e), x2 = patch.x2(e);
+      if (limiting == Limiting::marching) {
+        const auto [q1, q0] = adhesion_traction(c, L, x1, x2, xl);
+        const auto [r1, r0] = adhesion_traction(c, L, x_up, x2, xl);
+        p1 += q1 - r1;  // increment of Eq 2 between the upstream point and this centre
+        p2 += q0 - r0;  // increment of Eq 3
+      } else {
+        std::tie(p1, p2) = adhesion_traction(c, L, x1, x2, xl);
+      }
+      const double limit = mu * ref.p3e[e], norm = std::hypot(p1, p2);
+      if (norm > limit) {  // Eq 7-8
+        p1 *= limit / norm;
+        p2 *= limit / norm;
+        ref.slip[e] = 1;
+      }
+      ref.p1[e] = p1;
+      ref.p2[e] = p2;
+      F1 += p1;
+      F2 += p2;
+      M3 += x1 * p2 - x2 * p1;
+      x_up = x1;
+    }
+  }
+  const double S = patch.mesh().element_area_m2();
+  ref.forces = {S * F1, S * F2, S * M3};
+  return ref;
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+TEST(FastSimParabolicBound, SameStripForceAndEdgesAsThePressure) {
+  for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), two_lobe_patch()}) {
+    const FastSim fastsim(patch);
+    const std::vector<double> expected = parabolic_pressure(patch);
+    const std::vector<double>& p3e = fastsim.parabolic_pressure_Pa();
+    ASSERT_EQ(p3e.size(), patch.elements().count());
+    for (std::size_t e = 0; e < p3e.size(); ++e) {
+      EXPECT_GT(p3e[e], 0.0);
+      EXPECT_NEAR(p3e[e], expected[e], 1e-12 * expected[e]);
+    }
+    for (const StripRun& run : patch.runs()) {
+      double sum_p3 = 0.0, sum_p3e = 0.0;
+      for (int k = 0; k < run.length(); ++k) {
+        sum_p3 += patch.pressure_Pa()[run.first + static_cast<std::size_t>(k)];
+        sum_p3e += p3e[run.first + static_cast<std::size_t>(k)];
+      }
+      EXPECT_NEAR(sum_p3e, sum_p3, 1e-12 * sum_p3);
+    }
+  }
+}
+
+TEST(FastSimMarching, MatchesIndependentScalarImplementation) {
+  const Creepage cases[] = {{1e-3, 0, 0},      {0, -2e-3, 0},   {5e-4, 8e-4, 0},   {0, 0, 0.4},
+                            {1e-3, 0, -0.8},   {-3e-4, 1e-3, 1.2}, {2e-4, -1e-4, 3.0}, {0, 0, 0}};
+  int two_run_strips = 0;
+  for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), ellipse_patch(3e-3, 9e-3, 700), two_lobe_patch()}) {
+    for (std::size_t r = 1; r < patch.runs().size(); ++r) two_run_strips += patch.runs()[r].i2 == patch.runs()[r - 1].i2;
+    const FastSim fastsim(patch);
+    const Flexibility L = fastsim_flexibility(6e-3, 5e-3, patch.material());
+    for (const Creepage& c : cases) {
+      const FastSimResult result = fastsim.solve(c, L, kMu);
+      const Reference ref = reference_fastsim(patch, c, L, kMu);
+      const double scale = std::max(max_abs(ref.p1), max_abs(ref.p2)) + 1e-300;
+      const double peak = kMu * max_abs(ref.p3e);
+      std::size_t slipping = 0;
+      for (std::size_t e = 0; e < result.p1_Pa.size(); ++e) {
+        EXPECT_NEAR(result.p1_Pa[e], ref.p1[e], 1e-11 * scale);
+        EXPECT_NEAR(result.p2_Pa[e], ref.p2[e], 1e-11 * scale);
+        // A slip flag may only differ where |p| sits on the bound to rounding.
+        if (result.slip[e] != ref.slip[e]) {
+          EXPECT_NEAR(std::hypot(ref.p1[e], ref.p2[e]), kMu * ref.p3e[e], 1e-11 * peak);
+        }
+        slipping += result.slip[e];
+      }
+      EXPECT_DOUBLE_EQ(result.adhesion_fraction, 1.0 - static_cast<double>(slipping) / static_cast<double>(result.p1_Pa.size()));
+      const double fscale = std::hypot(ref.forces.F1_N, ref.forces.F2_N) + 1e-300;
+      EXPECT_NEAR(result.forces.F1_N, ref.forces.F1_N, 1e-11 * fscale);
+      EXPECT_NEAR(result.forces.F2_N, ref.forces.F2_N, 1e-11 * fscale);
+      EXPECT_NEAR(result.forces.M3_Nm, ref.forces.M3_Nm, 1e-11 * fscale * 1e-2 + 1e-300);
+      // The forces-only path runs the same march: identical forces.
+      const TangentialForces f = fastsim.forces(c, L, kMu);
+      EXPECT_EQ(f.F1_N, result.forces.F1_N);
+      EXPECT_EQ(f.F2_N, result.forces.F2_N);
+      EXPECT_EQ(f.M3_Nm, result.forces.M3_Nm);
+      // One-shot conveniences.
+      EXPECT_EQ(fastsim_forces(patch, c, L, kMu).F1_N, f.F1_N);
+      EXPECT_EQ(railcontact::fastsim(patch, c, L, kMu).forces.M3_Nm, f.M3_Nm);
+    }
+  }
+  EXPECT_GT(two_run_strips, 10);  // the two-lobe patch exercises strips with several runs
+}
+
+// Without slip the marched traction is Eq 2-3 at the element centres, each run measured from its
+// own leading edge.
+TEST(FastSimMarching, AdhesionTractionIsEq2And3AtTheCentres) {
+  const ContactPatch patch = two_lobe_patch();
+  const Flexibility L = fastsim_flexibility(6e-3, 5e-3, patch.material());
+  const Creepage c{2e-7, -1e-7, 3e-4};
+  const FastSimResult result = FastSim(patch).solve(c, L, kMu);
+  ASSERT_EQ(result.adhesion_fraction, 1.0);
+  double scale = std::max(max_abs(result.p1_Pa), max_abs(result.p2_Pa));
+  for (const StripRun& run : patch.runs()) {
+    for (int k = 0; k < run.length(); ++k) {
+      const std::size_t e = run.first + static_cast<std::size_t>(k);
+      const auto [p1, p2] = adhesion_traction(c, L, patch.x1(e), patch.x2(e), run.x1_leading_m);
+      EXPECT_NEAR(result.p1_Pa[e], p1, 1e-12 * scale);
+      EXPECT_NEAR(result.p2_Pa[e], p2, 1e-12 * scale);
+    }
+  }
+}
+
+// METHOD.md §7 Decision: with spin the march differs from element-wise clipping of Eq 2-3; for
+// pure creepage (xi, eta, phi = 0) the traction direction is constant along a run and the
+// adhesion traction grows linearly while the parabolic bound is concave, so both coincide.
+TEST(FastSimMarching, DiffersFromElementwiseClippingOnlyWithSpin) {
+  const ContactPatch patch = ellipse_patch(6e-3, 4e-3, 2800);
+  const FastSim fastsim(patch);
+  const Flexibility L = fastsim_flexibility(6e-3, 4e-3, patch.material());
+  const double bound = kMu * max_abs(fastsim.parabolic_pressure_Pa());
+  auto max_traction_difference = [&](const Creepage& c) {
+    const FastSimResult marched = fastsim.solve(c, L, kMu);
+    const Reference clipped = reference_fastsim(patch, c, L, kMu, Limiting::elementwise);
+    double d = 0.0;
+    for (std::size_t e = 0; e < clipped.p1.size(); ++e) {
+      d = std::max(d, std::hypot(marched.p1_Pa[e] - clipped.p1[e], marched.p2_Pa[e] - clipped.p2[e]));
+    }
+    return std::pair{d / bound, marched.adhesion_fraction};
+  };
+  for (const Creepage& c : {Creepage{1e-3, 0, 0}, Creepage{0, 2e-3, 0}, Creepage{-1e-3, 1.5e-3, 0}}) {
+    const auto [difference, adhesion] = max_traction_difference(c);
+    EXPECT_LT(adhesion, 0.9);  // slip is present
+    EXPECT_LT(difference, 1e-12) << c.xi << " " << c.eta;
+  }
+  for (const Creepage& c : {Creepage{0, 0, 2.0}, Creepage{5e-4, 0, 1.0}, Creepage{0, 5e-4, -1.5}}) {
+    const auto [difference, adhesion] = max_traction_difference(c);
+    std::cout << "  spin " << c.phi << " 1/m: max |p_march - p_clip| / (mu p3e_max) = " << difference
+              << ", adhesion fraction " << adhesion << "\n";
+    EXPECT_LT(adhesion, 0.95);
+    EXPECT_GT(difference, 1e-2);
+  }
+}
+
+// With nH-FastSim flexibilities the small-creepage forces are exactly K2's entries (by
+// construction of the term-by-term match, METHOD.md §7).
+void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
+  const AdhesionSolution adhesion = solve_full_adhesion(patch.elements(), patch.material());
+  const Eigen::Matrix3d& K2 = adhesion.creepage_matrix;
+  const FastSim fastsim(patch);
+  const Flexibility L = nh_fastsim_flexibility(fastsim, K2);
+  const double xi = 1e-7, eta = 1e-7, phi = 1e-4;  // phi in 1/m
+  const FastSimResult rxi = fastsim.solve({xi, 0, 0}, L, kMu);
+  const FastSimResult reta = fastsim.solve({0, eta, 0}, L, kMu);
+  const FastSimResult rphi = fastsim.solve({0, 0, phi}, L, kMu);
+  EXPECT_EQ(rxi.adhesion_fraction, 1.0);
+  EXPECT_EQ(reta.adhesion_fraction, 1.0);
+  EXPECT_EQ(rphi.adhesion_fraction, 1.0);
+  EXPECT_LT(rel_diff(rxi.forces.F1_N, K2(0, 0) * xi), 1e-9);
+  EXPECT_LT(rel_diff(reta.forces.F2_N, K2(1, 1) * eta), 1e-9);
+  EXPECT_LT(rel_diff(rphi.forces.F2_N, K2(1, 2) * phi), 1e-9);
+  // spin_from_moment matches M3 per phi instead.
+  const Flexibility Lm = nh_fastsim_flexibility(fastsim, K2, FlexibilityMatch::spin_from_moment);
+  EXPECT_LT(rel_diff(fastsim.forces({0, 0, phi}, Lm, kMu).M3_Nm, K2(2, 2) * phi), 1e-9);
+  // Also through the convenience that runs the adhesion solver itself.
+  const Flexibility L2 = nh_fastsim_flexibility(patch);
+  EXPECT_LT(rel_diff(L2.L1, L.L1), 1e-12);
+  EXPECT_LT(rel_diff(L2.L3, L.L3), 1e-12);
+}
+
+TEST(NhFastSim, SmallCreepageReproducesK2OnEllipse) { expect_linear_limit_reproduces_K2(ellipse_patch(6e-3, 4e-3, 1500)); }
+
+TEST(NhFastSim, SmallCreepageReproducesK2OnNonHertzianPatch) { expect_linear_limit_reproduces_K2(two_lobe_patch()); }
+
+// Term by term vs Kalker's flexibilities of Eq 9 on ellipses, K2 from the adhesion solver at ~2800
+// elements. The full-matrix match (Eq 21) and the moment match for L3 are reported for study.
+TEST(NhFastSim, FlexibilitiesCloseToKalkerOnEllipses) {
+  for (double a_over_b : {0.5, 1.0, 2.0}) {
+    const double a = 6e-3, b = a / a_over_b;
+    const ContactPatch patch = ellipse_patch(a, b, 2800);
+    const Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
+    const FastSim fastsim(patch);
+    const Flexibility kalker = fastsim_flexibility(a, b, patch.material());
+    const Flexibility nh = nh_fastsim_flexibility(fastsim, K2);
+    const Flexibility full = nh_fastsim_flexibility(fastsim, K2, FlexibilityMatch::full_matrix);
+    const Flexibility moment = nh_fastsim_flexibility(fastsim, K2, FlexibilityMatch::spin_from_moment);
+    std::cout << "  a/b = " << a_over_b << ", " << patch.elements().count() << " elements; L / L(Eq 9):"
+              << " term-by-term " << nh.L1 / kalker.L1 << " " << nh.L2 / kalker.L2 << " " << nh.L3 / kalker.L3
+              << " | full matrix " << full.L1 / kalker.L1 << " " << full.L2 / kalker.L2 << " " << full.L3 / kalker.L3
+              << " | L3 from M3 " << moment.L3 / kalker.L3 << "\n";
+    EXPECT_LT(rel_diff(nh.L1, kalker.L1), 0.05);
+    EXPECT_LT(rel_diff(nh.L2, kalker.L2), 0.05);
+    EXPECT_LT(rel_diff(nh.L3, kalker.L3), 0.05);
+    EXPECT_EQ(moment.L1, nh.L1);
+    EXPECT_EQ(moment.L2, nh.L2);
+  }
+}
+
+// Full slip: every element on its bound, so |F| = mu sum S p3e = mu F3 (Eq 1 keeps each strip's
+// force), opposite to the creepage.
+TEST(FastSimFullSlip, ForceSaturatesAtMuF3OppositeToCreepage) {
+  for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), two_lobe_patch()}) {
+    const FastSim fastsim(patch);
+    const Flexibility L = fastsim_flexibility(6e-3, 4e-3, patch.material());
+    const double saturation = kMu * patch.normal_force_N();
+    for (const Creepage& c : {Creepage{1, 0, 0}, Creepage{-1, 0, 0}, Creepage{0, 1, 0}, Creepage{0, -1, 0}}) {
+      const FastSimResult r = fastsim.solve(c, L, kMu);
+      EXPECT_EQ(r.adhesion_fraction, 0.0);
+      EXPECT_LT(rel_diff(std::hypot(r.forces.F1_N, r.forces.F2_N), saturation), 1e-3);
+      EXPECT_LT(rel_diff(-(r.forces.F1_N * c.xi + r.forces.F2_N * c.eta), saturation), 1e-3);  // direction
+    }
+    // Combined: the traction points against (xi/L1, eta/L2) everywhere.
+    const Creepage c{0.6, 0.8, 0};
+    const TangentialForces f = fastsim.forces(c, L, kMu);
+    const double k1 = c.xi / L.L1, k2 = c.eta / L.L2, k = std::hypot(k1, k2);
+    EXPECT_LT(rel_diff(std::hypot(f.F1_N, f.F2_N), saturation), 1e-3);
+    EXPECT_LT(rel_diff(f.F1_N, -saturation * k1 / k), 1e-3);
+    EXPECT_LT(rel_diff(f.F2_N, -saturation * k2 / k), 1e-3);
+  }
+}
+
+// Simplified theory on a Hertzian patch, closed form (derivation).
+//
+// Ellipse with semi-axes a (X1), b (X2); strip at x2 = y has half-length a_y = a s_y,
+// s_y = sqrt(1 - y^2/b^2). Hertz: p3 = p0 s_y sqrt(1 - x^2/a_y^2), p0 = 3 F3 / (2 pi a b); its
+// strip force per unit width is (pi/2) p0 s_y a_y. The parabola of Eq 1 with the same edges and
+// force, h_y (1 - x^2/a_y^2), carries (4/3) h_y a_y, so h_y = (3 pi / 8) p0 s_y = 9 F3 s_y/(16 a b).
+// Pure xi: the adhesion traction (Eq 2) is p1 = k (x - a_y), k = xi/L1, |p1| = k (a_y - x), and
+// the bound is mu h_y (a_y - x)(a_y + x)/a_y^2. Since the bound is concave and both vanish at the
+// leading edge, the strip adheres on [x*, a_y] and slips on [-a_y, x*], with
+//   k a_y^2 = mu h_y (a_y + x*),  i.e. x* = a_y (2t - 1),  t = k a_y / (2 mu h_y)  (t <= 1).
+// Let u = x/a_y. Adhesion part: k a_y^2 int_{2t-1}^{1} (1 - u) du = 2 k a_y^2 (1 - t)^2
+//   = 4 mu h_y a_y t (1 - t)^2.
+// Slip part: mu h_y a_y int_{-1}^{2t-1} (1 - u^2) du = mu h_y a_y (4t^2 - (8/3) t^3).
+// Sum: mu h_y a_y (4t - 4t^2 + (4/3) t^3) = (4/3) mu h_y a_y [1 - (1 - t)^3]; for t >= 1 the whole
+// strip slips and the bracket is 1. So |F1_strip| = mu N_y [1 - (1 - t)^3], N_y the strip's normal
+// force. Now t = k a s_y / (2 mu 9 F3 s_y / (16 a b)) = 8 k a^2 b / (9 mu F3) is the same for every
+// strip, so summing over the strips:
+//   F1 = -mu F3 [1 - (1 - t)^3] = -mu F3 (3t - 3t^2 + t^3),  t <= 1;   F1 = -mu F3, t >= 1.
+// With Kalker's L1 = 8a/(3 C11 G) (Eq 9): t = G a b C11 xi / (3 mu F3) = xi', Kalker's normalised
+// creepage (Eq 22, f11 = G c^2 C11). With u = 3 xi' = f11 xi/(mu F3): F1/(mu F3) =
+// -(u - u^2/3 + u^3/27), the classical form; it does not depend on a/b. Pure eta gives the same
+// with L2, C22, f22 (Eq 3 with phi = 0 has the same form).
+TEST(FastSimSimplifiedTheory, HertzianCreepCurveMatchesClosedForm) {
+  const Material material;
+  const double G = material.shear_modulus_Pa();
+  for (double a_over_b : {1.0, 0.5}) {
+    const double a = 6e-3, b = a / a_over_b;
+    const ContactPatch patch = ellipse_patch(a, b, 11000);
+    const FastSim fastsim(patch);
+    const Flexibility L = fastsim_flexibility(a, b, material);
+    const KalkerCoefficients C = kalker_coefficients(a_over_b, material.poisson_ratio);
+    const double F3 = patch.normal_force_N();
+    double worst = 0.0;
+    for (double xi_n : {0.02, 0.1, 0.25, 0.5, 0.75, 0.9, 1.0, 1.5}) {  // xi' of Eq 22
+      const double t = std::min(xi_n, 1.0);
+      const double closed_form = -kMu * F3 * (1.0 - std::pow(1.0 - t, 3));
+      const double xi = 3.0 * kMu * F3 * xi_n / (G * a * b * C.C11);
+      const double eta = 3.0 * kMu * F3 * xi_n / (G * a * b * C.C22);
+      const double F1 = fastsim.forces({xi, 0, 0}, L, kMu).F1_N;
+      const double F2 = fastsim.forces({0, eta, 0}, L, kMu).F2_N;
+      EXPECT_LT(rel_diff(F1, closed_form), 0.01) << "xi' = " << xi_n;
+      EXPECT_LT(rel_diff(F2, closed_form), 0.01) << "eta' = " << xi_n;
+      worst = std::max({worst, rel_diff(F1, closed_form), rel_diff(F2, closed_form)});
+    }
+    std::cout << "  a/b = " << a_over_b << ", " << patch.elements().count()
+              << " elements: max |F/F_closed - 1| = " << 100.0 * worst << " %\n";
+  }
+}
+
+// Kalker's sign convention (METHOD.md §2) in the linear regime: F1 = -f11 xi, F2 = -f22 eta -
+// f23 phi, M3 = f23 eta - f33 phi; and FastSim's linear matrix has K2's sign pattern.
+TEST(FastSimSigns, KalkerConventionInTheLinearRegime) {
+  const ContactPatch patch = ellipse_patch(6e-3, 4e-3, 2800);
+  const FastSim fastsim(patch);
+  const Flexibility L = fastsim_flexibility(6e-3, 4e-3, patch.material());
+  const TangentialForces fxi = fastsim.forces({1e-6, 0, 0}, L, kMu);
+  const TangentialForces feta = fastsim.forces({0, 1e-6, 0}, L, kMu);
+  const TangentialForces fphi = fastsim.forces({0, 0, 1e-3}, L, kMu);
+  EXPECT_LT(fxi.F1_N, 0.0);
+  EXPECT_LT(feta.F2_N, 0.0);
+  EXPECT_GT(feta.M3_Nm, 0.0);  // +f23 eta
+  EXPECT_LT(fphi.F2_N, 0.0);   // -f23 phi
+  EXPECT_LT(fphi.M3_Nm, 0.0);  // -f33 phi
+  // Same signs as the adhesion solver's K2.
+  const Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
+  EXPECT_LT(K2(0, 0), 0.0);
+  EXPECT_LT(K2(1, 1), 0.0);
+  EXPECT_LT(K2(1, 2), 0.0);
+  EXPECT_GT(K2(2, 1), 0.0);
+  EXPECT_LT(K2(2, 2), 0.0);
+  const Eigen::Matrix3d& SDB = fastsim.adhesion_force_matrix();
+  for (const auto& [i, j] : {std::pair{0, 0}, std::pair{1, 1}, std::pair{1, 2}, std::pair{2, 1}, std::pair{2, 2}}) {
+    EXPECT_EQ(SDB(i, j) > 0, K2(i, j) > 0) << i << j;
+  }
+}
+
+// Mirror X2 -> -X2 of a patch symmetric in x2 maps (xi, eta, phi) to (xi, -eta, -phi) and
+// (F1, F2, M3) to (F1, -F2, -M3).
+TEST(FastSimSymmetry, MirrorInX2FlipsLateralForceAndMoment) {
+  const ContactPatch patch = ellipse_patch(6e-3, 4e-3, 2800);
+  const FastSim fastsim(patch);
+  const Flexibility L = fastsim_flexibility(6e-3, 4e-3, patch.material());
+  for (const Creepage& c : {Creepage{4e-4, 6e-4, 0}, Creepage{-2e-4, 1e-3, 0}, Creepage{3e-4, 5e-4, 0.8}}) {
+    const TangentialForces f = fastsim.forces(c, L, kMu);
+    const TangentialForces m = fastsim.forces({c.xi, -c.eta, -c.phi}, L, kMu);
+    const double scale = std::hypot(f.F1_N, f.F2_N);
+    EXPECT_NEAR(m.F1_N, f.F1_N, 1e-9 * scale);
+    EXPECT_NEAR(m.F2_N, -f.F2_N, 1e-9 * scale);
+    EXPECT_NEAR(m.M3_Nm, -f.M3_Nm, 1e-9 * scale * 6e-3);
+    EXPECT_GT(std::abs(f.M3_Nm), 1e-3 * scale * 6e-3);  // the moment is not trivially zero
+  }
+}
+
+TEST(FastSimInput, RejectsBadInput) {
+  const ContactPatch patch = ellipse_patch(6e-3, 4e-3, 700);
+  const FastSim fastsim(patch);
+  const Flexibility L = fastsim_flexibility(6e-3, 4e-3, patch.material());
+  const Creepage c{1e-3, 0, 0};
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (double mu : {0.0, -0.3, nan, inf}) {
+    EXPECT_THROW((void)fastsim.forces(c, L, mu), Error) << mu;
+    EXPECT_THROW((void)fastsim.solve(c, L, mu), Error) << mu;
+  }
+  for (double bad : {0.0, -1e-9, nan, inf}) {
+    EXPECT_THROW((void)fastsim.forces(c, {bad, L.L2, L.L3}, kMu), Error);
+    EXPECT_THROW((void)fastsim.forces(c, {L.L1, bad, L.L3}, kMu), Error);
+    EXPECT_THROW((void)fastsim.solve(c, {L.L1, L.L2, bad}, kMu), Error);
+  }
+  for (double bad : {nan, inf}) {
+    EXPECT_THROW((void)fastsim.forces({bad, 0, 0}, L, kMu), Error);
+    EXPECT_THROW((void)fastsim.forces({0, bad, 0}, L, kMu), Error);
+    EXPECT_THROW((void)fastsim.solve({0, 0, bad}, L, kMu), Error);
+  }
+  EXPECT_THROW(FastSim{ContactPatch{}}, Error);
+  // Flexibilities from a K2 with the wrong signs or not finite.
+  Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
+  Eigen::Matrix3d wrong = K2;
+  wrong(1, 2) = -wrong(1, 2);
+  EXPECT_THROW((void)nh_fastsim_flexibility(fastsim, wrong), Error);
+  EXPECT_NO_THROW((void)nh_fastsim_flexibility(fastsim, wrong, FlexibilityMatch::spin_from_moment));
+  wrong = K2;
+  wrong(0, 0) = nan;
+  EXPECT_THROW((void)nh_fastsim_flexibility(fastsim, wrong), Error);
+  EXPECT_THROW((void)nh_fastsim_flexibility(fastsim, Eigen::Matrix3d::Zero(), FlexibilityMatch::full_matrix), Error);
+}
+
+}  // namespace
+}  // namespace railcontact
