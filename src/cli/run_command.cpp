@@ -1,35 +1,47 @@
-// `railcontact run`: the main job. Until the wheel-rail pipeline lands, the built-in default
-// case is the coefficient demo on a few ellipses.
+// `railcontact run [CASE.toml] [--json] [--out DIR]`: the main job.
 #include <fmt/core.h>
 
+#include <iostream>
+#include <string>
+
 #include "cli/commands.hpp"
-#include "railcontact/ellipse_coefficients.hpp"
-#include "railcontact/kalker.hpp"
+#include "railcontact/case.hpp"
+#include "railcontact/case_output.hpp"
+#include "railcontact/case_run.hpp"
 
 namespace railcontact::cli {
 namespace {
 
-int run_default_case() {
-  fmt::print("railcontact: creepage coefficients from the full-adhesion steady state (K2, Eq 18)\n");
-  fmt::print("against Kalker's table, nu = 0.25, about 2800 elements in contact\n\n");
-  fmt::print("   a/b  elements     C11 (Kalker)  err      C22 (Kalker)  err      C23 (Kalker)  err     time\n");
-  for (double ratio : {0.2, 0.5, 1.0, 2.0, 5.0}) {
-    const EllipseCoefficientResult r = ellipse_creepage_coefficients(ratio, 0.25);
-    const KalkerCoefficients k = kalker_coefficients(ratio, 0.25);
-    const CreepageCoefficients& c = r.coefficients;
-    fmt::print("  {:4.1f}  {:8}  {:6.3f} ({:5.3f}) {:+5.2f}%  {:6.3f} ({:5.3f}) {:+5.2f}%  {:6.3f} ({:5.3f}) {:+5.2f}%  {:4.0f} ms\n",
-               ratio, r.elements_in_contact, c.C11, k.C11, 100 * (c.C11 / k.C11 - 1), c.C22, k.C22,
-               100 * (c.C22 / k.C22 - 1), c.C23, k.C23, 100 * (c.C23 / k.C23 - 1), 1e3 * r.solve_time_s);
+struct RunArguments {
+  std::string case_file;
+  std::string out;
+  bool json = false;
+};
+
+int run(const RunArguments& args) {
+  const Case input = args.case_file.empty() ? default_case() : read_case_file(args.case_file);
+  const CaseResult result = run_case(input, args.json ? nullptr : &std::cerr);
+  if (args.json) {
+    fmt::print("{}\n", case_result_json(result));
+  } else {
+    print_case_report(result, std::cout);
   }
-  fmt::print("\nMore: railcontact coefficients --help, railcontact study coefficients --out DIR\n");
+  if (!args.out.empty()) {
+    write_case_outputs(result, args.out, std::cerr);
+    if (!args.json) fmt::print("\nWrote {}\n", args.out);
+  }
   return 0;
 }
 
 }  // namespace
 
 void add_run_command(CLI::App& app, Action& action) {
-  CLI::App* cmd = app.add_subcommand("run", "the main job on the built-in default case");
-  cmd->callback([&action] { action = [] { return run_default_case(); }; });
+  auto args = std::make_shared<RunArguments>();
+  CLI::App* cmd = app.add_subcommand("run", "run a case file (default: the built-in case) with its solvers");
+  cmd->add_option("case", args->case_file, "TOML case file (docs/CASE_FILES.md)");
+  cmd->add_flag("--json", args->json, "print one JSON object");
+  cmd->add_option("--out", args->out, "write tractions (CSV), result.json and traction maps into this directory");
+  cmd->callback([args, &action] { action = [args] { return run(*args); }; });
 }
 
 }  // namespace railcontact::cli
