@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 
 namespace {
@@ -94,5 +95,35 @@ INSTANTIATE_TEST_SUITE_P(
                       std::pair{"coefficients --a-over-b 1 --nu 0.3 --bogus", "bogus"},
                       std::pair{"coefficients --nu 0.3", "a-over-b"},
                       std::pair{"frobnicate", "frobnicate"}));
+
+}  // namespace
+
+namespace {
+
+TEST(CliRun, CaseFileJsonHasTheDocumentedShape) {
+  const CommandResult r = run_cli(std::string("run ") + RAILCONTACT_SOURCE_DIR + "/examples/hertz_ellipse.toml --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("patch"));
+  for (const char* solver : {"nh-fastsim", "fastsim", "exact", "exact-regularised"}) {
+    ASSERT_TRUE(j["results"].contains(solver)) << solver;
+    const auto& s = j["results"][solver];
+    for (const char* key : {"F1", "F2", "M3", "time_s", "iterations", "converged"}) EXPECT_TRUE(s.contains(key)) << key;
+    EXPECT_TRUE(s["converged"].get<bool>());
+    EXPECT_LT(s["F1"].get<double>(), 0.0);  // xi > 0: F1 < 0 (Kalker's convention)
+  }
+  EXPECT_EQ(j["results"]["nh-fastsim"]["flexibility"].size(), 3u);
+  EXPECT_EQ(j["results"]["fastsim"]["flexibility"].size(), 3u);
+  const double exact = j["results"]["exact"]["F1"].get<double>();
+  EXPECT_NEAR(j["results"]["exact-regularised"]["F1"].get<double>(), exact, 1e-3 * std::fabs(exact));
+  EXPECT_NEAR(j["results"]["nh-fastsim"]["F1"].get<double>(), exact, 0.05 * std::fabs(exact));
+}
+
+INSTANTIATE_TEST_SUITE_P(Run, CliBadInput,
+                         ::testing::Values(std::pair{"run /nonexistent/case.toml", "cannot read"},
+                                           std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/unknown_key.toml",
+                                                     "unknown key 'mue'"},
+                                           std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/bad_solver.toml",
+                                                     "unknown solver"}));
 
 }  // namespace

@@ -1,0 +1,133 @@
+// Exact steady rolling with friction: limits (linear theory, full slip), the regularised law
+// against the exact one, and sign agreement of the four solvers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "railcontact/adhesion.hpp"
+#include "railcontact/ellipse.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/fastsim.hpp"
+#include "railcontact/kalker.hpp"
+#include "railcontact/rolling.hpp"
+
+namespace railcontact {
+namespace {
+
+const Material kSteel{2.1e11, 0.3};
+constexpr double kMu = 0.3, kLoad = 98100.0;
+
+ContactPatch patch(double a, double b, int elements) {
+  return hertzian_patch(elliptical_contact_with_count(a, b, elements, EllipseMeshLayout::rolling_resolved), a, b, kLoad,
+                        kSteel);
+}
+
+TEST(ExactRolling, SmallCreepageEqualsLinearTheoryOfTheSamePatch) {
+  const ContactPatch p = patch(6e-3, 4e-3, 1200);
+  const Eigen::Matrix3d K2 = solve_full_adhesion(p.elements(), kSteel).creepage_matrix;
+  for (const Creepage c : {Creepage{2e-6, 0, 0}, Creepage{0, 2e-6, 0}, Creepage{0, 0, 2e-3}, Creepage{1e-6, -1e-6, 1e-3}}) {
+    const RollingSolution s = solve_rolling_exact(p, c, kMu);
+    const Eigen::Vector3d linear = K2 * Eigen::Vector3d(c.xi, c.eta, c.phi);
+    const double scale = std::hypot(linear(0), linear(1));
+    EXPECT_NEAR(s.forces.F1_N, linear(0), 0.005 * scale);
+    EXPECT_NEAR(s.forces.F2_N, linear(1), 0.005 * scale);
+    EXPECT_NEAR(s.forces.M3_Nm, linear(2), 0.005 * std::fabs(linear(2)) + 1e-12);
+    EXPECT_GT(s.adhesion_fraction, 0.95);
+  }
+}
+
+TEST(ExactRolling, LargeCreepageSaturatesAtMuTimesNormalForce) {
+  const ContactPatch p = patch(6e-3, 4e-3, 1200);
+  for (const Creepage c : {Creepage{0.02, 0, 0}, Creepage{0, -0.02, 0}, Creepage{0.015, 0.015, 0}}) {
+    const RollingSolution s = solve_rolling_exact(p, c, kMu);
+    EXPECT_NEAR(std::hypot(s.forces.F1_N, s.forces.F2_N), kMu * p.normal_force_N(), 2e-3 * kMu * p.normal_force_N());
+    // Opposite to the creepage.
+    EXPECT_LT(s.forces.F1_N * c.xi + s.forces.F2_N * c.eta, 0.0);
+    EXPECT_LT(s.adhesion_fraction, 0.01);
+  }
+}
+
+TEST(ExactRolling, SolutionSatisfiesCoulombsLawElementByElement) {
+  const ContactPatch p = patch(6e-3, 6e-3, 1200);
+  const RollingSolution s = solve_rolling_exact(p, {8e-4, 3e-4, 0.4}, kMu);
+  ASSERT_TRUE(s.converged);
+  int slipping = 0;
+  for (std::size_t e = 0; e < p.elements().count(); ++e) {
+    const double bound = kMu * p.pressure_Pa()[e];
+    const double traction = std::hypot(s.p1_Pa[e], s.p2_Pa[e]);
+    const double slip = std::hypot(s.s1[e], s.s2[e]);
+    EXPECT_LE(traction, bound * (1 + 1e-8) + 1e-6);
+    if (s.slip[e]) {
+      ++slipping;
+      EXPECT_NEAR(traction, bound, 1e-7 * bound);
+      if (slip > 1e-9) EXPECT_LT((s.p1_Pa[e] * s.s1[e] + s.p2_Pa[e] * s.s2[e]) / (traction * slip), -0.999);
+    } else {
+      EXPECT_LT(slip, 1e-9);
+    }
+  }
+  EXPECT_GT(slipping, 50);
+  EXPECT_LT(slipping, static_cast<int>(p.elements().count()) - 50);
+}
+
+TEST(RegularisedRolling, ApproachesExactAsEpsilonDecreases) {
+  const ContactPatch p = patch(6e-3, 4e-3, 800);
+  const Creepage c{6e-4, 2e-4, 0.3};
+  const RollingSolution exact = solve_rolling_exact(p, c, kMu);
+  const double F = std::hypot(exact.forces.F1_N, exact.forces.F2_N);
+  double previous = 1e300;
+  for (double eps : {1e-5, 1e-6, 1e-7, 1e-8}) {
+    RollingOptions o;
+    o.regularisation = eps;
+    const RollingSolution r = solve_rolling_regularised(p, c, kMu, o);
+    const double difference = std::hypot(r.forces.F1_N - exact.forces.F1_N, r.forces.F2_N - exact.forces.F2_N) / F;
+    EXPECT_LT(difference, previous) << eps;
+    previous = difference;
+  }
+  EXPECT_LT(previous, 1e-4);
+}
+
+TEST(RollingSolvers, AllFourAgreeOnTheSigns) {
+  const double a = 6e-3, b = 4e-3;
+  const ContactPatch p = patch(a, b, 1000);
+  const FastSim fastsim(p);
+  const Flexibility nh = nh_fastsim_flexibility(fastsim, solve_full_adhesion(p.elements(), kSteel).creepage_matrix);
+  const Flexibility original = fastsim_flexibility(a, b, kSteel);
+  for (const Creepage c : {Creepage{1e-3, 0, 0}, Creepage{-1e-3, 0, 0}, Creepage{0, 1e-3, 0}, Creepage{0, -5e-4, 0},
+                           Creepage{0, 0, 1.0}, Creepage{0, 0, -1.0}, Creepage{5e-4, 5e-4, 0.5}}) {
+    const TangentialForces forces[] = {fastsim.forces(c, nh, kMu), fastsim.forces(c, original, kMu),
+                                       solve_rolling_exact(p, c, kMu).forces,
+                                       solve_rolling_regularised(p, c, kMu).forces};
+    const double F3 = p.normal_force_N();
+    for (const TangentialForces& f : forces) {
+      auto sign = [F3](double v, double scale) { return std::fabs(v) < 1e-6 * scale ? 0 : (v > 0 ? 1 : -1); };
+      EXPECT_EQ(sign(f.F1_N, F3), sign(forces[2].F1_N, F3));
+      EXPECT_EQ(sign(f.F2_N, F3), sign(forces[2].F2_N, F3));
+      EXPECT_EQ(sign(f.M3_Nm, F3 * a), sign(forces[2].M3_Nm, F3 * a));
+    }
+    // Kalker's convention: F1 opposes xi, F2 opposes eta, and spin alone gives F2 = -f23 phi < 0 for phi > 0.
+    if (c.xi != 0) EXPECT_LT(forces[2].F1_N * c.xi, 0);
+    if (c.eta != 0 && c.phi == 0) EXPECT_LT(forces[2].F2_N * c.eta, 0);
+    if (c.phi != 0 && c.xi == 0 && c.eta == 0) {
+      EXPECT_LT(forces[2].F2_N * c.phi, 0);
+      EXPECT_LT(forces[2].M3_Nm * c.phi, 0);
+    }
+  }
+}
+
+TEST(ExactRolling, RejectsBadInputAndReportsNonConvergence) {
+  const ContactPatch p = patch(6e-3, 4e-3, 300);
+  EXPECT_THROW(solve_rolling_exact(p, {1e-3, 0, 0}, 0.0), Error);
+  EXPECT_THROW(solve_rolling_exact(p, {1e-3, 0, 0}, std::nan("")), Error);
+  EXPECT_THROW(solve_rolling_exact(p, {std::nan(""), 0, 0}, 0.3), Error);
+  EXPECT_THROW(solve_rolling_regularised(p, {1e-3, 0, 0}, -0.3), Error);
+  RollingOptions o;
+  o.max_newton_iterations = 1;
+  o.tolerance = 1e-14;
+  EXPECT_THROW(solve_rolling_exact(p, {1e-3, 0, 0.5}, 0.3, o), Error);
+  o = RollingOptions{};
+  o.regularisation = 0.0;
+  EXPECT_THROW(solve_rolling_regularised(p, {1e-3, 0, 0}, 0.3, o), Error);
+}
+
+}  // namespace
+}  // namespace railcontact
