@@ -142,3 +142,30 @@ TEST(Adhesion, RejectsBadInput) {
 
 }  // namespace
 }  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+TEST(Adhesion, ForceRowsByAdjointSolvesEqualTheFullMatrix) {
+  const ContactElements patch = elliptical_contact_with_count(6e-3, 4e-3, 900, EllipseMeshLayout::rolling_resolved);
+  AdhesionOptions full;
+  full.tolerance = 1e-12;
+  const Eigen::Matrix3d K = solve_full_adhesion(patch, kSteel, full).creepage_matrix;
+  for (LinearSolver solver : {LinearSolver::krylov, LinearSolver::dense}) {
+    AdhesionOptions rows = full;
+    rows.part = CreepageMatrixPart::force_rows;
+    rows.solver = solver;
+    const Eigen::Matrix3d R = solve_full_adhesion(patch, kSteel, rows).creepage_matrix;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 3; ++j)
+        EXPECT_NEAR(R(i, j), K(i, j), 1e-8 * std::sqrt(std::fabs(K(i, i) * K(j, j)))) << i << j;
+    EXPECT_TRUE(std::isnan(R(2, 2)));
+  }
+  AdhesionOptions mixed;
+  mixed.part = CreepageMatrixPart::force_rows;
+  mixed.spin_collocation_offset = 0.5;
+  EXPECT_THROW(solve_full_adhesion(patch, kSteel, mixed), Error);
+}
+
+}  // namespace
+}  // namespace railcontact

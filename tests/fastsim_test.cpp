@@ -269,10 +269,12 @@ void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
   // spin_from_moment matches M3 per phi instead.
   const Flexibility Lm = nh_fastsim_flexibility(fastsim, K2, FlexibilityMatch::spin_from_moment);
   EXPECT_LT(rel_diff(fastsim.forces({0, 0, phi}, Lm, kMu).M3_Nm, K2(2, 2) * phi), 1e-9);
-  // Also through the convenience that runs the adhesion solver itself.
+  // Also through the convenience that runs the adhesion solver itself (the two force rows of
+  // K2 by adjoint solves at GMRES tolerance 1e-6: K2, hence L, to ~1e-7).
   const Flexibility L2 = nh_fastsim_flexibility(patch);
-  EXPECT_LT(rel_diff(L2.L1, L.L1), 1e-12);
-  EXPECT_LT(rel_diff(L2.L3, L.L3), 1e-12);
+  EXPECT_LT(rel_diff(L2.L1, L.L1), 1e-6);
+  EXPECT_LT(rel_diff(L2.L2, L.L2), 1e-6);
+  EXPECT_LT(rel_diff(L2.L3, L.L3), 1e-6);
 }
 
 TEST(NhFastSim, SmallCreepageReproducesK2OnEllipse) { expect_linear_limit_reproduces_K2(ellipse_patch(6e-3, 4e-3, 1500)); }

@@ -35,6 +35,15 @@ enum class AdhesionPreconditioner {
   marching,                 // FastSim marching alone
 };
 
+// What to compute of K2.
+enum class CreepageMatrixPart {
+  full,        // all of K2 and the tractions: one direct solve R p = D^T e_j per creepage (3 solves)
+  // Rows 1 and 2 (F1 and F2 per unit xi, eta, phi) by adjoint solves R^T y = (S D)^T e_i, one per
+  // force (2 solves): all term-by-term nH-FastSim needs (K2_11, K2_22, K2_23) and the
+  // normalisation of Eq 22-23 (f11, f22). Row 3 (M3) is NaN and no tractions are returned.
+  force_rows,
+};
+
 struct AdhesionOptions {
   double collocation_offset = 0.0;  // alpha in (-1, 1]: collocation point at x1 + alpha dx1/2 (METHOD.md §3)
   // Collocation offset for the spin column of K2 only (unit phi); unset = collocation_offset.
@@ -46,6 +55,7 @@ struct AdhesionOptions {
   double tolerance = 1e-10;         // Krylov: relative residual
   int max_iterations = 400;         // Krylov
   AdhesionPreconditioner preconditioner = AdhesionPreconditioner::marching_half_laplacian;
+  CreepageMatrixPart part = CreepageMatrixPart::full;
 };
 
 struct AdhesionSolution {

@@ -90,8 +90,12 @@ Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d
                                    FlexibilityMatch match = FlexibilityMatch::term_by_term);
 Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2,
                                    FlexibilityMatch match = FlexibilityMatch::term_by_term);
+// The adhesion options nH-FastSim uses for its flexibilities: the two force rows of K2 by
+// adjoint solves (CreepageMatrixPart::force_rows), GMRES tolerance 1e-6 (K2 to ~1e-7).
+AdhesionOptions nh_fastsim_adhesion_options();
+
 // The same with K2 = solve_full_adhesion(patch.elements(), patch.material(), options).
-Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options = {},
+Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options = nh_fastsim_adhesion_options(),
                                    FlexibilityMatch match = FlexibilityMatch::term_by_term);
 
 }  // namespace railcontact

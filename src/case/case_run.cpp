@@ -88,7 +88,7 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
     const auto start = Clock::now();
     switch (kind) {
       case SolverKind::nh_fastsim: {
-        AdhesionOptions adhesion;
+        AdhesionOptions adhesion = nh_fastsim_adhesion_options();
         adhesion.collocation_offset = input.rolling.collocation_offset;
         const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), adhesion);
         run.flexibility = nh_fastsim_flexibility(fastsim, K2.creepage_matrix);

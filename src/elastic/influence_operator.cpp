@@ -124,6 +124,16 @@ void InfluenceOperator::apply(const std::vector<std::size_t>& elements, std::spa
   }
 }
 
+InfluenceOperator InfluenceOperator::transposed() const {
+  std::vector<double> table(table_.size());
+  std::size_t q = 0;
+  for (int k = 0; k < components_; ++k)
+    for (int l = 0; l < components_; ++l)
+      for (int m2 = -(mesh_.n2 - 1); m2 <= mesh_.n2 - 1; ++m2)
+        for (int m1 = -(mesh_.n1 - 1); m1 <= mesh_.n1 - 1; ++m1) table[q++] = kernel(l, k, -m1, -m2);
+  return InfluenceOperator(mesh_, components_, std::move(table));
+}
+
 Eigen::MatrixXd InfluenceOperator::dense(const std::vector<std::size_t>& elements) const {
   const auto n = static_cast<Eigen::Index>(elements.size());
   Eigen::MatrixXd matrix(components_ * n, components_ * n);

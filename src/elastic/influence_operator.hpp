@@ -45,6 +45,9 @@ class InfluenceOperator {
   // apply() then approximates the inverse of the operator on the whole plane.
   void invert_symbol() { convolution_.invert_symbol(); }
 
+  // The transposed operator: kernel K'_kl(m) = K_lk(-m).
+  [[nodiscard]] InfluenceOperator transposed() const;
+
   // Dense matrix of the restricted operator (reference path).
   [[nodiscard]] Eigen::MatrixXd dense(const std::vector<std::size_t>& elements) const;
 

@@ -1,6 +1,7 @@
 // Full-adhesion steady-state rolling: K2 (paper Eq 14, 18).
 #include <Eigen/LU>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <fmt/format.h>
@@ -95,6 +96,48 @@ void solve_columns(const ContactElements& elements, const Material& material, do
   }
 }
 
+// Rows 1 and 2 of K2 by adjoint solves: K2(i, :) = (R^-T (S D)^T e_i)^T W.
+void solve_force_rows(const ContactElements& elements, const Material& material, const AdhesionOptions& options,
+                      AdhesionSolution& solution) {
+  const Mesh& mesh = elements.mesh();
+  const auto n = static_cast<Eigen::Index>(elements.count());
+  const double alpha = options.collocation_offset;
+  const double slip_offset = options.rigid_slip_point == RigidSlipPoint::collocation ? 0.5 * alpha * mesh.dx1_m
+                                                                                      : 0.5 * (alpha + 1.0) * mesh.dx1_m;
+  const Eigen::MatrixXd W = rigid_slip_columns(elements, slip_offset);
+  const Eigen::MatrixXd SD = force_rows(elements);
+  InfluenceOperator RT = make_steady_rolling_operator(mesh, material, alpha).transposed();
+  solution.creepage_matrix.setConstant(std::numeric_limits<double>::quiet_NaN());
+  if (options.solver == LinearSolver::dense) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(RT.dense(elements.indices()));
+    for (int i = 0; i < 2; ++i) solution.creepage_matrix.row(i) = (lu.solve(SD.row(i).transpose())).transpose() * W;
+    return;
+  }
+  const MatrixFreeOperator M(2 * n, [&RT, &elements, n](const double* x, double* y) {
+    RT.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
+  });
+  const SteadyRollingPreconditioner preconditioner(
+      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : 3.0);
+  const ApplyFunction precondition = [&preconditioner](const double* r, double* z) {
+    preconditioner.apply_transpose(r, z);
+  };
+  KrylovOptions krylov;
+  krylov.tolerance = options.tolerance;
+  krylov.max_iterations = options.max_iterations;
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::VectorXd rhs = SD.row(i).transpose();
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(2 * n);
+    const KrylovReport report = solve_krylov(M, precondition, rhs, y, krylov);
+    solution.iterations += report.iterations;
+    solution.relative_residual = std::max(solution.relative_residual, report.relative_residual);
+    if (!report.converged)
+      throw Error(fmt::format("adhesion solver: GMRES did not converge for the adjoint of F{} in {} iterations "
+                              "(relative residual {:.2e} > {:.1e})",
+                              i + 1, report.iterations, report.relative_residual, options.tolerance));
+    solution.creepage_matrix.row(i) = y.transpose() * W;
+  }
+}
+
 }  // namespace
 
 AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
@@ -114,6 +157,12 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
   }
   const auto n = static_cast<Eigen::Index>(elements.count());
   AdhesionSolution solution;
+  if (options.part == CreepageMatrixPart::force_rows) {
+    require(spin_alpha == options.collocation_offset,
+            "adhesion solver: the force rows of K2 need one collocation offset for all creepages");
+    solve_force_rows(elements, material, options, solution);
+    return solution;
+  }
   solution.unit_tractions.resize(2 * n, 3);
   if (spin_alpha == options.collocation_offset) {
     solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {0, 1, 2}, options, solution);

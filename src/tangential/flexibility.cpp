@@ -38,7 +38,11 @@ double checked_diagonal(double value, const char* name) {
 }  // namespace
 
 Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d& K2, FlexibilityMatch match) {
-  require(K2.allFinite(), "nH-FastSim flexibility: the creepage matrix K2 is not finite");
+  // term_by_term reads K2_11, K2_22, K2_23 only (the force rows may come without the M3 row).
+  const bool needed_finite = match == FlexibilityMatch::term_by_term
+                                 ? std::isfinite(K2(0, 0)) && std::isfinite(K2(1, 1)) && std::isfinite(K2(1, 2))
+                                 : K2.allFinite();
+  require(needed_finite, "nH-FastSim flexibility: the creepage matrix K2 is not finite");
   const Eigen::Matrix3d& SDB = fastsim.adhesion_force_matrix();
   Flexibility L;
   switch (match) {
@@ -66,6 +70,13 @@ Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d
 
 Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2, FlexibilityMatch match) {
   return nh_fastsim_flexibility(FastSim(patch), K2, match);
+}
+
+AdhesionOptions nh_fastsim_adhesion_options() {
+  AdhesionOptions options;
+  options.part = CreepageMatrixPart::force_rows;
+  options.tolerance = 1e-6;
+  return options;
 }
 
 Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options, FlexibilityMatch match) {

@@ -45,15 +45,38 @@ void SteadyRollingPreconditioner::march(const double* r, double* u) const {
   }
 }
 
-void SteadyRollingPreconditioner::apply(const double* r, double* z) const {
+void SteadyRollingPreconditioner::march_transpose(const double* r, double* u) const {
   const std::size_t n = count_;
+  // Transpose of march(): u_e = u_{e-1} - dx1 r_e when element e - 1 (behind) is in contact.
+  for (std::size_t e = 0; e < n; ++e) {
+    const bool behind = e > 0 && ahead_in_contact_[e - 1] != 0;
+    u[e] = (behind ? u[e - 1] : 0.0) - dx1_ * r[e];
+    u[n + e] = (behind ? u[n + e - 1] : 0.0) - dx1_ * r[n + e];
+  }
+}
+
+void SteadyRollingPreconditioner::apply(const double* r, double* z) const {
   if (c0_ <= 0.0) {
     march(r, z);
     return;
   }
   march(r, work_.data());
+  apply_stencil(work_.data(), z);
+}
+
+void SteadyRollingPreconditioner::apply_transpose(const double* r, double* z) const {
+  if (c0_ <= 0.0) {
+    march_transpose(r, z);
+    return;
+  }
+  apply_stencil(r, work_.data());  // the stencil is symmetric
+  march_transpose(work_.data(), z);
+}
+
+void SteadyRollingPreconditioner::apply_stencil(const double* source, double* z) const {
+  const std::size_t n = count_;
   for (std::size_t c = 0; c < 2; ++c) {
-    const double* u = work_.data() + c * n;
+    const double* u = source + c * n;
     double* zc = z + c * n;
     auto at = [u](std::int32_t j) { return j == kOutside ? 0.0 : u[j]; };
     for (std::size_t e = 0; e < n; ++e) {

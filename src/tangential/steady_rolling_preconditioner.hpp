@@ -25,12 +25,17 @@ class SteadyRollingPreconditioner {
   explicit SteadyRollingPreconditioner(const ContactElements& elements, double gamma = 3.0);
   // z = approximate R^-1 r; vectors [c1 on elements; c2 on elements].
   void apply(const double* r, double* z) const;
+  // z = P^T r: the approximate inverse of R^T (adjoint solves).
+  void apply_transpose(const double* r, double* z) const;
   // Only the marching factor (FastSim with L = 1): u = D^-1 r.
   void march(const double* r, double* u) const;
+  // Its transpose: marching from the trailing edge towards the leading edge.
+  void march_transpose(const double* r, double* u) const;
 
  private:
   static constexpr std::int32_t kOutside = -1;
   std::size_t count_;
+  void apply_stencil(const double* u, double* z) const;  // z = (c0 - Laplacian) u
   std::vector<std::uint8_t> ahead_in_contact_;        // the next element along +X1 is in contact
   std::vector<std::int32_t> left_, right_, down_, up_;  // neighbours in contact, or kOutside
   double dx1_, inv_dx1_sq_, inv_dx2_sq_, c0_;
