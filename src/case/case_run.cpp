@@ -60,6 +60,14 @@ ContactPatch elliptical_patch(const Case& c, PatchSummary& s) {
   return hertzian_patch(elements, a, b, c.normal_force_N, c.material);
 }
 
+void take_fastsim_result(const FastSimResult& r, SolverRun& run) {
+  run.forces = r.forces;
+  run.p1_Pa = r.p1_Pa;
+  run.p2_Pa = r.p2_Pa;
+  run.slip = r.slip;
+  run.adhesion_fraction = r.adhesion_fraction;
+}
+
 }  // namespace
 
 const SolverRun* CaseResult::find(SolverKind kind) const {
@@ -95,23 +103,13 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
         run.flexibility_time_s = seconds_since(start);
         run.iterations = K2.iterations;
         result.creepage_matrix = K2.creepage_matrix;
-        const FastSimResult r = fastsim.solve(creepage, *run.flexibility, input.mu);
-        run.forces = r.forces;
-        run.p1_Pa = r.p1_Pa;
-        run.p2_Pa = r.p2_Pa;
-        run.slip = r.slip;
-        run.adhesion_fraction = r.adhesion_fraction;
+        take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
         break;
       }
       case SolverKind::fastsim: {
         run.flexibility = fastsim_flexibility(result.summary.a_m, result.summary.b_m, patch.material());
         run.flexibility_time_s = seconds_since(start);
-        const FastSimResult r = fastsim.solve(creepage, *run.flexibility, input.mu);
-        run.forces = r.forces;
-        run.p1_Pa = r.p1_Pa;
-        run.p2_Pa = r.p2_Pa;
-        run.slip = r.slip;
-        run.adhesion_fraction = r.adhesion_fraction;
+        take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
         break;
       }
       case SolverKind::exact:

@@ -61,12 +61,8 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
   RollingSystem system(patch, options.collocation_offset);
   const std::size_t n = system.count();
   const std::vector<double> w = system.rigid_slip(creepage);
-  std::vector<double> bound(n);
-  double max_bound = 0.0;
-  for (std::size_t e = 0; e < n; ++e) {
-    bound[e] = mu * patch.pressure_Pa()[e];
-    max_bound = std::max(max_bound, bound[e]);
-  }
+  const std::vector<double> bound = system.traction_bound(mu);
+  const double max_bound = *std::max_element(bound.begin(), bound.end());
   // c scales slip to traction: c R ~ -I locally.
   const double c = 2.0 / (system.lambda1() + system.lambda2());
 

@@ -63,8 +63,7 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
   RollingSystem system(patch, options.collocation_offset);
   const std::size_t n = system.count();
   const std::vector<double> w = system.rigid_slip(creepage);
-  std::vector<double> bound(n);
-  for (std::size_t e = 0; e < n; ++e) bound[e] = mu * patch.pressure_Pa()[e];
+  const std::vector<double> bound = system.traction_bound(mu);
   double w_max = 0.0;
   for (std::size_t e = 0; e < n; ++e) w_max = std::max(w_max, std::hypot(w[e], w[n + e]));
   RollingSolution solution;

@@ -33,6 +33,12 @@ std::vector<double> RollingSystem::rigid_slip(const Creepage& c) const {
   return w;
 }
 
+std::vector<double> RollingSystem::traction_bound(double mu) const {
+  std::vector<double> bound(count_);
+  for (std::size_t e = 0; e < count_; ++e) bound[e] = mu * patch_.pressure_Pa()[e];
+  return bound;
+}
+
 void RollingSystem::apply_R(const double* x, double* y) {
   R_.apply(patch_.elements().indices(), {x, 2 * count_}, {y, 2 * count_});
 }

@@ -28,6 +28,8 @@ class RollingSystem {
 
   // Rigid slip w = (xi - phi x2, eta + phi x1) at the collocation points, [w1; w2].
   [[nodiscard]] std::vector<double> rigid_slip(const Creepage& creepage) const;
+  // Traction bound g = mu p3 per element.
+  [[nodiscard]] std::vector<double> traction_bound(double mu) const;
   // y = R x (FFT), vectors [c1 on elements; c2 on elements].
   void apply_R(const double* x, double* y);
   // (F1, F2, M3) = S D p (Eq 13).
