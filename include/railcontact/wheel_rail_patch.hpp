@@ -8,6 +8,7 @@
 // direction, X3 the contact normal into the wheel, X2 = X3 × X1 towards the flange / gauge side.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "railcontact/contact_regions.hpp"
@@ -39,8 +40,11 @@ struct WheelRailPatchOptions {
   // contact is off the target by more than this fraction, in at most max_mesh_passes solves.
   double element_count_tolerance = 0.15;
   int max_mesh_passes = 3;
-  // A potential area that a patch touches is enlarged (margin × 1.5) at most this often.
-  int max_enlargements = 3;
+  // The first potential area holds h < 1.5 × this approach estimate; default: Hertz's approach
+  // for the local curvatures. A potential area that the patch touches is enlarged (margin × 1.5,
+  // approach estimate up to × 2) at most max_enlargements times.
+  std::optional<double> initial_approach_m;
+  int max_enlargements = 4;
   // Connected contact regions carrying more than this fraction of F3 are patches; smaller ones
   // (specks) are dropped from `patch`. More than one patch throws Error unless
   // allow_several_patches (then `patch` holds the largest one and `regions` all of them).
@@ -70,6 +74,11 @@ struct WheelRailPatch {
   // Centre of pressure of `patch` in the tangent plane, from the point of first touch.
   double pressure_centre_x1_m = 0.0;
   double pressure_centre_x2_m = 0.0;
+  // The centre of pressure on the rail (rail profile frame, the tangent-plane point) and the
+  // rail's slope angle there: unlike γ (first touch) it varies continuously through a contact
+  // jump (docs/WHEEL_RAIL.md §6). For information; F3 and the spin use γ.
+  double pressure_centre_y_rail_m = 0.0;
+  double pressure_centre_contact_angle_rad = 0.0;
   // Measures of `patch`: extents along X1 and X2 (element edges), area (elements × S), p3 max.
   double extent_x1_m = 0.0, extent_x2_m = 0.0, area_m2 = 0.0, max_pressure_Pa = 0.0;
   double approach_m = 0.0;            // δ of the normal solution

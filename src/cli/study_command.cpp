@@ -4,6 +4,7 @@
 
 #include "cli/commands.hpp"
 #include "study/coefficient_study.hpp"
+#include "study/patch_study.hpp"
 
 namespace railcontact::cli {
 
@@ -21,6 +22,31 @@ void add_study_command(CLI::App& app, Action& action) {
     action = [coefficients, out] {
       coefficients->output_directory = *out;
       study::run_coefficient_study(*coefficients, std::cerr);
+      return 0;
+    };
+  });
+
+  auto patches = std::make_shared<study::PatchStudyOptions>();
+  auto patches_out = std::make_shared<std::string>();
+  auto wheel = std::make_shared<std::string>();
+  auto rail = std::make_shared<std::string>();
+  CLI::App* patch_cmd =
+      study->add_subcommand("patches", "wheel-rail normal contact for y = -4.5 ... 4.5 mm (METHOD.md §9)");
+  patch_cmd->add_option("--out", *patches_out, "output directory")->required();
+  patch_cmd->add_option("--y-from", patches->y_from_m, "first wheelset displacement (m)")->capture_default_str();
+  patch_cmd->add_option("--y-to", patches->y_to_m, "last wheelset displacement (m)")->capture_default_str();
+  patch_cmd->add_option("--y-step", patches->y_step_m, "step of the displacement (m)")->capture_default_str();
+  patch_cmd->add_option("--load", patches->vertical_load_N, "vertical wheel load Fz (N)")->capture_default_str();
+  patch_cmd->add_option("--elements", patches->elements, "about this many elements in contact")->capture_default_str();
+  patch_cmd->add_option("--wheel", *wheel, "wheel profile file (default: the shipped S1002)");
+  patch_cmd->add_option("--rail", *rail, "rail profile file (default: the shipped UIC60 1:40)");
+  patch_cmd->add_flag("!--no-figures", patches->figures, "skip the figures (CSV and summary only)");
+  patch_cmd->callback([patches, patches_out, wheel, rail, &action] {
+    action = [patches, patches_out, wheel, rail] {
+      patches->output_directory = *patches_out;
+      if (!wheel->empty()) patches->wheel_profile = *wheel;
+      if (!rail->empty()) patches->rail_profile = *rail;
+      study::run_patch_study(*patches, std::cerr);
       return 0;
     };
   });

@@ -29,6 +29,8 @@ void validate(const WheelRailPatchOptions& o) {
           "wheel-rail patch: the element-count tolerance must lie in (0, 1)");
   require(o.max_mesh_passes >= 1, "wheel-rail patch: at least one mesh pass is needed");
   require(o.max_enlargements >= 0, "wheel-rail patch: max_enlargements must be non-negative");
+  require(!o.initial_approach_m || (std::isfinite(*o.initial_approach_m) && *o.initial_approach_m > 0.0),
+          "wheel-rail patch: the initial approach must be positive");
   require(std::isfinite(o.significant_load_fraction) && o.significant_load_fraction >= 0.0 &&
               o.significant_load_fraction < 1.0,
           "wheel-rail patch: the significant load fraction must lie in [0, 1)");
@@ -61,11 +63,12 @@ Extents extents(const Mesh& mesh, const ContactRegion& region) {
   return {(hi1 - lo1 + 1) * mesh.dx1_m, (hi2 - lo2 + 1) * mesh.dx2_m};
 }
 
-std::string percentages(const std::vector<ContactRegion>& regions, std::size_t count) {
+// "67.5 % of the load at x2 = +0.3 mm, 32.5 % at x2 = +10.6 mm"
+std::string load_shares(const std::vector<ContactRegion>& regions, std::size_t count) {
   std::string text;
   for (std::size_t k = 0; k < count; ++k)
-    text += fmt::format("{}{:.1f} % at x2 = {:+.1f} mm", k == 0 ? "" : ", ", 100.0 * regions[k].load_fraction,
-                        regions[k].x2_centre_m / kMm);
+    text += fmt::format("{}{:.1f} %{} at x2 = {:+.1f} mm", k == 0 ? "" : ", ", 100.0 * regions[k].load_fraction,
+                        k == 0 ? " of the load" : "", regions[k].x2_centre_m / kMm);
   return text;
 }
 
@@ -104,7 +107,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   if (B > 0.0) r.local_hertz = hertz_from_curvatures(A, B, F3, options.material);
   const HertzContact estimate = B > 0.0 ? r.local_hertz : hertz_from_curvatures(A, 0.05 * A, F3, options.material);
 
-  double approach_m = estimate.approach_m;
+  double approach_m = options.initial_approach_m.value_or(estimate.approach_m);
   double margin = PotentialAreaOptions{}.margin_factor;
   double element_area_m2 = M_PI * estimate.a_m * estimate.b_m / options.target_elements;
   double extent1 = 2.0 * estimate.a_m, extent2 = 2.0 * estimate.b_m;
@@ -122,7 +125,8 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     try {
       s.area = potential_contact_area(pair, r.contact, approach_m, area_options);
     } catch (const Error& e) {
-      throw Error(fmt::format("wheel-rail patch at {}, Fz = {} N: {}", where, options.vertical_load_N, e.what()));
+      throw Error(fmt::format("wheel-rail patch at {}: {} (is the load Fz = {:g} N too large for these profiles?)",
+                              where, e.what(), options.vertical_load_N));
     }
     s.normal = solve_normal_contact(s.area.mesh, s.area.h_m, F3, options.material, options.normal);
     ++r.mesh_passes;
@@ -135,9 +139,10 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
               fmt::format("wheel-rail patch at {}: the potential contact area cannot hold the patch (it still touches "
                           "the border of a {} x {} mesh after {} enlargements)",
                           where, s.area.mesh.n1, s.area.mesh.n2, enlargements));
+      // The truncated patch's δ overestimates the true one: grow by at most a factor 2 × 1.5.
       ++enlargements;
       margin *= 1.5;
-      approach_m = std::max(approach_m, s.normal.approach_m);
+      approach_m = std::clamp(s.normal.approach_m, approach_m, 2.0 * approach_m);
       continue;
     }
     s.regions = contact_regions(s.area.mesh, s.normal.pressure_Pa);
@@ -165,9 +170,8 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     return g.load_fraction > options.significant_load_fraction;
   }));
   if (r.patches > 1 && !options.allow_several_patches) {
-    throw Error(fmt::format("{} gives several contact patches ({} patches carrying {} of the load); several patches "
-                            "are out of scope for now",
-                            where, r.patches, percentages(s.regions, r.patches)));
+    throw Error(fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope for now",
+                            where, r.patches, load_shares(s.regions, r.patches)));
   }
   std::vector<double> patch_pressure(mesh.size(), 0.0);
   double max_pressure = 0.0;
@@ -179,6 +183,9 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   r.dropped_load_fraction = 1.0 - main.load_fraction;
   r.pressure_centre_x1_m = main.x1_centre_m;
   r.pressure_centre_x2_m = main.x2_centre_m;
+  // The tangent-plane point C + x2 X2 with X2 = (−cos γ, sin γ) in the rail profile frame.
+  r.pressure_centre_y_rail_m = r.contact.y_rail_m - main.x2_centre_m * cos_gamma;
+  r.pressure_centre_contact_angle_rad = std::atan(-pair.rail().dz_dy(r.pressure_centre_y_rail_m));
   const Extents e = extents(mesh, main);
   r.extent_x1_m = e.x1_m;
   r.extent_x2_m = e.x2_m;

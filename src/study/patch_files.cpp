@@ -55,6 +55,8 @@ nlohmann::json patch_json(const WheelRailPatch& p) {
         {"B_per_m", c.B_per_m}}},
       {"pressure_centre_x1_m", p.pressure_centre_x1_m},
       {"pressure_centre_x2_m", p.pressure_centre_x2_m},
+      {"pressure_centre_y_rail_m", p.pressure_centre_y_rail_m},
+      {"pressure_centre_contact_angle_rad", p.pressure_centre_contact_angle_rad},
       {"mesh",
        {{"n1", mesh.n1}, {"n2", mesh.n2}, {"dx1_m", mesh.dx1_m}, {"dx2_m", mesh.dx2_m}, {"passes", p.mesh_passes}}},
       {"local_hertz", hertz},
