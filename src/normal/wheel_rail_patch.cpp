@@ -18,6 +18,8 @@ namespace railcontact {
 namespace {
 
 constexpr double kMm = 1e-3;
+// Margin factor of the potential area (h < margin × δ) once δ is known from a solve.
+constexpr double kKnownApproachMargin = 1.15;
 
 void validate(const WheelRailPatchOptions& o) {
   require(std::isfinite(o.vertical_load_N) && o.vertical_load_N > 0.0,
@@ -159,7 +161,10 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     element_area_m2 *= count / target;
     extent1 = e.x1_m;
     extent2 = e.x2_m;
+    // δ is now known to discretisation accuracy and the patch lies in h < δ: a tighter margin
+    // keeps the next mesh small (a patch that still touches the border enlarges it again).
     approach_m = approach_solved_m;
+    margin = kKnownApproachMargin;
     ++pass;
   }
 
