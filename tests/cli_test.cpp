@@ -1,50 +1,18 @@
 // The command-line tool, run as a user would: JSON output, readable errors, exit codes.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cmath>
-#include <cstdlib>
+
+#include "cli_run.hpp"
 
 namespace {
 
-struct CommandResult {
-  int exit_code = -1;
-  std::string out;  // stdout
-  std::string err;  // stderr
-};
-
-CommandResult run_cli(const std::string& arguments) {
-  // One file per call: ctest runs the tests of this file in parallel processes.
-  std::string err_file = ::testing::TempDir() + "railcontact_cli_stderr_XXXXXX";
-  const int fd = mkstemp(err_file.data());
-  if (fd >= 0) close(fd);
-  const std::string command = std::string(RAILCONTACT_CLI) + " " + arguments + " 2>" + err_file;
-  CommandResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.out += buffer.data();
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  if (FILE* f = fopen(err_file.c_str(), "r")) {
-    while (fgets(buffer.data(), buffer.size(), f) != nullptr) result.err += buffer.data();
-    fclose(f);
-  }
-  std::remove(err_file.c_str());
-  return result;
-}
-
-int count_lines(const std::string& text) {
-  int lines = 0;
-  for (char c : text) lines += c == '\n';
-  return lines;
-}
+using railcontact::test::CommandResult;
+using railcontact::test::count_lines;
+using railcontact::test::run_cli;
 
 TEST(Cli, CoefficientsJsonIsOneObjectWithTheDocumentedKeys) {
   const CommandResult r = run_cli("coefficients --a-over-b 1 --nu 0.25 --elements 1500 --json");

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   railcontact::cli::Action action;
   railcontact::cli::add_run_command(app, action);
   railcontact::cli::add_coefficients_command(app, action);
+  railcontact::cli::add_patch_command(app, action);
   railcontact::cli::add_study_command(app, action);
   if (argc > 1 && argv[1][0] != '-') {
     try {

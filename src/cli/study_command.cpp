@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "study/coefficient_study.hpp"
 #include "study/hertz_study.hpp"
+#include "study/patch_study.hpp"
 
 namespace railcontact::cli {
 
@@ -17,7 +18,7 @@ void add_study_command(CLI::App& app, Action& action) {
   CLI::App* cmd = study->add_subcommand("coefficients", "paper §3: Table 1, Fig 3 and Fig 4 against Kalker's table");
   cmd->add_option("--out", *out, "output directory")->required();
   cmd->add_option("--elements", coefficients->elements, "elements in contact for Table 1")->capture_default_str();
-  cmd->add_flag("!--figures", coefficients->figures, "skip the figures (CSV and summary only)");
+  cmd->add_flag("!--no-figures", coefficients->figures, "skip the figures (CSV and summary only)");
   cmd->callback([coefficients, out, &action] {
     action = [coefficients, out] {
       coefficients->output_directory = *out;
@@ -32,11 +33,36 @@ void add_study_command(CLI::App& app, Action& action) {
   h->add_option("--out", *hertz_out, "output directory")->required();
   h->add_option("--elements", hertz->elements, "elements in contact")->capture_default_str();
   h->add_option("--points", hertz->points, "creepage values per curve")->capture_default_str();
-  h->add_flag("!--figures", hertz->figures, "skip the figures");
+  h->add_flag("!--no-figures", hertz->figures, "skip the figures");
   h->callback([hertz, hertz_out, &action] {
     action = [hertz, hertz_out] {
       hertz->output_directory = *hertz_out;
       study::run_hertz_study(*hertz, std::cerr);
+      return 0;
+    };
+  });
+
+  auto patches = std::make_shared<study::PatchStudyOptions>();
+  auto patches_out = std::make_shared<std::string>();
+  auto wheel = std::make_shared<std::string>();
+  auto rail = std::make_shared<std::string>();
+  CLI::App* patch_cmd =
+      study->add_subcommand("patches", "wheel-rail normal contact for y = -4.5 ... 4.5 mm (METHOD.md §9)");
+  patch_cmd->add_option("--out", *patches_out, "output directory")->required();
+  patch_cmd->add_option("--y-from", patches->y_from_m, "first wheelset displacement (m)")->capture_default_str();
+  patch_cmd->add_option("--y-to", patches->y_to_m, "last wheelset displacement (m)")->capture_default_str();
+  patch_cmd->add_option("--y-step", patches->y_step_m, "step of the displacement (m)")->capture_default_str();
+  patch_cmd->add_option("--load", patches->vertical_load_N, "vertical wheel load Fz (N)")->capture_default_str();
+  patch_cmd->add_option("--elements", patches->elements, "about this many elements in contact")->capture_default_str();
+  patch_cmd->add_option("--wheel", *wheel, "wheel profile file (default: the shipped S1002)");
+  patch_cmd->add_option("--rail", *rail, "rail profile file (default: the shipped UIC60 1:40)");
+  patch_cmd->add_flag("!--no-figures", patches->figures, "skip the figures (CSV and summary only)");
+  patch_cmd->callback([patches, patches_out, wheel, rail, &action] {
+    action = [patches, patches_out, wheel, rail] {
+      patches->output_directory = *patches_out;
+      if (!wheel->empty()) patches->wheel_profile = *wheel;
+      if (!rail->empty()) patches->rail_profile = *rail;
+      study::run_patch_study(*patches, std::cerr);
       return 0;
     };
   });

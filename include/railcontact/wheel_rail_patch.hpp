@@ -1,0 +1,109 @@
+#pragma once
+// The normal contact of one wheel–rail pair at one wheelset position (METHOD.md §5, §9;
+// docs/WHEEL_RAIL.md): profiles → contact point → undeformed distance on a potential contact
+// area → normal problem → the single contact patch, with its contact angle, rolling radius,
+// spin creepage (Eq 24, signed) and normal force F3 = Fz / cos γ (frictionless equilibrium).
+//
+// Frames as in wheel_rail.hpp: the right wheel on the right rail; contact frame X1 rolling
+// direction, X3 the contact normal into the wheel, X2 = X3 × X1 towards the flange / gauge side.
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include "railcontact/contact_regions.hpp"
+#include "railcontact/hertz.hpp"
+#include "railcontact/material.hpp"
+#include "railcontact/mesh.hpp"
+#include "railcontact/normal.hpp"
+#include "railcontact/patch.hpp"
+#include "railcontact/profile.hpp"
+#include "railcontact/wheel_rail.hpp"
+
+namespace railcontact {
+
+// Shape of the elements of the potential contact area (cf. EllipseMeshLayout).
+enum class PatchMeshLayout {
+  square,            // dx1 = dx2
+  rolling_resolved,  // dx1 = dx2 min(1, L1/L2) with L1, L2 the patch extents along X1, X2:
+                     // square when the patch is longer than wide, else as many elements along
+                     // X1 as along X2 (the rolling direction is never resolved more coarsely)
+};
+
+struct WheelRailPatchOptions {
+  double vertical_load_N = 98100;  // Fz (METHOD.md §9: 10 t); F3 = Fz / cos γ
+  int target_elements = 3000;      // about this many elements in contact
+  NormalOptions normal;
+  Material material{2.1e11, 0.3};
+  PatchMeshLayout layout = PatchMeshLayout::rolling_resolved;
+  // The mesh is refined (element area scaled by count / target) while the number of elements in
+  // contact is off the target by more than this fraction, in at most max_mesh_passes solves.
+  double element_count_tolerance = 0.15;
+  int max_mesh_passes = 3;
+  // The first potential area holds h < 1.5 × this approach estimate; default: Hertz's approach
+  // for the local curvatures. A potential area that the patch touches is enlarged (margin × 1.5,
+  // approach estimate up to × 2) at most max_enlargements times.
+  std::optional<double> initial_approach_m;
+  int max_enlargements = 4;
+  // Connected contact regions carrying more than this fraction of F3 are patches; smaller ones
+  // (specks) are dropped from `patch`. More than one patch throws Error unless
+  // allow_several_patches (then `patch` holds the largest one and `regions` all of them).
+  double significant_load_fraction = 0.01;
+  bool allow_several_patches = false;
+};
+
+struct WheelRailPatch {
+  WheelRailContactPoint contact;    // point of first touch, contact frame, local curvatures
+  double lateral_displacement_m = 0.0;  // wheelset y (track frame, positive to the left)
+  double contact_angle_rad = 0.0;       // γ
+  double rolling_radius_m = 0.0;        // wheel radius at the contact point
+  double spin_per_m = 0.0;              // Eq 24 signed: +2 sin γ / d (right wheel)
+  double vertical_load_N = 0.0;         // Fz
+  double normal_force_N = 0.0;          // F3 = Fz / cos γ
+  // The patch (the largest connected region) with its origin at its centre of pressure.
+  ContactPatch patch;
+  // The normal solution on the potential-area mesh (all regions) and that mesh. The mesh origin
+  // is the point of first touch; h on it is potential_h_m.
+  NormalSolution normal;
+  Mesh potential_area;
+  std::vector<double> potential_h_m;
+  // Connected contact regions of `normal`, by decreasing load (regions.size() >= 1).
+  std::vector<ContactRegion> regions;
+  std::size_t patches = 1;            // regions carrying more than significant_load_fraction
+  double dropped_load_fraction = 0.0; // load of the regions not in `patch` / F3
+  // Centre of pressure of `patch` in the tangent plane, from the point of first touch.
+  double pressure_centre_x1_m = 0.0;
+  double pressure_centre_x2_m = 0.0;
+  // The centre of pressure on the rail (rail profile frame, the tangent-plane point) and the
+  // rail's slope angle there: unlike γ (first touch) it varies continuously through a contact
+  // jump (docs/WHEEL_RAIL.md §6). For information; F3 and the spin use γ.
+  double pressure_centre_y_rail_m = 0.0;
+  double pressure_centre_contact_angle_rad = 0.0;
+  // Measures of `patch`: extents along X1 and X2 (element edges), area (elements × S), p3 max.
+  double extent_x1_m = 0.0, extent_x2_m = 0.0, area_m2 = 0.0, max_pressure_Pa = 0.0;
+  double approach_m = 0.0;            // δ of the normal solution
+  std::size_t elements_in_contact = 0;  // elements of `patch`
+  int iterations = 0;                 // normal-solver iterations of the final solve
+  int mesh_passes = 0;                // normal solves performed (mesh refinements, enlargements)
+  // Hertz's solution for the local curvatures A, B of the contact point and F3, for comparison
+  // (all zero when B <= 0: no Hertzian contact exists).
+  HertzContact local_hertz;
+};
+
+// Solves the normal contact at wheelset displacement y_m (track frame, m). Throws Error when the
+// profiles never touch, the load or options are invalid, the normal solver does not converge,
+// the potential area cannot hold the patch, or (unless allowed) y gives several patches.
+WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options = {});
+
+// The shipped S1002 wheel on the UIC60 rail (1:40) of METHOD.md §9 (data/profiles/), with the
+// default track and wheelset parameters. The data directory is the one of the build
+// (RAILCONTACT_DATA_DIR) unless the environment variable RAILCONTACT_DATA names another.
+std::filesystem::path default_wheel_profile_path();
+std::filesystem::path default_rail_profile_path();
+WheelRailPair default_wheel_rail_pair();
+
+// A pair from profile files (formats: profile.hpp); errors name the file and the line.
+WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile, const std::filesystem::path& rail_profile,
+                                   const TrackWheelsetParameters& parameters = {});
+
+}  // namespace railcontact

@@ -1,0 +1,47 @@
+#pragma once
+// Runs the command-line tool (RAILCONTACT_CLI) as a user would and captures stdout, stderr and
+// the exit code; shared by the CLI tests.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <string>
+
+namespace railcontact::test {
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+inline CommandResult run_cli(const std::string& arguments) {
+  // One file per call: ctest runs the tests in parallel processes.
+  std::string err_file = ::testing::TempDir() + "railcontact_cli_stderr_XXXXXX";
+  const int fd = mkstemp(err_file.data());
+  if (fd >= 0) close(fd);
+  const std::string command = std::string(RAILCONTACT_CLI) + " " + arguments + " 2>" + err_file;
+  CommandResult result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  std::array<char, 4096> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.out += buffer.data();
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  if (FILE* f = fopen(err_file.c_str(), "r")) {
+    while (fgets(buffer.data(), buffer.size(), f) != nullptr) result.err += buffer.data();
+    fclose(f);
+  }
+  std::remove(err_file.c_str());
+  return result;
+}
+
+inline int count_lines(const std::string& text) {
+  int lines = 0;
+  for (char c : text) lines += c == '\n';
+  return lines;
+}
+
+}  // namespace railcontact::test

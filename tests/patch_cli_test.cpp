@@ -1,0 +1,162 @@
+// `railcontact patch` and `railcontact study patches`, run as a user would: the JSON keys, the
+// files of --out, and one clear error line with a non-zero exit code for bad input.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_run.hpp"
+
+namespace {
+
+using railcontact::test::CommandResult;
+using railcontact::test::count_lines;
+using railcontact::test::run_cli;
+
+// A fresh directory per test process (ctest runs the tests in parallel).
+std::filesystem::path scratch(const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / ("railcontact_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(file, line);) {
+    std::vector<std::string> fields;
+    std::stringstream stream(line);
+    for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+void expect_one_error_line(const CommandResult& r, const std::string& expected) {
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("railcontact: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+TEST(PatchCli, JsonIsOneObjectWithTheDocumentedKeys) {
+  const CommandResult r = run_cli("patch --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);  // exactly one object (throws otherwise)
+  ASSERT_TRUE(j.is_object());
+  for (const char* key : {"y", "contact_angle_rad", "rolling_radius_m", "spin_per_m", "normal_force_N", "area_m2",
+                          "elements_in_contact", "extent_x1_m", "extent_x2_m", "max_pressure_Pa", "approach_m",
+                          "iterations"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  const double gamma = j["contact_angle_rad"].get<double>();
+  EXPECT_EQ(j["y"].get<double>(), 0.0);
+  EXPECT_GT(gamma, 0.015);  // on the tread, about the 1:40 cant
+  EXPECT_LT(gamma, 0.035);
+  EXPECT_NEAR(j["normal_force_N"].get<double>(), 98100.0 / std::cos(gamma), 1e-9 * 98100.0);
+  EXPECT_NEAR(j["spin_per_m"].get<double>(), 2.0 * std::sin(gamma) / 0.92, 1e-12);
+  EXPECT_NEAR(j["elements_in_contact"].get<double>(), 3000.0, 0.15 * 3000.0);
+  EXPECT_GT(j["max_pressure_Pa"].get<double>(), 5e8);
+  EXPECT_GT(j["area_m2"].get<double>(), 1e-4);
+}
+
+TEST(PatchCli, TextTableAndOutputFiles) {
+  const std::filesystem::path dir = scratch("patch_out");
+  const CommandResult r = run_cli("patch --y -0.003 --load 80000 --elements 1500 --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("contact angle"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("normal force F3"), std::string::npos) << r.out;
+  std::ifstream json_file(dir / "patch.json");
+  const nlohmann::json j = nlohmann::json::parse(json_file);
+  const auto rows = read_csv(dir / "pressure.csv");
+  ASSERT_GE(rows.size(), 2u);
+  EXPECT_EQ(rows[0], (std::vector<std::string>{"x1_m", "x2_m", "pressure_Pa"}));
+  EXPECT_EQ(rows.size() - 1, j["elements_in_contact"].get<std::size_t>());
+  // The CSV holds the whole load, with the origin at the centre of pressure.
+  const double S = j["mesh"]["dx1_m"].get<double>() * j["mesh"]["dx2_m"].get<double>();
+  double force = 0.0, moment1 = 0.0, moment2 = 0.0;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    const double p = std::stod(rows[k][2]);
+    EXPECT_GT(p, 0.0);
+    force += p * S;
+    moment1 += p * S * std::stod(rows[k][0]);
+    moment2 += p * S * std::stod(rows[k][1]);
+  }
+  const double F3 = j["normal_force_N"].get<double>();
+  EXPECT_NEAR(F3, 80000.0 / std::cos(j["contact_angle_rad"].get<double>()), 1e-6);
+  EXPECT_NEAR(force, F3, 1e-6 * F3);
+  EXPECT_NEAR(moment1 / force, 0.0, 1e-9);
+  EXPECT_NEAR(moment2 / force, 0.0, 1e-9);
+  EXPECT_TRUE(std::filesystem::exists(dir / "pressure.png"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(PatchCli, StudyWritesOneSinglePatchRowPerDisplacement) {
+  const std::filesystem::path dir = scratch("patch_study");
+  const CommandResult r = run_cli("study patches --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.out.empty());  // progress on stderr
+  EXPECT_NE(r.err.find("[19/19]"), std::string::npos) << r.err;
+  const auto rows = read_csv(dir / "patches.csv");
+  ASSERT_EQ(rows.size(), 20u);
+  const auto& header = rows[0];
+  const auto column = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  for (const char* key : {"y_m", "status", "contact_angle_rad", "rolling_radius_m", "spin_per_m", "normal_force_N",
+                          "area_m2", "elements_in_contact", "extent_x1_m", "extent_x2_m", "max_pressure_Pa",
+                          "approach_m", "iterations"})
+    EXPECT_LT(column(key), header.size()) << key;
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), header.size());
+    EXPECT_NEAR(std::stod(rows[k][column("y_m")]), -4.5e-3 + 0.5e-3 * static_cast<double>(k - 1), 1e-12);
+    EXPECT_EQ(rows[k][column("status")], "single") << "row " << k;
+    EXPECT_TRUE(std::filesystem::exists(dir / rows[k][column("patch_file")]));
+  }
+  for (const char* file : {"summary.md", "contact_position.png", "patch_shapes.png", "patch_size.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(PatchCli, MalformedProfileNamesFileAndLine) {
+  const std::filesystem::path dir = scratch("bad_profiles");
+  std::ofstream(dir / "wheel.txt") << "0 0\n1 0.1\nfoo bar\n2 0.3\n3 0.5\n";
+  expect_one_error_line(run_cli("patch --wheel " + (dir / "wheel.txt").string()), "wheel.txt:3:");
+  std::ofstream(dir / "rail.prr") << "header.begin\n type = 0\nheader.end\nspline.begin\n point.begin\n"
+                                     "  1.0 2.0\n  1.5 x\n point.end\nspline.end\n";
+  expect_one_error_line(run_cli("patch --rail " + (dir / "rail.prr").string()), "rail.prr:7:");
+  std::filesystem::remove_all(dir);
+}
+
+class PatchCliBadInput : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};
+
+TEST_P(PatchCliBadInput, OneClearErrorLineAndNonZeroExit) {
+  const auto [arguments, expected] = GetParam();
+  expect_one_error_line(run_cli(arguments), expected);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Patch, PatchCliBadInput,
+    ::testing::Values(std::pair{"patch --wheel /nonexistent/wheel.prw", "/nonexistent/wheel.prw"},
+                      std::pair{"patch --rail /nonexistent/rail.prr", "cannot open"},
+                      std::pair{"patch --load -1", "--load must be positive"},
+                      std::pair{"patch --load 0", "--load must be positive"},
+                      std::pair{"patch --y 1", "never touch"},
+                      std::pair{"patch --y -0.005", "several contact patches"},
+                      std::pair{"patch --y nan", "--y"},
+                      std::pair{"patch --elements 0", "--elements"},
+                      std::pair{"patch --mesh hexagonal", "mesh"},
+                      std::pair{"patch --load 1e9", "too large"},
+                      std::pair{"patch --wheel " RAILCONTACT_DATA_DIR "/profiles/MBench_UIC60_v3.prr", "rail profile"},
+                      std::pair{"study patches --out /nonexistent/railcontact --y-step 0", "step"},
+                      std::pair{"study patches --out /nonexistent/railcontact --load -5", "--load"}));
+
+}  // namespace
