@@ -2,6 +2,7 @@
 #include "railcontact/case_run.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -13,6 +14,7 @@
 #include "railcontact/fastsim.hpp"
 #include "railcontact/hertz.hpp"
 #include "railcontact/rolling.hpp"
+#include "railcontact/wheel_rail_patch.hpp"
 
 namespace railcontact {
 namespace {
@@ -60,6 +62,32 @@ ContactPatch elliptical_patch(const Case& c, PatchSummary& s) {
   return hertzian_patch(elements, a, b, c.normal_force_N, c.material);
 }
 
+// The wheel-rail patch of METHOD.md §9; [load] normal_force is the vertical wheel load Fz.
+ContactPatch wheel_rail_patch(const Case& c, PatchSummary& s) {
+  const WheelRailPair pair = c.wheel_rail.wheel_file.empty() && c.wheel_rail.rail_file.empty()
+                                 ? default_wheel_rail_pair()
+                                 : load_wheel_rail_pair(c.wheel_rail.wheel_file.empty() ? default_wheel_profile_path()
+                                                                                        : std::filesystem::path(c.wheel_rail.wheel_file),
+                                                        c.wheel_rail.rail_file.empty() ? default_rail_profile_path()
+                                                                                       : std::filesystem::path(c.wheel_rail.rail_file));
+  WheelRailPatchOptions options;
+  options.vertical_load_N = c.normal_force_N;
+  options.target_elements = c.target_elements;
+  options.material = c.material;
+  const WheelRailPatch wr = solve_wheel_rail_patch(pair, c.wheel_rail.y_m, options);
+  s.geometry = "wheel-rail";
+  s.lateral_displacement_m = wr.lateral_displacement_m;
+  s.contact_angle_rad = wr.contact_angle_rad;
+  s.rolling_radius_m = wr.rolling_radius_m;
+  s.spin_per_m = wr.spin_per_m;
+  // Equivalent ellipse (classical FastSim on a non-elliptical patch): the same area, the axis
+  // ratio of the rectangle circumscribing the patch (Piotrowski & Kik 2008).
+  const double ratio = wr.extent_x1_m / wr.extent_x2_m;
+  s.a_m = std::sqrt(wr.area_m2 * ratio / M_PI);
+  s.b_m = std::sqrt(wr.area_m2 / (M_PI * ratio));
+  return wr.patch;
+}
+
 void take_fastsim_result(const FastSimResult& r, SolverRun& run) {
   run.forces = r.forces;
   run.p1_Pa = r.p1_Pa;
@@ -80,14 +108,35 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
   validate(input.material);
   require(input.normal_force_N > 0 && std::isfinite(input.normal_force_N), "the normal force must be positive");
   require(input.mu > 0 && std::isfinite(input.mu), "the friction coefficient must be positive");
-  require(input.geometry == GeometryKind::ellipse,
-          fmt::format("{}: wheel-rail cases are not available in this version", input.source));
   CaseResult result{input, {}, {}, input.creepage.raw, std::nullopt, {}};
-  result.patch = elliptical_patch(input, result.summary);
+  if (progress) fmt::print(*progress, "  contact patch ...\n");
+  result.patch = input.geometry == GeometryKind::ellipse ? elliptical_patch(input, result.summary)
+                                                         : wheel_rail_patch(input, result.summary);
   summarise(result.patch, result.summary);
   const ContactPatch& patch = result.patch;
-  const Creepage& creepage = result.creepage;
   const FastSim fastsim(patch);
+
+  // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them.
+  const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
+  const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
+  double K2_time_s = 0.0;
+  int K2_iterations = 0;
+  if (normalised || wants_nh) {
+    if (progress) fmt::print(*progress, "  creepage matrix K2 ...\n");
+    const auto start = Clock::now();
+    AdhesionOptions adhesion = nh_fastsim_adhesion_options();
+    adhesion.collocation_offset = input.rolling.collocation_offset;
+    const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), adhesion);
+    result.creepage_matrix = K2.creepage_matrix;
+    K2_time_s = seconds_since(start);
+    K2_iterations = K2.iterations;
+  }
+  // Normalised creepages (Eq 22-23) with f11 = -K2_11, f22 = -K2_22 of this patch; spin (Eq 24).
+  const double saturation = 3.0 * input.mu * patch.normal_force_N();
+  if (input.creepage.xi_normalised) result.creepage.xi = *input.creepage.xi_normalised * saturation / -(*result.creepage_matrix)(0, 0);
+  if (input.creepage.eta_normalised) result.creepage.eta = *input.creepage.eta_normalised * saturation / -(*result.creepage_matrix)(1, 1);
+  if (input.creepage.phi_from_conicity) result.creepage.phi = result.summary.spin_per_m;
+  const Creepage& creepage = result.creepage;
 
   for (SolverKind kind : input.solvers) {
     if (progress) fmt::print(*progress, "  {} ...\n", solver_name(kind));
@@ -96,13 +145,9 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
     const auto start = Clock::now();
     switch (kind) {
       case SolverKind::nh_fastsim: {
-        AdhesionOptions adhesion = nh_fastsim_adhesion_options();
-        adhesion.collocation_offset = input.rolling.collocation_offset;
-        const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), adhesion);
-        run.flexibility = nh_fastsim_flexibility(fastsim, K2.creepage_matrix);
-        run.flexibility_time_s = seconds_since(start);
-        run.iterations = K2.iterations;
-        result.creepage_matrix = K2.creepage_matrix;
+        run.flexibility = nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
+        run.flexibility_time_s = seconds_since(start) + K2_time_s;  // K2 counts: it is nH-FastSim's
+        run.iterations = K2_iterations;
         take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
         break;
       }
@@ -128,22 +173,25 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
         break;
       }
     }
-    run.time_s = seconds_since(start);
+    run.time_s = seconds_since(start) + (kind == SolverKind::nh_fastsim ? K2_time_s : 0.0);
     result.runs.push_back(std::move(run));
   }
   return result;
 }
 
 Case default_case() {
+  // The paper's set-up (METHOD.md §9): S1002 on UIC60 1:40, y = 0, Fz = 98.1 kN, E = 2.1e11 Pa,
+  // nu = 0.3, mu = 0.3, xi' = eta' = 0.5, spin from conicity.
   Case c;
-  c.source = "built-in default case";
-  c.geometry = GeometryKind::ellipse;
-  c.ellipse.a_m = 0.006;
-  c.ellipse.b_m = 0.004;
+  c.source = "built-in default case (S1002 / UIC60, y = 0, xi' = eta' = 0.5, spin from conicity)";
+  c.geometry = GeometryKind::wheel_rail;
   c.material = Material{2.1e11, 0.3};
   c.normal_force_N = 98100.0;
   c.mu = 0.3;
-  c.creepage.raw = Creepage{0.001, 0.0005, 0.5};
+  c.creepage.xi_normalised = 0.5;
+  c.creepage.eta_normalised = 0.5;
+  c.creepage.phi_from_conicity = true;
+  c.target_elements = 3000;
   return c;
 }
 

@@ -19,16 +19,19 @@ struct RunArguments {
 };
 
 int run(const RunArguments& args) {
-  const Case input = args.case_file.empty() ? default_case() : read_case_file(args.case_file);
+  const bool built_in = args.case_file.empty();
+  const Case input = built_in ? default_case() : read_case_file(args.case_file);
   const CaseResult result = run_case(input, args.json ? nullptr : &std::cerr);
   if (args.json) {
     fmt::print("{}\n", case_result_json(result));
   } else {
     print_case_report(result, std::cout);
   }
-  if (!args.out.empty()) {
-    write_case_outputs(result, args.out, std::cerr);
-    if (!args.json) fmt::print("\nWrote {}\n", args.out);
+  // The built-in case always writes its outputs (default railcontact-out/).
+  const std::string out = !args.out.empty() ? args.out : (built_in ? "railcontact-out" : "");
+  if (!out.empty()) {
+    write_case_outputs(result, out, std::cerr);
+    if (!args.json) fmt::print("\nWrote {}/ (result.json, tractions_*.csv, tractions.png)\n", out);
   }
   return 0;
 }
