@@ -5,6 +5,7 @@
 #include "cli/commands.hpp"
 #include "study/coefficient_study.hpp"
 #include "study/hertz_study.hpp"
+#include "study/paper_study.hpp"
 #include "study/patch_study.hpp"
 
 namespace railcontact::cli {
@@ -63,6 +64,22 @@ void add_study_command(CLI::App& app, Action& action) {
       if (!wheel->empty()) patches->wheel_profile = *wheel;
       if (!rail->empty()) patches->rail_profile = *rail;
       study::run_patch_study(*patches, std::cerr);
+      return 0;
+    };
+  });
+
+  auto paper = std::make_shared<study::PaperStudyOptions>();
+  auto paper_out = std::make_shared<std::string>();
+  CLI::App* pc = study->add_subcommand("paper", "paper §4 on S1002/UIC60: Fig 5 (error vs y), 6 (tractions), 7 (creep curves), 8 (time)");
+  pc->add_option("--out", *paper_out, "output directory")->required();
+  pc->add_option("--elements", paper->elements, "elements in contact per patch")->capture_default_str();
+  pc->add_option("--y-step", paper->y_step_m, "step of y for Fig 5 (m)")->capture_default_str();
+  pc->add_option("--samples", paper->timing_samples, "random cases per mesh size for Fig 8")->capture_default_str();
+  pc->add_flag("!--no-figures", paper->figures, "skip the figures");
+  pc->callback([paper, paper_out, &action] {
+    action = [paper, paper_out] {
+      paper->output_directory = *paper_out;
+      study::run_paper_study(*paper, std::cerr);
       return 0;
     };
   });
