@@ -196,6 +196,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     ++pass;
   }
 
+  require(best.has_value(), fmt::format("wheel-rail patch at {}: no normal solution", where));
   Solve& s = *best;
   const Mesh& mesh = s.area.mesh;
   const ContactRegion& main = s.regions.front();
