@@ -292,7 +292,7 @@ TEST(ConicitySpin, MirroredLeftWheelHasTheOppositeSign) {
   // from the left rail). ω = (0, V/r0, 0) is an axial vector: mirrored, -(M ω) = ω (same axle).
   const std::array<double, 3> mirrored{n[0], -n[1], n[2]};
   const auto left = contact_normal_in_track_frame(c.contact_angle_rad, WheelSide::left);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(mirrored[static_cast<std::size_t>(i)], left[static_cast<std::size_t>(i)], 1e-15);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(mirrored[i], left[i], 1e-15);
   const double right_phi = spin_creepage_per_m(n, 0.46);
   EXPECT_GT(right_phi, 0.0);
   EXPECT_NEAR(spin_creepage_per_m(mirrored, 0.46), -right_phi, 1e-15);

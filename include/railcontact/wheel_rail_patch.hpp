@@ -104,7 +104,8 @@ std::filesystem::path default_rail_profile_path();
 WheelRailPair default_wheel_rail_pair();
 
 // A pair from profile files (formats: profile.hpp); errors name the file and the line.
-WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile, const std::filesystem::path& rail_profile,
+WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile,
+                                   const std::filesystem::path& rail_profile,
                                    const TrackWheelsetParameters& parameters = {});
 
 }  // namespace railcontact

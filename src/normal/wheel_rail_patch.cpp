@@ -27,7 +27,8 @@ void validate(const WheelRailPatchOptions& o) {
   require(o.target_elements >= 10 && o.target_elements <= 200000,
           fmt::format("wheel-rail patch: the target number of elements in contact must lie in [10, 200000] (got {})",
                       o.target_elements));
-  require(std::isfinite(o.element_count_tolerance) && o.element_count_tolerance > 0.0 && o.element_count_tolerance < 1.0,
+  require(std::isfinite(o.element_count_tolerance) && o.element_count_tolerance > 0.0 &&
+              o.element_count_tolerance < 1.0,
           "wheel-rail patch: the element-count tolerance must lie in (0, 1)");
   require(o.max_mesh_passes >= 1, "wheel-rail patch: at least one mesh pass is needed");
   require(o.max_enlargements >= 0, "wheel-rail patch: max_enlargements must be non-negative");
@@ -204,7 +205,8 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     return g.load_fraction > options.significant_load_fraction;
   }));
   if (r.patches > 1 && !options.allow_several_patches) {
-    throw Error(fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope for now",
+    throw Error(fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope "
+                            "for now",
                             where, r.patches, load_shares(s.regions, r.patches)));
   }
   double max_pressure = 0.0;
