@@ -118,7 +118,7 @@ def patch_shapes(d, rows):
     for k in range(len(patches), lines * columns):
         axes[k // columns][k % columns].axis("off")
     fig.supxlabel("x1 (mm), rolling direction")
-    fig.supylabel("x2 (mm), towards the flange / gauge side")
+    fig.supylabel("x2 (mm), to the gauge side")
     fig.suptitle("Contact patches and pressure (origin: centre of pressure)")
     fig.colorbar(image, ax=axes, label="pressure p3 (MPa)", shrink=0.6)
     fig.savefig(d / "patch_shapes.png", dpi=110)

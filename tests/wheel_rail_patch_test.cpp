@@ -170,6 +170,21 @@ TEST(WheelRailPatch, PatchOriginIsTheCentreOfPressure) {
   EXPECT_NEAR(p.pressure_centre_x1_m, -patch.x1_shift_m(), 1e-15);
   EXPECT_NEAR(p.pressure_centre_x2_m, -patch.x2_shift_m(), 1e-15);
   EXPECT_NEAR(p.pressure_centre_x1_m, 0.0, 1e-9);  // h is even in x1 (zero yaw)
+  // The patch's mesh is the potential area's, cropped to the patch's bounding box.
+  EXPECT_DOUBLE_EQ(patch.mesh().dx1_m, p.potential_area.dx1_m);
+  EXPECT_DOUBLE_EQ(patch.mesh().dx2_m, p.potential_area.dx2_m);
+  EXPECT_NEAR(patch.mesh().n1 * patch.mesh().dx1_m, p.extent_x1_m, 1e-12);
+  EXPECT_NEAR(patch.mesh().n2 * patch.mesh().dx2_m, p.extent_x2_m, 1e-12);
+  EXPECT_LT(patch.mesh().size(), p.potential_area.size() / 2);
+  std::vector<double> on_potential_area(p.potential_area.size(), 0.0);
+  for (std::size_t e = 0; e < patch.elements().count(); ++e) {
+    const int i1 = static_cast<int>(std::lround((patch.x1(e) + p.pressure_centre_x1_m - p.potential_area.x1_first_m) /
+                                                p.potential_area.dx1_m));
+    const int i2 = static_cast<int>(std::lround((patch.x2(e) + p.pressure_centre_x2_m - p.potential_area.x2_first_m) /
+                                                p.potential_area.dx2_m));
+    on_potential_area[p.potential_area.index(i1, i2)] = patch.pressure_Pa()[e];
+  }
+  EXPECT_EQ(on_potential_area, p.normal.pressure_Pa);  // the same elements and pressures
   // Extents: edge to edge along X1 and X2.
   EXPECT_GT(p.extent_x1_m, 5 * kMm);
   EXPECT_GT(p.extent_x2_m, 5 * kMm);
@@ -277,7 +292,7 @@ TEST(ConicitySpin, MirroredLeftWheelHasTheOppositeSign) {
   // from the left rail). ω = (0, V/r0, 0) is an axial vector: mirrored, -(M ω) = ω (same axle).
   const std::array<double, 3> mirrored{n[0], -n[1], n[2]};
   const auto left = contact_normal_in_track_frame(c.contact_angle_rad, WheelSide::left);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(mirrored[static_cast<std::size_t>(i)], left[static_cast<std::size_t>(i)], 1e-15);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_NEAR(mirrored[i], left[i], 1e-15);
   const double right_phi = spin_creepage_per_m(n, 0.46);
   EXPECT_GT(right_phi, 0.0);
   EXPECT_NEAR(spin_creepage_per_m(mirrored, 0.46), -right_phi, 1e-15);

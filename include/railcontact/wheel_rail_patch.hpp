@@ -60,7 +60,8 @@ struct WheelRailPatch {
   double spin_per_m = 0.0;              // Eq 24 signed: +2 sin γ / d (right wheel)
   double vertical_load_N = 0.0;         // Fz
   double normal_force_N = 0.0;          // F3 = Fz / cos γ
-  // The patch (the largest connected region) with its origin at its centre of pressure.
+  // The patch (the largest connected region) on the potential-area mesh cropped to the patch's
+  // bounding box, with its origin at its centre of pressure.
   ContactPatch patch;
   // The normal solution on the potential-area mesh (all regions) and that mesh. The mesh origin
   // is the point of first touch; h on it is potential_h_m.
@@ -103,7 +104,8 @@ std::filesystem::path default_rail_profile_path();
 WheelRailPair default_wheel_rail_pair();
 
 // A pair from profile files (formats: profile.hpp); errors name the file and the line.
-WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile, const std::filesystem::path& rail_profile,
+WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile,
+                                   const std::filesystem::path& rail_profile,
                                    const TrackWheelsetParameters& parameters = {});
 
 }  // namespace railcontact

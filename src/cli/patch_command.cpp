@@ -60,7 +60,8 @@ void print_table(const WheelRailPatch& p, const std::string& wheel, const std::s
 
 int run_patch(const PatchArguments& args) {
   require(std::isfinite(args.y_m), "--y must be a finite number of metres");
-  require(std::isfinite(args.load_N) && args.load_N > 0.0, fmt::format("--load must be positive (got {} N)", args.load_N));
+  require(std::isfinite(args.load_N) && args.load_N > 0.0,
+          fmt::format("--load must be positive (got {} N)", args.load_N));
   require(args.elements >= 10 && args.elements <= 200000,
           fmt::format("--elements must lie in [10, 200000] (got {})", args.elements));
   const std::filesystem::path wheel = args.wheel ? std::filesystem::path(*args.wheel) : default_wheel_profile_path();
@@ -103,7 +104,8 @@ void add_patch_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<PatchArguments>();
   CLI::App* cmd = app.add_subcommand(
       "patch", "wheel-rail normal contact at one wheelset position (default: S1002 on UIC60 1:40, 98.1 kN)");
-  cmd->add_option("--y", args->y_m, "wheelset lateral displacement (m, track frame, to the left; y < 0 towards the flange)")
+  cmd->add_option("--y", args->y_m,
+                  "wheelset lateral displacement (m, track frame, to the left; y < 0 towards the flange)")
       ->capture_default_str();
   cmd->add_option("--wheel", args->wheel, "wheel profile file (.prw, .whl or text; default: the shipped S1002)");
   cmd->add_option("--rail", args->rail, "rail profile file (.prr, .ban or text; default: the shipped UIC60 1:40)");

@@ -22,7 +22,8 @@ WheelRailPair default_wheel_rail_pair() {
   return load_wheel_rail_pair(default_wheel_profile_path(), default_rail_profile_path());
 }
 
-WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile, const std::filesystem::path& rail_profile,
+WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile,
+                                   const std::filesystem::path& rail_profile,
                                    const TrackWheelsetParameters& parameters) {
   return WheelRailPair(read_profile(wheel_profile), read_profile(rail_profile), parameters);
 }

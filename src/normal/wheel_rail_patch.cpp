@@ -27,7 +27,8 @@ void validate(const WheelRailPatchOptions& o) {
   require(o.target_elements >= 10 && o.target_elements <= 200000,
           fmt::format("wheel-rail patch: the target number of elements in contact must lie in [10, 200000] (got {})",
                       o.target_elements));
-  require(std::isfinite(o.element_count_tolerance) && o.element_count_tolerance > 0.0 && o.element_count_tolerance < 1.0,
+  require(std::isfinite(o.element_count_tolerance) && o.element_count_tolerance > 0.0 &&
+              o.element_count_tolerance < 1.0,
           "wheel-rail patch: the element-count tolerance must lie in (0, 1)");
   require(o.max_mesh_passes >= 1, "wheel-rail patch: at least one mesh pass is needed");
   require(o.max_enlargements >= 0, "wheel-rail patch: max_enlargements must be non-negative");
@@ -48,21 +49,49 @@ ElementSizes element_sizes(double element_area_m2, double extent_x1_m, double ex
   return {std::sqrt(element_area_m2 * dx1_over_dx2), std::sqrt(element_area_m2 / dx1_over_dx2)};
 }
 
+// Index bounding box of a region: elements lo1..hi1 along X1, lo2..hi2 along X2 (inclusive).
+struct IndexBox {
+  int lo1, hi1, lo2, hi2;
+};
+IndexBox bounding_box(const Mesh& mesh, const ContactRegion& region) {
+  IndexBox box{mesh.n1, -1, mesh.n2, -1};
+  for (std::size_t k : region.elements) {
+    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
+    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+    box.lo1 = std::min(box.lo1, i1);
+    box.hi1 = std::max(box.hi1, i1);
+    box.lo2 = std::min(box.lo2, i2);
+    box.hi2 = std::max(box.hi2, i2);
+  }
+  return box;
+}
+
 // Extents of a region along X1 and X2, edge to edge.
 struct Extents {
   double x1_m, x2_m;
 };
 Extents extents(const Mesh& mesh, const ContactRegion& region) {
-  int lo1 = mesh.n1, hi1 = -1, lo2 = mesh.n2, hi2 = -1;
+  const IndexBox box = bounding_box(mesh, region);
+  return {(box.hi1 - box.lo1 + 1) * mesh.dx1_m, (box.hi2 - box.lo2 + 1) * mesh.dx2_m};
+}
+
+// The patch on the mesh cropped to its bounding box (as the elliptical patches of ellipse.hpp):
+// the tangential solvers' FFTs then cover the patch only, not the potential area.
+ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa, const ContactRegion& region,
+                           const Material& material) {
+  const IndexBox box = bounding_box(mesh, region);
+  Mesh crop = mesh;
+  crop.n1 = box.hi1 - box.lo1 + 1;
+  crop.n2 = box.hi2 - box.lo2 + 1;
+  crop.x1_first_m = mesh.x1(box.lo1);
+  crop.x2_first_m = mesh.x2(box.lo2);
+  std::vector<double> p(crop.size(), 0.0);
   for (std::size_t k : region.elements) {
     const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
     const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
-    lo1 = std::min(lo1, i1);
-    hi1 = std::max(hi1, i1);
-    lo2 = std::min(lo2, i2);
-    hi2 = std::max(hi2, i2);
+    p[crop.index(i1 - box.lo1, i2 - box.lo2)] = pressure_Pa[k];
   }
-  return {(hi1 - lo1 + 1) * mesh.dx1_m, (hi2 - lo2 + 1) * mesh.dx2_m};
+  return ContactPatch(crop, p, material);
 }
 
 // "67.5 % of the load at x2 = +0.3 mm, 32.5 % at x2 = +10.6 mm"
@@ -168,6 +197,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     ++pass;
   }
 
+  require(best.has_value(), fmt::format("wheel-rail patch at {}: no normal solution", where));
   Solve& s = *best;
   const Mesh& mesh = s.area.mesh;
   const ContactRegion& main = s.regions.front();
@@ -175,16 +205,13 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     return g.load_fraction > options.significant_load_fraction;
   }));
   if (r.patches > 1 && !options.allow_several_patches) {
-    throw Error(fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope for now",
+    throw Error(fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope "
+                            "for now",
                             where, r.patches, load_shares(s.regions, r.patches)));
   }
-  std::vector<double> patch_pressure(mesh.size(), 0.0);
   double max_pressure = 0.0;
-  for (std::size_t k : main.elements) {
-    patch_pressure[k] = s.normal.pressure_Pa[k];
-    max_pressure = std::max(max_pressure, patch_pressure[k]);
-  }
-  r.patch = ContactPatch(mesh, patch_pressure, options.material);
+  for (std::size_t k : main.elements) max_pressure = std::max(max_pressure, s.normal.pressure_Pa[k]);
+  r.patch = cropped_patch(mesh, s.normal.pressure_Pa, main, options.material);
   r.dropped_load_fraction = 1.0 - main.load_fraction;
   r.pressure_centre_x1_m = main.x1_centre_m;
   r.pressure_centre_x2_m = main.x2_centre_m;
