@@ -23,7 +23,7 @@ def fig5(d):
     levels = sorted({r["xi_n"] if r["family"] != "B" else r["eta_n"] for r in rows}, key=float)
     colors = plt.cm.viridis(np.linspace(0, 0.9, 5))
     for ax, family in zip(axes, "ABC"):
-        for solver, line in [("nh-fastsim", "-"), ("fastsim", ":")]:
+        for solver, line in [("nh-fastsim", "-"), ("fastsim", ":")]:  # nh-fastsim-coarse2: in the CSV
             for color, level in zip(colors, [0.1, 0.25, 0.5, 0.75, 1.0]):
                 key = "eta_n" if family == "B" else "xi_n"
                 pts = sorted((1e3 * float(r["y"]), 100 * float(r["rel_error"])) for r in rows
@@ -105,7 +105,8 @@ def fig8(d):
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.5))
     for key, label, style in [("time_exact_s", "exact", "ko"), ("time_nh_fastsim_with_flexibilities_s",
                                                                  "nH-FastSim incl. flexibilities", "rs"),
-                              ("time_nh_fastsim_without_flexibilities_s", "nH-FastSim, flexibilities known", "b^")]:
+                              ("time_nh_fastsim_without_flexibilities_s", "nH-FastSim, flexibilities known", "b^"),
+                              ("time_nh_fastsim_coarse2_s", "nH-FastSim, flexibilities on the patch coarsened by 2", "gD")]:
         axes[0].loglog(n, [1e3 * float(r[key]) for r in rows], style, ms=4, label=label)
     axes[0].set_xlabel("elements in contact")
     axes[0].set_ylabel("time (ms)")
@@ -113,6 +114,8 @@ def fig8(d):
     axes[0].grid(alpha=0.3, which="both")
     axes[1].loglog(n, [float(r["ratio_with"]) for r in rows], "rs", ms=4, label="exact / nH-FastSim incl. flexibilities")
     axes[1].loglog(n, [float(r["ratio_without"]) for r in rows], "b^", ms=4, label="exact / nH-FastSim, flexibilities known")
+    axes[1].loglog(n, [float(r["ratio_coarse2"]) for r in rows], "gD", ms=4,
+                   label="exact / nH-FastSim, flexibilities on the patch coarsened by 2")
     axes[1].set_xlabel("elements in contact")
     axes[1].set_ylabel("time ratio")
     axes[1].legend()

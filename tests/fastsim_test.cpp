@@ -456,3 +456,25 @@ TEST(FastSimInput, RejectsBadInput) {
 
 }  // namespace
 }  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+TEST(NhFastSim, FlexibilitiesFromTheCoarsenedPatchAreCloseToTheFinePatchs) {
+  const double a = 6e-3, b = 4e-3;
+  const ContactPatch fine = hertzian_patch(elliptical_contact_with_count(a, b, 2800, EllipseMeshLayout::rolling_resolved),
+                                           a, b, 98100.0, Material{2.1e11, 0.3});
+  const ContactPatch coarse = coarsened(fine, 2);
+  EXPECT_NEAR(static_cast<double>(coarse.elements().count()) / fine.elements().count(), 0.25, 0.03);
+  EXPECT_NEAR(coarse.normal_force_N(), fine.normal_force_N(), 1e-9 * fine.normal_force_N());
+  EXPECT_NEAR(coarse.area_m2(), fine.area_m2(), 0.03 * fine.area_m2());
+  const Flexibility L = nh_fastsim_flexibility(fine);
+  const Flexibility Lc = nh_fastsim_flexibility_coarsened(fine, 2);
+  EXPECT_NEAR(Lc.L1 / L.L1, 1.0, 0.02);
+  EXPECT_NEAR(Lc.L2 / L.L2, 1.0, 0.02);
+  EXPECT_NEAR(Lc.L3 / L.L3, 1.0, 0.04);
+  EXPECT_THROW(coarsened(fine, 0), Error);
+}
+
+}  // namespace
+}  // namespace railcontact

@@ -51,6 +51,9 @@ struct Case {
   std::vector<SolverKind> solvers{SolverKind::nh_fastsim, SolverKind::fastsim, SolverKind::exact,
                                   SolverKind::exact_regularised};
   RollingOptions rolling;
+  // nH-FastSim flexibilities (and the normalisation's f11, f22) from K2 of the patch coarsened
+  // by this factor (1: the patch itself; 2: about 5x cheaper, docs/VALIDATION.md §3).
+  int flexibility_coarsening = 1;
 };
 
 // Reads and validates a case file. Throws railcontact::Error naming the file, the line and the

@@ -58,6 +58,12 @@ class ContactPatch {
   double x1_shift_m_ = 0.0, x2_shift_m_ = 0.0;
 };
 
+// The patch on a mesh `factor` times coarser along both axes: each block of factor x factor
+// elements becomes one element, in contact when at least half of its elements are, carrying the
+// block's normal force (so the load and, nearly, the centre of pressure are kept). Used for
+// cheaper nH-FastSim flexibilities: K2 and FastSim's adhesion terms depend only on the shape.
+ContactPatch coarsened(const ContactPatch& patch, int factor);
+
 // Hertzian pressure p0 sqrt(1 - (x1/a)^2 - (x2/b)^2) on an elliptical patch (elements whose
 // centre lies inside the ellipse), scaled so that the discrete normal force equals F3.
 ContactPatch hertzian_patch(const ContactElements& ellipse, double a_m, double b_m, double normal_force_N,

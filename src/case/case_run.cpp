@@ -4,6 +4,7 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
@@ -121,12 +122,15 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
   const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
   double K2_time_s = 0.0;
   int K2_iterations = 0;
+  std::optional<ContactPatch> flexibility_patch;  // the coarsened patch, if any
   if (normalised || wants_nh) {
     if (progress) fmt::print(*progress, "  creepage matrix K2 ...\n");
     const auto start = Clock::now();
     AdhesionOptions adhesion = nh_fastsim_adhesion_options();
     adhesion.collocation_offset = input.rolling.collocation_offset;
-    const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), adhesion);
+    if (input.flexibility_coarsening > 1) flexibility_patch = coarsened(patch, input.flexibility_coarsening);
+    const ContactPatch& K2_patch = flexibility_patch ? *flexibility_patch : patch;
+    const AdhesionSolution K2 = solve_full_adhesion(K2_patch.elements(), K2_patch.material(), adhesion);
     result.creepage_matrix = K2.creepage_matrix;
     K2_time_s = seconds_since(start);
     K2_iterations = K2.iterations;
@@ -145,7 +149,8 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
     const auto start = Clock::now();
     switch (kind) {
       case SolverKind::nh_fastsim: {
-        run.flexibility = nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
+        run.flexibility = flexibility_patch ? nh_fastsim_flexibility(*flexibility_patch, *result.creepage_matrix)
+                                            : nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
         run.flexibility_time_s = seconds_since(start) + K2_time_s;  // K2 counts: it is nH-FastSim's
         run.iterations = K2_iterations;
         take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);

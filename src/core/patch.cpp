@@ -57,6 +57,39 @@ ContactPatch::ContactPatch(const Mesh& input_mesh, const std::vector<double>& pr
   }
 }
 
+ContactPatch coarsened(const ContactPatch& patch, int factor) {
+  require(factor >= 1 && factor <= 8, "coarsened patch: the factor must lie in [1, 8]");
+  if (factor == 1) return patch;
+  const Mesh& fine = patch.mesh();
+  Mesh coarse;
+  coarse.n1 = (fine.n1 + factor - 1) / factor;
+  coarse.n2 = (fine.n2 + factor - 1) / factor;
+  coarse.dx1_m = factor * fine.dx1_m;
+  coarse.dx2_m = factor * fine.dx2_m;
+  coarse.x1_first_m = fine.x1_first_m + 0.5 * (factor - 1) * fine.dx1_m;
+  coarse.x2_first_m = fine.x2_first_m + 0.5 * (factor - 1) * fine.dx2_m;
+  std::vector<double> block_force(coarse.size(), 0.0);
+  std::vector<int> block_count(coarse.size(), 0);
+  const auto& idx = patch.elements().indices();
+  for (std::size_t e = 0; e < idx.size(); ++e) {
+    const int i1 = static_cast<int>(idx[e] % fine.n1) / factor, i2 = static_cast<int>(idx[e] / fine.n1) / factor;
+    block_force[coarse.index(i1, i2)] += patch.pressure_Pa()[e];
+    block_count[coarse.index(i1, i2)] += 1;
+  }
+  std::vector<double> pressure(coarse.size(), 0.0);
+  double kept = 0.0, total = 0.0;
+  for (std::size_t k = 0; k < coarse.size(); ++k) {
+    total += block_force[k];
+    if (2 * block_count[k] >= factor * factor) {
+      pressure[k] = block_force[k] / (factor * factor);  // same force on the coarse element
+      kept += block_force[k];
+    }
+  }
+  require(kept > 0.0, "coarsened patch: the patch is too small to coarsen by " + std::to_string(factor));
+  for (double& p : pressure) p *= total / kept;
+  return ContactPatch(coarse, pressure, patch.material());
+}
+
 ContactPatch hertzian_patch(const ContactElements& ellipse, double a_m, double b_m, double normal_force_N,
                             const Material& material) {
   require(a_m > 0 && b_m > 0 && std::isfinite(a_m) && std::isfinite(b_m), "Hertzian patch: semi-axes must be positive");

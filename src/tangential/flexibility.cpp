@@ -79,6 +79,11 @@ AdhesionOptions nh_fastsim_adhesion_options() {
   return options;
 }
 
+Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor, const AdhesionOptions& options) {
+  const ContactPatch coarse = coarsened(patch, factor);
+  return nh_fastsim_flexibility(coarse, options);
+}
+
 Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options, FlexibilityMatch match) {
   const AdhesionSolution adhesion = solve_full_adhesion(patch.elements(), patch.material(), options);
   return nh_fastsim_flexibility(FastSim(patch), adhesion.creepage_matrix, match);
