@@ -152,8 +152,10 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
     require(options.tolerance > 0 && options.max_iterations > 0,
             "adhesion solver: the Krylov tolerance and iteration limit must be positive");
   } else {
-    require(elements.count() <= 20000, "adhesion solver: " + std::to_string(elements.count()) +
-                                           " elements are too many for the dense solver (at most 20000)");
+    // The dense matrix and its LU take 2 (2N)^2 doubles (9 GB at N = 12000) and O(N^3) time.
+    require(elements.count() <= 12000, "adhesion solver: " + std::to_string(elements.count()) +
+                                          " elements are too many for the dense solver (at most 12000: it would not fit "
+                                          "in memory); use the Krylov solver");
   }
   const auto n = static_cast<Eigen::Index>(elements.count());
   AdhesionSolution solution;
