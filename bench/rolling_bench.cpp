@@ -44,6 +44,17 @@ void BM_NhFastSimWithFlexibilities(benchmark::State& state) {
 }
 BENCHMARK(BM_NhFastSimWithFlexibilities)->Arg(700)->Arg(2800)->Arg(11000)->Unit(benchmark::kMillisecond);
 
+void BM_NhFastSimWithCoarsenedFlexibilities(benchmark::State& state) {
+  const ContactPatch p = patch(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const FastSim fastsim(p);
+    const Flexibility L = nh_fastsim_flexibility_coarsened(p, 2);
+    benchmark::DoNotOptimize(fastsim.forces(kCombined, L, kMu));
+  }
+  state.counters["elements"] = static_cast<double>(p.elements().count());
+}
+BENCHMARK(BM_NhFastSimWithCoarsenedFlexibilities)->Arg(700)->Arg(2800)->Arg(11000)->Unit(benchmark::kMillisecond);
+
 void BM_Exact(benchmark::State& state) {
   const ContactPatch p = patch(static_cast<int>(state.range(0)));
   int newton = 0;
