@@ -62,22 +62,25 @@ ContactPatch elliptical_patch(const Case& c, PatchSummary& s) {
   return hertzian_patch(elements, a, b, c.normal_force_N, c.material);
 }
 
+// The profile pair of a wheel-rail case (the shipped one unless files are named).
+WheelRailPair case_pair(const Case& c) {
+  if (c.wheel_rail.wheel_file.empty() && c.wheel_rail.rail_file.empty()) return default_wheel_rail_pair();
+  return load_wheel_rail_pair(
+      c.wheel_rail.wheel_file.empty() ? default_wheel_profile_path() : std::filesystem::path(c.wheel_rail.wheel_file),
+      c.wheel_rail.rail_file.empty() ? default_rail_profile_path() : std::filesystem::path(c.wheel_rail.rail_file));
+}
+
+// A flexibility table must belong to the case: its pair, material, collocation offset, y and Fz.
+void check_table_fits(const FlexibilityTable& table, const Case& c, const WheelRailPair& pair) {
+  table.check_profiles(pair);
+  table.check_material(c.material, c.rolling.collocation_offset);
+  (void)table.lookup(c.wheel_rail.y_m, c.normal_force_N);  // range and gaps
+}
+
 // The wheel-rail patch of METHOD.md §9; [load] normal_force is the vertical wheel load Fz. With a
-// flexibility table: the table is checked against the pair, material, y and Fz before the normal
-// solve, and its values for the patch are returned in `table_values`.
-ContactPatch wheel_rail_patch(const Case& c, PatchSummary& s, const FlexibilityTable* table,
+// flexibility table, its values for the patch are returned in `table_values`.
+ContactPatch wheel_rail_patch(const Case& c, const WheelRailPair& pair, PatchSummary& s, const FlexibilityTable* table,
                               std::optional<FlexibilityTableValues>& table_values) {
-  const WheelRailPair pair = c.wheel_rail.wheel_file.empty() && c.wheel_rail.rail_file.empty()
-                                 ? default_wheel_rail_pair()
-                                 : load_wheel_rail_pair(c.wheel_rail.wheel_file.empty() ? default_wheel_profile_path()
-                                                                                        : std::filesystem::path(c.wheel_rail.wheel_file),
-                                                        c.wheel_rail.rail_file.empty() ? default_rail_profile_path()
-                                                                                       : std::filesystem::path(c.wheel_rail.rail_file));
-  if (table != nullptr) {
-    table->check_profiles(pair);
-    table->check_material(c.material, c.rolling.collocation_offset);
-    (void)table->lookup(c.wheel_rail.y_m, c.normal_force_N);  // range and gaps
-  }
   WheelRailPatchOptions options;
   options.vertical_load_N = c.normal_force_N;
   options.target_elements = c.target_elements;
@@ -127,10 +130,15 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
     result.flexibility_table_file = table->source();
     result.flexibility_table_target_elements = table->metadata().target_elements;
   }
+  std::optional<WheelRailPair> pair;
+  if (input.geometry == GeometryKind::wheel_rail) {
+    pair = case_pair(input);
+    if (table != nullptr) check_table_fits(*table, input, *pair);  // before any solve
+  }
   if (progress) fmt::print(*progress, "  contact patch ...\n");
   result.patch = input.geometry == GeometryKind::ellipse
                      ? elliptical_patch(input, result.summary)
-                     : wheel_rail_patch(input, result.summary, table, result.flexibility_table_values);
+                     : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
   summarise(result.patch, result.summary);
   const ContactPatch& patch = result.patch;
   const FastSim fastsim(patch);

@@ -5,7 +5,6 @@
 #include <fmt/ostream.h>
 
 #include <cmath>
-#include <limits>
 
 #include "railcontact/error.hpp"
 #include "railcontact/fastsim.hpp"
@@ -115,10 +114,6 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
         const TangentialForces table_normalised = fastsim.forces(table_raw, point.table, mu);
         point.force_difference.push_back(relative_difference(tabled, reference));
         point.force_difference_table_normalised.push_back(relative_difference(table_normalised, reference));
-        const bool has_moment = family.spin_from_conicity || family.eta_normalised != 0.0;
-        point.moment_difference.push_back(has_moment && std::fabs(reference.M3_Nm) > 0.0
-                                              ? std::fabs(tabled.M3_Nm - reference.M3_Nm) / std::fabs(reference.M3_Nm)
-                                              : std::numeric_limits<double>::quiet_NaN());
       }
       for (std::size_t f = 0; f < check.families.size(); ++f) {
         const double d = point.force_difference[f];
@@ -129,8 +124,6 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
         }
         check.max_force_difference_table_normalised =
             std::max(check.max_force_difference_table_normalised, point.force_difference_table_normalised[f]);
-        if (std::isfinite(point.moment_difference[f]))
-          check.max_moment_difference = std::max(check.max_moment_difference, point.moment_difference[f]);
         sum += d;
         sum_table_normalised += point.force_difference_table_normalised[f];
         ++count;

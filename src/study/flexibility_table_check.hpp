@@ -43,9 +43,6 @@ struct FlexibilityTableCheckPoint {
   std::vector<double> force_difference;
   // The same with the table's run normalised by the table's f11, f22 (as `run --flextable` does).
   std::vector<double> force_difference_table_normalised;
-  // |M3_table − M3_on-the-fly| / |M3_on-the-fly| with the same raw creepages (families with spin
-  // or η; NaN where M3 vanishes).
-  std::vector<double> moment_difference;
 };
 
 struct FlexibilityTableCheck {
@@ -56,7 +53,6 @@ struct FlexibilityTableCheck {
   double max_force_difference = 0.0, mean_force_difference = 0.0;
   std::size_t max_point = 0, max_family = 0;
   double max_force_difference_table_normalised = 0.0, mean_force_difference_table_normalised = 0.0;
-  double max_moment_difference = 0.0;
 };
 
 // Throws Error when the table does not belong to the pair, a check point lies outside the table,

@@ -106,7 +106,7 @@ FlexibilityTable::FlexibilityTable(FlexibilityTableMetadata metadata, std::vecto
 }
 
 const FlexibilityTableNode& FlexibilityTable::node(std::size_t iy, std::size_t iload) const {
-  require(iy < y_m_.size() && iload < loads_N_.size(), "flexibility table: node index out of range");
+  if (iy >= y_m_.size() || iload >= loads_N_.size()) throw Error("flexibility table: node index out of range");
   return nodes_[iy * loads_N_.size() + iload];
 }
 
@@ -154,16 +154,18 @@ FlexibilityTableValues FlexibilityTable::lookup(double y_m, double vertical_load
 
 FlexibilityTableValues FlexibilityTable::lookup_for_patch(double y_m, double vertical_load_N, double patch_area_m2,
                                                           FlexibilityInterpolation interpolation) const {
-  require(std::isfinite(patch_area_m2) && patch_area_m2 > 0.0,
-          fmt::format("{}: the patch area must be positive (got {} m2)", name(), patch_area_m2));
+  if (!(std::isfinite(patch_area_m2) && patch_area_m2 > 0.0))
+    throw Error(fmt::format("{}: the patch area must be positive (got {} m2)", name(), patch_area_m2));
   return interpolate(y_m, vertical_load_N, patch_area_m2, interpolation);
 }
 
 FlexibilityTableValues FlexibilityTable::interpolate(double y_m, double vertical_load_N, double patch_area_m2,
                                                      FlexibilityInterpolation interpolation) const {
-  require(!empty(), "flexibility table: the table is empty");
-  require(std::isfinite(y_m) && std::isfinite(vertical_load_N) && vertical_load_N > 0.0,
-          fmt::format("{}: y and Fz must be finite and Fz positive (got y = {} m, Fz = {} N)", name(), y_m, vertical_load_N));
+  // (No message is formatted on the way: a lookup is part of every simulation step.)
+  if (empty()) throw Error("flexibility table: the table is empty");
+  if (!(std::isfinite(y_m) && std::isfinite(vertical_load_N) && vertical_load_N > 0.0))
+    throw Error(fmt::format("{}: y and Fz must be finite and Fz positive (got y = {} m, Fz = {} N)", name(), y_m,
+                            vertical_load_N));
   if (y_m < y_m_.front() || y_m > y_m_.back())
     throw Error(fmt::format("{}: y = {:.4f} mm lies outside its range y = {:.4f} ... {:.4f} mm", name(), y_m / kMm,
                             y_m_.front() / kMm, y_m_.back() / kMm));
@@ -188,7 +190,7 @@ FlexibilityTableValues FlexibilityTable::interpolate(double y_m, double vertical
   int count = 0;
   for (int a = 0; a < wy.count; ++a) {
     for (int b = 0; b < wl.count; ++b) {
-      const FlexibilityTableNode& n = node(wy.index[a], wl.index[b]);
+      const FlexibilityTableNode& n = nodes_[wy.index[a] * loads_N_.size() + wl.index[b]];
       if (n.status != FlexibilityNodeStatus::solved)
         throw Error(fmt::format("{}: no flexibilities at y = {:.4f} mm, Fz = {:g} N: the table has a gap next to the node "
                                 "y = {:.4f} mm, Fz = {:g} N ({}{}{})",

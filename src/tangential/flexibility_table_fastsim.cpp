@@ -34,7 +34,7 @@ FastSimResult FlexibilityTableFastSim::Patch::solve(const Creepage& creepage, do
 
 Creepage FlexibilityTableFastSim::Patch::creepage_from_normalised(double xi_normalised, double eta_normalised,
                                                                   double phi_per_m, double mu) const {
-  require(std::isfinite(mu) && mu > 0.0, fmt::format("normalised creepage: mu must be positive (got {})", mu));
+  if (!(std::isfinite(mu) && mu > 0.0)) throw Error(fmt::format("normalised creepage: mu must be positive (got {})", mu));
   const double saturation_N = 3.0 * mu * patch_->normal_force_N;  // Eq 22-23
   return {xi_normalised * saturation_N / values_.f11_N, eta_normalised * saturation_N / values_.f22_N, phi_per_m};
 }
