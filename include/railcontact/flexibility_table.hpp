@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "railcontact/adhesion.hpp"
