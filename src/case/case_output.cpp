@@ -58,16 +58,28 @@ std::string case_result_json(const CaseResult& r) {
     if (run.flexibility) {
       j["flexibility"] = {run.flexibility->L1, run.flexibility->L2, run.flexibility->L3};
       j["flexibility_time_s"] = run.flexibility_time_s;
+      j["flexibility_source"] = run.flexibility_source;
     }
     if (run.kind == SolverKind::exact || run.kind == SolverKind::exact_regularised) j["krylov_iterations"] = run.krylov_iterations;
     if (exact != nullptr && magnitude(exact->forces) > 0)
       j["rel_error_F"] = std::fabs(magnitude(run.forces) - magnitude(exact->forces)) / magnitude(exact->forces);
     results[std::string(solver_name(run.kind))] = j;
   }
-  const nlohmann::json out = {
+  nlohmann::json out = {
       {"patch", patch_json(r)},
       {"creepage", {{"xi", r.creepage.xi}, {"eta", r.creepage.eta}, {"phi", r.creepage.phi}}},
       {"results", results}};
+  if (const auto& v = r.flexibility_table_values) {
+    out["flexibility_table"] = {{"file", r.flexibility_table_file},
+                                {"target_elements", r.flexibility_table_target_elements},
+                                {"y_m", v->y_m},
+                                {"vertical_load_N", v->vertical_load_N},
+                                {"flexibility", {v->flexibility.L1, v->flexibility.L2, v->flexibility.L3}},
+                                {"f11_N", v->f11_N},
+                                {"f22_N", v->f22_N},
+                                {"f23_Nm", v->f23_Nm},
+                                {"area_m2", v->area_m2}};
+  }
   return out.dump(2);
 }
 
@@ -106,12 +118,24 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
     if (!run.flexibility) continue;
     fmt::print(out, "\n{} flexibilities: L1 = {:.4e}, L2 = {:.4e}, L3 = {:.4e} m/Pa", solver_name(run.kind),
                run.flexibility->L1, run.flexibility->L2, run.flexibility->L3);
-    if (run.kind == SolverKind::nh_fastsim)
+    if (run.kind == SolverKind::nh_fastsim && run.flexibility_source == "table")
+      fmt::print(out, " (from the flexibility table {}, interpolated at y = {:.3f} mm, Fz = {:g} N for this patch's area)",
+                 r.flexibility_table_file.empty() ? "(in memory)" : r.flexibility_table_file, 1e3 * r.flexibility_table_values->y_m, r.flexibility_table_values->vertical_load_N);
+    else if (run.kind == SolverKind::nh_fastsim)
       fmt::print(out, " (from K2 in {:.1f} ms, {} GMRES iterations)", 1e3 * run.flexibility_time_s, run.iterations);
     else
       fmt::print(out, " (Eq 9, Kalker's coefficients)");
   }
   fmt::print(out, "\n");
+  if (const auto& v = r.flexibility_table_values) {
+    fmt::print(out, "Flexibility table: f11 = {:.4e} N, f22 = {:.4e} N, f23 = {:.4e} N m (for the normalised creepages; no K2)\n",
+               v->f11_N, v->f22_N, v->f23_Nm);
+    const double ratio = static_cast<double>(r.summary.elements_in_contact) / r.flexibility_table_target_elements;
+    if (std::fabs(ratio - 1.0) > 0.15)
+      fmt::print(out, "Note: the table was built with about {} elements in contact, this patch has {}: its L are matched to "
+                      "another mesh\n",
+                 r.flexibility_table_target_elements, r.summary.elements_in_contact);
+  }
   for (const SolverRun& run : r.runs)
     if (run.kind == SolverKind::exact || run.kind == SolverKind::exact_regularised)
       fmt::print(out, "{}: {} Newton iterations, {} GMRES iterations, converged\n", solver_name(run.kind),

@@ -63,19 +63,31 @@ ContactPatch elliptical_patch(const Case& c, PatchSummary& s) {
   return hertzian_patch(elements, a, b, c.normal_force_N, c.material);
 }
 
-// The wheel-rail patch of METHOD.md §9; [load] normal_force is the vertical wheel load Fz.
-ContactPatch wheel_rail_patch(const Case& c, PatchSummary& s) {
-  const WheelRailPair pair = c.wheel_rail.wheel_file.empty() && c.wheel_rail.rail_file.empty()
-                                 ? default_wheel_rail_pair()
-                                 : load_wheel_rail_pair(c.wheel_rail.wheel_file.empty() ? default_wheel_profile_path()
-                                                                                        : std::filesystem::path(c.wheel_rail.wheel_file),
-                                                        c.wheel_rail.rail_file.empty() ? default_rail_profile_path()
-                                                                                       : std::filesystem::path(c.wheel_rail.rail_file));
+// The profile pair of a wheel-rail case (the shipped one unless files are named).
+WheelRailPair case_pair(const Case& c) {
+  if (c.wheel_rail.wheel_file.empty() && c.wheel_rail.rail_file.empty()) return default_wheel_rail_pair();
+  return load_wheel_rail_pair(
+      c.wheel_rail.wheel_file.empty() ? default_wheel_profile_path() : std::filesystem::path(c.wheel_rail.wheel_file),
+      c.wheel_rail.rail_file.empty() ? default_rail_profile_path() : std::filesystem::path(c.wheel_rail.rail_file));
+}
+
+// A flexibility table must belong to the case: its pair, material, collocation offset, y and Fz.
+void check_table_fits(const FlexibilityTable& table, const Case& c, const WheelRailPair& pair) {
+  table.check_profiles(pair);
+  table.check_material(c.material, c.rolling.collocation_offset);
+  (void)table.lookup(c.wheel_rail.y_m, c.normal_force_N);  // range and gaps
+}
+
+// The wheel-rail patch of METHOD.md §9; [load] normal_force is the vertical wheel load Fz. With a
+// flexibility table, its values for the patch are returned in `table_values`.
+ContactPatch wheel_rail_patch(const Case& c, const WheelRailPair& pair, PatchSummary& s, const FlexibilityTable* table,
+                              std::optional<FlexibilityTableValues>& table_values) {
   WheelRailPatchOptions options;
   options.vertical_load_N = c.normal_force_N;
   options.target_elements = c.target_elements;
   options.material = c.material;
   const WheelRailPatch wr = solve_wheel_rail_patch(pair, c.wheel_rail.y_m, options);
+  if (table != nullptr) table_values = table->lookup_for_patch(c.wheel_rail.y_m, c.normal_force_N, wr.area_m2);
   s.geometry = "wheel-rail";
   s.lateral_displacement_m = wr.lateral_displacement_m;
   s.contact_angle_rad = wr.contact_angle_rad;
@@ -105,25 +117,42 @@ const SolverRun* CaseResult::find(SolverKind kind) const {
   return nullptr;
 }
 
-CaseResult run_case(const Case& input, std::ostream* progress) {
+CaseResult run_case(const Case& input, std::ostream* progress) { return run_case(input, CaseRunOptions{}, progress); }
+
+CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::ostream* progress) {
   validate(input.material);
   require(input.normal_force_N > 0 && std::isfinite(input.normal_force_N), "the normal force must be positive");
   require(input.mu > 0 && std::isfinite(input.mu), "the friction coefficient must be positive");
-  CaseResult result{input, {}, {}, input.creepage.raw, std::nullopt, {}};
+  const FlexibilityTable* table = run_options.flexibility_table.get();
+  if (table != nullptr && input.geometry != GeometryKind::wheel_rail)
+    throw Error(fmt::format("the {} applies to wheel-rail cases only ({} is an ellipse case)", table->name(), input.source));
+  CaseResult result{input, {}, {}, input.creepage.raw, std::nullopt, {}, std::nullopt, {}, 0};
+  if (table != nullptr) {
+    result.flexibility_table_file = table->source();
+    result.flexibility_table_target_elements = table->metadata().target_elements;
+  }
+  std::optional<WheelRailPair> pair;
+  if (input.geometry == GeometryKind::wheel_rail) {
+    pair = case_pair(input);
+    if (table != nullptr) check_table_fits(*table, input, *pair);  // before any solve
+  }
   if (progress) fmt::print(*progress, "  contact patch ...\n");
-  result.patch = input.geometry == GeometryKind::ellipse ? elliptical_patch(input, result.summary)
-                                                         : wheel_rail_patch(input, result.summary);
+  result.patch = input.geometry == GeometryKind::ellipse
+                     ? elliptical_patch(input, result.summary)
+                     : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
   summarise(result.patch, result.summary);
   const ContactPatch& patch = result.patch;
   const FastSim fastsim(patch);
 
-  // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them.
+  // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them and no
+  // flexibility table gives them.
+  const std::optional<FlexibilityTableValues>& tabled = result.flexibility_table_values;
   const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
   const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
   double K2_time_s = 0.0;
   int K2_iterations = 0;
   std::optional<ContactPatch> flexibility_patch;  // the coarsened patch, if any
-  if (normalised || wants_nh) {
+  if ((normalised || wants_nh) && !tabled) {
     if (progress) fmt::print(*progress, "  creepage matrix K2 ...\n");
     const auto start = Clock::now();
     AdhesionOptions adhesion = nh_fastsim_adhesion_options();
@@ -135,10 +164,13 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
     K2_time_s = seconds_since(start);
     K2_iterations = K2.iterations;
   }
-  // Normalised creepages (Eq 22-23) with f11 = -K2_11, f22 = -K2_22 of this patch; spin (Eq 24).
+  // Normalised creepages (Eq 22-23) with f11 = -K2_11, f22 = -K2_22 of this patch (or the
+  // table's); spin (Eq 24).
   const double saturation = 3.0 * input.mu * patch.normal_force_N();
-  if (input.creepage.xi_normalised) result.creepage.xi = *input.creepage.xi_normalised * saturation / -(*result.creepage_matrix)(0, 0);
-  if (input.creepage.eta_normalised) result.creepage.eta = *input.creepage.eta_normalised * saturation / -(*result.creepage_matrix)(1, 1);
+  const double f11 = tabled ? tabled->f11_N : normalised ? -(*result.creepage_matrix)(0, 0) : 0.0;
+  const double f22 = tabled ? tabled->f22_N : normalised ? -(*result.creepage_matrix)(1, 1) : 0.0;
+  if (input.creepage.xi_normalised) result.creepage.xi = *input.creepage.xi_normalised * saturation / f11;
+  if (input.creepage.eta_normalised) result.creepage.eta = *input.creepage.eta_normalised * saturation / f22;
   if (input.creepage.phi_from_conicity) result.creepage.phi = result.summary.spin_per_m;
   const Creepage& creepage = result.creepage;
 
@@ -149,8 +181,10 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
     const auto start = Clock::now();
     switch (kind) {
       case SolverKind::nh_fastsim: {
-        run.flexibility = flexibility_patch ? nh_fastsim_flexibility(*flexibility_patch, *result.creepage_matrix)
-                                            : nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
+        run.flexibility = tabled              ? tabled->flexibility
+                          : flexibility_patch ? nh_fastsim_flexibility(*flexibility_patch, *result.creepage_matrix)
+                                              : nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
+        run.flexibility_source = tabled ? "table" : flexibility_patch ? "K2 of the coarsened patch" : "K2";
         run.flexibility_time_s = seconds_since(start) + K2_time_s;  // K2 counts: it is nH-FastSim's
         run.iterations = K2_iterations;
         take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
@@ -158,6 +192,7 @@ CaseResult run_case(const Case& input, std::ostream* progress) {
       }
       case SolverKind::fastsim: {
         run.flexibility = fastsim_flexibility(result.summary.a_m, result.summary.b_m, patch.material());
+        run.flexibility_source = "Eq 9";
         run.flexibility_time_s = seconds_since(start);
         take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
         break;

@@ -12,5 +12,6 @@ void add_coefficients_command(CLI::App& app, Action& action);
 void add_study_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
 void add_patch_command(CLI::App& app, Action& action);
+void add_flextable_command(CLI::App& app, Action& action);
 
 }  // namespace railcontact::cli

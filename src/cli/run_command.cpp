@@ -1,13 +1,15 @@
-// `railcontact run [CASE.toml] [--json] [--out DIR]`: the main job.
+// `railcontact run [CASE.toml] [--json] [--out DIR] [--flextable FILE]`: the main job.
 #include <fmt/core.h>
 
 #include <iostream>
+#include <memory>
 #include <string>
 
 #include "cli/commands.hpp"
 #include "railcontact/case.hpp"
 #include "railcontact/case_output.hpp"
 #include "railcontact/case_run.hpp"
+#include "railcontact/flexibility_table.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -15,13 +17,17 @@ namespace {
 struct RunArguments {
   std::string case_file;
   std::string out;
+  std::string flextable;
   bool json = false;
 };
 
 int run(const RunArguments& args) {
   const bool built_in = args.case_file.empty();
   const Case input = built_in ? default_case() : read_case_file(args.case_file);
-  const CaseResult result = run_case(input, args.json ? nullptr : &std::cerr);
+  CaseRunOptions options;
+  if (!args.flextable.empty())
+    options.flexibility_table = std::make_shared<const FlexibilityTable>(load_flexibility_table(args.flextable));
+  const CaseResult result = run_case(input, options, args.json ? nullptr : &std::cerr);
   if (args.json) {
     fmt::print("{}\n", case_result_json(result));
   } else {
@@ -44,6 +50,9 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("case", args->case_file, "TOML case file (docs/CASE_FILES.md)");
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->add_option("--out", args->out, "write tractions (CSV), result.json and traction maps into this directory");
+  cmd->add_option("--flextable", args->flextable,
+                  "flexibility table (flextable build): nh-fastsim takes L1-L3 and the normalisation's f11, f22 from it "
+                  "instead of K2 (wheel-rail cases)");
   cmd->callback([args, &action] { action = [args] { return run(*args); }; });
 }
 

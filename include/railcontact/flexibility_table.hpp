@@ -1,0 +1,188 @@
+#pragma once
+// Flexibility table (docs/FLEXTABLE.md): nH-FastSim's flexibilities L1, L2, L3 and the creepage
+// coefficients f11, f22, f23 of one wheel–rail profile pair, computed once over a grid of
+// wheelset lateral displacement y and vertical wheel load Fz (each node: solve_wheel_rail_patch,
+// then the force rows of K2 and the term-by-term match of fastsim.hpp), stored in a documented
+// JSON file, and interpolated. A simulation step then costs one normal solve + FastSim, or
+// FastSim only with a cached patch (flexibility_table_fastsim.hpp); no K2 at run time.
+//
+// Interpolation (measured in docs/FLEXTABLE.md §4): linear in y and linear in log Fz, of the
+// area-scaled quantities L/√A, f11/A, f22/A, f23/A^1.5 (A the patch area; the dimensions of
+// Kalker's theory: L ∝ a, f11, f22 ∝ G c², f23 ∝ G c³), multiplied back by the area of the patch
+// at hand when there is one (lookup_for_patch), else by the interpolated area (log-linear).
+// The mesh-discretisation noise of L and f then cancels to a large part against the patch's own
+// area. Contact angle, spin and elements are interpolated linearly, F3 and the area log-linearly.
+//
+// Contact jumps (docs/WHEEL_RAIL.md §4: the point of first touch jumps, and γ, the spin from
+// conicity and F3 jump with it) are located at build time to 1 µm and bracketed by two extra y
+// nodes; a lookup between the two bracket nodes takes the nearer one, so nothing is interpolated
+// across a jump. Nodes that give several contact patches (or fail) are kept, marked, and lookups
+// in the intervals next to them are refused (an Error naming the node): the table has a gap there.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "railcontact/adhesion.hpp"
+#include "railcontact/fastsim.hpp"
+#include "railcontact/file_fingerprint.hpp"
+#include "railcontact/kalker.hpp"
+#include "railcontact/material.hpp"
+#include "railcontact/wheel_rail.hpp"
+#include "railcontact/wheel_rail_patch.hpp"
+
+namespace railcontact {
+
+enum class FlexibilityNodeStatus {
+  solved,           // one patch: every value is set
+  several_patches,  // the normal solution has several contact patches: no values (a gap)
+  failed,           // the patch or K2 could not be computed (message): no values (a gap)
+};
+
+// One grid node (y, Fz).
+struct FlexibilityTableNode {
+  double y_m = 0.0;              // wheelset lateral displacement (track frame, y < 0 towards the flange)
+  double vertical_load_N = 0.0;  // Fz
+  FlexibilityNodeStatus status = FlexibilityNodeStatus::solved;
+  std::string message;           // why the node is not solved (empty when solved)
+  Flexibility flexibility;       // L1, L2, L3 (m/Pa), term by term (fastsim.hpp)
+  double f11_N = 0.0;            // -K2_11: F1 per unit xi (N)
+  double f22_N = 0.0;            // -K2_22: F2 per unit eta (N)
+  double f23_Nm = 0.0;           // -K2_23: F2 per 1/m of spin (N m)
+  double normal_force_N = 0.0;   // F3 = Fz / cos γ
+  double contact_angle_rad = 0.0;  // γ of the point of first touch
+  double spin_per_m = 0.0;       // Eq 24, signed (right wheel)
+  double area_m2 = 0.0;          // patch area (elements × element area)
+  std::size_t elements_in_contact = 0;
+};
+
+// An interval of the y grid that holds a jump of the point of first touch: its two nodes are
+// the bracket (at most contact_jump_resolution_m apart), y_rail the first-touch points on the rail.
+struct ContactJump {
+  std::size_t interval = 0;  // between y_m()[interval] and y_m()[interval + 1]
+  double y_rail_left_m = 0.0, y_rail_right_m = 0.0;
+};
+
+struct FlexibilityTableMetadata {
+  FileFingerprint wheel_profile;  // file as given, FNV-1a 64 of its bytes
+  FileFingerprint rail_profile;
+  TrackWheelsetParameters track;
+  Material material;
+  int target_elements = 0;        // WheelRailPatchOptions::target_elements of the build
+  double collocation_offset = 0.0;  // AdhesionOptions::collocation_offset of K2
+  std::string railcontact_version;
+  std::string created_utc;        // ISO 8601, e.g. 2024-05-01T12:00:00Z
+};
+
+// Interpolated values at (y, Fz): the fields of FlexibilityTableNode, with the flexibilities and
+// creepage coefficients for the patch area area_m2.
+struct FlexibilityTableValues {
+  double y_m = 0.0, vertical_load_N = 0.0;
+  Flexibility flexibility;
+  double f11_N = 0.0, f22_N = 0.0, f23_Nm = 0.0;
+  double normal_force_N = 0.0, contact_angle_rad = 0.0, spin_per_m = 0.0;
+  double area_m2 = 0.0;              // the patch's own (lookup_for_patch) or the interpolated area
+  double elements_in_contact = 0.0;  // interpolated
+};
+
+enum class FlexibilityInterpolation {
+  area_scaled,  // L/√A, f11/A, f22/A, f23/A^1.5 (the default; see above)
+  plain,        // L, f themselves (linear in y, in log Fz); for comparison
+};
+
+class FlexibilityTable {
+ public:
+  FlexibilityTable() = default;
+  // Nodes in y-major order: nodes[iy * loads + iload]. Throws Error unless y and the loads are
+  // finite and strictly increasing (loads positive), every node sits on its grid point, solved
+  // nodes hold positive finite values, and the jumps name distinct intervals.
+  FlexibilityTable(FlexibilityTableMetadata metadata, std::vector<double> y_m, std::vector<double> vertical_loads_N,
+                   std::vector<FlexibilityTableNode> nodes, std::vector<ContactJump> contact_jumps = {});
+
+  [[nodiscard]] const FlexibilityTableMetadata& metadata() const { return metadata_; }
+  [[nodiscard]] const std::vector<double>& y_m() const { return y_m_; }
+  [[nodiscard]] const std::vector<double>& vertical_loads_N() const { return loads_N_; }
+  [[nodiscard]] const std::vector<FlexibilityTableNode>& nodes() const { return nodes_; }
+  [[nodiscard]] const FlexibilityTableNode& node(std::size_t iy, std::size_t iload) const;
+  [[nodiscard]] const std::vector<ContactJump>& contact_jumps() const { return jumps_; }
+  [[nodiscard]] bool empty() const { return nodes_.empty(); }
+
+  // Where the table came from, for messages: the file it was loaded from (empty when built).
+  [[nodiscard]] const std::string& source() const { return source_; }
+  void set_source(std::string source) { source_ = std::move(source); }
+  // "flexibility table FILE" or "flexibility table".
+  [[nodiscard]] std::string name() const;
+
+  // Throws Error("flexibility table … was built for other profiles …") unless the fingerprints
+  // (hashes only; the names may differ) equal the table's.
+  void check_profiles(const FileFingerprint& wheel, const FileFingerprint& rail) const;
+  // The same for the files the pair was read from (SmoothProfile::source()), and its track
+  // parameters.
+  void check_profiles(const WheelRailPair& pair) const;
+  // Throws Error unless the material and K2's collocation offset are the table's.
+  void check_material(const Material& material, double collocation_offset = 0.0) const;
+
+  // Interpolated values at (y, Fz). Throws Error naming the range when y or Fz lies outside the
+  // grid (a table with one load holds that load only), or naming the node when an interval next
+  // to an unsolved node (several patches, failed) is needed.
+  [[nodiscard]] FlexibilityTableValues lookup(double y_m, double vertical_load_N,
+                                              FlexibilityInterpolation interpolation = FlexibilityInterpolation::area_scaled) const;
+  // The same for a patch of area patch_area_m2 at (y, Fz) (e.g. WheelRailPatch::area_m2): the
+  // flexibilities and creepage coefficients are scaled with that area.
+  [[nodiscard]] FlexibilityTableValues lookup_for_patch(
+      double y_m, double vertical_load_N, double patch_area_m2,
+      FlexibilityInterpolation interpolation = FlexibilityInterpolation::area_scaled) const;
+
+ private:
+  // patch_area_m2 = 0: the interpolated area.
+  [[nodiscard]] FlexibilityTableValues interpolate(double y_m, double vertical_load_N, double patch_area_m2,
+                                                   FlexibilityInterpolation interpolation) const;
+
+  FlexibilityTableMetadata metadata_;
+  std::vector<double> y_m_;
+  std::vector<double> loads_N_;
+  std::vector<FlexibilityTableNode> nodes_;
+  std::vector<ContactJump> jumps_;
+  std::vector<std::uint8_t> jump_after_;  // per y interval: 1 when it holds a contact jump
+  std::string source_;
+};
+
+struct FlexibilityTableOptions {
+  // Mesh, material, normal solver of each node; vertical_load_N is replaced by the grid's loads.
+  WheelRailPatchOptions patch;
+  // K2 (force rows) of each node; the default is nH-FastSim's (fastsim.hpp).
+  AdhesionOptions adhesion = nh_fastsim_adhesion_options();
+  // Contact jumps: a change of the first-touch point (on rail or wheel) larger than
+  // contact_jump_m between y values at most contact_jump_resolution_m apart.
+  bool locate_contact_jumps = true;
+  double contact_jump_m = 0.2e-3;
+  double contact_jump_resolution_m = 1e-6;
+};
+
+// Builds the table of a pair over y_grid_m (strictly increasing, m) and load_grid_N (strictly
+// increasing, N, at least one), plus two bracket nodes per contact jump. The profile fingerprints
+// are those of the files the pair was read from. Nodes with several patches or a failing solve
+// are marked (a gap), not thrown; throws Error for bad grids or options, unreadable profile
+// files, or when no node can be solved. One progress line per node goes to `progress`.
+FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::vector<double>& y_grid_m,
+                                         const std::vector<double>& load_grid_N,
+                                         const FlexibilityTableOptions& options = {}, std::ostream* progress = nullptr);
+
+// y from y_from to y_to (inclusive, within 1e-9 of a step) in steps of y_step (m); throws Error
+// for non-finite values, y_to < y_from, a non-positive step or more than 10000 values.
+std::vector<double> flexibility_table_y_grid(double y_from_m, double y_to_m, double y_step_m);
+
+// The file format (JSON, docs/FLEXTABLE.md §3). save throws Error when the file cannot be
+// written; load throws Error("flexibility table FILE: …") for unreadable or malformed files
+// (JSON syntax with the line, unknown format or version, missing or wrong keys, bad grids).
+void save_flexibility_table(const FlexibilityTable& table, const std::filesystem::path& path);
+FlexibilityTable load_flexibility_table(const std::filesystem::path& path);
+std::string flexibility_table_json(const FlexibilityTable& table);
+FlexibilityTable parse_flexibility_table(const std::string& json_text, const std::string& source);
+
+std::string_view flexibility_node_status_name(FlexibilityNodeStatus status);  // solved, several-patches, failed
+
+}  // namespace railcontact
