@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace railcontact::test {
@@ -36,6 +37,15 @@ inline CommandResult run_cli(const std::string& arguments) {
   }
   std::remove(err_file.c_str());
   return result;
+}
+
+// A fresh directory per test process and name (ctest runs the tests in parallel).
+inline std::filesystem::path scratch_directory(const std::string& name) {
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) / ("railcontact_" + name + "_" + std::to_string(getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 inline int count_lines(const std::string& text) {

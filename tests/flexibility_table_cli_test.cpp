@@ -20,14 +20,7 @@ using railcontact::test::CommandResult;
 using railcontact::test::count_lines;
 using railcontact::test::run_cli;
 
-// A fresh directory per test process (ctest runs the tests in parallel).
-std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / ("railcontact_flextable_" + name + "_" + std::to_string(getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path scratch(const std::string& name) { return railcontact::test::scratch_directory("flextable_" + name); }
 
 void write(const std::filesystem::path& path, const std::string& text) {
   std::ofstream file(path);

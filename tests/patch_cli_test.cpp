@@ -19,14 +19,7 @@ using railcontact::test::CommandResult;
 using railcontact::test::count_lines;
 using railcontact::test::run_cli;
 
-// A fresh directory per test process (ctest runs the tests in parallel).
-std::filesystem::path scratch(const std::string& name) {
-  const std::filesystem::path dir =
-      std::filesystem::path(::testing::TempDir()) / ("railcontact_" + name + "_" + std::to_string(getpid()));
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path scratch(const std::string& name) { return railcontact::test::scratch_directory("" + name); }
 
 std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
   std::ifstream file(path);
