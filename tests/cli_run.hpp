@@ -54,4 +54,13 @@ inline int count_lines(const std::string& text) {
   return lines;
 }
 
+// Bad input: a non-zero exit, one line "railcontact: error: ..." naming `expected`, no output.
+inline void expect_one_error_line(const CommandResult& r, const std::string& expected) {
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("railcontact: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
 }  // namespace railcontact::test

@@ -47,13 +47,7 @@ std::filesystem::path small_table(const std::filesystem::path& dir) {
   return path;
 }
 
-void expect_one_error_line(const CommandResult& r, const std::string& expected) {
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_EQ(count_lines(r.err), 1) << r.err;
-  EXPECT_EQ(r.err.rfind("railcontact: error: ", 0), 0u) << r.err;
-  EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
-  EXPECT_TRUE(r.out.empty()) << r.out;
-}
+using railcontact::test::expect_one_error_line;
 
 TEST(FlextableCli, BuildWritesATableThatRunUses) {
   const std::filesystem::path dir = scratch("build");

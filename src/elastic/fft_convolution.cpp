@@ -83,30 +83,6 @@ FftConvolution::FftConvolution(int n1, int n2, int components, const KernelFunct
   input_spectra_.assign(static_cast<std::size_t>(components), std::vector<std::complex<double>>(fft_.spectrum_size()));
 }
 
-void FftConvolution::invert_symbol() {
-  const double NN = static_cast<double>(fft_.n1()) * fft_.n2();
-  const double scale = 1.0 / (NN * NN);  // spectra carry 1/NN for the unnormalised inverse FFT
-  const std::size_t ns = fft_.spectrum_size();
-  if (components_ == 1) {
-    for (auto& v : kernel_spectra_[0]) v = scale / v;
-    return;
-  }
-  require(components_ == 2, "FFT convolution: symbol inversion supports 1 or 2 components");
-  auto& K11 = kernel_spectra_[0];
-  auto& K12 = kernel_spectra_[1];
-  auto& K21 = kernel_spectra_[2];
-  auto& K22 = kernel_spectra_[3];
-  for (std::size_t q = 0; q < ns; ++q) {
-    const std::complex<double> det = K11[q] * K22[q] - K12[q] * K21[q];
-    const std::complex<double> f = scale / det;
-    const std::complex<double> a = K11[q], b = K12[q], c = K21[q], d = K22[q];
-    K11[q] = d * f;
-    K12[q] = -b * f;
-    K21[q] = -c * f;
-    K22[q] = a * f;
-  }
-}
-
 void FftConvolution::apply(std::span<const double> in, std::span<double> out) {
   const std::size_t n = grid_size();
   require(in.size() == n * components_ && out.size() == n * components_, "FFT convolution: wrong field size");

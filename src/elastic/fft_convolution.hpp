@@ -57,10 +57,6 @@ class FftConvolution {
   // in: components fields of grid_size() values each (component-major); out likewise.
   void apply(std::span<const double> in, std::span<double> out);
 
-  // Replaces the kernel by the inverse of its periodic (padded-grid) symbol, block by block
-  // per frequency: apply() then approximates the inverse operator on the whole padded grid.
-  void invert_symbol();
-
  private:
   int n1_, n2_, components_;
   RealFft2d fft_;

@@ -66,28 +66,7 @@ ElementTable tabulate_element_influence(const Mesh& mesh, const Material& materi
   return t;
 }
 
-std::vector<double> tabulate(const Mesh& mesh, int components, const BlockKernel& kernel) {
-  const std::size_t w1 = static_cast<std::size_t>(2 * mesh.n1 - 1);
-  const std::size_t w2 = static_cast<std::size_t>(2 * mesh.n2 - 1);
-  std::vector<double> table(static_cast<std::size_t>(components * components) * w1 * w2);
-  std::size_t q = 0;
-  for (int k = 0; k < components; ++k)
-    for (int l = 0; l < components; ++l)
-      for (int m2 = -(mesh.n2 - 1); m2 <= mesh.n2 - 1; ++m2)
-        for (int m1 = -(mesh.n1 - 1); m1 <= mesh.n1 - 1; ++m1) table[q++] = kernel(k, l, m1, m2);
-  return table;
-}
-
 }  // namespace
-
-InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, const BlockKernel& kernel)
-    : mesh_(mesh),
-      components_(components),
-      table_(tabulate(mesh, components, kernel)),
-      convolution_(mesh.n1, mesh.n2, components,
-                   [this](int k, int l, int m1, int m2) { return this->kernel(k, l, m1, m2); }),
-      grid_in_(static_cast<std::size_t>(components) * mesh.size()),
-      grid_out_(static_cast<std::size_t>(components) * mesh.size()) {}
 
 InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table)
     : mesh_(mesh),
@@ -158,15 +137,6 @@ InfluenceOperator make_normal_operator(const Mesh& mesh, const Material& materia
   validate(mesh);
   const ElementTable a = tabulate_element_influence(mesh, material, 0.0, -(mesh.n1 - 1), mesh.n1 - 1);
   return InfluenceOperator(mesh, 1, a.a33);
-}
-
-InfluenceOperator make_tangential_operator(const Mesh& mesh, const Material& material, double alpha) {
-  validate(mesh);
-  const ElementTable a = tabulate_element_influence(mesh, material, 0.5 * alpha, -(mesh.n1 - 1), mesh.n1 - 1);
-  std::vector<double> table;
-  table.reserve(4 * a.a11.size());
-  for (const std::vector<double>* block : {&a.a11, &a.a12, &a.a12, &a.a22}) table.insert(table.end(), block->begin(), block->end());
-  return InfluenceOperator(mesh, 2, std::move(table));
 }
 
 InfluenceOperator make_steady_rolling_operator(const Mesh& mesh, const Material& material, double alpha) {

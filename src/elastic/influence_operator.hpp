@@ -7,7 +7,6 @@
 // Vectors are ordered component-major: [c0 on element 0..N-1, c1 on element 0..N-1, ...].
 #include <Eigen/Dense>
 #include <cstddef>
-#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -18,12 +17,8 @@
 
 namespace railcontact {
 
-// Kernel K_kl at mesh-index offset (m1, m2) = receiver - source.
-using BlockKernel = std::function<double(int k, int l, int m1, int m2)>;
-
 class InfluenceOperator {
  public:
-  InfluenceOperator(const Mesh& mesh, int components, const BlockKernel& kernel);
   // From a precomputed kernel table: components^2 blocks, each (2 n2 - 1) x (2 n1 - 1), m1 fastest.
   InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table);
 
@@ -41,10 +36,6 @@ class InfluenceOperator {
   // Restricted product on the elements with the given mesh indices (FFT path).
   void apply(const std::vector<std::size_t>& elements, std::span<const double> x, std::span<double> y);
 
-  // Replaces the FFT kernel by the inverse of its padded-grid symbol (for preconditioning):
-  // apply() then approximates the inverse of the operator on the whole plane.
-  void invert_symbol() { convolution_.invert_symbol(); }
-
   // The transposed operator: kernel K'_kl(m) = K_lk(-m).
   [[nodiscard]] InfluenceOperator transposed() const;
 
@@ -61,10 +52,6 @@ class InfluenceOperator {
 
 // Normal operator: surface approach u3 at element centres per unit pressure (A33).
 InfluenceOperator make_normal_operator(const Mesh& mesh, const Material& material);
-
-// Tangential operator: displacements (u1, u2) at collocation points x + alpha dx1/2 per unit
-// tractions (p1, p2) (2 x 2 blocks A11, A12 = A21, A22).
-InfluenceOperator make_tangential_operator(const Mesh& mesh, const Material& material, double alpha);
 
 // Steady-rolling tangential operator R = (A(x + dx1) - A(x)) / dx1 (METHOD.md §6, Eq 10):
 // the upwind (leading-edge side) difference along X1 of the tangential displacements, at

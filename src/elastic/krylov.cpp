@@ -15,7 +15,7 @@ KrylovReport solve_krylov(const MatrixFreeOperator& M, const ApplyFunction& prec
     return report;
   }
   if (x.size() != b.size()) x = Eigen::VectorXd::Zero(b.size());
-  if (options.method == KrylovMethod::gmres) {
+  {
     // Right preconditioning, M P y = b - M x0, x = x0 + P y: GMRES then minimises and tests
     // the true residual (Eigen's GMRES preconditions from the left).
     Eigen::VectorXd r0(b.size());
@@ -35,23 +35,6 @@ KrylovReport solve_krylov(const MatrixFreeOperator& M, const ApplyFunction& prec
     Eigen::VectorXd correction(b.size());
     preconditioner(y.data(), correction.data());
     x += correction;
-    report.iterations = static_cast<int>(solver.iterations());
-  } else if (options.method == KrylovMethod::idrs) {
-    Eigen::IDRS<MatrixFreeOperator, MatrixFreePreconditioner> solver;
-    solver.preconditioner().set(preconditioner);
-    solver.setTolerance(options.tolerance);
-    solver.setMaxIterations(options.max_iterations);
-    solver.setS(options.idrs_s);
-    solver.compute(M);
-    x = solver.solveWithGuess(b, x);
-    report.iterations = static_cast<int>(solver.iterations());
-  } else {
-    Eigen::BiCGSTAB<MatrixFreeOperator, MatrixFreePreconditioner> solver;
-    solver.preconditioner().set(preconditioner);
-    solver.setTolerance(options.tolerance);
-    solver.setMaxIterations(options.max_iterations);
-    solver.compute(M);
-    x = solver.solveWithGuess(b, x);
     report.iterations = static_cast<int>(solver.iterations());
   }
   Eigen::VectorXd residual(b.size());

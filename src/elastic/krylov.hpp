@@ -1,9 +1,8 @@
 #pragma once
-// Matrix-free Krylov solves with Eigen's iterative solvers (GMRES from Eigen's unsupported
-// IterativeSolvers module, BiCGSTAB from Eigen's core): the operator and the preconditioner
+// Matrix-free Krylov solves with Eigen's GMRES (unsupported IterativeSolvers module; chosen
+// against BiCGSTAB and IDR(s) by measurement, docs/DEPENDENCIES.md): the operator and the preconditioner
 // are callables y = M x, wrapped as Eigen matrix-free types (Eigen's documented pattern).
 #include <Eigen/Core>
-#include <Eigen/IterativeLinearSolvers>
 #include <functional>
 #include <unsupported/Eigen/IterativeSolvers>
 
@@ -73,14 +72,10 @@ class MatrixFreePreconditioner {
   ApplyFunction apply_;
 };
 
-enum class KrylovMethod { gmres, bicgstab, idrs };
-
 struct KrylovOptions {
-  KrylovMethod method = KrylovMethod::gmres;
   double tolerance = 1e-10;  // relative residual ||b - M x|| / ||b||
   int max_iterations = 500;
   int gmres_restart = 60;
-  int idrs_s = 4;
 };
 
 struct KrylovReport {
