@@ -21,6 +21,7 @@
 #include "railcontact/fastsim.hpp"
 #include "railcontact/kalker.hpp"
 #include "railcontact/patch.hpp"
+#include "carter.hpp"
 
 namespace railcontact {
 namespace {
@@ -51,9 +52,9 @@ ContactPatch two_lobe_patch() {
 double rel_diff(double value, double reference) { return std::abs(value / reference - 1.0); }
 
 // ---------------------------------------------------------------------------------------------
-// Independent scalar FastSim, written directly from the paper: Eq 1 per run, then Kalker's march
-// from the leading edge with the increments of Eq 2-3 between consecutive element centres, and
-// the limit of Eq 7-8 applied to the running traction.
+// Independent scalar FastSim, written directly from the paper: Eq 1 (or the skewed bound of
+// TractionBound) per run, then Kalker's march from the leading edge with the increments of Eq 2-3
+// between consecutive element centres, and the limit of Eq 7-8 applied to the running traction.
 struct Reference {
   std::vector<double> p3e, p1, p2;
   std::vector<std::uint8_t> slip;
@@ -80,6 +81,29 @@ std::vector<double> parabolic_pressure(const ContactPatch& patch) {  // Eq 1
   return p3e;
 }
 
+// TractionBound's skewed shape h t (1 - t)(1 + skew t), t = (x_l - x1)/(x_l - x_t), same strip force.
+std::vector<double> skewed_pressure(const ContactPatch& patch, double skew) {
+  if (skew == 0.0) return parabolic_pressure(patch);  // Eq 1, written in the paper's form
+  std::vector<double> p3e(patch.elements().count(), 0.0);
+  for (const StripRun& run : patch.runs()) {
+    double strip_force = 0.0, shape_sum = 0.0;
+    auto shape = [&](std::size_t e) {
+      const double t = (run.x1_leading_m - patch.x1(e)) / (run.x1_leading_m - run.x1_trailing_m);
+      return t * (1.0 - t) * (1.0 + skew * t);
+    };
+    for (int k = 0; k < run.length(); ++k) {
+      const std::size_t e = run.first + static_cast<std::size_t>(k);
+      strip_force += patch.pressure_Pa()[e];
+      shape_sum += shape(e);
+    }
+    for (int k = 0; k < run.length(); ++k) {
+      const std::size_t e = run.first + static_cast<std::size_t>(k);
+      p3e[e] = strip_force / shape_sum * shape(e);
+    }
+  }
+  return p3e;
+}
+
 // Adhesion traction of Eq 2-3 at (x1, x2) for a run with leading edge xl.
 std::pair<double, double> adhesion_traction(const Creepage& c, const Flexibility& L, double x1, double x2, double xl) {
   return {(c.xi / L.L1 - c.phi / L.L3 * x2) * (x1 - xl), (c.eta / L.L2 + 0.5 * c.phi / L.L3 * (x1 + xl)) * (x1 - xl)};
@@ -88,9 +112,9 @@ std::pair<double, double> adhesion_traction(const Creepage& c, const Flexibility
 enum class Limiting { marching, elementwise };
 
 Reference reference_fastsim(const ContactPatch& patch, const Creepage& c, const Flexibility& L, double mu,
-                            Limiting limiting = Limiting::marching) {
+                            Limiting limiting = Limiting::marching, double skew = TractionBound{}.skew) {
   Reference ref;
-  ref.p3e = parabolic_pressure(patch);
+  ref.p3e = skewed_pressure(patch, skew);
   const std::size_t n = patch.elements().count();
   ref.p1.assign(n, 0.0);
   ref.p2.assign(n, 0.0);
@@ -139,9 +163,9 @@ double max_abs(const std::vector<double>& v) {
 
 TEST(FastSimParabolicBound, SameStripForceAndEdgesAsThePressure) {
   for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), two_lobe_patch()}) {
-    const FastSim fastsim(patch);
+    const FastSim fastsim(patch, TractionBound::parabolic());
     const std::vector<double> expected = parabolic_pressure(patch);
-    const std::vector<double>& p3e = fastsim.parabolic_pressure_Pa();
+    const std::vector<double>& p3e = fastsim.bound_pressure_Pa();
     ASSERT_EQ(p3e.size(), patch.elements().count());
     for (std::size_t e = 0; e < p3e.size(); ++e) {
       EXPECT_GT(p3e[e], 0.0);
@@ -158,17 +182,51 @@ TEST(FastSimParabolicBound, SameStripForceAndEdgesAsThePressure) {
   }
 }
 
+// The skewed bound keeps each run's force and edges, is positive inside, and moves weight towards
+// the trailing edge: its centroid lies behind the parabola's (which is the run's midpoint).
+TEST(FastSimSkewedBound, SameStripForceWeightTowardsTheTrailingEdge) {
+  for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), two_lobe_patch()}) {
+    for (double skew : {0.45, 1.0}) {
+      const FastSim fastsim(patch, TractionBound{skew});
+      EXPECT_EQ(fastsim.bound().skew, skew);
+      const std::vector<double> expected = skewed_pressure(patch, skew);
+      const std::vector<double>& p3e = fastsim.bound_pressure_Pa();
+      for (std::size_t e = 0; e < p3e.size(); ++e) {
+        EXPECT_GT(p3e[e], 0.0);
+        EXPECT_NEAR(p3e[e], expected[e], 1e-12 * expected[e]);
+      }
+      for (const StripRun& run : patch.runs()) {
+        if (run.length() < 4) continue;
+        double sum_p3 = 0.0, sum_p3e = 0.0, moment = 0.0;
+        for (int k = 0; k < run.length(); ++k) {
+          const std::size_t e = run.first + static_cast<std::size_t>(k);
+          sum_p3 += patch.pressure_Pa()[e];
+          sum_p3e += p3e[e];
+          moment += p3e[e] * (patch.x1(e) - 0.5 * (run.x1_leading_m + run.x1_trailing_m));
+        }
+        EXPECT_NEAR(sum_p3e, sum_p3, 1e-12 * sum_p3);
+        EXPECT_LT(moment, 0.0);  // centroid behind the midpoint, towards the trailing edge (smaller x1)
+      }
+    }
+  }
+  const ContactPatch patch = two_lobe_patch();
+  EXPECT_THROW(FastSim(patch, TractionBound{-0.1}), Error);
+  EXPECT_THROW(FastSim(patch, TractionBound{1.5}), Error);
+  EXPECT_THROW(FastSim(patch, TractionBound{std::nan("")}), Error);
+}
+
 TEST(FastSimMarching, MatchesIndependentScalarImplementation) {
   const Creepage cases[] = {{1e-3, 0, 0},      {0, -2e-3, 0},   {5e-4, 8e-4, 0},   {0, 0, 0.4},
                             {1e-3, 0, -0.8},   {-3e-4, 1e-3, 1.2}, {2e-4, -1e-4, 3.0}, {0, 0, 0}};
   int two_run_strips = 0;
-  for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), ellipse_patch(3e-3, 9e-3, 700), two_lobe_patch()}) {
+  for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), ellipse_patch(3e-3, 9e-3, 700), two_lobe_patch()})
+  for (const TractionBound bound : {TractionBound::parabolic(), TractionBound{}}) {
     for (std::size_t r = 1; r < patch.runs().size(); ++r) two_run_strips += patch.runs()[r].i2 == patch.runs()[r - 1].i2;
-    const FastSim fastsim(patch);
+    const FastSim fastsim(patch, bound);
     const Flexibility L = fastsim_flexibility(6e-3, 5e-3, patch.material());
     for (const Creepage& c : cases) {
       const FastSimResult result = fastsim.solve(c, L, kMu);
-      const Reference ref = reference_fastsim(patch, c, L, kMu);
+      const Reference ref = reference_fastsim(patch, c, L, kMu, Limiting::marching, bound.skew);
       const double scale = std::max(max_abs(ref.p1), max_abs(ref.p2)) + 1e-300;
       const double peak = kMu * max_abs(ref.p3e);
       std::size_t slipping = 0;
@@ -191,9 +249,11 @@ TEST(FastSimMarching, MatchesIndependentScalarImplementation) {
       EXPECT_EQ(f.F1_N, result.forces.F1_N);
       EXPECT_EQ(f.F2_N, result.forces.F2_N);
       EXPECT_EQ(f.M3_Nm, result.forces.M3_Nm);
-      // One-shot conveniences.
-      EXPECT_EQ(fastsim_forces(patch, c, L, kMu).F1_N, f.F1_N);
-      EXPECT_EQ(railcontact::fastsim(patch, c, L, kMu).forces.M3_Nm, f.M3_Nm);
+      // One-shot conveniences (railcontact's default bound).
+      if (bound.skew == TractionBound{}.skew) {
+        EXPECT_EQ(fastsim_forces(patch, c, L, kMu).F1_N, f.F1_N);
+        EXPECT_EQ(railcontact::fastsim(patch, c, L, kMu).forces.M3_Nm, f.M3_Nm);
+      }
     }
   }
   EXPECT_GT(two_run_strips, 10);  // the two-lobe patch exercises strips with several runs
@@ -220,12 +280,13 @@ TEST(FastSimMarching, AdhesionTractionIsEq2And3AtTheCentres) {
 
 // METHOD.md §7 Decision: with spin the march differs from element-wise clipping of Eq 2-3; for
 // pure creepage (xi, eta, phi = 0) the traction direction is constant along a run and the
-// adhesion traction grows linearly while the parabolic bound is concave, so both coincide.
+// adhesion traction grows linearly while the bound is concave (the parabola, and its skewed form
+// for skew <= 1), so both coincide.
 TEST(FastSimMarching, DiffersFromElementwiseClippingOnlyWithSpin) {
   const ContactPatch patch = ellipse_patch(6e-3, 4e-3, 2800);
   const FastSim fastsim(patch);
   const Flexibility L = fastsim_flexibility(6e-3, 4e-3, patch.material());
-  const double bound = kMu * max_abs(fastsim.parabolic_pressure_Pa());
+  const double bound = kMu * max_abs(fastsim.bound_pressure_Pa());
   auto max_traction_difference = [&](const Creepage& c) {
     const FastSimResult marched = fastsim.solve(c, L, kMu);
     const Reference clipped = reference_fastsim(patch, c, L, kMu, Limiting::elementwise);
@@ -237,7 +298,7 @@ TEST(FastSimMarching, DiffersFromElementwiseClippingOnlyWithSpin) {
   };
   for (const Creepage& c : {Creepage{1e-3, 0, 0}, Creepage{0, 2e-3, 0}, Creepage{-1e-3, 1.5e-3, 0}}) {
     const auto [difference, adhesion] = max_traction_difference(c);
-    EXPECT_LT(adhesion, 0.9);  // slip is present
+    EXPECT_LT(adhesion, 0.95);  // slip is present
     EXPECT_LT(difference, 1e-12) << c.xi << " " << c.eta;
   }
   for (const Creepage& c : {Creepage{0, 0, 2.0}, Creepage{5e-4, 0, 1.0}, Creepage{0, 5e-4, -1.5}}) {
@@ -270,11 +331,11 @@ void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
   const Flexibility Lm = nh_fastsim_flexibility(fastsim, K2, FlexibilityMatch::spin_from_moment);
   EXPECT_LT(rel_diff(fastsim.forces({0, 0, phi}, Lm, kMu).M3_Nm, K2(2, 2) * phi), 1e-9);
   // Also through the convenience that runs the adhesion solver itself (the two force rows of
-  // K2 by adjoint solves at GMRES tolerance 1e-6: K2, hence L, to ~1e-7).
+  // K2 by adjoint solves at GMRES tolerance 1e-4: K2, hence L, to ~1e-5; measured 6e-6 ... 1.6e-5).
   const Flexibility L2 = nh_fastsim_flexibility(patch);
-  EXPECT_LT(rel_diff(L2.L1, L.L1), 1e-6);
-  EXPECT_LT(rel_diff(L2.L2, L.L2), 1e-6);
-  EXPECT_LT(rel_diff(L2.L3, L.L3), 1e-6);
+  EXPECT_LT(rel_diff(L2.L1, L.L1), 5e-5);
+  EXPECT_LT(rel_diff(L2.L2, L.L2), 5e-5);
+  EXPECT_LT(rel_diff(L2.L3, L.L3), 5e-5);
 }
 
 TEST(NhFastSim, SmallCreepageReproducesK2OnEllipse) { expect_linear_limit_reproduces_K2(ellipse_patch(6e-3, 4e-3, 1500)); }
@@ -356,7 +417,7 @@ TEST(FastSimSimplifiedTheory, HertzianCreepCurveMatchesClosedForm) {
   for (double a_over_b : {1.0, 0.5}) {
     const double a = 6e-3, b = a / a_over_b;
     const ContactPatch patch = ellipse_patch(a, b, 11000);
-    const FastSim fastsim(patch);
+    const FastSim fastsim(patch, TractionBound::parabolic());
     const Flexibility L = fastsim_flexibility(a, b, material);
     const KalkerCoefficients C = kalker_coefficients(a_over_b, material.poisson_ratio);
     const double F3 = patch.normal_force_N();
@@ -375,6 +436,35 @@ TEST(FastSimSimplifiedTheory, HertzianCreepCurveMatchesClosedForm) {
     std::cout << "  a/b = " << a_over_b << ", " << patch.elements().count()
               << " elements: max |F/F_closed - 1| = " << 100.0 * worst << " %\n";
   }
+}
+
+// FastSim in two dimensions against Carter's closed form (tests/carter.hpp). Per strip, with the
+// adhesion traction k u (u the distance from the leading edge, k = xi/L) and a concave bound g(u)
+// vanishing at u = 0, the strip slips behind u_s with k u_s = g(u_s), and the strip force F(k) has
+// dF/dk = u_s^2 / 2 (the terms of the moving boundary cancel). Carter's F = mu P (1 - (1 - k/k_c)^2)
+// therefore needs u_s^2 = 4 mu P (1 - k/k_c) / k_c, i.e. g(u) = k_c u (1 - u^2 / (2a)^2): with
+// t = u / 2a, g is proportional to t (1 - t)(1 + t), TractionBound's skew 1. The linear slope fixes
+// L = 4 (1 - nu) a / (pi G) (FastSim's strip force 2 a^2 xi / L equals Carter's
+// mu P 2 xi / xi_c = pi a G xi / (2 (1 - nu))). With the parabola (skew 0) the same steps give
+// F = mu P (1 - (1 - xi / (1.5 xi_c))^3): saturation 1.5 times later and up to 6 % below Carter.
+TEST(FastSimCarter, SkewOneReproducesCartersCreepCurveAndTheParabolaDoesNot) {
+  const Material material;
+  const testing::CarterContact carter = testing::carter_contact(1e-3, 4e-3, 100, 5, material, kMu);
+  const double L = 4.0 * (1.0 - material.poisson_ratio) * carter.a_m / (M_PI * material.shear_modulus_Pa());
+  const Flexibility flexibility{L, L, L};
+  const double saturation = kMu * carter.patch.normal_force_N();
+  const FastSim carter_bound(carter.patch, TractionBound{1.0}), parabola(carter.patch, TractionBound::parabolic());
+  double worst_parabola = 0.0;
+  for (double r : {0.02, 0.1, 0.25, 0.5, 0.75, 1.0, 1.5}) {
+    const Creepage c{r * carter.xi_c, 0, 0};
+    const double F_carter = -saturation * testing::carter_force_ratio(r);
+    EXPECT_NEAR(carter_bound.forces(c, flexibility, kMu).F1_N, F_carter, 0.005 * saturation) << "xi/xi_c = " << r;
+    const double t = std::min(r / 1.5, 1.0);
+    const double F_parabola = parabola.forces(c, flexibility, kMu).F1_N;
+    EXPECT_NEAR(F_parabola, -saturation * (1.0 - std::pow(1.0 - t, 3)), 0.005 * saturation) << "xi/xi_c = " << r;
+    worst_parabola = std::max(worst_parabola, rel_diff(F_parabola, F_carter));
+  }
+  EXPECT_GT(worst_parabola, 0.05);  // the parabola's 2-D error, which the skew removes
 }
 
 // Kalker's sign convention (METHOD.md §2) in the linear regime: F1 = -f11 xi, F2 = -f22 eta -

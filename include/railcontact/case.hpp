@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "railcontact/creepage.hpp"
+#include "railcontact/fastsim.hpp"
 #include "railcontact/material.hpp"
 #include "railcontact/rolling.hpp"
 
@@ -52,8 +53,12 @@ struct Case {
                                   SolverKind::exact_regularised};
   RollingOptions rolling;
   // nH-FastSim flexibilities (and the normalisation's f11, f22) from K2 of the patch coarsened
-  // by this factor (1: the patch itself; 2: about 5x cheaper, docs/VALIDATION.md §3).
-  int flexibility_coarsening = 1;
+  // by this factor (1: the patch itself; 2: about 4x cheaper, docs/VALIDATION.md §3); 0: automatic,
+  // automatic_flexibility_coarsening() (2 from 2000 elements in contact, else 1).
+  int flexibility_coarsening = 0;
+  // nh-fastsim's traction bound (fastsim.hpp TractionBound): 0 = the paper's parabola (Eq 1).
+  // The classical `fastsim` always uses the parabola.
+  double bound_skew = TractionBound{}.skew;
 };
 
 // Reads and validates a case file. Throws railcontact::Error naming the file, the line and the

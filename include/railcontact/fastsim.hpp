@@ -7,8 +7,9 @@
 // M3 = f23 eta - f33 phi in the linear regime. Forces are those on the wheel (upper body).
 //
 // The algorithm, per strip run (consecutive contact elements at one x2):
-//  1. the normal pressure is replaced by a parabola with the run's own leading and trailing
-//     edges and the same discrete strip force (Eq 1): the traction bound mu p3e;
+//  1. the normal pressure is replaced by a traction bound mu p3e with the run's own leading and
+//     trailing edges and the same discrete strip force: the paper's parabola (Eq 1) or, by
+//     default, that parabola skewed towards the trailing edge (TractionBound below);
 //  2. the run is marched from the leading edge: the leading element gets the adhesion traction
 //     of Eq 2-3 at its centre, each following element the previous element's traction plus the
 //     increment of Eq 2-3 between the two centres; the sum is limited to |p| <= mu p3e by
@@ -28,6 +29,21 @@
 
 namespace railcontact {
 
+// FastSim's traction bound (docs/FASTSIM.md §1, §6). Per strip run the normal pressure is
+// replaced by
+//   p3e = h t (1 - t) (1 + skew t),   t = (x_l - x1) / (x_l - x_t)  (0 at the leading edge),
+// h keeping the run's strip force. skew = 0 is the paper's parabola (Eq 1) and Kalker's FASTSIM;
+// skew = 1 is the bound with which FastSim reproduces Carter's exact two-dimensional creep curve
+// F/(mu F3) = 1 - (1 - xi/xi_sat)^2 once its flexibility fits the linear slope; in between, bound
+// weight moves from the leading towards the trailing side. The default 0.45 minimises the largest
+// creep-force error against the exact solver on Hertzian ellipses a/b = 0.1 ... 10 (3.0 %
+// instead of 6.2 % with the parabola; docs/FASTSIM.md §6). The shape is concave for skew in
+// [0, 1], the accepted range.
+struct TractionBound {
+  double skew = 0.45;
+  static constexpr TractionBound parabolic() { return {0.0}; }  // Eq 1
+};
+
 struct FastSimResult {
   TangentialForces forces;
   // Per contact element, in the order of patch.elements().indices():
@@ -36,13 +52,14 @@ struct FastSimResult {
   double adhesion_fraction = 1.0;    // elements in adhesion / elements in contact (= area fraction)
 };
 
-// FastSim prepared for one contact patch: the parabolic bound and the marching geometry are
+// FastSim prepared for one contact patch: the traction bound and the marching geometry are
 // computed once, so each evaluation costs only the marching. Immutable after construction;
 // copies share the prepared data; evaluations are thread-safe.
 class FastSim {
  public:
-  // Throws railcontact::Error if the patch has no element in contact.
-  explicit FastSim(const ContactPatch& patch);
+  // Throws railcontact::Error if the patch has no element in contact or bound.skew is not in
+  // [0, 1].
+  explicit FastSim(const ContactPatch& patch, TractionBound bound = {});
 
   // Forces only (no per-element output is allocated). Throws railcontact::Error unless mu > 0,
   // L1, L2, L3 > 0 (all finite) and the creepages are finite.
@@ -51,9 +68,10 @@ class FastSim {
   [[nodiscard]] FastSimResult solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
 
   [[nodiscard]] std::size_t element_count() const;
-  // Parabolic normal pressure p3e (Pa) of Eq 1 per contact element (patch order): the bound
+  [[nodiscard]] TractionBound bound() const;
+  // The bound's pressure p3e (Pa) per contact element (patch order; Eq 1 for skew 0): the bound
   // on |p| is mu p3e.
-  [[nodiscard]] const std::vector<double>& parabolic_pressure_Pa() const;
+  [[nodiscard]] const std::vector<double>& bound_pressure_Pa() const;
   // S D B of Eq 19: (F1, F2, M3) of FastSim's full-adhesion traction with L1 = L2 = L3 = 1
   // (units N, N, N m per unit creepage per Pa/m of 1/L), column j for creepage j (xi, eta,
   // phi). Without slip FastSim gives F = (S D B) diag(1/L1, 1/L2, 1/L3) (xi, eta, phi).
@@ -91,7 +109,7 @@ Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d
 Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2,
                                    FlexibilityMatch match = FlexibilityMatch::term_by_term);
 // The adhesion options nH-FastSim uses for its flexibilities: the two force rows of K2 by
-// adjoint solves (CreepageMatrixPart::force_rows), GMRES tolerance 1e-6 (K2 to ~1e-7).
+// adjoint solves (CreepageMatrixPart::force_rows), GMRES tolerance 1e-4 (K2 to ~1e-5).
 AdhesionOptions nh_fastsim_adhesion_options();
 
 // nH-FastSim flexibilities computed on the patch coarsened by `factor` (coarsened(), patch.hpp):
@@ -100,6 +118,12 @@ AdhesionOptions nh_fastsim_adhesion_options();
 // creep-force error against `exact` changes by < 0.1% (docs/VALIDATION.md §3).
 Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor,
                                              const AdhesionOptions& options = nh_fastsim_adhesion_options());
+
+// The coarsening factor railcontact's case runs use unless told otherwise: 2 for patches of at
+// least 2000 elements in contact (the coarse patch keeps >= 500), else 1. On the S1002/UIC60 sweep
+// at ~3000 elements it makes nH-FastSim with its flexibilities 4x faster (>= 20x faster than
+// `exact`) for a largest creep-force error of 3.5 % instead of 3.4 % (docs/VALIDATION.md §3).
+int automatic_flexibility_coarsening(const ContactPatch& patch);
 
 // The same with K2 = solve_full_adhesion(patch.elements(), patch.material(), options).
 Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options = nh_fastsim_adhesion_options(),

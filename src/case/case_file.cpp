@@ -259,6 +259,12 @@ Case parse_case(std::string_view text, const std::string& source) {
                               solvers.location("flexibility_coarsening")));
     c.flexibility_coarsening = static_cast<int>(*f);
   }
+  if (const std::optional<double> skew = solvers.optional_number("bound_skew")) {
+    if (!(*skew >= 0 && *skew <= 1))
+      throw Error(fmt::format("{}: [solvers] bound_skew must lie in [0, 1] (0: the paper's parabola, Eq 1)",
+                              solvers.location("bound_skew")));
+    c.bound_skew = *skew;
+  }
   solvers.finish();
   return c;
 }

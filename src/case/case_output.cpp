@@ -122,7 +122,8 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
       fmt::print(out, " (from the flexibility table {}, interpolated at y = {:.3f} mm, Fz = {:g} N for this patch's area)",
                  r.flexibility_table_file.empty() ? "(in memory)" : r.flexibility_table_file, 1e3 * r.flexibility_table_values->y_m, r.flexibility_table_values->vertical_load_N);
     else if (run.kind == SolverKind::nh_fastsim)
-      fmt::print(out, " (from K2 in {:.1f} ms, {} GMRES iterations)", 1e3 * run.flexibility_time_s, run.iterations);
+      fmt::print(out, " (from {} in {:.1f} ms, {} GMRES iterations)", run.flexibility_source, 1e3 * run.flexibility_time_s,
+                 run.iterations);
     else
       fmt::print(out, " (Eq 9, Kalker's coefficients)");
   }

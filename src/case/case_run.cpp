@@ -142,7 +142,8 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
                      : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
   summarise(result.patch, result.summary);
   const ContactPatch& patch = result.patch;
-  const FastSim fastsim(patch);
+  const FastSim fastsim(patch, TractionBound{input.bound_skew});     // nh-fastsim
+  const FastSim classical(patch, TractionBound::parabolic());        // fastsim: Kalker's FASTSIM, Eq 1
 
   // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them and no
   // flexibility table gives them.
@@ -152,12 +153,14 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
   double K2_time_s = 0.0;
   int K2_iterations = 0;
   std::optional<ContactPatch> flexibility_patch;  // the coarsened patch, if any
+  int coarsening = 1;
   if ((normalised || wants_nh) && !tabled) {
     if (progress) fmt::print(*progress, "  creepage matrix K2 ...\n");
     const auto start = Clock::now();
     AdhesionOptions adhesion = nh_fastsim_adhesion_options();
     adhesion.collocation_offset = input.rolling.collocation_offset;
-    if (input.flexibility_coarsening > 1) flexibility_patch = coarsened(patch, input.flexibility_coarsening);
+    coarsening = input.flexibility_coarsening > 0 ? input.flexibility_coarsening : automatic_flexibility_coarsening(patch);
+    if (coarsening > 1) flexibility_patch = coarsened(patch, coarsening);
     const ContactPatch& K2_patch = flexibility_patch ? *flexibility_patch : patch;
     const AdhesionSolution K2 = solve_full_adhesion(K2_patch.elements(), K2_patch.material(), adhesion);
     result.creepage_matrix = K2.creepage_matrix;
@@ -184,7 +187,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
         run.flexibility = tabled              ? tabled->flexibility
                           : flexibility_patch ? nh_fastsim_flexibility(*flexibility_patch, *result.creepage_matrix)
                                               : nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
-        run.flexibility_source = tabled ? "table" : flexibility_patch ? "K2 of the coarsened patch" : "K2";
+        run.flexibility_source = tabled ? "table" : flexibility_patch ? fmt::format("K2 of the patch coarsened by {}", coarsening) : "K2";
         run.flexibility_time_s = seconds_since(start) + K2_time_s;  // K2 counts: it is nH-FastSim's
         run.iterations = K2_iterations;
         take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
@@ -194,7 +197,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
         run.flexibility = fastsim_flexibility(result.summary.a_m, result.summary.b_m, patch.material());
         run.flexibility_source = "Eq 9";
         run.flexibility_time_s = seconds_since(start);
-        take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
+        take_fastsim_result(classical.solve(creepage, *run.flexibility, input.mu), run);
         break;
       }
       case SolverKind::exact:

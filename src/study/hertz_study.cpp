@@ -67,7 +67,8 @@ void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
     const ContactPatch patch = hertzian_patch(
         elliptical_contact_with_count(a, b, options.elements, EllipseMeshLayout::rolling_resolved), a, b, kLoad, material);
     const double F3 = patch.normal_force_N();
-    const FastSim fastsim(patch);
+    const FastSim fastsim(patch);                                     // nH-FastSim: railcontact's bound
+    const FastSim classical(patch, TractionBound::parabolic());       // Kalker's FASTSIM: Eq 1
     const auto t0 = Clock::now();
     const Flexibility nh = nh_fastsim_flexibility(patch);
     const double nh_flexibility_time = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -87,7 +88,7 @@ void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
         for (int i = 0; i < 4; ++i) {
           const auto t = Clock::now();
           if (i < 2) {
-            const FastSimResult r = fastsim.solve(creepage, i == 0 ? nh : original, kMu);
+            const FastSimResult r = (i == 0 ? fastsim : classical).solve(creepage, i == 0 ? nh : original, kMu);
             forces[i] = r.forces;
             adhesion[i] = r.adhesion_fraction;
           } else {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
@@ -36,7 +37,8 @@ constexpr double kVerticalLoad = 98100.0;
 // One wheel-rail patch prepared for the tangential solvers: flexibilities and normalisation.
 struct PreparedPatch {
   WheelRailPatch wheel_rail;
-  std::optional<FastSim> fastsim;
+  std::optional<FastSim> fastsim;        // railcontact's traction bound (TractionBound{})
+  std::optional<FastSim> paper_fastsim;  // the paper's parabola (Eq 1), also Kalker's FASTSIM
   Flexibility nh, nh_coarse, equivalent_ellipse;
   double f11 = 0, f22 = 0;
   double flexibility_time_s = 0;         // K2 force rows + nH flexibilities
@@ -52,6 +54,7 @@ PreparedPatch prepare(const WheelRailPair& pair, double y, int elements) {
   const ContactPatch& patch = p.wheel_rail.patch;
   const auto start = Clock::now();
   p.fastsim.emplace(patch);
+  p.paper_fastsim.emplace(patch, TractionBound::parabolic());
   const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), nh_fastsim_adhesion_options());
   p.nh = nh_fastsim_flexibility(*p.fastsim, K2.creepage_matrix);
   p.flexibility_time_s = seconds_since(start);
@@ -146,9 +149,12 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
       for (double level : kLevels) {
         const Creepage c = creepage_of(*p, family.xi * level, family.eta * level, family.spin);
         const double F_exact = magnitude(solve_rolling_exact(wr.patch, c, kMu).forces);
-        for (const auto& [solver, L] : {std::pair{"nh-fastsim", p->nh}, std::pair{"nh-fastsim-coarse2", p->nh_coarse},
-                                        std::pair{"fastsim", p->equivalent_ellipse}}) {
-          const double F = magnitude(p->fastsim->forces(c, L, kMu));
+        const FastSim& ours = *p->fastsim;
+        const FastSim& paper = *p->paper_fastsim;
+        for (const auto& [solver, fastsim, L] :
+             {std::tuple{"nh-fastsim", &ours, p->nh}, std::tuple{"nh-fastsim-coarse2", &ours, p->nh_coarse},
+              std::tuple{"nh-fastsim-paper", &paper, p->nh}, std::tuple{"fastsim", &paper, p->equivalent_ellipse}}) {
+          const double F = magnitude(fastsim->forces(c, L, kMu));
           const double error = std::fabs(F - F_exact) / F_exact;
           fmt::print(fig5, "{},{:.6f},{},{},{:.6f},{},{:.4f},{:.4f},{:.6f}\n", family.name, y, family.xi * level,
                      family.eta * level, c.phi, solver, F, F_exact, error);
@@ -266,24 +272,30 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
                     "regularised reference to 1e-5). Error: |F - F_exact| / F_exact of the total tangential force "
                     "(Eq 25). Creepages normalised with f11, f22 of each patch's K2 (Eq 22-23), spin from conicity "
                     "(Eq 24). `fastsim` = FastSim with the flexibilities of the equivalent ellipse (same area, axis "
-                    "ratio of the circumscribing rectangle).\n\n",
-                    options.elements);
+                    "ratio of the circumscribing rectangle) and the paper's parabolic bound (Eq 1); `nh-fastsim` = "
+                    "railcontact's nH-FastSim (traction bound skewed towards the trailing edge, skew {:.2f}, "
+                    "docs/FASTSIM.md §6); `nh-fastsim-paper` = the paper's nH-FastSim (the same flexibilities, "
+                    "parabolic bound of Eq 1); `nh-fastsim-coarse2` = railcontact's with flexibilities from the patch "
+                    "coarsened by 2.\n\n",
+                    options.elements, TractionBound{}.skew);
   md << "## Fig 5: error vs y (levels 0.1, 0.25, 0.5, 0.75, 1.0)\n\n| family | solver | max error | at y (mm) | mean "
         "error |\n|---|---|---|---|---|\n";
-  double nh_max = 0, nh_coarse_max = 0, ellipse_max = 0;
+  double nh_max = 0, nh_coarse_max = 0, nh_paper_max = 0, ellipse_max = 0;
   for (const Family& family : kFamilies)
-    for (const char* solver : {"nh-fastsim", "nh-fastsim-coarse2", "fastsim"}) {
+    for (const char* solver : {"nh-fastsim", "nh-fastsim-coarse2", "nh-fastsim-paper", "fastsim"}) {
       const ErrorStats& s = stats[fmt::format("{}/{}", family.name, solver)];
       fmt::print(md, "| {} ({}) | {} | {:.2f}% | {:+.1f} | {:.2f}% |\n", family.name, family.description, solver,
                  100 * s.max, 1e3 * s.y_at_max, 100 * s.sum / std::max(1, s.count));
       if (std::string(solver) == "nh-fastsim") nh_max = std::max(nh_max, s.max);
       if (std::string(solver) == "nh-fastsim-coarse2") nh_coarse_max = std::max(nh_coarse_max, s.max);
+      if (std::string(solver) == "nh-fastsim-paper") nh_paper_max = std::max(nh_paper_max, s.max);
       if (std::string(solver) == "fastsim") ellipse_max = std::max(ellipse_max, s.max);
     }
   fmt::print(md,
              "\nOver all three families: nh-fastsim max {:.2f}%, nh-fastsim with flexibilities from the patch "
-             "coarsened by 2 max {:.2f}%, equivalent-ellipse fastsim max {:.2f}%.\n",
-             100 * nh_max, 100 * nh_coarse_max, 100 * ellipse_max);
+             "coarsened by 2 max {:.2f}%, the paper's nh-fastsim (parabolic bound) max {:.2f}%, equivalent-ellipse "
+             "fastsim max {:.2f}%.\n",
+             100 * nh_max, 100 * nh_coarse_max, 100 * nh_paper_max, 100 * ellipse_max);
   if (!skipped.empty()) {
     md << "\nSkipped y values (several contact patches, out of scope): ";
     for (double y : skipped) fmt::print(md, "{:+.2f} mm ", 1e3 * y);

@@ -1,4 +1,4 @@
-// FastSim on a regular mesh: Kalker's strip marching with the parabolic bound (paper Eq 1-3,
+// FastSim on a regular mesh: Kalker's strip marching with the traction bound (paper Eq 1-3,
 // 7-8; METHOD.md §7), vectorised across strip runs.
 //
 // Data layout. The march along a run is sequential (each element starts from the previous,
@@ -66,11 +66,12 @@ struct FastSim::Layout {
   // Per slot (padding: 0):
   AlignedVector<double> step_m;               // x1 step from the upstream point (fastsim_strips.hpp)
   AlignedVector<double> x1_m;                 // element centre
-  AlignedVector<double> bound_Pa;             // parabolic pressure p3e (Eq 1)
+  AlignedVector<double> bound_Pa;             // bound pressure p3e (Eq 1 or its skewed form)
   std::vector<std::size_t> slot_element;      // element position in patch order; element_count for padding
   AlignedVector<double> lane_x2_m;            // per block and lane: the run's x2
   // Patch order:
-  std::vector<double> parabolic_pressure_Pa;
+  TractionBound bound;
+  std::vector<double> bound_pressure_Pa;
   Eigen::Matrix3d adhesion_force_matrix;      // S D B (Eq 19)
 };
 
@@ -160,12 +161,15 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
 
 }  // namespace
 
-FastSim::FastSim(const ContactPatch& patch) {
+FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   require(patch.elements().count() > 0, "fastsim: the contact patch has no element in contact");
+  require(std::isfinite(bound.skew) && bound.skew >= 0.0 && bound.skew <= 1.0,
+          fmt::format("fastsim: the traction bound's skew = {} must lie in [0, 1]", bound.skew));
   auto layout = std::make_shared<Layout>();
+  layout->bound = bound;
   layout->element_count = patch.elements().count();
   layout->element_area_m2 = patch.mesh().element_area_m2();
-  layout->parabolic_pressure_Pa = fastsim_detail::parabolic_bound_Pa(patch);
+  layout->bound_pressure_Pa = fastsim_detail::traction_bound_Pa(patch, bound.skew);
   layout->adhesion_force_matrix = fastsim_detail::adhesion_force_matrix(patch);
   const std::vector<double> step = fastsim_detail::march_steps_m(patch);
 
@@ -200,7 +204,7 @@ FastSim::FastSim(const ContactPatch& patch) {
       const std::size_t s = layout->block_first_slot[b] + (pad + j) * kLanes + lane;
       layout->step_m[s] = step[e];
       layout->x1_m[s] = patch.x1(e);
-      layout->bound_Pa[s] = layout->parabolic_pressure_Pa[e];
+      layout->bound_Pa[s] = layout->bound_pressure_Pa[e];
       layout->slot_element[s] = e;
     }
   }
@@ -208,7 +212,8 @@ FastSim::FastSim(const ContactPatch& patch) {
 }
 
 std::size_t FastSim::element_count() const { return layout_->element_count; }
-const std::vector<double>& FastSim::parabolic_pressure_Pa() const { return layout_->parabolic_pressure_Pa; }
+TractionBound FastSim::bound() const { return layout_->bound; }
+const std::vector<double>& FastSim::bound_pressure_Pa() const { return layout_->bound_pressure_Pa; }
 const Eigen::Matrix3d& FastSim::adhesion_force_matrix() const { return layout_->adhesion_force_matrix; }
 
 TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const {

@@ -1,4 +1,4 @@
-// FastSim's per-patch strip geometry: march steps, parabolic bound (Eq 1), S D B (Eq 19).
+// FastSim's per-patch strip geometry: march steps, traction bound (Eq 1 and its skewed form), S D B (Eq 19).
 #include "tangential/fastsim_strips.hpp"
 
 #include <cstddef>
@@ -15,21 +15,20 @@ std::vector<double> march_steps_m(const ContactPatch& patch) {
   return step;
 }
 
-std::vector<double> parabolic_bound_Pa(const ContactPatch& patch) {
+std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew) {
   const std::vector<double>& p3 = patch.pressure_Pa();
   std::vector<double> bound(p3.size(), 0.0);
   for (const StripRun& run : patch.runs()) {
-    const double length_m = run.x1_leading_m - run.x1_trailing_m;          // x_l - x_t
-    const double centre_m = 0.5 * (run.x1_leading_m + run.x1_trailing_m);  // x_c
+    const double length_m = run.x1_leading_m - run.x1_trailing_m;  // x_l - x_t
     const std::size_t end = run.first + static_cast<std::size_t>(run.length());
-    double strip_force = 0.0, shape_sum = 0.0;  // per unit strip area: sum p3, sum of the parabola's shape
+    double strip_force = 0.0, shape_sum = 0.0;  // per unit strip area: sum p3, sum of the bound's shape
     for (std::size_t e = run.first; e < end; ++e) {
-      const double u = (patch.x1(e) - centre_m) / length_m;
-      bound[e] = 1.0 - 4.0 * u * u;  // shape, > 0 at every centre inside the run
+      const double t = (run.x1_leading_m - patch.x1(e)) / length_m;  // 0 at the leading edge, 1 at the trailing
+      bound[e] = t * (1.0 - t) * (1.0 + skew * t);  // shape, > 0 at every centre inside the run
       shape_sum += bound[e];
       strip_force += p3[e];
     }
-    const double height_Pa = strip_force / shape_sum;  // h of Eq 1
+    const double height_Pa = strip_force / shape_sum;  // h (Eq 1 for skew = 0, up to the factor 4)
     for (std::size_t e = run.first; e < end; ++e) bound[e] *= height_Pa;
   }
   return bound;

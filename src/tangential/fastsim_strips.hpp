@@ -26,11 +26,13 @@ inline double spin_step_m2(double step_m, double x1_m) { return step_m * (x1_m -
 // step_e (m) per contact element, in the order of patch.elements().indices().
 std::vector<double> march_steps_m(const ContactPatch& patch);
 
-// Parabolic traction bound p3e (Pa) per contact element (Eq 1): for each run,
-//   p3e = h (1 - 4 ((x1 - x_c) / (x_l - x_t))^2)
-// at the element centres, with the run's own leading and trailing edges x_l, x_t, the midpoint
-// x_c, and h such that sum(p3e) = sum(p3) over the run's elements (same discrete strip force).
-std::vector<double> parabolic_bound_Pa(const ContactPatch& patch);
+// Traction bound p3e (Pa) per contact element (TractionBound in fastsim.hpp): for each run
+//   p3e = h t (1 - t) (1 + skew t),   t = (x_l - x1) / (x_l - x_t)
+// at the element centres, with the run's own leading and trailing edges x_l, x_t and h such that
+// sum(p3e) = sum(p3) over the run's elements (same discrete strip force). skew = 0 is the
+// paper's parabola p3e = h' (1 - 4 ((x1 - x_c) / (x_l - x_t))^2) of Eq 1 (4 t (1 - t) = 1 - 4 u^2
+// with u = (x1 - x_c) / (x_l - x_t) = 1/2 - t).
+std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew);
 
 // S D B of Eq 19: the forces (F1, F2, M3) of FastSim's full-adhesion traction with unit
 // flexibilities L1 = L2 = L3 = 1, column j for unit creepage j (xi, eta, phi), computed with the

