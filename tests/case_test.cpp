@@ -48,7 +48,10 @@ TEST(CaseFile, ReadsEveryKey) {
   ASSERT_EQ(c.solvers.size(), 2u);
   EXPECT_EQ(c.solvers[0], SolverKind::exact);
   EXPECT_EQ(c.solvers[1], SolverKind::nh_fastsim);
+  EXPECT_EQ(c.bound_skew, TractionBound{}.skew);  // defaults
+  EXPECT_EQ(c.flexibility_coarsening, 0);         // automatic
 }
+
 
 TEST(CaseFile, ShearModulusAndCurvaturesAreAccepted) {
   std::string text = kValid;
@@ -71,6 +74,17 @@ std::string error_of(const std::string& text) {
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   text.replace(text.find(from), from.size(), to);
   return text;
+}
+
+TEST(CaseFile, SolverOptionsBoundSkewAndCoarsening) {
+  const Case c = parse_case(replaced(kValid, "run = [", "bound_skew = 0\nflexibility_coarsening = 2\nrun = ["), "s.toml");
+  EXPECT_EQ(c.bound_skew, 0.0);
+  EXPECT_EQ(c.flexibility_coarsening, 2);
+  EXPECT_NE(error_of(replaced(kValid, "run = [", "bound_skew = 1.5\nrun = [")).find("bound_skew must lie in [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(error_of(replaced(kValid, "run = [", "bound_skew = nan\nrun = [")).find("bound_skew"), std::string::npos);
+  EXPECT_NE(error_of(replaced(kValid, "run = [", "flexibility_coarsening = 5\nrun = [")).find("1, 2, 3 or 4"),
+            std::string::npos);
 }
 
 TEST(CaseFile, MalformedTomlNamesTheLine) {

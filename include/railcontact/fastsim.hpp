@@ -32,13 +32,13 @@ namespace railcontact {
 // FastSim's traction bound (docs/FASTSIM.md §1, §6). Per strip run the normal pressure is
 // replaced by
 //   p3e = h t (1 - t) (1 + skew t),   t = (x_l - x1) / (x_l - x_t)  (0 at the leading edge),
-// h keeping the run's strip force. skew = 0 is the paper's parabola (Eq 1) and Kalker's FASTSIM;
+// h keeping the run's strip force. skew = 0 is the paper's per-strip parabola (Eq 1);
 // skew = 1 is the bound with which FastSim reproduces Carter's exact two-dimensional creep curve
 // F/(mu F3) = 1 - (1 - xi/xi_sat)^2 once its flexibility fits the linear slope; in between, bound
-// weight moves from the leading towards the trailing side. The default 0.45 minimises the largest
-// creep-force error against the exact solver on Hertzian ellipses a/b = 0.1 ... 10 (3.0 %
-// instead of 6.2 % with the parabola; docs/FASTSIM.md §6). The shape is concave for skew in
-// [0, 1], the accepted range.
+// weight moves from the leading towards the trailing side. The default 0.45 (the flat optimum is
+// 0.45-0.5) minimises the largest creep-force error against the exact solver on Hertzian ellipses
+// a/b = 0.1 ... 10: 3.0 % instead of 6.2 % with the parabola (docs/FASTSIM.md "Traction bound").
+// The shape is concave for skew in [0, 1], the accepted range.
 struct TractionBound {
   double skew = 0.45;
   static constexpr TractionBound parabolic() { return {0.0}; }  // Eq 1

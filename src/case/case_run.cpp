@@ -143,7 +143,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
   summarise(result.patch, result.summary);
   const ContactPatch& patch = result.patch;
   const FastSim fastsim(patch, TractionBound{input.bound_skew});     // nh-fastsim
-  const FastSim classical(patch, TractionBound::parabolic());        // fastsim: Kalker's FASTSIM, Eq 1
+  const FastSim classical(patch, TractionBound::parabolic());        // fastsim: the classical bound, Eq 1
 
   // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them and no
   // flexibility table gives them.

@@ -68,7 +68,7 @@ void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
         elliptical_contact_with_count(a, b, options.elements, EllipseMeshLayout::rolling_resolved), a, b, kLoad, material);
     const double F3 = patch.normal_force_N();
     const FastSim fastsim(patch);                                     // nH-FastSim: railcontact's bound
-    const FastSim classical(patch, TractionBound::parabolic());       // Kalker's FASTSIM: Eq 1
+    const FastSim classical(patch, TractionBound::parabolic());       // classical FastSim: Eq 1
     const auto t0 = Clock::now();
     const Flexibility nh = nh_fastsim_flexibility(patch);
     const double nh_flexibility_time = std::chrono::duration<double>(Clock::now() - t0).count();
