@@ -144,6 +144,8 @@ INSTANTIATE_TEST_SUITE_P(
                       std::pair{"patch --load 1e9", "too large"},
                       std::pair{"patch --wheel " RAILCONTACT_DATA_DIR "/profiles/MBench_UIC60_v3.prr", "rail profile"},
                       std::pair{"study patches --out /nonexistent/railcontact --y-step 0", "step"},
-                      std::pair{"study patches --out /nonexistent/railcontact --load -5", "--load"}));
+                      std::pair{"study patches --out /nonexistent/railcontact --load -5", "--load"},
+                      std::pair{"study bound --out /nonexistent/railcontact --elements 10", "--elements"},
+                      std::pair{"study bound --out /nonexistent/railcontact --y-step 0", "--y-step"}));
 
 }  // namespace

@@ -142,8 +142,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
                      : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
   summarise(result.patch, result.summary);
   const ContactPatch& patch = result.patch;
-  const FastSim fastsim(patch, TractionBound{input.bound_skew});     // nh-fastsim
-  const FastSim classical(patch, TractionBound::parabolic());        // fastsim: the classical bound, Eq 1
+  const FastSim fastsim(patch, TractionBound{input.bound_skew});  // nh-fastsim
 
   // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them and no
   // flexibility table gives them.
@@ -197,6 +196,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
         run.flexibility = fastsim_flexibility(result.summary.a_m, result.summary.b_m, patch.material());
         run.flexibility_source = "Eq 9";
         run.flexibility_time_s = seconds_since(start);
+        const FastSim classical(patch, TractionBound::parabolic());  // the classical bound, Eq 1
         take_fastsim_result(classical.solve(creepage, *run.flexibility, input.mu), run);
         break;
       }

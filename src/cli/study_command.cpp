@@ -3,6 +3,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "study/bound_study.hpp"
 #include "study/coefficient_study.hpp"
 #include "study/hertz_study.hpp"
 #include "study/paper_study.hpp"
@@ -39,6 +40,20 @@ void add_study_command(CLI::App& app, Action& action) {
     action = [hertz, hertz_out] {
       hertz->output_directory = *hertz_out;
       study::run_hertz_study(*hertz, std::cerr);
+      return 0;
+    };
+  });
+
+  auto bound = std::make_shared<study::BoundStudyOptions>();
+  auto bound_out = std::make_shared<std::string>();
+  CLI::App* b = study->add_subcommand("bound", "nH-FastSim's error vs the traction-bound skew: ellipses and S1002/UIC60");
+  b->add_option("--out", *bound_out, "output directory")->required();
+  b->add_option("--elements", bound->elements, "elements in contact per patch")->capture_default_str();
+  b->add_option("--y-step", bound->y_step_m, "step of the wheel-rail displacement (m)")->capture_default_str();
+  b->callback([bound, bound_out, &action] {
+    action = [bound, bound_out] {
+      bound->output_directory = *bound_out;
+      study::run_bound_study(*bound, std::cerr);
       return 0;
     };
   });
