@@ -4,6 +4,8 @@
 #include <benchmark/benchmark.h>
 #include <fftw3.h>
 
+#include "elastic/fft_convolution.hpp"
+
 #include <complex>
 #include <unsupported/Eigen/FFT>
 #include <vector>
@@ -51,6 +53,28 @@ void BM_EigenKissFft_RealForward2d(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_EigenKissFft_RealForward2d)->Arg(120)->Arg(240)->Unit(benchmark::kMicrosecond);
+
+// Padded lengths (docs/DEPENDENCIES.md): forward + inverse square transform at the smallest
+// 7-smooth length >= the minimum against the measured fast-length table, for minimum lengths
+// 2n - 1 of meshes with n = 18, 23, 30, 36, 42, 60, 72 elements per axis.
+void fft_round_trip(benchmark::State& state, int n) {
+  railcontact::detail::RealFft2d fft(n, n);
+  for (int k = 0; k < n * n; ++k) fft.real()[k] = (k % 7) * 0.1;
+  for (auto _ : state) {
+    fft.forward();
+    fft.inverse();
+    benchmark::DoNotOptimize(fft.real());
+  }
+  state.counters["length"] = n;
+}
+void BM_FftRoundTrip_SmoothLength(benchmark::State& state) {
+  fft_round_trip(state, railcontact::detail::smooth_length(static_cast<int>(state.range(0))));
+}
+void BM_FftRoundTrip_FastLength(benchmark::State& state) {
+  fft_round_trip(state, railcontact::detail::fft_friendly_length(static_cast<int>(state.range(0))));
+}
+BENCHMARK(BM_FftRoundTrip_SmoothLength)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FftRoundTrip_FastLength)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

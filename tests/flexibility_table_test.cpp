@@ -328,7 +328,7 @@ TEST(FlexibilityTableFastSim, CaseRunTakesFlexibilitiesFromTheTable) {
   const SolverRun* nh = tabled.find(SolverKind::nh_fastsim);
   ASSERT_NE(nh, nullptr);
   EXPECT_EQ(nh->flexibility_source, "table");
-  EXPECT_EQ(on_the_fly_result.find(SolverKind::nh_fastsim)->flexibility_source, "K2");
+  EXPECT_EQ(on_the_fly_result.find(SolverKind::nh_fastsim)->flexibility_source, "K2 of the patch coarsened by 2");
   EXPECT_EQ(tabled.find(SolverKind::fastsim)->flexibility_source, "Eq 9");
   EXPECT_EQ(nh->flexibility->L1, tabled.flexibility_table_values->flexibility.L1);
   const TangentialForces& a = nh->forces;

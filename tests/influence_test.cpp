@@ -158,9 +158,16 @@ void expect_fft_equals_dense(InfluenceOperator& op, unsigned seed) {
   for (auto& v : x) v = uniform(rng) * 1e9;
   Eigen::VectorXd y_fft(n);
   op.apply(elements, {x.data(), n}, {y_fft.data(), n});
-  const Eigen::VectorXd y_dense = op.dense(elements) * x;
+  const Eigen::MatrixXd dense = op.dense(elements);
+  const Eigen::VectorXd y_dense = dense * x;
   EXPECT_LT((y_fft - y_dense).norm(), 1e-12 * y_dense.norm());
   EXPECT_LT((y_fft - y_dense).cwiseAbs().maxCoeff(), 1e-11 * y_dense.cwiseAbs().maxCoeff());
+  // The adjoint product (conjugate spectra) against the transposed dense matrix.
+  Eigen::VectorXd yt_fft(n);
+  op.apply_transpose(elements, {x.data(), n}, {yt_fft.data(), n});
+  const Eigen::VectorXd yt_dense = dense.transpose() * x;
+  EXPECT_LT((yt_fft - yt_dense).norm(), 1e-12 * yt_dense.norm());
+  if (op.components() == 2) EXPECT_GT((yt_dense - y_dense).norm(), 1e-3 * y_dense.norm());  // not symmetric
 }
 
 TEST(InfluenceOperator, FftEqualsDenseNormal) {
@@ -177,12 +184,24 @@ TEST(InfluenceOperator, FftEqualsDenseSteadyRolling) {
   }
 }
 
+// The kernel tables are tabulated from mirrored corner antiderivatives (odd/even in X and Y);
+// every quadrant is checked against the direct per-element coefficients.
+TEST(InfluenceOperator, NormalKernelMatchesDirectCoefficientsInEveryQuadrant) {
+  const Mesh mesh = Mesh::covering(0, 4e-3, 0, 3e-3, 8, 6);
+  InfluenceOperator op = make_normal_operator(mesh, kSteel);
+  const ElementSize element{mesh.dx1_m, mesh.dx2_m};
+  for (auto [m1, m2] : {std::pair{0, 0}, {-3, 2}, {5, -4}, {-7, -5}, {7, 5}, {0, -5}}) {
+    const double direct = normal_influence(m1 * mesh.dx1_m, m2 * mesh.dx2_m, element, kSteel);
+    EXPECT_NEAR(op.kernel(0, 0, m1, m2), direct, 1e-12 * std::fabs(direct)) << m1 << "," << m2;
+  }
+}
+
 TEST(InfluenceOperator, SteadyRollingKernelIsUpwindDifferenceOfCoefficients) {
   const Mesh mesh = Mesh::covering(0, 4e-3, 0, 3e-3, 8, 6);
-  const double alpha = 0.5;
+  for (double alpha : {0.5, 0.0}) {
   InfluenceOperator op = make_steady_rolling_operator(mesh, kSteel, alpha);
   const ElementSize element{mesh.dx1_m, mesh.dx2_m};
-  for (auto [m1, m2] : {std::pair{0, 0}, {-3, 2}, {5, -4}, {-7, 0}}) {
+  for (auto [m1, m2] : {std::pair{0, 0}, {-3, 2}, {5, -4}, {-7, 0}, {-6, -5}, {7, 5}}) {
     const double x1 = (m1 + 0.5 * alpha) * mesh.dx1_m, x2 = m2 * mesh.dx2_m;
     const TangentialInfluence here = tangential_influence(x1, x2, element, kSteel);
     const TangentialInfluence ahead = tangential_influence(x1 + mesh.dx1_m, x2, element, kSteel);
@@ -190,6 +209,8 @@ TEST(InfluenceOperator, SteadyRollingKernelIsUpwindDifferenceOfCoefficients) {
     EXPECT_NEAR(op.kernel(0, 0, m1, m2), (ahead.a11 - here.a11) / mesh.dx1_m, 1e-9 * scale);
     EXPECT_NEAR(op.kernel(0, 1, m1, m2), (ahead.a12 - here.a12) / mesh.dx1_m, 1e-9 * scale);
     EXPECT_NEAR(op.kernel(1, 1, m1, m2), (ahead.a22 - here.a22) / mesh.dx1_m, 1e-9 * scale);
+    EXPECT_EQ(op.kernel(0, 1, m1, m2), op.kernel(1, 0, m1, m2));
+  }
   }
 }
 

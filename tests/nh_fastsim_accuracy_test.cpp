@@ -23,6 +23,7 @@ double magnitude(const TangentialForces& f) { return std::hypot(f.F1_N, f.F2_N);
 
 struct Errors {
   double ours = 0.0, paper = 0.0;  // largest |F - F_exact| / F_exact: skewed bound, parabola
+  double ours_default = 0.0;       // skewed bound, flexibilities as case runs compute them (coarsened)
 };
 
 // Largest error over the normalised creepages (Eq 22-23 with f11, f22 of the patch's K2) of the
@@ -31,6 +32,7 @@ Errors worst_errors(const ContactPatch& patch, double phi) {
   const Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
   const FastSim ours(patch), paper(patch, TractionBound::parabolic());
   const Flexibility L = nh_fastsim_flexibility(ours, K2);
+  const Flexibility L_default = nh_fastsim_flexibility_coarsened(patch, automatic_flexibility_coarsening(patch));
   const double unit = 3.0 * kMu * patch.normal_force_N();
   Errors worst;
   for (double level : {0.25, 0.5, 0.75}) {
@@ -41,6 +43,7 @@ Errors worst_errors(const ContactPatch& patch, double phi) {
       const double F = magnitude(exact.forces);
       worst.ours = std::max(worst.ours, std::fabs(magnitude(ours.forces(c, L, kMu)) / F - 1.0));
       worst.paper = std::max(worst.paper, std::fabs(magnitude(paper.forces(c, L, kMu)) / F - 1.0));
+      worst.ours_default = std::max(worst.ours_default, std::fabs(magnitude(ours.forces(c, L_default, kMu)) / F - 1.0));
     }
   }
   return worst;
@@ -68,9 +71,25 @@ TEST(NhFastSimAccuracy, BeatsTheParabolicBoundNearTheTwoPointContact) {
   options.target_elements = 3000;
   const WheelRailPatch wr = solve_wheel_rail_patch(default_wheel_rail_pair(), -0.5e-3, options);
   const Errors e = worst_errors(wr.patch, wr.spin_per_m);
-  std::cout << "  y = -0.5 mm: largest error " << 100 * e.ours << " % (parabola " << 100 * e.paper << " %)\n";
+  std::cout << "  y = -0.5 mm: largest error " << 100 * e.ours << " % (parabola " << 100 * e.paper
+            << " %, default coarsened flexibilities " << 100 * e.ours_default << " %)\n";
   EXPECT_LT(e.ours, 0.04);
   EXPECT_GT(e.paper, 0.05);
+  EXPECT_EQ(automatic_flexibility_coarsening(wr.patch), 3);  // 3000 elements: a coarse patch of ~330
+  EXPECT_LT(e.ours_default, 0.04);
+}
+
+// The automatic coarsening keeps at least 250 coarse elements, and coarsens by 2 from 400.
+TEST(NhFastSimFlexibility, AutomaticCoarseningKeepsAtLeast250Elements) {
+  const Material steel{2.1e11, 0.3};
+  const double a = 6e-3, b = 4e-3;
+  for (auto [elements, expected] : {std::pair{300, 1}, {600, 2}, {1200, 2}, {3000, 3}, {5000, 4}, {12000, 6}}) {
+    const ContactPatch patch =
+        hertzian_patch(elliptical_contact_with_count(a, b, elements), a, b, 98100.0, steel);
+    const int factor = automatic_flexibility_coarsening(patch);
+    EXPECT_EQ(factor, expected) << patch.elements().count() << " elements";
+    if (factor > 2) EXPECT_GE(coarsened(patch, factor).elements().count(), 240u);
+  }
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ struct Case {
   RollingOptions rolling;
   // nH-FastSim flexibilities (and the normalisation's f11, f22) from K2 of the patch coarsened
   // by this factor (1: the patch itself; 2: about 4x cheaper, docs/VALIDATION.md §3); 0: automatic,
-  // automatic_flexibility_coarsening() (2 from 2000 elements in contact, else 1).
+  // automatic_flexibility_coarsening() (a coarse patch of >= 250 elements; 2 from 400).
   int flexibility_coarsening = 0;
   // nh-fastsim's traction bound (fastsim.hpp TractionBound): 0 = the paper's parabola (Eq 1).
   // The classical `fastsim` always uses the parabola.

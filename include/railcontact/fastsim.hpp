@@ -119,10 +119,13 @@ AdhesionOptions nh_fastsim_adhesion_options();
 Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor,
                                              const AdhesionOptions& options = nh_fastsim_adhesion_options());
 
-// The coarsening factor railcontact's case runs use unless told otherwise: 2 for patches of at
-// least 2000 elements in contact (the coarse patch keeps >= 500), else 1. On the S1002/UIC60 sweep
-// at ~3000 elements it makes nH-FastSim with its flexibilities 4x faster (>= 20x faster than
-// `exact`) for a largest creep-force error of 3.5 % instead of 3.4 % (docs/VALIDATION.md §3).
+// The coarsening factor railcontact's case runs use unless told otherwise: the largest factor
+// (at most 8) that leaves the coarse patch at least 250 elements, and at least 2 from 400
+// elements in contact. Measured on the S1002/UIC60 sweep (docs/FASTSIM.md "Flexibilities on a
+// coarser patch"): flexibilities from >= 250 coarse elements change nH-FastSim's largest
+// creep-force error by at most 0.1 points at 1000-8000 elements in contact, and below 1000
+// elements FastSim's own discretisation error dominates (5.3 % at 500 elements, coarsened or
+// not). K2 then costs about the same at any patch size (about 0.3-1 ms).
 int automatic_flexibility_coarsening(const ContactPatch& patch);
 
 // The same with K2 = solve_full_adhesion(patch.elements(), patch.material(), options).

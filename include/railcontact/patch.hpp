@@ -62,6 +62,8 @@ class ContactPatch {
 // elements becomes one element, in contact when at least half of its elements are, carrying the
 // block's normal force (so the load and, nearly, the centre of pressure are kept). Used for
 // cheaper nH-FastSim flexibilities: K2 and FastSim's adhesion terms depend only on the shape.
+// factor in [1, kMaximumCoarsening].
+inline constexpr int kMaximumCoarsening = 8;
 ContactPatch coarsened(const ContactPatch& patch, int factor);
 
 // Hertzian pressure p0 sqrt(1 - (x1/a)^2 - (x2/b)^2) on an elliptical patch (elements whose

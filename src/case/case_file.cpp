@@ -254,9 +254,9 @@ Case parse_case(std::string_view text, const std::string& source) {
   if (const std::optional<double> eps = solvers.optional_positive("regularisation")) c.rolling.regularisation = *eps;
   if (const std::optional<double> tol = solvers.optional_positive("tolerance")) c.rolling.tolerance = *tol;
   if (const std::optional<double> f = solvers.optional_positive("flexibility_coarsening")) {
-    if (*f != std::floor(*f) || *f > 4)
-      throw Error(fmt::format("{}: [solvers] flexibility_coarsening must be 1, 2, 3 or 4",
-                              solvers.location("flexibility_coarsening")));
+    if (*f != std::floor(*f) || *f > kMaximumCoarsening)
+      throw Error(fmt::format("{}: [solvers] flexibility_coarsening must be an integer from 1 to {}",
+                              solvers.location("flexibility_coarsening"), kMaximumCoarsening));
     c.flexibility_coarsening = static_cast<int>(*f);
   }
   if (const std::optional<double> skew = solvers.optional_number("bound_skew")) {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "railcontact/error.hpp"
 
 namespace railcontact {
@@ -58,7 +60,8 @@ ContactPatch::ContactPatch(const Mesh& input_mesh, const std::vector<double>& pr
 }
 
 ContactPatch coarsened(const ContactPatch& patch, int factor) {
-  require(factor >= 1 && factor <= 8, "coarsened patch: the factor must lie in [1, 8]");
+  require(factor >= 1 && factor <= kMaximumCoarsening,
+          fmt::format("coarsened patch: the factor must lie in [1, {}] (got {})", kMaximumCoarsening, factor));
   if (factor == 1) return patch;
   const Mesh& fine = patch.mesh();
   Mesh coarse;

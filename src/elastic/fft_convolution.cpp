@@ -44,7 +44,7 @@ RealFft2d::~RealFft2d() {
 void RealFft2d::forward() { fftw_execute(static_cast<fftw_plan>(plan_forward_)); }
 void RealFft2d::inverse() { fftw_execute(static_cast<fftw_plan>(plan_inverse_)); }
 
-int fft_friendly_length(int minimum) {
+int smooth_length(int minimum) {
   for (int n = std::max(minimum, 1);; ++n) {
     int m = n;
     for (int p : {2, 3, 5, 7}) {
@@ -54,7 +54,19 @@ int fft_friendly_length(int minimum) {
   }
 }
 
-FftConvolution::FftConvolution(int n1, int n2, int components, const KernelFunction& kernel)
+int fft_friendly_length(int minimum) {
+  // Lengths at which FFTW 3.3's FFTW_ESTIMATE plans of a real 2-D transform (forward and inverse)
+  // are faster than at every longer length: the cheapest choice for any minimum up to 512
+  // (measured on square transforms, docs/DEPENDENCIES.md "Padded lengths"). The smallest 7-smooth
+  // length was up to 3x slower (35 and 45 against 36 and 48, 60 against 64, 120 against 128).
+  static constexpr int kFastLengths[] = {16,  20,  32,  36,  42,  48,  56,  64,  72,  84,  90,  98,  100, 112,
+                                         128, 140, 150, 160, 168, 200, 224, 256, 320, 384, 400, 448, 512};
+  if (minimum <= 16 || minimum > 512) return smooth_length(minimum);
+  return *std::lower_bound(std::begin(kFastLengths), std::end(kFastLengths), minimum);
+}
+
+FftConvolution::FftConvolution(int n1, int n2, int components, const KernelFunction& kernel,
+                               bool symmetric_blocks)
     : n1_(n1),
       n2_(n2),
       components_(components),
@@ -65,6 +77,11 @@ FftConvolution::FftConvolution(int n1, int n2, int components, const KernelFunct
   kernel_spectra_.resize(static_cast<std::size_t>(components * components));
   for (int k = 0; k < components; ++k) {
     for (int l = 0; l < components; ++l) {
+      if (symmetric_blocks && l < k) {  // K_kl = K_lk: already transformed
+        kernel_spectra_[static_cast<std::size_t>(k * components + l)] =
+            kernel_spectra_[static_cast<std::size_t>(l * components + k)];
+        continue;
+      }
       double* real = fft_.real();
       std::fill(real, real + static_cast<std::size_t>(N1) * N2, 0.0);
       // Offset m is stored at m mod N (wrap-around order).
@@ -83,7 +100,11 @@ FftConvolution::FftConvolution(int n1, int n2, int components, const KernelFunct
   input_spectra_.assign(static_cast<std::size_t>(components), std::vector<std::complex<double>>(fft_.spectrum_size()));
 }
 
-void FftConvolution::apply(std::span<const double> in, std::span<double> out) {
+void FftConvolution::apply(std::span<const double> in, std::span<double> out) { apply(in, out, false); }
+
+void FftConvolution::apply_transpose(std::span<const double> in, std::span<double> out) { apply(in, out, true); }
+
+void FftConvolution::apply(std::span<const double> in, std::span<double> out, bool transpose) {
   const std::size_t n = grid_size();
   require(in.size() == n * components_ && out.size() == n * components_, "FFT convolution: wrong field size");
   const int N1 = fft_.n1();
@@ -101,13 +122,24 @@ void FftConvolution::apply(std::span<const double> in, std::span<double> out) {
   const std::size_t ns = fft_.spectrum_size();
   for (int k = 0; k < components_; ++k) {
     std::complex<double>* acc = fft_.spectrum();
-    const auto& K0 = kernel_spectra_[static_cast<std::size_t>(k * components_)];
+    auto block = [&](int l) -> const std::vector<std::complex<double>>& {
+      return kernel_spectra_[static_cast<std::size_t>(transpose ? l * components_ + k : k * components_ + l)];
+    };
+    const auto& K0 = block(0);
     const auto& P0 = input_spectra_[0];
-    for (std::size_t q = 0; q < ns; ++q) acc[q] = K0[q] * P0[q];
+    if (transpose) {
+      for (std::size_t q = 0; q < ns; ++q) acc[q] = std::conj(K0[q]) * P0[q];
+    } else {
+      for (std::size_t q = 0; q < ns; ++q) acc[q] = K0[q] * P0[q];
+    }
     for (int l = 1; l < components_; ++l) {
-      const auto& K = kernel_spectra_[static_cast<std::size_t>(k * components_ + l)];
+      const auto& K = block(l);
       const auto& P = input_spectra_[static_cast<std::size_t>(l)];
-      for (std::size_t q = 0; q < ns; ++q) acc[q] += K[q] * P[q];
+      if (transpose) {
+        for (std::size_t q = 0; q < ns; ++q) acc[q] += std::conj(K[q]) * P[q];
+      } else {
+        for (std::size_t q = 0; q < ns; ++q) acc[q] += K[q] * P[q];
+      }
     }
     fft_.inverse();
     double* field = out.data() + static_cast<std::size_t>(k) * n;

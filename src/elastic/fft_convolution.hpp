@@ -4,7 +4,7 @@
 // (METHOD.md §4): out_k(i) = sum_l sum_j K_kl(i - j) in_l(j), i, j on an n1 x n2 grid.
 //
 // Kernels are given for index offsets m1 in [-(n1-1), n1-1], m2 in [-(n2-1), n2-1]; the
-// padded transform length along each axis is the smallest 2^a 3^b 5^c 7^d >= 2n - 1, so the
+// padded transform length along each axis is at least 2n - 1 (fft_friendly_length), so the
 // circular convolution equals the linear one on the grid.
 #include <complex>
 #include <cstddef>
@@ -41,7 +41,10 @@ class RealFft2d {
   void* plan_inverse_ = nullptr;
 };
 
-// Smallest n >= minimum whose prime factors are 2, 3, 5, 7 (fast FFT lengths).
+// Smallest n >= minimum whose prime factors are 2, 3, 5, 7.
+int smooth_length(int minimum);
+// The padded transform length for a minimum length: the fastest length >= minimum for FFTW's
+// estimated plans (a measured table up to 512, smooth_length beyond).
 int fft_friendly_length(int minimum);
 
 class FftConvolution {
@@ -49,15 +52,23 @@ class FftConvolution {
   // kernel(k, l, m1, m2): block (k, l) of the kernel at index offset (m1, m2).
   using KernelFunction = std::function<double(int k, int l, int m1, int m2)>;
 
-  FftConvolution(int n1, int n2, int components, const KernelFunction& kernel);
+  // symmetric_blocks: K_kl = K_lk for all blocks (the caller knows; e.g. the half-space's
+  // tangential blocks), so only the blocks k <= l are transformed.
+  FftConvolution(int n1, int n2, int components, const KernelFunction& kernel, bool symmetric_blocks = false);
 
   [[nodiscard]] int components() const { return components_; }
   [[nodiscard]] std::size_t grid_size() const { return static_cast<std::size_t>(n1_) * n2_; }
 
   // in: components fields of grid_size() values each (component-major); out likewise.
   void apply(std::span<const double> in, std::span<double> out);
+  // The transposed convolution, out_k(i) = sum_l sum_j K_lk(j - i) in_l(j): the same spectra,
+  // conjugated and with the blocks swapped (a real kernel reversed in index has the conjugate
+  // spectrum), so the adjoint costs exactly one product.
+  void apply_transpose(std::span<const double> in, std::span<double> out);
 
  private:
+  void apply(std::span<const double> in, std::span<double> out, bool transpose);
+
   int n1_, n2_, components_;
   RealFft2d fft_;
   std::vector<std::vector<std::complex<double>>> kernel_spectra_;  // [k * components + l]

@@ -23,9 +23,15 @@ ElementTable tabulate_element_influence(const Mesh& mesh, const Material& materi
   const int m2_lo = -(mesh.n2 - 1);
   const std::size_t corners = static_cast<std::size_t>(c1_count) * c2_count;
   std::vector<double> f_one(corners), f_x2(corners), f_y2(corners), f_xy(corners);
-  for (int c2 = 0; c2 < c2_count; ++c2) {
+  // The corner offsets are symmetric about 0 along X2 (Y = (c2 - n2 + 1/2) dx2), and along X1
+  // too when shift = 0 (X = (c1 - n1 + 1/2) dx1 for c1 < 2 n1). Every antiderivative is odd in X
+  // and in Y except -r, which is even: only the corners with Y > 0 (and X > 0 when shift = 0)
+  // are evaluated, the rest mirrored bit for bit (asinh is odd).
+  const bool x_mirror = shift == 0.0;
+  const int c1_first = x_mirror ? mesh.n1 : 0;
+  for (int c2 = mesh.n2; c2 < c2_count; ++c2) {
     const double Y = (m2_lo + c2 - 0.5) * mesh.dx2_m;
-    for (int c1 = 0; c1 < c1_count; ++c1) {
+    for (int c1 = c1_first; c1 < c1_count; ++c1) {
       const double X = (m1_lo + c1 + shift - 0.5) * mesh.dx1_m;
       const RectangleAntiderivatives F = rectangle_antiderivatives(X, Y);
       const std::size_t q = static_cast<std::size_t>(c2) * c1_count + c1;
@@ -33,6 +39,26 @@ ElementTable tabulate_element_influence(const Mesh& mesh, const Material& materi
       f_x2[q] = F.x2_over_r3;
       f_y2[q] = F.y2_over_r3;
       f_xy[q] = F.xy_over_r3;
+    }
+    if (x_mirror) {
+      for (int c1 = 0; c1 < mesh.n1; ++c1) {
+        const std::size_t q = static_cast<std::size_t>(c2) * c1_count + c1;
+        const std::size_t mirror = static_cast<std::size_t>(c2) * c1_count + (2 * mesh.n1 - 1 - c1);
+        f_one[q] = -f_one[mirror];
+        f_x2[q] = -f_x2[mirror];
+        f_y2[q] = -f_y2[mirror];
+        f_xy[q] = f_xy[mirror];
+      }
+    }
+  }
+  for (int c2 = 0; c2 < mesh.n2; ++c2) {
+    const std::size_t row = static_cast<std::size_t>(c2) * c1_count;
+    const std::size_t mirror = static_cast<std::size_t>(c2_count - 1 - c2) * c1_count;
+    for (int c1 = 0; c1 < c1_count; ++c1) {
+      f_one[row + c1] = -f_one[mirror + c1];
+      f_x2[row + c1] = -f_x2[mirror + c1];
+      f_y2[row + c1] = -f_y2[mirror + c1];
+      f_xy[row + c1] = f_xy[mirror + c1];
     }
   }
   const double nu = material.poisson_ratio;
@@ -66,6 +92,18 @@ ElementTable tabulate_element_influence(const Mesh& mesh, const Material& materi
   return t;
 }
 
+// K_kl = K_lk for every pair of blocks (then only half of the off-diagonal spectra are computed).
+bool has_symmetric_blocks(const std::vector<double>& table, int components) {
+  const std::size_t block = table.size() / static_cast<std::size_t>(components * components);
+  for (int k = 0; k < components; ++k)
+    for (int l = k + 1; l < components; ++l) {
+      const auto kl = table.begin() + static_cast<std::ptrdiff_t>((k * components + l) * block);
+      const auto lk = table.begin() + static_cast<std::ptrdiff_t>((l * components + k) * block);
+      if (!std::equal(kl, kl + static_cast<std::ptrdiff_t>(block), lk)) return false;
+    }
+  return true;
+}
+
 }  // namespace
 
 InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table)
@@ -73,7 +111,8 @@ InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vect
       components_(components),
       table_(std::move(table)),
       convolution_(mesh.n1, mesh.n2, components,
-                   [this](int k, int l, int m1, int m2) { return this->kernel(k, l, m1, m2); }),
+                   [this](int k, int l, int m1, int m2) { return this->kernel(k, l, m1, m2); },
+                   has_symmetric_blocks(table_, components)),
       grid_in_(static_cast<std::size_t>(components) * mesh.size()),
       grid_out_(static_cast<std::size_t>(components) * mesh.size()) {
   require(table_.size() == static_cast<std::size_t>(components * components) * (2 * mesh.n1 - 1) * (2 * mesh.n2 - 1),
@@ -86,6 +125,16 @@ void InfluenceOperator::apply_on_grid(std::span<const double> in, std::span<doub
 
 void InfluenceOperator::apply(const std::vector<std::size_t>& elements, std::span<const double> x,
                               std::span<double> y) {
+  apply(elements, x, y, false);
+}
+
+void InfluenceOperator::apply_transpose(const std::vector<std::size_t>& elements, std::span<const double> x,
+                                        std::span<double> y) {
+  apply(elements, x, y, true);
+}
+
+void InfluenceOperator::apply(const std::vector<std::size_t>& elements, std::span<const double> x,
+                              std::span<double> y, bool transpose) {
   const std::size_t n = elements.size();
   const std::size_t grid = mesh_.size();
   require(x.size() == n * components_ && y.size() == n * components_, "influence operator: wrong vector size");
@@ -95,22 +144,16 @@ void InfluenceOperator::apply(const std::vector<std::size_t>& elements, std::spa
     const double* values = x.data() + static_cast<std::size_t>(c) * n;
     for (std::size_t e = 0; e < n; ++e) field[elements[e]] = values[e];
   }
-  convolution_.apply(grid_in_, grid_out_);
+  if (transpose) {
+    convolution_.apply_transpose(grid_in_, grid_out_);
+  } else {
+    convolution_.apply(grid_in_, grid_out_);
+  }
   for (int c = 0; c < components_; ++c) {
     const double* field = grid_out_.data() + static_cast<std::size_t>(c) * grid;
     double* values = y.data() + static_cast<std::size_t>(c) * n;
     for (std::size_t e = 0; e < n; ++e) values[e] = field[elements[e]];
   }
-}
-
-InfluenceOperator InfluenceOperator::transposed() const {
-  std::vector<double> table(table_.size());
-  std::size_t q = 0;
-  for (int k = 0; k < components_; ++k)
-    for (int l = 0; l < components_; ++l)
-      for (int m2 = -(mesh_.n2 - 1); m2 <= mesh_.n2 - 1; ++m2)
-        for (int m1 = -(mesh_.n1 - 1); m1 <= mesh_.n1 - 1; ++m1) table[q++] = kernel(l, k, -m1, -m2);
-  return InfluenceOperator(mesh_, components_, std::move(table));
 }
 
 Eigen::MatrixXd InfluenceOperator::dense(const std::vector<std::size_t>& elements) const {

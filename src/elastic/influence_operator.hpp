@@ -36,8 +36,9 @@ class InfluenceOperator {
   // Restricted product on the elements with the given mesh indices (FFT path).
   void apply(const std::vector<std::size_t>& elements, std::span<const double> x, std::span<double> y);
 
-  // The transposed operator: kernel K'_kl(m) = K_lk(-m).
-  [[nodiscard]] InfluenceOperator transposed() const;
+  // The transposed restricted product y = M^T x (kernel K'_kl(m) = K_lk(-m)), at the cost of
+  // apply(): the transposed kernel's spectrum is the conjugate of the original's.
+  void apply_transpose(const std::vector<std::size_t>& elements, std::span<const double> x, std::span<double> y);
 
   // Dense matrix of the restricted operator (reference path).
   [[nodiscard]] Eigen::MatrixXd dense(const std::vector<std::size_t>& elements) const;
@@ -48,6 +49,9 @@ class InfluenceOperator {
   std::vector<double> table_;
   detail::FftConvolution convolution_;
   std::vector<double> grid_in_, grid_out_;
+
+  void apply(const std::vector<std::size_t>& elements, std::span<const double> x, std::span<double> y,
+             bool transpose);
 };
 
 // Normal operator: surface approach u3 at element centres per unit pressure (A33).

@@ -18,9 +18,12 @@ KrylovReport solve_krylov(const MatrixFreeOperator& M, const ApplyFunction& prec
   {
     // Right preconditioning, M P y = b - M x0, x = x0 + P y: GMRES then minimises and tests
     // the true residual (Eigen's GMRES preconditions from the left).
-    Eigen::VectorXd r0(b.size());
-    M.apply(x.data(), r0.data());
-    r0 = b - r0;
+    Eigen::VectorXd r0 = b;
+    if (!x.isZero(0.0)) {  // a zero start needs no product
+      Eigen::VectorXd Mx(b.size());
+      M.apply(x.data(), Mx.data());
+      r0 -= Mx;
+    }
     Eigen::VectorXd work(b.size());
     const MatrixFreeOperator MP(M.rows(), [&](const double* y, double* out) {
       preconditioner(y, work.data());

@@ -106,15 +106,15 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
                                                                                       : 0.5 * (alpha + 1.0) * mesh.dx1_m;
   const Eigen::MatrixXd W = rigid_slip_columns(elements, slip_offset);
   const Eigen::MatrixXd SD = force_rows(elements);
-  InfluenceOperator RT = make_steady_rolling_operator(mesh, material, alpha).transposed();
+  InfluenceOperator R = make_steady_rolling_operator(mesh, material, alpha);
   solution.creepage_matrix.setConstant(std::numeric_limits<double>::quiet_NaN());
   if (options.solver == LinearSolver::dense) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(RT.dense(elements.indices()));
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(R.dense(elements.indices()).transpose());
     for (int i = 0; i < 2; ++i) solution.creepage_matrix.row(i) = (lu.solve(SD.row(i).transpose())).transpose() * W;
     return;
   }
-  const MatrixFreeOperator M(2 * n, [&RT, &elements, n](const double* x, double* y) {
-    RT.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
+  const MatrixFreeOperator M(2 * n, [&R, &elements, n](const double* x, double* y) {
+    R.apply_transpose(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
   });
   const SteadyRollingPreconditioner preconditioner(
       elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : 3.0);

@@ -82,7 +82,13 @@ AdhesionOptions nh_fastsim_adhesion_options() {
 }
 
 int automatic_flexibility_coarsening(const ContactPatch& patch) {
-  return patch.elements().count() >= 2000 ? 2 : 1;
+  constexpr double kMinimumCoarseElements = 250;
+  constexpr std::size_t kCoarsenFrom = 400;
+  const auto n = static_cast<double>(patch.elements().count());
+  int factor = 1;
+  while (factor < kMaximumCoarsening && n / ((factor + 1) * (factor + 1)) >= kMinimumCoarseElements) ++factor;
+  if (factor == 1 && patch.elements().count() >= kCoarsenFrom) factor = 2;
+  return factor;
 }
 
 Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor, const AdhesionOptions& options) {
