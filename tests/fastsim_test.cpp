@@ -331,11 +331,11 @@ void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
   const Flexibility Lm = nh_fastsim_flexibility(fastsim, K2, FlexibilityMatch::spin_from_moment);
   EXPECT_LT(rel_diff(fastsim.forces({0, 0, phi}, Lm, kMu).M3_Nm, K2(2, 2) * phi), 1e-9);
   // Also through the convenience that runs the adhesion solver itself (the two force rows of
-  // K2 by adjoint solves at GMRES tolerance 1e-4: K2, hence L, to ~1e-5; measured 6e-6 ... 1.6e-5).
+  // K2 by adjoint solves at GMRES tolerance 1e-3: K2, hence L, to ~5e-4; measured 9e-5 ... 2.2e-4).
   const Flexibility L2 = nh_fastsim_flexibility(patch);
-  EXPECT_LT(rel_diff(L2.L1, L.L1), 5e-5);
-  EXPECT_LT(rel_diff(L2.L2, L.L2), 5e-5);
-  EXPECT_LT(rel_diff(L2.L3, L.L3), 5e-5);
+  EXPECT_LT(rel_diff(L2.L1, L.L1), 1e-3);
+  EXPECT_LT(rel_diff(L2.L2, L.L2), 1e-3);
+  EXPECT_LT(rel_diff(L2.L3, L.L3), 1e-3);
 }
 
 TEST(NhFastSim, SmallCreepageReproducesK2OnEllipse) { expect_linear_limit_reproduces_K2(ellipse_patch(6e-3, 4e-3, 1500)); }

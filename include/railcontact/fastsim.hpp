@@ -109,7 +109,8 @@ Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d
 Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2,
                                    FlexibilityMatch match = FlexibilityMatch::term_by_term);
 // The adhesion options nH-FastSim uses for its flexibilities: the two force rows of K2 by
-// adjoint solves (CreepageMatrixPart::force_rows), GMRES tolerance 1e-4 (K2 to ~1e-5).
+// adjoint solves (CreepageMatrixPart::force_rows), GMRES tolerance 1e-3 (K2 to ~5e-4, far below
+// the flexibilities' discretisation error of about 1 %).
 AdhesionOptions nh_fastsim_adhesion_options();
 
 // nH-FastSim flexibilities computed on the patch coarsened by `factor` (coarsened(), patch.hpp):

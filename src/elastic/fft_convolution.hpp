@@ -15,30 +15,43 @@
 
 namespace railcontact::detail {
 
-// FFTW buffers and plans, owned (RAII).
+// An FFTW-allocated array (SIMD-aligned, as FFTW's new-array execute requires), owned.
+template <typename T>
+class FftwArray {
+ public:
+  FftwArray() = default;
+  explicit FftwArray(std::size_t size);  // zero-filled; throws railcontact::Error when out of memory
+  [[nodiscard]] T* data() const { return data_.get(); }
+  [[nodiscard]] std::size_t size() const { return size_; }
+
+ private:
+  struct Free {
+    void operator()(T* p) const;
+  };
+  std::unique_ptr<T[], Free> data_;
+  std::size_t size_ = 0;
+};
+
+// FFTW plans of one real 2-D transform size (n1 contiguous along x1, n2 rows), executed on any
+// FftwArray of the right size (FFTW's new-array execute). Plans are immutable and shared: the
+// plans of the last few sizes are kept per thread (planning a known size again costs FFTW
+// ~30 µs, about a third of a whole coarse K2 operator's set-up); this changes no result.
 class RealFft2d {
  public:
-  RealFft2d(int n1, int n2);  // n1 contiguous (x1), n2 rows (x2)
-  ~RealFft2d();
-  RealFft2d(const RealFft2d&) = delete;
-  RealFft2d& operator=(const RealFft2d&) = delete;
-  RealFft2d(RealFft2d&& other) noexcept;
-  RealFft2d& operator=(RealFft2d&&) = delete;
+  RealFft2d(int n1, int n2);
 
   [[nodiscard]] int n1() const { return n1_; }
   [[nodiscard]] int n2() const { return n2_; }
+  [[nodiscard]] std::size_t real_size() const { return static_cast<std::size_t>(n1_) * n2_; }
   [[nodiscard]] std::size_t spectrum_size() const { return static_cast<std::size_t>(n2_) * (n1_ / 2 + 1); }
-  double* real() { return real_; }
-  std::complex<double>* spectrum() { return spectrum_; }
-  void forward();   // real -> spectrum
-  void inverse();   // spectrum -> real (unnormalised)
+  void forward(const double* real, std::complex<double>* spectrum) const;  // real is not modified
+  void inverse(std::complex<double>* spectrum, double* real) const;        // unnormalised; spectrum is destroyed
+
+  struct Plans;  // fft_convolution.cpp
 
  private:
   int n1_, n2_;
-  double* real_ = nullptr;
-  std::complex<double>* spectrum_ = nullptr;
-  void* plan_forward_ = nullptr;
-  void* plan_inverse_ = nullptr;
+  std::shared_ptr<const Plans> plans_;
 };
 
 // Smallest n >= minimum whose prime factors are 2, 3, 5, 7.
@@ -66,13 +79,25 @@ class FftConvolution {
   // spectrum), so the adjoint costs exactly one product.
   void apply_transpose(std::span<const double> in, std::span<double> out);
 
+  // In-place interface for callers that scatter and gather themselves: grid point (i1, i2) of
+  // component c is input(c)[i2 * row_stride() + i1], likewise output(c). clear_inputs() zeroes
+  // the grid part of the inputs (the padding is never written and stays zero); convolve()
+  // computes every output from the inputs.
+  [[nodiscard]] std::size_t row_stride() const { return static_cast<std::size_t>(fft_.n1()); }
+  double* input(int component) { return inputs_[static_cast<std::size_t>(component)].data(); }
+  [[nodiscard]] const double* output(int component) const { return outputs_[static_cast<std::size_t>(component)].data(); }
+  void clear_inputs();
+  void convolve(bool transpose);
+
  private:
   void apply(std::span<const double> in, std::span<double> out, bool transpose);
 
   int n1_, n2_, components_;
   RealFft2d fft_;
-  std::vector<std::vector<std::complex<double>>> kernel_spectra_;  // [k * components + l]
-  std::vector<std::vector<std::complex<double>>> input_spectra_;   // per component
+  std::vector<FftwArray<std::complex<double>>> kernel_spectra_;  // [k * components + l]
+  std::vector<FftwArray<double>> inputs_, outputs_;               // padded, per component
+  std::vector<FftwArray<std::complex<double>>> input_spectra_;   // per component
+  FftwArray<std::complex<double>> sum_;                          // spectrum of one output
 };
 
 }  // namespace railcontact::detail

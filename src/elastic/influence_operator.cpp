@@ -113,8 +113,10 @@ InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vect
       convolution_(mesh.n1, mesh.n2, components,
                    [this](int k, int l, int m1, int m2) { return this->kernel(k, l, m1, m2); },
                    has_symmetric_blocks(table_, components)),
-      grid_in_(static_cast<std::size_t>(components) * mesh.size()),
-      grid_out_(static_cast<std::size_t>(components) * mesh.size()) {
+      padded_index_(mesh.size()) {
+  const auto n1 = static_cast<std::size_t>(mesh.n1);
+  for (std::size_t k = 0; k < padded_index_.size(); ++k)
+    padded_index_[k] = static_cast<std::uint32_t>(k / n1 * convolution_.row_stride() + k % n1);
   require(table_.size() == static_cast<std::size_t>(components * components) * (2 * mesh.n1 - 1) * (2 * mesh.n2 - 1),
           "influence operator: kernel table of the wrong size");
 }
@@ -136,23 +138,19 @@ void InfluenceOperator::apply_transpose(const std::vector<std::size_t>& elements
 void InfluenceOperator::apply(const std::vector<std::size_t>& elements, std::span<const double> x,
                               std::span<double> y, bool transpose) {
   const std::size_t n = elements.size();
-  const std::size_t grid = mesh_.size();
   require(x.size() == n * components_ && y.size() == n * components_, "influence operator: wrong vector size");
-  std::fill(grid_in_.begin(), grid_in_.end(), 0.0);
+  // Scatter straight into the padded transform inputs and gather from the outputs.
+  convolution_.clear_inputs();
   for (int c = 0; c < components_; ++c) {
-    double* field = grid_in_.data() + static_cast<std::size_t>(c) * grid;
+    double* field = convolution_.input(c);
     const double* values = x.data() + static_cast<std::size_t>(c) * n;
-    for (std::size_t e = 0; e < n; ++e) field[elements[e]] = values[e];
+    for (std::size_t e = 0; e < n; ++e) field[padded_index_[elements[e]]] = values[e];
   }
-  if (transpose) {
-    convolution_.apply_transpose(grid_in_, grid_out_);
-  } else {
-    convolution_.apply(grid_in_, grid_out_);
-  }
+  convolution_.convolve(transpose);
   for (int c = 0; c < components_; ++c) {
-    const double* field = grid_out_.data() + static_cast<std::size_t>(c) * grid;
+    const double* field = convolution_.output(c);
     double* values = y.data() + static_cast<std::size_t>(c) * n;
-    for (std::size_t e = 0; e < n; ++e) values[e] = field[elements[e]];
+    for (std::size_t e = 0; e < n; ++e) values[e] = field[padded_index_[elements[e]]];
   }
 }
 

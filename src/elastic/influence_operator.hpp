@@ -7,6 +7,7 @@
 // Vectors are ordered component-major: [c0 on element 0..N-1, c1 on element 0..N-1, ...].
 #include <Eigen/Dense>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -48,7 +49,7 @@ class InfluenceOperator {
   int components_;
   std::vector<double> table_;
   detail::FftConvolution convolution_;
-  std::vector<double> grid_in_, grid_out_;
+  std::vector<std::uint32_t> padded_index_;  // mesh index -> index in the padded transform planes
 
   void apply(const std::vector<std::size_t>& elements, std::span<const double> x, std::span<double> y,
              bool transpose);

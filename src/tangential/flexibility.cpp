@@ -75,9 +75,10 @@ Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matri
 AdhesionOptions nh_fastsim_adhesion_options() {
   AdhesionOptions options;
   options.part = CreepageMatrixPart::force_rows;
-  // 1e-4: K2's force rows to ~1e-5 relative (adjoint functionals converge faster than the
-  // residual), far below K2's discretisation error (~1 %), and 30 % fewer GMRES iterations than 1e-6.
-  options.tolerance = 1e-4;
+  // 1e-3: K2's force rows to ~5e-4 relative (measured on the S1002/UIC60 patches coarsened by 2:
+  // at most 5.3e-4; 4e-5 with 1e-4), far below K2's discretisation error (~1 %) and the change from
+  // coarsening the patch (1-3 %), with 20 % fewer GMRES iterations than 1e-4 and 60 % fewer than 1e-9.
+  options.tolerance = 1e-3;
   return options;
 }
 
