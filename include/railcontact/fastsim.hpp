@@ -114,9 +114,10 @@ Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matri
 AdhesionOptions nh_fastsim_adhesion_options();
 
 // nH-FastSim flexibilities computed on the patch coarsened by `factor` (coarsened(), patch.hpp):
-// about factor^2 fewer elements, so K2 costs about 5x less for factor 2; the flexibilities differ
-// from the fine patch's by < 1% (L1, L2) and < 3% (L3) on the S1002/UIC60 patches, and the
-// creep-force error against `exact` changes by < 0.1% (docs/VALIDATION.md §3).
+// about factor^2 fewer elements, so K2 costs about 5x less for factor 2; with at least 250 coarse
+// elements the flexibilities differ from the fine patch's by ~1 % (L1, L2) and ~2-4 % (L3) on
+// the S1002/UIC60 patches, and the largest creep-force error against `exact` moves by at most
+// 0.1 points (docs/FASTSIM.md "Flexibilities on a coarser patch").
 Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor,
                                              const AdhesionOptions& options = nh_fastsim_adhesion_options());
 
