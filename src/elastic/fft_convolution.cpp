@@ -181,11 +181,7 @@ void FftConvolution::convolve(bool transpose) {
   }
 }
 
-void FftConvolution::apply(std::span<const double> in, std::span<double> out) { apply(in, out, false); }
-
-void FftConvolution::apply_transpose(std::span<const double> in, std::span<double> out) { apply(in, out, true); }
-
-void FftConvolution::apply(std::span<const double> in, std::span<double> out, bool transpose) {
+void FftConvolution::apply(std::span<const double> in, std::span<double> out) {
   const std::size_t n = grid_size();
   require(in.size() == n * components_ && out.size() == n * components_, "FFT convolution: wrong field size");
   const std::size_t stride = row_stride();
@@ -195,7 +191,7 @@ void FftConvolution::apply(std::span<const double> in, std::span<double> out, bo
     for (int i2 = 0; i2 < n2_; ++i2)
       std::copy_n(field + static_cast<std::size_t>(i2) * n1_, n1_, padded + static_cast<std::size_t>(i2) * stride);
   }
-  convolve(transpose);
+  convolve(false);
   for (int c = 0; c < components_; ++c) {
     double* field = out.data() + static_cast<std::size_t>(c) * n;
     const double* padded = output(c);

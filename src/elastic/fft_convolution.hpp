@@ -34,8 +34,8 @@ class FftwArray {
 
 // FFTW plans of one real 2-D transform size (n1 contiguous along x1, n2 rows), executed on any
 // FftwArray of the right size (FFTW's new-array execute). Plans are immutable and shared: the
-// plans of the last few sizes are kept per thread (planning a known size again costs FFTW
-// ~30 µs, about a third of a whole coarse K2 operator's set-up); this changes no result.
+// plans of the last 16 sizes are kept per thread (planning a known size again costs FFTW ~30 µs,
+// 28 of the 35 µs of a 12 x 16 mesh's operator set-up, docs/DEPENDENCIES.md); this changes no result.
 class RealFft2d {
  public:
   RealFft2d(int n1, int n2);
@@ -74,15 +74,13 @@ class FftConvolution {
 
   // in: components fields of grid_size() values each (component-major); out likewise.
   void apply(std::span<const double> in, std::span<double> out);
-  // The transposed convolution, out_k(i) = sum_l sum_j K_lk(j - i) in_l(j): the same spectra,
-  // conjugated and with the blocks swapped (a real kernel reversed in index has the conjugate
-  // spectrum), so the adjoint costs exactly one product.
-  void apply_transpose(std::span<const double> in, std::span<double> out);
 
   // In-place interface for callers that scatter and gather themselves: grid point (i1, i2) of
   // component c is input(c)[i2 * row_stride() + i1], likewise output(c). clear_inputs() zeroes
   // the grid part of the inputs (the padding is never written and stays zero); convolve()
-  // computes every output from the inputs.
+  // computes every output from the inputs; with transpose, those of the transposed convolution
+  // out_k(i) = sum_l sum_j K_lk(j - i) in_l(j): the same spectra, conjugated and with the blocks
+  // swapped (a real kernel reversed in index has the conjugate spectrum), at the same cost.
   [[nodiscard]] std::size_t row_stride() const { return static_cast<std::size_t>(fft_.n1()); }
   double* input(int component) { return inputs_[static_cast<std::size_t>(component)].data(); }
   [[nodiscard]] const double* output(int component) const { return outputs_[static_cast<std::size_t>(component)].data(); }
@@ -90,8 +88,6 @@ class FftConvolution {
   void convolve(bool transpose);
 
  private:
-  void apply(std::span<const double> in, std::span<double> out, bool transpose);
-
   int n1_, n2_, components_;
   RealFft2d fft_;
   std::vector<FftwArray<std::complex<double>>> kernel_spectra_;  // [k * components + l]
