@@ -57,11 +57,11 @@ BENCHMARK(BM_EigenKissFft_RealForward2d)->Arg(120)->Arg(240)->Unit(benchmark::kM
 // Padded lengths (docs/DEPENDENCIES.md): forward + inverse square transform at the smallest
 // 7-smooth length >= the minimum against the measured fast-length table, for minimum lengths
 // 2n - 1 of meshes with n = 18, 23, 30, 36, 42, 60, 72 elements per axis.
-void fft_round_trip(benchmark::State& state, int n) {
-  const railcontact::detail::RealFft2d fft(n, n);
+void fft_round_trip(benchmark::State& state, int n, int rows) {
+  const railcontact::detail::RealFft2d fft(n, n, rows);
   railcontact::detail::FftwArray<double> real(fft.real_size());
   railcontact::detail::FftwArray<std::complex<double>> spectrum(fft.spectrum_size());
-  for (int k = 0; k < n * n; ++k) real.data()[k] = (k % 7) * 0.1;
+  for (int k = 0; k < rows * n; ++k) real.data()[k] = (k % 7) * 0.1;
   for (auto _ : state) {
     fft.forward(real.data(), spectrum.data());
     fft.inverse(spectrum.data(), real.data());
@@ -70,13 +70,24 @@ void fft_round_trip(benchmark::State& state, int n) {
   state.counters["length"] = n;
 }
 void BM_FftRoundTrip_SmoothLength(benchmark::State& state) {
-  fft_round_trip(state, railcontact::detail::smooth_length(static_cast<int>(state.range(0))));
+  const int n = railcontact::detail::smooth_length(static_cast<int>(state.range(0)));
+  fft_round_trip(state, n, n);
 }
 void BM_FftRoundTrip_FastLength(benchmark::State& state) {
-  fft_round_trip(state, railcontact::detail::fft_friendly_length(static_cast<int>(state.range(0))));
+  const int n = railcontact::detail::fft_friendly_length(static_cast<int>(state.range(0)));
+  fft_round_trip(state, n, n);
 }
 BENCHMARK(BM_FftRoundTrip_SmoothLength)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FftRoundTrip_FastLength)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
+
+// Pruned transforms (RealFft2d's rows): a convolution's padded input has non-zero values in its
+// first (minimum + 1) / 2 rows only, and only those rows of the output are wanted. Same lengths
+// as BM_FftRoundTrip_FastLength, all rows against the grid's rows only.
+void BM_FftRoundTrip_Pruned(benchmark::State& state) {
+  const int minimum = static_cast<int>(state.range(0));
+  fft_round_trip(state, railcontact::detail::fft_friendly_length(minimum), (minimum + 1) / 2);
+}
+BENCHMARK(BM_FftRoundTrip_Pruned)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

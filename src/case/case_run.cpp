@@ -54,7 +54,8 @@ ContactPatch elliptical_patch(const Case& c, PatchSummary& s) {
     a = h.a_m;
     b = h.b_m;
   }
-  require(a / b >= 0.01 && a / b <= 100, fmt::format("{}: the ellipse's a/b = {} lies outside [0.01, 100]", c.source, a / b));
+  require(a / b >= 0.01 && a / b <= 100,
+          [&] { return fmt::format("{}: the ellipse's a/b = {} lies outside [0.01, 100]", c.source, a / b); });
   s.geometry = "ellipse";
   s.a_m = a;
   s.b_m = b;

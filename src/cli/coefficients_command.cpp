@@ -26,11 +26,11 @@ struct CoefficientsArguments {
 };
 
 int run_coefficients(const CoefficientsArguments& args) {
-  require(args.nu >= 0.0 && args.nu < 0.5, fmt::format("--nu must lie in [0, 0.5) (got {})", args.nu));
+  require(args.nu >= 0.0 && args.nu < 0.5, [&] { return fmt::format("--nu must lie in [0, 0.5) (got {})", args.nu); });
   require(args.a_over_b >= 0.01 && args.a_over_b <= 100.0,
-          fmt::format("--a-over-b must lie in [0.01, 100] (got {})", args.a_over_b));
+          [&] { return fmt::format("--a-over-b must lie in [0.01, 100] (got {})", args.a_over_b); });
   require(args.elements >= 4 && args.elements <= 1'000'000,
-          fmt::format("--elements must lie in [4, 1000000] (got {})", args.elements));
+          [&] { return fmt::format("--elements must lie in [4, 1000000] (got {})", args.elements); });
   EllipseCoefficientOptions options;
   options.target_elements = args.elements;
   options.layout = args.mesh == "equal-counts" ? EllipseMeshLayout::equal_counts : EllipseMeshLayout::rolling_resolved;

@@ -68,9 +68,9 @@ void print_nodes(const FlexibilityTable& table) {
 int run_build(const BuildArguments& args) {
   require(!args.out.empty(), "--out must name the table file to write");
   require(args.elements >= 10 && args.elements <= 200000,
-          fmt::format("--elements must lie in [10, 200000] (got {})", args.elements));
+          [&] { return fmt::format("--elements must lie in [10, 200000] (got {})", args.elements); });
   for (double load : args.loads_N)
-    require(std::isfinite(load) && load > 0.0, fmt::format("--load must be positive (got {} N)", load));
+    require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load must be positive (got {} N)", load); });
   std::vector<double> loads = args.loads_N;
   std::sort(loads.begin(), loads.end());
   require(std::adjacent_find(loads.begin(), loads.end()) == loads.end(), "--load values must differ");
@@ -78,8 +78,9 @@ int run_build(const BuildArguments& args) {
   const WheelRailPair pair = pair_of(args.wheel, args.rail);
   // Fail on an unwritable output before the work.
   const std::filesystem::path out(args.out);
-  require(out.parent_path().empty() || std::filesystem::is_directory(out.parent_path()),
-          fmt::format("cannot write the flexibility table {}: no directory {}", args.out, out.parent_path().string()));
+  require(out.parent_path().empty() || std::filesystem::is_directory(out.parent_path()), [&] {
+    return fmt::format("cannot write the flexibility table {}: no directory {}", args.out, out.parent_path().string());
+  });
 
   FlexibilityTableOptions options;
   options.patch.target_elements = args.elements;

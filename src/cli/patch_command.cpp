@@ -61,9 +61,9 @@ void print_table(const WheelRailPatch& p, const std::string& wheel, const std::s
 int run_patch(const PatchArguments& args) {
   require(std::isfinite(args.y_m), "--y must be a finite number of metres");
   require(std::isfinite(args.load_N) && args.load_N > 0.0,
-          fmt::format("--load must be positive (got {} N)", args.load_N));
+          [&] { return fmt::format("--load must be positive (got {} N)", args.load_N); });
   require(args.elements >= 10 && args.elements <= 200000,
-          fmt::format("--elements must lie in [10, 200000] (got {})", args.elements));
+          [&] { return fmt::format("--elements must lie in [10, 200000] (got {})", args.elements); });
   const std::filesystem::path wheel = args.wheel ? std::filesystem::path(*args.wheel) : default_wheel_profile_path();
   const std::filesystem::path rail = args.rail ? std::filesystem::path(*args.rail) : default_rail_profile_path();
 

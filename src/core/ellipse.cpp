@@ -28,10 +28,12 @@ ContactElements elliptical_contact(double a_m, double b_m, int n1, int n2) {
 ContactElements elliptical_contact(double a_m, double b_m, int n) { return elliptical_contact(a_m, b_m, n, n); }
 
 ContactElements elliptical_contact_with_count(double a_m, double b_m, int target_elements, EllipseMeshLayout layout) {
-  require(target_elements >= 4, "ellipse: the number of elements in contact must be at least 4, got " +
-                                    std::to_string(target_elements));
-  require(target_elements <= 4'000'000,
-          "ellipse: " + std::to_string(target_elements) + " elements in contact would not fit in memory");
+  require(target_elements >= 4, [&] {
+    return "ellipse: the number of elements in contact must be at least 4, got " + std::to_string(target_elements);
+  });
+  require(target_elements <= 4'000'000, [&] {
+    return "ellipse: " + std::to_string(target_elements) + " elements in contact would not fit in memory";
+  });
   require(std::isfinite(a_m) && std::isfinite(b_m) && a_m > 0 && b_m > 0,
           "ellipse: semi-axes must be positive and finite");
   // n1 n2 pi/4 = N with n1/n2 = 1 (equal counts) or max(1, a/b) (rolling resolved).

@@ -22,14 +22,15 @@ std::uint64_t fnv1a64(std::string_view bytes) {
 std::string fnv1a64_hex(std::uint64_t hash) { return fmt::format("{:016x}", hash); }
 
 std::uint64_t parse_fnv1a64_hex(std::string_view hex) {
-  require(hex.size() == 16, fmt::format("'{}' is not a 64-bit FNV-1a hash (16 hexadecimal digits)", hex));
+  require(hex.size() == 16,
+          [&] { return fmt::format("'{}' is not a 64-bit FNV-1a hash (16 hexadecimal digits)", hex); });
   std::uint64_t value = 0;
   for (const char c : hex) {
     int digit = -1;
     if (c >= '0' && c <= '9') digit = c - '0';
     else if (c >= 'a' && c <= 'f') digit = c - 'a' + 10;
     else if (c >= 'A' && c <= 'F') digit = c - 'A' + 10;
-    require(digit >= 0, fmt::format("'{}' is not a 64-bit FNV-1a hash (16 hexadecimal digits)", hex));
+    require(digit >= 0, [&] { return fmt::format("'{}' is not a 64-bit FNV-1a hash (16 hexadecimal digits)", hex); });
     value = value << 4 | static_cast<std::uint64_t>(digit);
   }
   return value;

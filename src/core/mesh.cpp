@@ -30,9 +30,10 @@ void validate(const Mesh& mesh, std::size_t max_elements) {
           "mesh: element sizes must be positive and finite");
   require(std::isfinite(mesh.x1_first_m) && std::isfinite(mesh.x2_first_m),
           "mesh: element coordinates must be finite");
-  require(mesh.size() <= max_elements,
-          "mesh: " + std::to_string(mesh.n1) + " x " + std::to_string(mesh.n2) +
-              " elements would not fit in memory (at most " + std::to_string(max_elements) + ")");
+  require(mesh.size() <= max_elements, [&] {
+    return "mesh: " + std::to_string(mesh.n1) + " x " + std::to_string(mesh.n2) +
+           " elements would not fit in memory (at most " + std::to_string(max_elements) + ")";
+  });
 }
 
 ContactElements::ContactElements(const Mesh& mesh, std::vector<std::uint8_t> in_contact)

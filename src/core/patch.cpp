@@ -20,8 +20,10 @@ ContactPatch::ContactPatch(const Mesh& input_mesh, const std::vector<double>& pr
   for (int i2 = 0; i2 < input_mesh.n2; ++i2) {
     for (int i1 = 0; i1 < input_mesh.n1; ++i1) {
       const double p = pressure_Pa[input_mesh.index(i1, i2)];
-      require(std::isfinite(p) && p >= 0.0, "contact patch: pressures must be finite and non-negative (element " +
-                                                 std::to_string(i1) + ", " + std::to_string(i2) + ")");
+      require(std::isfinite(p) && p >= 0.0, [&] {
+        return "contact patch: pressures must be finite and non-negative (element " + std::to_string(i1) + ", " +
+               std::to_string(i2) + ")";
+      });
       if (p > 0.0) {
         flags[input_mesh.index(i1, i2)] = 1;
         force += p * S;
@@ -60,8 +62,9 @@ ContactPatch::ContactPatch(const Mesh& input_mesh, const std::vector<double>& pr
 }
 
 ContactPatch coarsened(const ContactPatch& patch, int factor) {
-  require(factor >= 1 && factor <= kMaximumCoarsening,
-          fmt::format("coarsened patch: the factor must lie in [1, {}] (got {})", kMaximumCoarsening, factor));
+  require(factor >= 1 && factor <= kMaximumCoarsening, [&] {
+    return fmt::format("coarsened patch: the factor must lie in [1, {}] (got {})", kMaximumCoarsening, factor);
+  });
   if (factor == 1) return patch;
   const Mesh& fine = patch.mesh();
   Mesh coarse;
@@ -88,7 +91,8 @@ ContactPatch coarsened(const ContactPatch& patch, int factor) {
       kept += block_force[k];
     }
   }
-  require(kept > 0.0, "coarsened patch: the patch is too small to coarsen by " + std::to_string(factor));
+  require(kept > 0.0,
+          [&] { return "coarsened patch: the patch is too small to coarsen by " + std::to_string(factor); });
   for (double& p : pressure) p *= total / kept;
   return ContactPatch(coarse, pressure, patch.material());
 }

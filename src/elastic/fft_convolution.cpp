@@ -27,64 +27,92 @@ template class FftwArray<double>;
 template class FftwArray<std::complex<double>>;
 
 struct RealFft2d::Plans {
-  Plans(int n1, int n2) {
+  Plans(int n1, int n2, int rows) : n1(n1), n2(n2), rows(rows) {
     // Planned on scratch arrays (FFTW_ESTIMATE does not touch them), executed on others of the
     // same size and alignment. FFTW's row-major layout: n2 rows of n1 contiguous values.
     FftwArray<double> real(static_cast<std::size_t>(n1) * n2);
     FftwArray<std::complex<double>> spectrum(static_cast<std::size_t>(n2) * (n1 / 2 + 1));
     auto* complex = reinterpret_cast<fftw_complex*>(spectrum.data());
-    forward = fftw_plan_dft_r2c_2d(n2, n1, real.data(), complex, FFTW_ESTIMATE);
-    inverse = fftw_plan_dft_c2r_2d(n2, n1, complex, real.data(), FFTW_ESTIMATE);
-    if (forward == nullptr || inverse == nullptr) {
-      destroy();
-      throw Error("FFT: FFTW could not plan the transform");
+    if (rows == n2) {
+      forward = fftw_plan_dft_r2c_2d(n2, n1, real.data(), complex, FFTW_ESTIMATE);
+      inverse = fftw_plan_dft_c2r_2d(n2, n1, complex, real.data(), FFTW_ESTIMATE);
+      check(forward != nullptr && inverse != nullptr);
+      return;
     }
+    // Pruned: the 1-D transforms along x1 of the rows that can be non-zero (forward) or are
+    // wanted (inverse), and the transforms along x2 of every spectral column, in place.
+    const int length1[] = {n1};
+    const int length2[] = {n2};
+    const int h = n1 / 2 + 1;
+    forward =
+        fftw_plan_many_dft_r2c(1, length1, rows, real.data(), nullptr, 1, n1, complex, nullptr, 1, h, FFTW_ESTIMATE);
+    forward_columns =
+        fftw_plan_many_dft(1, length2, h, complex, nullptr, h, 1, complex, nullptr, h, 1, FFTW_FORWARD, FFTW_ESTIMATE);
+    inverse_columns =
+        fftw_plan_many_dft(1, length2, h, complex, nullptr, h, 1, complex, nullptr, h, 1, FFTW_BACKWARD, FFTW_ESTIMATE);
+    inverse =
+        fftw_plan_many_dft_c2r(1, length1, rows, complex, nullptr, 1, h, real.data(), nullptr, 1, n1, FFTW_ESTIMATE);
+    check(forward != nullptr && forward_columns != nullptr && inverse_columns != nullptr && inverse != nullptr);
   }
   ~Plans() { destroy(); }
   Plans(const Plans&) = delete;
   Plans& operator=(const Plans&) = delete;
-  void destroy() {
-    if (forward != nullptr) fftw_destroy_plan(forward);
-    if (inverse != nullptr) fftw_destroy_plan(inverse);
+  void check(bool planned) {
+    if (planned) return;
+    destroy();
+    throw Error("FFT: FFTW could not plan the transform");
   }
-  fftw_plan forward = nullptr;
+  void destroy() {
+    for (fftw_plan plan : {forward, forward_columns, inverse_columns, inverse})
+      if (plan != nullptr) fftw_destroy_plan(plan);
+  }
+  int n1, n2, rows;
+  fftw_plan forward = nullptr;          // 2-D, or along x1 on the first `rows` rows (pruned)
+  fftw_plan forward_columns = nullptr;  // pruned only: along x2, every column, in place
+  fftw_plan inverse_columns = nullptr;
   fftw_plan inverse = nullptr;
 };
 
 namespace {
 
 // The plans of the most recently used sizes on this thread (most recent last).
-std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2) {
+std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2, int rows) {
   constexpr std::size_t kKeptSizes = 16;
-  struct Entry {
-    int n1, n2;
-    std::shared_ptr<const RealFft2d::Plans> plans;
-  };
-  thread_local std::vector<Entry> recent;
+  thread_local std::vector<std::shared_ptr<const RealFft2d::Plans>> recent;
   for (auto it = recent.begin(); it != recent.end(); ++it) {
-    if (it->n1 == n1 && it->n2 == n2) {
-      Entry hit = std::move(*it);
+    if ((*it)->n1 == n1 && (*it)->n2 == n2 && (*it)->rows == rows) {
+      std::shared_ptr<const RealFft2d::Plans> hit = std::move(*it);
       recent.erase(it);
       recent.push_back(std::move(hit));
-      return recent.back().plans;
+      return recent.back();
     }
   }
   if (recent.size() == kKeptSizes) recent.erase(recent.begin());
-  recent.push_back({n1, n2, std::make_shared<const RealFft2d::Plans>(n1, n2)});
-  return recent.back().plans;
+  recent.push_back(std::make_shared<const RealFft2d::Plans>(n1, n2, rows));
+  return recent.back();
 }
 
 }  // namespace
 
-RealFft2d::RealFft2d(int n1, int n2) : n1_(n1), n2_(n2), plans_(plans_for(n1, n2)) {}
+RealFft2d::RealFft2d(int n1, int n2, int rows) : n1_(n1), n2_(n2), rows_(rows) {
+  require(n1 > 0 && n2 > 0 && rows > 0 && rows <= n2, "FFT: invalid transform size");
+  plans_ = plans_for(n1, n2, rows);
+}
 
 void RealFft2d::forward(const double* real, std::complex<double>* spectrum) const {
   // FFTW's r2c transforms leave their input intact (no FFTW_DESTROY_INPUT for r2c).
-  fftw_execute_dft_r2c(plans_->forward, const_cast<double*>(real), reinterpret_cast<fftw_complex*>(spectrum));
+  auto* complex = reinterpret_cast<fftw_complex*>(spectrum);
+  fftw_execute_dft_r2c(plans_->forward, const_cast<double*>(real), complex);
+  if (rows_ == n2_) return;
+  const std::size_t h = static_cast<std::size_t>(n1_ / 2 + 1);
+  std::fill(spectrum + rows_ * h, spectrum + n2_ * h, std::complex<double>(0.0, 0.0));  // the zero rows' transforms
+  fftw_execute_dft(plans_->forward_columns, complex, complex);
 }
 
 void RealFft2d::inverse(std::complex<double>* spectrum, double* real) const {
-  fftw_execute_dft_c2r(plans_->inverse, reinterpret_cast<fftw_complex*>(spectrum), real);
+  auto* complex = reinterpret_cast<fftw_complex*>(spectrum);
+  if (rows_ < n2_) fftw_execute_dft(plans_->inverse_columns, complex, complex);
+  fftw_execute_dft_c2r(plans_->inverse, complex, real);
 }
 
 int smooth_length(int minimum) {
@@ -108,13 +136,17 @@ int fft_friendly_length(int minimum) {
   return *std::lower_bound(std::begin(kFastLengths), std::end(kFastLengths), minimum);
 }
 
-FftConvolution::FftConvolution(int n1, int n2, int components, const KernelFunction& kernel,
+FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const double> kernel_table,
                                bool symmetric_blocks)
     : n1_(n1),
       n2_(n2),
       components_(components),
-      fft_(fft_friendly_length(2 * n1 - 1), fft_friendly_length(2 * n2 - 1)),
+      fft_(fft_friendly_length(2 * n1 - 1), fft_friendly_length(2 * n2 - 1), n2),
       sum_(fft_.spectrum_size()) {
+  const std::size_t w1 = static_cast<std::size_t>(2 * n1 - 1);
+  const std::size_t w2 = static_cast<std::size_t>(2 * n2 - 1);
+  require(kernel_table.size() == static_cast<std::size_t>(components * components) * w1 * w2,
+          "FFT convolution: kernel table of the wrong size");
   const int N1 = fft_.n1();
   const int N2 = fft_.n2();
   const double normalisation = 1.0 / (static_cast<double>(N1) * N2);
@@ -125,26 +157,28 @@ FftConvolution::FftConvolution(int n1, int n2, int components, const KernelFunct
   }
   kernel_spectra_.resize(static_cast<std::size_t>(components * components));
   double* real = outputs_[0].data();  // scratch until the first product
+  const RealFft2d kernel_fft(N1, N2, N2);  // the kernels fill every row
+  const auto scaled = [normalisation](double value) { return value * normalisation; };
   for (int k = 0; k < components; ++k) {
     for (int l = 0; l < components; ++l) {
       FftwArray<std::complex<double>>& spectrum = kernel_spectra_[static_cast<std::size_t>(k * components + l)];
+      spectrum = FftwArray<std::complex<double>>(fft_.spectrum_size());
       if (symmetric_blocks && l < k) {  // K_kl = K_lk: already transformed
-        spectrum = FftwArray<std::complex<double>>(fft_.spectrum_size());
         const auto& same = kernel_spectra_[static_cast<std::size_t>(l * components + k)];
         std::copy_n(same.data(), same.size(), spectrum.data());
         continue;
       }
       std::fill(real, real + fft_.real_size(), 0.0);
-      // Offset m is stored at m mod N (wrap-around order).
+      // Offset m is stored at m mod N (wrap-around order): per table row, the offsets m1 >= 0 at
+      // the start of the transform row, m1 < 0 at its end.
+      const double* block = kernel_table.data() + static_cast<std::size_t>(k * components + l) * w1 * w2;
       for (int m2 = -(n2 - 1); m2 <= n2 - 1; ++m2) {
-        const int j2 = m2 < 0 ? m2 + N2 : m2;
-        for (int m1 = -(n1 - 1); m1 <= n1 - 1; ++m1) {
-          const int j1 = m1 < 0 ? m1 + N1 : m1;
-          real[static_cast<std::size_t>(j2) * N1 + j1] = kernel(k, l, m1, m2) * normalisation;
-        }
+        const double* row = block + static_cast<std::size_t>(m2 + n2 - 1) * w1;  // m1 = -(n1-1) first
+        double* out = real + static_cast<std::size_t>(m2 < 0 ? m2 + N2 : m2) * N1;
+        std::transform(row + (n1 - 1), row + w1, out, scaled);
+        std::transform(row, row + (n1 - 1), out + (N1 - (n1 - 1)), scaled);
       }
-      spectrum = FftwArray<std::complex<double>>(fft_.spectrum_size());
-      fft_.forward(real, spectrum.data());
+      kernel_fft.forward(real, spectrum.data());
     }
   }
 }

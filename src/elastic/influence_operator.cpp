@@ -92,13 +92,6 @@ ElementTable tabulate_element_influence(const Mesh& mesh, const Material& materi
   return t;
 }
 
-// The kernel table of InfluenceOperator's constructor, checked before anything reads it.
-std::vector<double> checked_table(std::vector<double> table, const Mesh& mesh, int components) {
-  require(table.size() == static_cast<std::size_t>(components * components) * (2 * mesh.n1 - 1) * (2 * mesh.n2 - 1),
-          "influence operator: kernel table of the wrong size");
-  return table;
-}
-
 // K_kl = K_lk for every pair of blocks (then only half of the off-diagonal spectra are computed).
 bool has_symmetric_blocks(const std::vector<double>& table, int components) {
   const std::size_t block = table.size() / static_cast<std::size_t>(components * components);
@@ -116,10 +109,8 @@ bool has_symmetric_blocks(const std::vector<double>& table, int components) {
 InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table)
     : mesh_(mesh),
       components_(components),
-      table_(checked_table(std::move(table), mesh, components)),
-      convolution_(mesh.n1, mesh.n2, components,
-                   [this](int k, int l, int m1, int m2) { return this->kernel(k, l, m1, m2); },
-                   has_symmetric_blocks(table_, components)),
+      table_(std::move(table)),  // its size is checked by the convolution
+      convolution_(mesh.n1, mesh.n2, components, table_, has_symmetric_blocks(table_, components)),
       padded_index_(mesh.size()) {
   const auto n1 = static_cast<std::size_t>(mesh.n1);
   for (std::size_t k = 0; k < padded_index_.size(); ++k)

@@ -76,11 +76,14 @@ struct KrylovOptions {
   double tolerance = 1e-10;  // relative residual ||b - M x|| / ||b||
   int max_iterations = 500;
   int gmres_restart = 60;
+  // Recompute the true residual after the solve (one more product) rather than take GMRES's
+  // own estimate, which equals it up to rounding: worth it only for tolerances near rounding.
+  bool recompute_residual = true;
 };
 
 struct KrylovReport {
   int iterations = 0;
-  double relative_residual = 0.0;  // true residual, recomputed after the solve
+  double relative_residual = 0.0;  // true residual (recomputed, or GMRES's estimate of it)
   bool converged = false;
 };
 
@@ -99,7 +102,9 @@ struct generic_product_impl<railcontact::MatrixFreeOperator, Rhs, SparseShape, D
   template <typename Dest>
   static void scaleAndAddTo(Dest& dst, const railcontact::MatrixFreeOperator& lhs, const Rhs& rhs,
                             const Scalar& alpha) {
-    Eigen::VectorXd x = rhs;
+    // GMRES multiplies its zero initial guess too: that product is zero, and costs nothing here.
+    const Eigen::Ref<const Eigen::VectorXd> x(rhs);
+    if (x.isZero(0.0)) return;
     Eigen::VectorXd y(x.size());
     lhs.apply(x.data(), y.data());
     dst += alpha * y;

@@ -35,8 +35,9 @@ double x1_reach(const std::function<double(double)>& h, double level, double fir
     inside = outside;
     step *= 1.5;
     outside += step;
-    require(outside < 0.2, fmt::format("potential contact area: h stays below {:.3g} mm along X1 over more than 200 mm",
-                                       level * 1e3));
+    require(outside < 0.2, [&] {
+      return fmt::format("potential contact area: h stays below {:.3g} mm along X1 over more than 200 mm", level * 1e3);
+    });
   }
   return crossing(h, level, inside, outside);
 }
@@ -90,9 +91,11 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
       last = std::max(last, k);
     }
   }
-  require(first > 0 && last + 1 < xs.size(),
-          fmt::format("potential contact area: the region h < {:.3g} mm reaches beyond the profiles; reduce the approach",
-                      level * 1e3));
+  require(first > 0 && last + 1 < xs.size(), [&] {
+    return fmt::format(
+        "potential contact area: the region h < {:.3g} mm reaches beyond the profiles; reduce the approach",
+        level * 1e3);
+  });
   const Interval margin2{crossing(h_x2, level, xs[first], xs[first - 1]), crossing(h_x2, level, xs[last], xs[last + 1])};
 
   const double first_step1 = 0.1 * std::sqrt(approach_m / std::max(contact.A_per_m, 1e-6));
@@ -133,10 +136,12 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
     if (!(low1 || high1 || low2 || high2)) {
       return PotentialContactArea{mesh, std::move(h), step};
     }
-    require(step < options.max_growth_steps,
-            fmt::format("potential contact area: the region h < {:.3g} mm still reaches the border after {} "
-                        "enlargements ({} x {} elements)",
-                        level * 1e3, step, mesh.n1, mesh.n2));
+    require(step < options.max_growth_steps, [&] {
+      return fmt::format(
+          "potential contact area: the region h < {:.3g} mm still reaches the border after {} "
+          "enlargements ({} x {} elements)",
+          level * 1e3, step, mesh.n1, mesh.n2);
+    });
     const int grow1 = std::max(border, mesh.n1 / 4);
     const int grow2 = std::max(border, mesh.n2 / 4);
     if (low1) n1_lo += grow1;

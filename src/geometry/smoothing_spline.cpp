@@ -70,7 +70,7 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
     s.push_back(s.back() + ds);
   }
   const std::size_t n = s.size();
-  require(n >= 4, fmt::format("profile {}: fewer than 4 distinct points", name_of(profile)));
+  require(n >= 4, [&] { return fmt::format("profile {}: fewer than 4 distinct points", name_of(profile)); });
   const double length = s.back();
 
   // Clamped uniform knot vector on [0, length].
@@ -123,13 +123,15 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
   Eigen::SparseMatrix<double> normal(n_ctrl, n_ctrl);
   normal.setFromTriplets(triplets.begin(), triplets.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
-  require(solver.info() == Eigen::Success,
-          fmt::format("profile {}: the smoothing spline system is singular (too few points for the knot "
-                      "spacing; increase the smoothing length)",
-                      name_of(profile)));
+  require(solver.info() == Eigen::Success, [&] {
+    return fmt::format(
+        "profile {}: the smoothing spline system is singular (too few points for the knot "
+        "spacing; increase the smoothing length)",
+        name_of(profile));
+  });
   const Eigen::MatrixX2d coefficients = solver.solve(rhs);
   require(solver.info() == Eigen::Success && coefficients.allFinite(),
-          fmt::format("profile {}: the smoothing spline could not be computed", name_of(profile)));
+          [&] { return fmt::format("profile {}: the smoothing spline could not be computed", name_of(profile)); });
 
   auto impl = std::make_shared<Impl>();
   impl->curve = Curve(knots, coefficients.transpose());
@@ -188,9 +190,10 @@ double SmoothProfile::parameter_at(double y_m) const {
   const Impl& im = impl();
   const auto& ys = im.table_y_max_m;
   const double tolerance = 1e-12;
-  require(y_m >= ys.front() - tolerance && y_m <= ys.back() + tolerance,
-          fmt::format("profile {}: y = {:.6f} mm lies outside the profile [{:.6f}, {:.6f}] mm", im.source,
-                      y_m * 1e3, ys.front() * 1e3, ys.back() * 1e3));
+  require(y_m >= ys.front() - tolerance && y_m <= ys.back() + tolerance, [&] {
+    return fmt::format("profile {}: y = {:.6f} mm lies outside the profile [{:.6f}, {:.6f}] mm", im.source, y_m * 1e3,
+                       ys.front() * 1e3, ys.back() * 1e3);
+  });
   const auto it = std::lower_bound(ys.begin(), ys.end(), y_m);
   if (it == ys.begin()) return im.table_s_m.front();
   if (it == ys.end()) return im.table_s_m.back();

@@ -81,46 +81,56 @@ WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const Tr
                              const SmoothingOptions& smoothing)
     : wheel_(wheel, smoothing), rail_(rail, smoothing), parameters_(parameters) {
   validate(parameters_);
-  require(wheel.kind != ProfileKind::rail, fmt::format("wheel profile {} is a rail profile", wheel.source));
-  require(rail.kind != ProfileKind::wheel, fmt::format("rail profile {} is a wheel profile", rail.source));
+  require(wheel.kind != ProfileKind::rail,
+          [&] { return fmt::format("wheel profile {} is a rail profile", wheel.source); });
+  require(rail.kind != ProfileKind::wheel,
+          [&] { return fmt::format("rail profile {} is a wheel profile", rail.source); });
 
   // Wheel: taping line, and the flange on the side of negative y.
   taping_y_m_ = parameters_.flange_back_y_m + parameters_.taping_line_from_flange_back_m;
-  require(taping_y_m_ > wheel_.y_min_m() && taping_y_m_ < wheel_.y_max_m(),
-          fmt::format("wheel profile {}: the taping line y = {:.3f} mm lies outside the profile [{:.3f}, {:.3f}] mm",
-                      wheel.source, taping_y_m_ * 1e3, wheel_.y_min_m() * 1e3, wheel_.y_max_m() * 1e3));
+  require(taping_y_m_ > wheel_.y_min_m() && taping_y_m_ < wheel_.y_max_m(), [&] {
+    return fmt::format("wheel profile {}: the taping line y = {:.3f} mm lies outside the profile [{:.3f}, {:.3f}] mm",
+                       wheel.source, taping_y_m_ * 1e3, wheel_.y_min_m() * 1e3, wheel_.y_max_m() * 1e3);
+  });
   taping_z_m_ = wheel_.z(taping_y_m_);
   {
     const auto flange_tip = std::max_element(wheel.z_m.begin(), wheel.z_m.end());
     const double flange_tip_y = wheel.y_m[static_cast<std::size_t>(flange_tip - wheel.z_m.begin())];
-    require(flange_tip_y < taping_y_m_ && *flange_tip > taping_z_m_,
-            fmt::format("wheel profile {}: the flange (largest z, z pointing down) must lie at y < {:.1f} mm; "
-                        "mirror the profile (ProfileReadOptions::mirror_y / mirror_z)",
-                        wheel.source, taping_y_m_ * 1e3));
+    require(flange_tip_y<taping_y_m_&& * flange_tip> taping_z_m_, [&] {
+      return fmt::format(
+          "wheel profile {}: the flange (largest z, z pointing down) must lie at y < {:.1f} mm; "
+          "mirror the profile (ProfileReadOptions::mirror_y / mirror_z)",
+          wheel.source, taping_y_m_ * 1e3);
+    });
   }
 
   // Rail: top (lowest z_p), gauge point on the side of negative y.
   const double s_top = lowest_z_parameter(rail_);
-  require(s_top > rail_.s_begin_m() && s_top < rail_.s_end_m(),
-          fmt::format("rail profile {}: the highest point lies at an end of the profile; z must point down "
-                      "(ProfileReadOptions::mirror_z)",
-                      rail.source));
+  require(s_top > rail_.s_begin_m() && s_top < rail_.s_end_m(), [&] {
+    return fmt::format(
+        "rail profile {}: the highest point lies at an end of the profile; z must point down "
+        "(ProfileReadOptions::mirror_z)",
+        rail.source);
+  });
   const auto top = rail_.at(s_top);
   rail_top_z_m_ = top.z_m;
   const double gauge_level = rail_top_z_m_ + parameters_.gauge_measuring_depth_m;
   const auto s_gauge = crossing_from_end(rail_, gauge_level, true);
-  require(s_gauge.has_value(),
-          fmt::format("rail profile {}: the gauge side (y < top) does not reach {:.1f} mm below the top of the rail",
-                      rail.source, parameters_.gauge_measuring_depth_m * 1e3));
+  require(s_gauge.has_value(), [&] {
+    return fmt::format("rail profile {}: the gauge side (y < top) does not reach {:.1f} mm below the top of the rail",
+                       rail.source, parameters_.gauge_measuring_depth_m * 1e3);
+  });
   rail_gauge_y_m_ = rail_.at(*s_gauge).y_m;
   // Rails are inclined towards the track centre, which moves their highest point towards the
   // field side of the head: a top clearly on the gauge side means a mirrored profile.
   if (const auto s_field = crossing_from_end(rail_, gauge_level, false)) {
     const double head_centre_y = 0.5 * (rail_gauge_y_m_ + rail_.at(*s_field).y_m);
-    require(top.y_m > head_centre_y - 1e-3,
-            fmt::format("rail profile {}: the top lies {:.1f} mm on the -y side of the head centre; the gauge side "
-                        "must be at -y (ProfileReadOptions::mirror_y)",
-                        rail.source, (head_centre_y - top.y_m) * 1e3));
+    require(top.y_m > head_centre_y - 1e-3, [&] {
+      return fmt::format(
+          "rail profile {}: the top lies {:.1f} mm on the -y side of the head centre; the gauge side "
+          "must be at -y (ProfileReadOptions::mirror_y)",
+          rail.source, (head_centre_y - top.y_m) * 1e3);
+    });
   }
 
   wheel_origin_lateral_m_ = 0.5 * parameters_.flange_back_distance_m - parameters_.flange_back_y_m;

@@ -25,7 +25,8 @@ namespace railcontact {
 namespace {
 
 void require_positive_finite(double value, const char* what) {
-  require(std::isfinite(value) && value > 0.0, fmt::format("hertz: {} must be positive and finite (got {})", what, value));
+  require(std::isfinite(value) && value > 0.0,
+          [&] { return fmt::format("hertz: {} must be positive and finite (got {})", what, value); });
 }
 
 // Ratio of the larger to the smaller curvature, B'/A', for axis ratio g = b/a in (0, 1]: eq. (4.39).
@@ -46,7 +47,7 @@ double axis_ratio_for_curvature_ratio(double ratio) {
   constexpr double kSmallestAxisRatio = 1e-150;
   while (curvature_ratio(g_low) < ratio) {
     g_low *= 0.5;
-    require(g_low > kSmallestAxisRatio, fmt::format("hertz: curvature ratio {} is too extreme", ratio));
+    require(g_low > kSmallestAxisRatio, [&] { return fmt::format("hertz: curvature ratio {} is too extreme", ratio); });
   }
   constexpr double kEps = std::numeric_limits<double>::epsilon();
   for (int iteration = 0; iteration < 200 && g_high - g_low > 2.0 * kEps * g_high; ++iteration) {
@@ -72,7 +73,8 @@ HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal
   // The major semi-axis lies along the axis of the smaller curvature.
   const double small_curvature = std::min(A_per_m, B_per_m);
   const double ratio = std::max(A_per_m, B_per_m) / small_curvature;
-  require(std::isfinite(ratio), fmt::format("hertz: curvature ratio B/A = {} / {} is too extreme", B_per_m, A_per_m));
+  require(std::isfinite(ratio),
+          [&] { return fmt::format("hertz: curvature ratio B/A = {} / {} is too extreme", B_per_m, A_per_m); });
   const double g = axis_ratio_for_curvature_ratio(ratio);  // b/a <= 1
   const detail::CompleteEllipticIntegrals ell = detail::complete_elliptic_integrals(g * g);
 
@@ -98,7 +100,7 @@ HertzCurvatures hertz_curvatures_for_semi_axes(double a_m, double b_m, double no
 
   const double major_m = std::max(a_m, b_m);
   const double g = std::min(a_m, b_m) / major_m;
-  require(g > 1e-150, fmt::format("hertz: semi-axis ratio {} / {} is too extreme", a_m, b_m));
+  require(g > 1e-150, [&] { return fmt::format("hertz: semi-axis ratio {} / {} is too extreme", a_m, b_m); });
   const detail::CompleteEllipticIntegrals ell = detail::complete_elliptic_integrals(g * g);
 
   // (4.40) solved for the smaller curvature (along the major axis), then (4.39) for the larger.

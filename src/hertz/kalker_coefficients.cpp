@@ -74,7 +74,7 @@ KalkerTable build_table() {
   for (const detail::KalkerTableRow& row : detail::kalker_table_rows()) {
     std::size_t k = 0;
     while (k < kTableNu.size() && row.nu != kTableNu[k]) ++k;
-    require(k < kTableNu.size(), fmt::format("kalker: table row with unexpected nu = {}", row.nu));
+    require(k < kTableNu.size(), [&] { return fmt::format("kalker: table row with unexpected nu = {}", row.nu); });
     const std::size_t i = count[k]++;
     require(i < kRowsPerNu, "kalker: too many table rows for one nu");
     if (k == 0) {
@@ -137,9 +137,10 @@ KalkerCoefficients blend(const KalkerCoefficients& asymptote, const KalkerCoeffi
 
 KalkerCoefficients kalker_coefficients(double a_over_b, double nu) {
   require(std::isfinite(nu) && nu >= 0.0 && nu < 0.5,
-          fmt::format("kalker: Poisson's ratio nu = {} must lie in [0, 0.5)", nu));
-  require(std::isfinite(a_over_b) && a_over_b >= kMinAOverB && a_over_b <= kMaxAOverB,
-          fmt::format("kalker: semi-axis ratio a/b = {} must lie in [{}, {}]", a_over_b, kMinAOverB, kMaxAOverB));
+          [&] { return fmt::format("kalker: Poisson's ratio nu = {} must lie in [0, 0.5)", nu); });
+  require(std::isfinite(a_over_b) && a_over_b >= kMinAOverB && a_over_b <= kMaxAOverB, [&] {
+    return fmt::format("kalker: semi-axis ratio a/b = {} must lie in [{}, {}]", a_over_b, kMinAOverB, kMaxAOverB);
+  });
 
   if (a_over_b < kTableMinAOverB) {
     const double weight = a_over_b / kTableMinAOverB;
@@ -160,8 +161,10 @@ KalkerCoefficients kalker_coefficients(double a_over_b, double nu) {
 // L3 = π a^{3/2} / (4 sqrt(b) C23 G).
 Flexibility fastsim_flexibility(double a_m, double b_m, const Material& material) {
   validate(material);
-  require(std::isfinite(a_m) && a_m > 0.0, fmt::format("fastsim flexibility: semi-axis a = {} m must be positive and finite", a_m));
-  require(std::isfinite(b_m) && b_m > 0.0, fmt::format("fastsim flexibility: semi-axis b = {} m must be positive and finite", b_m));
+  require(std::isfinite(a_m) && a_m > 0.0,
+          [&] { return fmt::format("fastsim flexibility: semi-axis a = {} m must be positive and finite", a_m); });
+  require(std::isfinite(b_m) && b_m > 0.0,
+          [&] { return fmt::format("fastsim flexibility: semi-axis b = {} m must be positive and finite", b_m); });
   const double g_Pa = material.shear_modulus_Pa();
   const KalkerCoefficients c = kalker_coefficients(a_m / b_m, material.poisson_ratio);
   Flexibility flexibility;

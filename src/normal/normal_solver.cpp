@@ -42,14 +42,18 @@ void validate_options(const NormalOptions& options) {
 // Checks of the problem data (the mesh first: its size is needed for h).
 void validate_problem(const Mesh& mesh, const std::vector<double>& h, double normal_force_N) {
   validate(mesh);
-  require(h.size() == mesh.size(),
-          fmt::format("normal contact: {} undeformed distances given for a mesh of {} elements", h.size(),
-                      mesh.size()));
+  require(h.size() == mesh.size(), [&] {
+    return fmt::format("normal contact: {} undeformed distances given for a mesh of {} elements", h.size(),
+                       mesh.size());
+  });
   const auto bad = std::find_if(h.begin(), h.end(), [](double value) { return !std::isfinite(value); });
-  require(bad == h.end(), fmt::format("normal contact: the undeformed distance of element {} is not finite",
-                                      static_cast<std::size_t>(bad - h.begin())));
-  require(std::isfinite(normal_force_N) && normal_force_N > 0.0,
-          fmt::format("normal contact: the normal force must be positive and finite (got {} N)", normal_force_N));
+  require(bad == h.end(), [&] {
+    return fmt::format("normal contact: the undeformed distance of element {} is not finite",
+                       static_cast<std::size_t>(bad - h.begin()));
+  });
+  require(std::isfinite(normal_force_N) && normal_force_N > 0.0, [&] {
+    return fmt::format("normal contact: the normal force must be positive and finite (got {} N)", normal_force_N);
+  });
 }
 
 bool on_border(const Mesh& mesh, std::size_t k) {

@@ -22,11 +22,13 @@ constexpr double kMm = 1e-3;
 constexpr double kKnownApproachMargin = 1.15;
 
 void validate(const WheelRailPatchOptions& o) {
-  require(std::isfinite(o.vertical_load_N) && o.vertical_load_N > 0.0,
-          fmt::format("wheel-rail patch: the vertical wheel load must be positive (got {} N)", o.vertical_load_N));
-  require(o.target_elements >= 10 && o.target_elements <= 200000,
-          fmt::format("wheel-rail patch: the target number of elements in contact must lie in [10, 200000] (got {})",
-                      o.target_elements));
+  require(std::isfinite(o.vertical_load_N) && o.vertical_load_N > 0.0, [&] {
+    return fmt::format("wheel-rail patch: the vertical wheel load must be positive (got {} N)", o.vertical_load_N);
+  });
+  require(o.target_elements >= 10 && o.target_elements <= 200000, [&] {
+    return fmt::format("wheel-rail patch: the target number of elements in contact must lie in [10, 200000] (got {})",
+                       o.target_elements);
+  });
   require(std::isfinite(o.element_count_tolerance) && o.element_count_tolerance > 0.0 &&
               o.element_count_tolerance < 1.0,
           "wheel-rail patch: the element-count tolerance must lie in (0, 1)");
@@ -126,8 +128,9 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
                                      2.0 * pair.parameters().nominal_rolling_radius_m);
   r.vertical_load_N = options.vertical_load_N;
   const double cos_gamma = std::cos(r.contact_angle_rad);
-  require(cos_gamma > 0.05, fmt::format("wheel-rail patch at {}: the contact angle {:.3f} rad is too steep", where,
-                                        r.contact_angle_rad));
+  require(cos_gamma > 0.05, [&] {
+    return fmt::format("wheel-rail patch at {}: the contact angle {:.3f} rad is too steep", where, r.contact_angle_rad);
+  });
   // Frictionless equilibrium of the vertical forces (METHOD.md §9): F3 cos γ = Fz.
   r.normal_force_N = options.vertical_load_N / cos_gamma;
   const double F3 = r.normal_force_N;
@@ -161,15 +164,19 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     }
     s.normal = solve_normal_contact(s.area.mesh, s.area.h_m, F3, options.material, options.normal);
     ++r.mesh_passes;
-    require(s.normal.converged,
-            fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations (residual {:.2g})",
-                        where, s.normal.iterations, s.normal.residual));
+    require(s.normal.converged, [&] {
+      return fmt::format(
+          "wheel-rail patch at {}: the normal solver did not converge in {} iterations (residual {:.2g})", where,
+          s.normal.iterations, s.normal.residual);
+    });
     if (s.normal.touches_border) {
       // The undeformed interpenetration h < δ holds every patch: cover it with a wider margin.
-      require(enlargements < options.max_enlargements,
-              fmt::format("wheel-rail patch at {}: the potential contact area cannot hold the patch (it still touches "
-                          "the border of a {} x {} mesh after {} enlargements)",
-                          where, s.area.mesh.n1, s.area.mesh.n2, enlargements));
+      require(enlargements < options.max_enlargements, [&] {
+        return fmt::format(
+            "wheel-rail patch at {}: the potential contact area cannot hold the patch (it still touches "
+            "the border of a {} x {} mesh after {} enlargements)",
+            where, s.area.mesh.n1, s.area.mesh.n2, enlargements);
+      });
       // The truncated patch's δ overestimates the true one: grow by at most a factor 2 × 1.5.
       ++enlargements;
       margin *= 1.5;
@@ -197,7 +204,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     ++pass;
   }
 
-  require(best.has_value(), fmt::format("wheel-rail patch at {}: no normal solution", where));
+  require(best.has_value(), [&] { return fmt::format("wheel-rail patch at {}: no normal solution", where); });
   Solve& s = *best;
   const Mesh& mesh = s.area.mesh;
   const ContactRegion& main = s.regions.front();

@@ -60,7 +60,7 @@ std::array<double, kSkews.size()> worst_errors(const ContactPatch& patch, double
 
 void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
   require(options.elements >= 200 && options.elements <= 30000,
-          fmt::format("study bound: --elements must lie in [200, 30000] (got {})", options.elements));
+          [&] { return fmt::format("study bound: --elements must lie in [200, 30000] (got {})", options.elements); });
   require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study bound: --y-step must lie in (0, 4.5e-3] m");
   const auto& dir = options.output_directory;
   std::filesystem::create_directories(dir);

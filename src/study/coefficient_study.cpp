@@ -183,8 +183,9 @@ void write_statistics(std::ostream& md, const std::string& title, const std::str
 }  // namespace
 
 void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream& progress) {
-  require(options.elements >= 50 && options.elements <= 200000,
-          fmt::format("study coefficients: --elements must lie in [50, 200000] (got {})", options.elements));
+  require(options.elements >= 50 && options.elements <= 200000, [&] {
+    return fmt::format("study coefficients: --elements must lie in [50, 200000] (got {})", options.elements);
+  });
   std::filesystem::create_directories(options.output_directory);
   const auto& dir = options.output_directory;
   const auto start = std::chrono::steady_clock::now();

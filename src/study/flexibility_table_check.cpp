@@ -56,13 +56,14 @@ std::vector<CreepageFamily> paper_creepage_families() {
 FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, const WheelRailPair& pair,
                                               const FlexibilityTableCheckOptions& options, std::ostream* progress) {
   require(std::isfinite(options.mu) && options.mu > 0.0 && options.mu <= 2.0,
-          fmt::format("flextable check: mu must lie in (0, 2] (got {})", options.mu));
-  require(options.target_elements == 0 || (options.target_elements >= 10 && options.target_elements <= 200000),
-          fmt::format("flextable check: the elements must lie in [10, 200000] (got {})", options.target_elements));
+          [&] { return fmt::format("flextable check: mu must lie in (0, 2] (got {})", options.mu); });
+  require(options.target_elements == 0 || (options.target_elements >= 10 && options.target_elements <= 200000), [&] {
+    return fmt::format("flextable check: the elements must lie in [10, 200000] (got {})", options.target_elements);
+  });
   table.check_profiles(pair);
   const std::vector<double> ys = options.y_m.empty() ? default_y(table) : options.y_m;
   const std::vector<double> loads = options.vertical_loads_N.empty() ? default_loads(table) : options.vertical_loads_N;
-  require(!ys.empty(), fmt::format("flextable check: the {} has no interval to check", table.name()));
+  require(!ys.empty(), [&] { return fmt::format("flextable check: the {} has no interval to check", table.name()); });
   // Range and gaps of every point first: a bad point fails before any solve.
   for (double y : ys)
     for (double Fz : loads) (void)table.lookup(y, Fz, options.interpolation);

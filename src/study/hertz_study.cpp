@@ -46,7 +46,7 @@ struct Accumulated {
 
 void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
   require(options.elements >= 100 && options.elements <= 50000,
-          fmt::format("study hertz: --elements must lie in [100, 50000] (got {})", options.elements));
+          [&] { return fmt::format("study hertz: --elements must lie in [100, 50000] (got {})", options.elements); });
   require(options.points >= 2 && options.points <= 100, "study hertz: --points must lie in [2, 100]");
   std::filesystem::create_directories(options.output_directory);
   const auto& dir = options.output_directory;

@@ -12,10 +12,12 @@ namespace railcontact {
 EllipseCoefficientResult ellipse_creepage_coefficients(double a_over_b, double nu,
                                                        const EllipseCoefficientOptions& options) {
   require(std::isfinite(a_over_b) && a_over_b >= 0.01 && a_over_b <= 100.0,
-          fmt::format("a/b must lie in [0.01, 100] (got {})", a_over_b));
-  require(std::isfinite(nu) && nu >= 0.0 && nu < 0.5, fmt::format("Poisson's ratio must lie in [0, 0.5) (got {})", nu));
-  require(options.target_elements >= 4,
-          fmt::format("the number of elements in contact must be at least 4 (got {})", options.target_elements));
+          [&] { return fmt::format("a/b must lie in [0.01, 100] (got {})", a_over_b); });
+  require(std::isfinite(nu) && nu >= 0.0 && nu < 0.5,
+          [&] { return fmt::format("Poisson's ratio must lie in [0, 0.5) (got {})", nu); });
+  require(options.target_elements >= 4, [&] {
+    return fmt::format("the number of elements in contact must be at least 4 (got {})", options.target_elements);
+  });
   const double c_m = 6e-3;
   const double a_m = c_m * std::sqrt(a_over_b);
   const double b_m = c_m / std::sqrt(a_over_b);

@@ -90,9 +90,10 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
   evaluate(system, w, bound, c, max_bound, st);
   ExactState trial = st;
   while (st.residual > options.tolerance) {
-    require(solution.newton_iterations < options.max_newton_iterations,
-            fmt::format("exact rolling solver: Newton did not converge in {} iterations (residual {:.2e})",
-                        options.max_newton_iterations, st.residual));
+    require(solution.newton_iterations < options.max_newton_iterations, [&] {
+      return fmt::format("exact rolling solver: Newton did not converge in {} iterations (residual {:.2e})",
+                         options.max_newton_iterations, st.residual);
+    });
     ++solution.newton_iterations;
     // Generalised Jacobian of Phi, row blocks A_e (R dp)_e + B_e dp_e = rhs_e.
     for (std::size_t e = 0; e < n; ++e) {

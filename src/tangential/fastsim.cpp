@@ -149,13 +149,16 @@ TangentialForces march(const FastSim::Layout& layout, const MarchCoefficients& k
 bool positive_finite(double value) { return std::isfinite(value) && value > 0.0; }
 
 MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibility& flexibility, double mu) {
-  require(positive_finite(mu), fmt::format("fastsim: the friction coefficient mu = {} must be positive and finite", mu));
-  require(positive_finite(flexibility.L1) && positive_finite(flexibility.L2) && positive_finite(flexibility.L3),
-          fmt::format("fastsim: the flexibilities L1 = {}, L2 = {}, L3 = {} m/Pa must be positive and finite",
-                      flexibility.L1, flexibility.L2, flexibility.L3));
-  require(std::isfinite(creepage.xi) && std::isfinite(creepage.eta) && std::isfinite(creepage.phi),
-          fmt::format("fastsim: the creepages xi = {}, eta = {}, phi = {} 1/m must be finite", creepage.xi,
-                      creepage.eta, creepage.phi));
+  require(positive_finite(mu),
+          [&] { return fmt::format("fastsim: the friction coefficient mu = {} must be positive and finite", mu); });
+  require(positive_finite(flexibility.L1) && positive_finite(flexibility.L2) && positive_finite(flexibility.L3), [&] {
+    return fmt::format("fastsim: the flexibilities L1 = {}, L2 = {}, L3 = {} m/Pa must be positive and finite",
+                       flexibility.L1, flexibility.L2, flexibility.L3);
+  });
+  require(std::isfinite(creepage.xi) && std::isfinite(creepage.eta) && std::isfinite(creepage.phi), [&] {
+    return fmt::format("fastsim: the creepages xi = {}, eta = {}, phi = {} 1/m must be finite", creepage.xi,
+                       creepage.eta, creepage.phi);
+  });
   return {creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3};
 }
 
@@ -164,7 +167,7 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
 FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   require(patch.elements().count() > 0, "fastsim: the contact patch has no element in contact");
   require(std::isfinite(bound.skew) && bound.skew >= 0.0 && bound.skew <= 1.0,
-          fmt::format("fastsim: the traction bound's skew = {} must lie in [0, 1]", bound.skew));
+          [&] { return fmt::format("fastsim: the traction bound's skew = {} must lie in [0, 1]", bound.skew); });
   auto layout = std::make_shared<Layout>();
   layout->bound = bound;
   layout->element_count = patch.elements().count();

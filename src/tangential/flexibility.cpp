@@ -20,18 +20,22 @@ namespace {
 // numerator / denominator, which must be a positive and finite flexibility (m/Pa).
 double checked_ratio(double numerator, double denominator, const char* name, const char* entry) {
   const double L = numerator / denominator;
-  require(std::isfinite(L) && L > 0.0,
-          fmt::format("nH-FastSim flexibility: {} = {:.6g} / {:.6g} = {:.6g} m/Pa is not positive and finite "
-                      "(K2_{} has the wrong sign or vanishes on this patch)",
-                      name, numerator, denominator, L, entry));
+  require(std::isfinite(L) && L > 0.0, [&] {
+    return fmt::format(
+        "nH-FastSim flexibility: {} = {:.6g} / {:.6g} = {:.6g} m/Pa is not positive and finite "
+        "(K2_{} has the wrong sign or vanishes on this patch)",
+        name, numerator, denominator, L, entry);
+  });
   return L;
 }
 
 double checked_diagonal(double value, const char* name) {
-  require(std::isfinite(value) && value > 0.0,
-          fmt::format("nH-FastSim flexibility: the full-matrix match (Eq 21) gives {} = {:.6g} m/Pa, "
-                      "not positive and finite",
-                      name, value));
+  require(std::isfinite(value) && value > 0.0, [&] {
+    return fmt::format(
+        "nH-FastSim flexibility: the full-matrix match (Eq 21) gives {} = {:.6g} m/Pa, "
+        "not positive and finite",
+        name, value);
+  });
   return value;
 }
 

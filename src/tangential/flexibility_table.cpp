@@ -19,8 +19,9 @@ bool positive_finite(double value) { return std::isfinite(value) && value > 0.0;
 
 void check_increasing(const std::vector<double>& values, const char* what) {
   for (std::size_t k = 0; k < values.size(); ++k) {
-    require(std::isfinite(values[k]), fmt::format("flexibility table: the {} must be finite", what));
-    require(k == 0 || values[k] > values[k - 1], fmt::format("flexibility table: the {} must be strictly increasing", what));
+    require(std::isfinite(values[k]), [&] { return fmt::format("flexibility table: the {} must be finite", what); });
+    require(k == 0 || values[k] > values[k - 1],
+            [&] { return fmt::format("flexibility table: the {} must be strictly increasing", what); });
   }
 }
 
@@ -28,13 +29,13 @@ void check_node(const FlexibilityTableNode& n) {
   if (n.status != FlexibilityNodeStatus::solved) return;
   const std::string where = fmt::format("flexibility table: node y = {:.4f} mm, Fz = {:g} N", n.y_m / kMm, n.vertical_load_N);
   require(positive_finite(n.flexibility.L1) && positive_finite(n.flexibility.L2) && positive_finite(n.flexibility.L3),
-          where + ": the flexibilities must be positive and finite");
+          [&] { return where + ": the flexibilities must be positive and finite"; });
   require(positive_finite(n.f11_N) && positive_finite(n.f22_N) && positive_finite(n.f23_Nm),
-          where + ": f11, f22, f23 must be positive and finite");
+          [&] { return where + ": f11, f22, f23 must be positive and finite"; });
   require(positive_finite(n.normal_force_N) && positive_finite(n.area_m2) && n.elements_in_contact > 0,
-          where + ": the normal force, area and elements must be positive");
+          [&] { return where + ": the normal force, area and elements must be positive"; });
   require(std::isfinite(n.contact_angle_rad) && std::isfinite(n.spin_per_m),
-          where + ": the contact angle and spin must be finite");
+          [&] { return where + ": the contact angle and spin must be finite"; });
 }
 
 // Interpolation weights of one axis: up to two (index, weight) pairs with non-zero weight.
@@ -84,15 +85,18 @@ FlexibilityTable::FlexibilityTable(FlexibilityTableMetadata metadata, std::vecto
   check_increasing(y_m_, "y values");
   check_increasing(loads_N_, "vertical loads");
   require(loads_N_.front() > 0.0, "flexibility table: the vertical loads must be positive");
-  require(nodes_.size() == y_m_.size() * loads_N_.size(),
-          fmt::format("flexibility table: {} nodes for {} y values × {} loads", nodes_.size(), y_m_.size(), loads_N_.size()));
+  require(nodes_.size() == y_m_.size() * loads_N_.size(), [&] {
+    return fmt::format("flexibility table: {} nodes for {} y values × {} loads", nodes_.size(), y_m_.size(),
+                       loads_N_.size());
+  });
   validate(metadata_.material);
   for (std::size_t iy = 0; iy < y_m_.size(); ++iy) {
     for (std::size_t il = 0; il < loads_N_.size(); ++il) {
       const FlexibilityTableNode& n = node(iy, il);
-      require(n.y_m == y_m_[iy] && n.vertical_load_N == loads_N_[il],
-              fmt::format("flexibility table: node {} is not on its grid point (y = {:.6g} m, Fz = {:g} N)",
-                          iy * loads_N_.size() + il, y_m_[iy], loads_N_[il]));
+      require(n.y_m == y_m_[iy] && n.vertical_load_N == loads_N_[il], [&] {
+        return fmt::format("flexibility table: node {} is not on its grid point (y = {:.6g} m, Fz = {:g} N)",
+                           iy * loads_N_.size() + il, y_m_[iy], loads_N_[il]);
+      });
       check_node(n);
     }
   }
@@ -132,19 +136,25 @@ void FlexibilityTable::check_profiles(const WheelRailPair& pair) const {
                     a.flange_back_distance_m == b.flange_back_distance_m && a.flange_back_y_m == b.flange_back_y_m &&
                     a.taping_line_from_flange_back_m == b.taping_line_from_flange_back_m &&
                     a.nominal_rolling_radius_m == b.nominal_rolling_radius_m;
-  require(same, fmt::format("{} was built for other track and wheelset parameters (gauge {} m, flange back distance {} m, "
-                            "nominal rolling radius {} m)",
-                            name(), a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m));
+  require(same, [&] {
+    return fmt::format(
+        "{} was built for other track and wheelset parameters (gauge {} m, flange back distance {} m, "
+        "nominal rolling radius {} m)",
+        name(), a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m);
+  });
 }
 
 void FlexibilityTable::check_material(const Material& material, double collocation_offset) const {
   const Material& m = metadata_.material;
-  require(material.youngs_modulus_Pa == m.youngs_modulus_Pa && material.poisson_ratio == m.poisson_ratio,
-          fmt::format("{} was built for another material (E = {:g} Pa, nu = {:g}; given E = {:g} Pa, nu = {:g})", name(),
-                      m.youngs_modulus_Pa, m.poisson_ratio, material.youngs_modulus_Pa, material.poisson_ratio));
-  require(collocation_offset == metadata_.collocation_offset,
-          fmt::format("{} was built with the collocation offset alpha = {:g} (given {:g})", name(),
-                      metadata_.collocation_offset, collocation_offset));
+  require(material.youngs_modulus_Pa == m.youngs_modulus_Pa && material.poisson_ratio == m.poisson_ratio, [&] {
+    return fmt::format("{} was built for another material (E = {:g} Pa, nu = {:g}; given E = {:g} Pa, nu = {:g})",
+                       name(), m.youngs_modulus_Pa, m.poisson_ratio, material.youngs_modulus_Pa,
+                       material.poisson_ratio);
+  });
+  require(collocation_offset == metadata_.collocation_offset, [&] {
+    return fmt::format("{} was built with the collocation offset alpha = {:g} (given {:g})", name(),
+                       metadata_.collocation_offset, collocation_offset);
+  });
 }
 
 FlexibilityTableValues FlexibilityTable::lookup(double y_m, double vertical_load_N,

@@ -123,23 +123,28 @@ void validate(const FlexibilityTableOptions& o) {
 }
 
 void validate_grid(const std::vector<double>& values, const char* what, std::size_t max_count) {
-  require(!values.empty(), fmt::format("flexibility table: at least one {} is needed", what));
-  require(values.size() <= max_count, fmt::format("flexibility table: at most {} {} values", max_count, what));
+  require(!values.empty(), [&] { return fmt::format("flexibility table: at least one {} is needed", what); });
+  require(values.size() <= max_count,
+          [&] { return fmt::format("flexibility table: at most {} {} values", max_count, what); });
   for (std::size_t k = 0; k < values.size(); ++k) {
-    require(std::isfinite(values[k]), fmt::format("flexibility table: every {} must be finite", what));
-    require(k == 0 || values[k] > values[k - 1], fmt::format("flexibility table: the {} values must be strictly increasing", what));
+    require(std::isfinite(values[k]), [&] { return fmt::format("flexibility table: every {} must be finite", what); });
+    require(k == 0 || values[k] > values[k - 1],
+            [&] { return fmt::format("flexibility table: the {} values must be strictly increasing", what); });
   }
 }
 
 }  // namespace
 
 std::vector<double> flexibility_table_y_grid(double y_from_m, double y_to_m, double y_step_m) {
-  require(std::isfinite(y_from_m) && std::isfinite(y_to_m) && y_to_m >= y_from_m,
-          fmt::format("flexibility table: the y range must be finite with y_to >= y_from (got {} ... {} m)", y_from_m, y_to_m));
+  require(std::isfinite(y_from_m) && std::isfinite(y_to_m) && y_to_m >= y_from_m, [&] {
+    return fmt::format("flexibility table: the y range must be finite with y_to >= y_from (got {} ... {} m)", y_from_m,
+                       y_to_m);
+  });
   require(std::isfinite(y_step_m) && y_step_m > 0.0,
-          fmt::format("flexibility table: the y step must be positive (got {} m)", y_step_m));
+          [&] { return fmt::format("flexibility table: the y step must be positive (got {} m)", y_step_m); });
   const double count = std::floor((y_to_m - y_from_m) / y_step_m + 1e-9) + 1.0;
-  require(count <= static_cast<double>(kMaxYValues), fmt::format("flexibility table: at most {} y values", kMaxYValues));
+  require(count <= static_cast<double>(kMaxYValues),
+          [&] { return fmt::format("flexibility table: at most {} y values", kMaxYValues); });
   std::vector<double> y;
   for (int k = 0; k < static_cast<int>(count); ++k) {
     const double value = y_from_m + k * y_step_m;
@@ -212,7 +217,8 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
       }
     }
   }
-  require(solved > 0, fmt::format("flexibility table: no node could be solved (first: {})", nodes.front().message));
+  require(solved > 0,
+          [&] { return fmt::format("flexibility table: no node could be solved (first: {})", nodes.front().message); });
   return FlexibilityTable(std::move(metadata), std::move(y), load_grid_N, std::move(nodes), std::move(jumps));
 }
 

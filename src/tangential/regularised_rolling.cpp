@@ -87,10 +87,12 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
     const double target = last ? options.tolerance : 1e-3;
     evaluate(system, w, bound, eps, slip_scale, st);
     while (st.residual > target) {
-      require(solution.newton_iterations < options.max_newton_iterations,
-              fmt::format("regularised rolling solver: Newton did not converge in {} iterations (epsilon {:.1e}, "
-                          "residual {:.2e})",
-                          options.max_newton_iterations, eps, st.residual));
+      require(solution.newton_iterations < options.max_newton_iterations, [&] {
+        return fmt::format(
+            "regularised rolling solver: Newton did not converge in {} iterations (epsilon {:.1e}, "
+            "residual {:.2e})",
+            options.max_newton_iterations, eps, st.residual);
+      });
       ++solution.newton_iterations;
       for (std::size_t e = 0; e < n; ++e) {
         double p1, p2;

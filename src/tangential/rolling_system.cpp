@@ -117,7 +117,8 @@ namespace railcontact {
 
 void validate_rolling_input(const ContactPatch& patch, const Creepage& c, double mu, const RollingOptions& o) {
   require(patch.elements().count() > 0, "rolling solver: the patch has no element in contact");
-  require(std::isfinite(mu) && mu > 0.0, fmt::format("rolling solver: the friction coefficient must be positive (got {})", mu));
+  require(std::isfinite(mu) && mu > 0.0,
+          [&] { return fmt::format("rolling solver: the friction coefficient must be positive (got {})", mu); });
   require(std::isfinite(c.xi) && std::isfinite(c.eta) && std::isfinite(c.phi),
           "rolling solver: creepages must be finite numbers");
   require(std::isfinite(o.collocation_offset) && o.collocation_offset > -1.0 && o.collocation_offset <= 1.0,
