@@ -55,6 +55,9 @@ struct AdhesionOptions {
   double tolerance = 1e-10;         // Krylov: relative residual
   int max_iterations = 400;         // Krylov
   AdhesionPreconditioner preconditioner = AdhesionPreconditioner::marching_half_laplacian;
+  // marching_half_laplacian's shift c0 = gamma pi^2 / (patch size sqrt(dx1 dx2)); 3 is best for
+  // tight solves on ellipses (steady_rolling_preconditioner.hpp).
+  double half_laplacian_gamma = 3.0;
   CreepageMatrixPart part = CreepageMatrixPart::full;
 };
 

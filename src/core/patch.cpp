@@ -76,11 +76,13 @@ ContactPatch coarsened(const ContactPatch& patch, int factor) {
   coarse.x2_first_m = fine.x2_first_m + 0.5 * (factor - 1) * fine.dx2_m;
   std::vector<double> block_force(coarse.size(), 0.0);
   std::vector<int> block_count(coarse.size(), 0);
-  const auto& idx = patch.elements().indices();
-  for (std::size_t e = 0; e < idx.size(); ++e) {
-    const int i1 = static_cast<int>(idx[e] % fine.n1) / factor, i2 = static_cast<int>(idx[e] / fine.n1) / factor;
-    block_force[coarse.index(i1, i2)] += patch.pressure_Pa()[e];
-    block_count[coarse.index(i1, i2)] += 1;
+  for (const StripRun& run : patch.runs()) {  // strip by strip (no index division per element)
+    const std::size_t row = static_cast<std::size_t>(run.i2 / factor) * coarse.n1;
+    for (int i1 = run.i1_trailing; i1 <= run.i1_leading; ++i1) {
+      const std::size_t k = row + static_cast<std::size_t>(i1 / factor);
+      block_force[k] += patch.pressure_Pa()[run.first + static_cast<std::size_t>(i1 - run.i1_trailing)];
+      block_count[k] += 1;
+    }
   }
   std::vector<double> pressure(coarse.size(), 0.0);
   double kept = 0.0, total = 0.0;

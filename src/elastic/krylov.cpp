@@ -29,7 +29,7 @@ KrylovReport solve_krylov(const MatrixFreeOperator& M, const ApplyFunction& prec
       preconditioner(y, work.data());
       M.apply(work.data(), out);
     });
-    Eigen::GMRES<MatrixFreeOperator, MatrixFreePreconditioner> solver;
+    Eigen::GMRES<MatrixFreeOperator, Eigen::IdentityPreconditioner> solver;  // preconditioned in MP
     solver.setTolerance(options.tolerance * b_norm / std::max(r0.norm(), 1e-300));
     solver.setMaxIterations(options.max_iterations);
     solver.set_restart(options.gmres_restart);

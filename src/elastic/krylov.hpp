@@ -4,6 +4,7 @@
 // are callables y = M x, wrapped as Eigen matrix-free types (Eigen's documented pattern).
 #include <Eigen/Core>
 #include <functional>
+#include <type_traits>
 #include <unsupported/Eigen/IterativeSolvers>
 
 namespace railcontact {
@@ -11,7 +12,6 @@ namespace railcontact {
 using ApplyFunction = std::function<void(const double* x, double* y)>;
 
 class MatrixFreeOperator;
-class MatrixFreePreconditioner;
 
 }  // namespace railcontact
 
@@ -44,34 +44,6 @@ class MatrixFreeOperator : public Eigen::EigenBase<MatrixFreeOperator> {
   ApplyFunction apply_;
 };
 
-// Preconditioner z = P r (an approximate inverse), in the interface Eigen's solvers expect.
-class MatrixFreePreconditioner {
- public:
-  using StorageIndex = int;
-  enum { ColsAtCompileTime = Eigen::Dynamic, MaxColsAtCompileTime = Eigen::Dynamic };
-
-  MatrixFreePreconditioner() = default;
-  void set(ApplyFunction apply) { apply_ = std::move(apply); }
-  template <typename M>
-  MatrixFreePreconditioner& analyzePattern(const M&) { return *this; }
-  template <typename M>
-  MatrixFreePreconditioner& factorize(const M&) { return *this; }
-  template <typename M>
-  MatrixFreePreconditioner& compute(const M&) { return *this; }
-  template <typename Rhs>
-  Eigen::VectorXd solve(const Rhs& b) const {
-    Eigen::VectorXd rhs = b;
-    if (!apply_) return rhs;
-    Eigen::VectorXd z(rhs.size());
-    apply_(rhs.data(), z.data());
-    return z;
-  }
-  [[nodiscard]] Eigen::ComputationInfo info() const { return Eigen::Success; }
-
- private:
-  ApplyFunction apply_;
-};
-
 struct KrylovOptions {
   double tolerance = 1e-10;  // relative residual ||b - M x|| / ||b||
   int max_iterations = 500;
@@ -99,10 +71,26 @@ struct generic_product_impl<railcontact::MatrixFreeOperator, Rhs, SparseShape, D
     : generic_product_impl_base<railcontact::MatrixFreeOperator, Rhs,
                                 generic_product_impl<railcontact::MatrixFreeOperator, Rhs>> {
   using Scalar = typename Product<railcontact::MatrixFreeOperator, Rhs>::Scalar;
+  // dst = M x, written in place when dst is a plain vector (GMRES's products).
+  template <typename Dest>
+  static void evalTo(Dest& dst, const railcontact::MatrixFreeOperator& lhs, const Rhs& rhs) {
+    if constexpr (std::is_same_v<Dest, Eigen::VectorXd>) {
+      const Eigen::Ref<const Eigen::VectorXd> x(rhs);
+      dst.resize(x.size());
+      // GMRES multiplies its zero initial guess too: that product is zero, and costs nothing here.
+      if (x.isZero(0.0)) {
+        dst.setZero();
+        return;
+      }
+      lhs.apply(x.data(), dst.data());
+    } else {
+      dst.setZero();
+      scaleAndAddTo(dst, lhs, rhs, Scalar(1));
+    }
+  }
   template <typename Dest>
   static void scaleAndAddTo(Dest& dst, const railcontact::MatrixFreeOperator& lhs, const Rhs& rhs,
                             const Scalar& alpha) {
-    // GMRES multiplies its zero initial guess too: that product is zero, and costs nothing here.
     const Eigen::Ref<const Eigen::VectorXd> x(rhs);
     if (x.isZero(0.0)) return;
     Eigen::VectorXd y(x.size());

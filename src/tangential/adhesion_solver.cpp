@@ -76,7 +76,7 @@ void solve_columns(const ContactElements& elements, const Material& material, do
     R.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
   });
   const SteadyRollingPreconditioner preconditioner(
-      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : 3.0);
+      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : options.half_laplacian_gamma);
   const ApplyFunction precondition = [&preconditioner](const double* r, double* z) { preconditioner.apply(r, z); };
   KrylovOptions krylov;
   krylov.tolerance = options.tolerance;
@@ -118,7 +118,7 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
     R.apply_transpose(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
   });
   const SteadyRollingPreconditioner preconditioner(
-      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : 3.0);
+      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : options.half_laplacian_gamma);
   const ApplyFunction precondition = [&preconditioner](const double* r, double* z) {
     preconditioner.apply_transpose(r, z);
   };
@@ -152,6 +152,8 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
   require_valid_offset(options.collocation_offset);
   const double spin_alpha = options.spin_collocation_offset.value_or(options.collocation_offset);
   require_valid_offset(spin_alpha);
+  require(std::isfinite(options.half_laplacian_gamma) && options.half_laplacian_gamma > 0.0,
+          "adhesion solver: the preconditioner's gamma must be positive and finite");
   if (options.solver == LinearSolver::krylov) {
     require(options.tolerance > 0 && options.max_iterations > 0,
             "adhesion solver: the Krylov tolerance and iteration limit must be positive");

@@ -83,6 +83,11 @@ AdhesionOptions nh_fastsim_adhesion_options() {
   // at most 5.3e-4; 4e-5 with 1e-4), far below K2's discretisation error (~1 %) and the change from
   // coarsening the patch (1-3 %), with 20 % fewer GMRES iterations than 1e-4 and 60 % fewer than 1e-9.
   options.tolerance = 1e-3;
+  // The adjoint solves on coarse S1002/UIC60 patches (130-800 elements) converge fastest with a
+  // smaller shift than ellipses' tight solves want: 14.3 GMRES iterations for both rows at
+  // gamma = 1.5 against 15.6 at 3 (mean over 30 patches); ellipses of 150-600 elements need at
+  // most 6 % more iterations than at 3 (docs/FASTSIM.md).
+  options.half_laplacian_gamma = 1.5;
   return options;
 }
 
