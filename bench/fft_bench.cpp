@@ -54,9 +54,11 @@ void BM_EigenKissFft_RealForward2d(benchmark::State& state) {
 }
 BENCHMARK(BM_EigenKissFft_RealForward2d)->Arg(120)->Arg(240)->Unit(benchmark::kMicrosecond);
 
-// Padded lengths (docs/DEPENDENCIES.md): forward + inverse square transform at the smallest
-// 7-smooth length >= the minimum against the measured fast-length table, for minimum lengths
-// 2n - 1 of meshes with n = 18, 23, 30, 36, 42, 60, 72 elements per axis.
+// Padded lengths and pruning (docs/DEPENDENCIES.md): forward + inverse square transform as a
+// convolution uses it (RealFft2d's rows: only the first (minimum + 1) / 2 rows are non-zero on
+// input and wanted on output), for minimum lengths 2n - 1 of meshes with n = 18, 24, 30, 36, 42,
+// 48, 54, 60, 66, 72 elements per axis: at the smallest 7-smooth length >= the minimum, at the
+// measured fast length, and at the fast length without pruning (every row transformed).
 void fft_round_trip(benchmark::State& state, int n, int rows) {
   const railcontact::detail::RealFft2d fft(n, n, rows);
   railcontact::detail::FftwArray<double> real(fft.real_size());
@@ -69,25 +71,20 @@ void fft_round_trip(benchmark::State& state, int n, int rows) {
   }
   state.counters["length"] = n;
 }
+int grid_rows(const benchmark::State& state) { return (static_cast<int>(state.range(0)) + 1) / 2; }
 void BM_FftRoundTrip_SmoothLength(benchmark::State& state) {
-  const int n = railcontact::detail::smooth_length(static_cast<int>(state.range(0)));
-  fft_round_trip(state, n, n);
+  fft_round_trip(state, railcontact::detail::smooth_length(static_cast<int>(state.range(0))), grid_rows(state));
 }
 void BM_FftRoundTrip_FastLength(benchmark::State& state) {
+  fft_round_trip(state, railcontact::detail::fft_friendly_length(static_cast<int>(state.range(0))), grid_rows(state));
+}
+void BM_FftRoundTrip_FastLengthUnpruned(benchmark::State& state) {
   const int n = railcontact::detail::fft_friendly_length(static_cast<int>(state.range(0)));
   fft_round_trip(state, n, n);
 }
 BENCHMARK(BM_FftRoundTrip_SmoothLength)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FftRoundTrip_FastLength)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
-
-// Pruned transforms (RealFft2d's rows): a convolution's padded input has non-zero values in its
-// first (minimum + 1) / 2 rows only, and only those rows of the output are wanted. Same lengths
-// as BM_FftRoundTrip_FastLength, all rows against the grid's rows only.
-void BM_FftRoundTrip_Pruned(benchmark::State& state) {
-  const int minimum = static_cast<int>(state.range(0));
-  fft_round_trip(state, railcontact::detail::fft_friendly_length(minimum), (minimum + 1) / 2);
-}
-BENCHMARK(BM_FftRoundTrip_Pruned)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_FftRoundTrip_FastLengthUnpruned)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <iterator>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -75,6 +76,13 @@ struct RealFft2d::Plans {
 
 namespace {
 
+// FFTW's planner (plan creation and destruction) is not thread-safe by itself; executing plans
+// is. From the first plan on, FFTW serialises its planner, so solves may run on several threads.
+void make_planner_thread_safe() {
+  static std::once_flag once;
+  std::call_once(once, [] { fftw_make_planner_thread_safe(); });
+}
+
 // The plans of the most recently used sizes on this thread (most recent last).
 std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2, int rows) {
   constexpr std::size_t kKeptSizes = 16;
@@ -87,6 +95,7 @@ std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2, int rows) {
       return recent.back();
     }
   }
+  make_planner_thread_safe();
   if (recent.size() == kKeptSizes) recent.erase(recent.begin());
   recent.push_back(std::make_shared<const RealFft2d::Plans>(n1, n2, rows));
   return recent.back();
@@ -126,12 +135,13 @@ int smooth_length(int minimum) {
 }
 
 int fft_friendly_length(int minimum) {
-  // Lengths at which FFTW 3.3's FFTW_ESTIMATE plans of a real 2-D transform (forward and inverse)
-  // are faster than at every longer length: the cheapest choice for any minimum up to 512
-  // (measured on square transforms, docs/DEPENDENCIES.md "Padded lengths"). The smallest 7-smooth
-  // length was up to 3x slower (35 and 45 against 36 and 48, 60 against 64, 120 against 128).
-  static constexpr int kFastLengths[] = {16,  20,  32,  36,  42,  48,  56,  64,  72,  84,  90,  98,  100, 112,
-                                         128, 140, 150, 160, 168, 200, 224, 256, 320, 384, 400, 448, 512};
+  // Lengths at which FFTW 3.3's FFTW_ESTIMATE plans of a pruned real 2-D transform (forward and
+  // inverse, half the rows non-zero, as in every convolution here) are faster than at every
+  // longer length: the cheapest choice for any minimum up to 512 (measured on square transforms,
+  // docs/DEPENDENCIES.md "Padded lengths"). The smallest 7-smooth length was up to 3x slower
+  // (35 and 45 against 36 and 48, 60 against 64, 120 against 128).
+  static constexpr int kFastLengths[] = {16,  20,  32,  36,  42,  48,  64,  72,  84,  98,  100, 128,
+                                         140, 150, 160, 168, 200, 256, 320, 384, 400, 448, 512};
   if (minimum <= 16 || minimum > 512) return smooth_length(minimum);
   return *std::lower_bound(std::begin(kFastLengths), std::end(kFastLengths), minimum);
 }
