@@ -11,7 +11,7 @@ struct PaperStudyOptions {
   std::filesystem::path output_directory;
   int elements = 3000;           // elements in contact of every patch (Fig 5-7)
   double y_step_m = 0.5e-3;      // Fig 5: y from -4.5 to 4.5 mm
-  int timing_samples = 6;        // Fig 8: random cases per mesh size
+  int timing_samples = 10;       // Fig 8: random cases per mesh size
   bool figures = true;
 };
 
