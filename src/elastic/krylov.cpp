@@ -48,11 +48,6 @@ KrylovReport solve_krylov(const MatrixFreeOperator& M, const ApplyFunction& prec
       return report;
     }
   }
-  if (getenv("NOCHECK")) {
-    report.relative_residual = 0;
-    report.converged = true;
-    return report;
-  }
   Eigen::VectorXd residual(b.size());
   M.apply(x.data(), residual.data());
   residual = b - residual;
