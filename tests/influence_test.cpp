@@ -15,6 +15,20 @@ namespace {
 
 const Material kSteel{2.1e11, 0.3};
 
+// P_n(z) and P_n'(z) by the three-term recurrence.
+struct Legendre {
+  double value, derivative;
+};
+Legendre legendre(int n, double z) {
+  double p0 = 1, p1 = z;
+  for (int k = 2; k <= n; ++k) {
+    const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
+    p0 = p1;
+    p1 = p2;
+  }
+  return {p1, n * (z * p1 - p0) / (z * z - 1)};
+}
+
 // Gauss-Legendre nodes/weights on [-1, 1] (Golub-Welsch-free: Newton on P_n).
 void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   x.resize(n);
@@ -22,24 +36,12 @@ void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   for (int i = 0; i < n; ++i) {
     double z = std::cos(M_PI * (i + 0.75) / (n + 0.5));
     for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      const double dp = n * (z * p1 - p0) / (z * z - 1);
-      const double dz = p1 / dp;
+      const Legendre p = legendre(n, z);
+      const double dz = p.value / p.derivative;
       z -= dz;
       if (std::fabs(dz) < 1e-16) break;
     }
-    double p0 = 1, p1 = z;
-    for (int k = 2; k <= n; ++k) {
-      const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-      p0 = p1;
-      p1 = p2;
-    }
-    const double dp = n * (z * p1 - p0) / (z * z - 1);
+    const double dp = legendre(n, z).derivative;
     x[i] = z;
     w[i] = 2 / ((1 - z * z) * dp * dp);
   }

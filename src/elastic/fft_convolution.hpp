@@ -35,7 +35,7 @@ class FftwArray {
 // FftwArray of the right size (FFTW's new-array execute). Pruned for zero-padded convolutions:
 // forward() reads only the first `rows` rows (the rest are taken as zero) and inverse() computes
 // only the first `rows` rows, so the transforms along x1 of the padding rows are skipped
-// (1.45x faster per forward + inverse pair at rows = n2 / 2, docs/DEPENDENCIES.md).
+// (1.2-1.75x faster per forward + inverse pair with half the rows, docs/DEPENDENCIES.md).
 // Plans are immutable and shared: the plans of the last 16 sizes are kept per thread (planning a
 // known size again costs FFTW ~30 µs, 28 of the 35 µs of a 12 x 16 mesh's operator set-up,
 // docs/DEPENDENCIES.md); this changes no result.
