@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
-#include "railcontact/adhesion.hpp"
-#include "railcontact/ellipse.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 namespace {

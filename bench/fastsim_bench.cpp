@@ -5,10 +5,9 @@
 
 #include <cstdint>
 
-#include "railcontact/ellipse.hpp"
-#include "railcontact/fastsim.hpp"
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/tangential.hpp"
 #include "railcontact/kalker.hpp"
-#include "railcontact/patch.hpp"
 
 namespace {
 

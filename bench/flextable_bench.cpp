@@ -17,8 +17,7 @@
 #include <vector>
 
 #include "railcontact/flexibility_table.hpp"
-#include "railcontact/flexibility_table_fastsim.hpp"
-#include "railcontact/rolling.hpp"
+#include "railcontact/tangential.hpp"
 
 namespace {
 

@@ -4,9 +4,8 @@
 // (semismooth Newton) and the regularised (paper Appendix) solvers. Report: docs/BENCHMARKS.md.
 #include <benchmark/benchmark.h>
 
-#include "railcontact/ellipse.hpp"
-#include "railcontact/fastsim.hpp"
-#include "railcontact/rolling.hpp"
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/tangential.hpp"
 
 namespace railcontact {
 namespace {

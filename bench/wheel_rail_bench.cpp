@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "railcontact/normal.hpp"
-#include "railcontact/wheel_rail_patch.hpp"
+#include "railcontact/wheel_rail.hpp"
 
 namespace {
 

@@ -21,14 +21,14 @@ foreach(line IN LISTS lines)
 endforeach()
 file(WRITE ${OUTPUT} "// Generated from data/kalker_creepage_coefficients.csv by cmake/embed_kalker_table.cmake.
 // Kalker's Table E.3 (three significant digits); a = semi-axis in the rolling direction.
-#include \"hertz/kalker_table_data.hpp\"
+#include \"railcontact/kalker.hpp\"
 
-namespace railcontact::detail {
+namespace railcontact {
 namespace {
 const KalkerTableRow kRows[${count}] = {
 ${rows}};
 }  // namespace
 
 std::span<const KalkerTableRow> kalker_table_rows() { return kRows; }
-}  // namespace railcontact::detail
+}  // namespace railcontact
 ")

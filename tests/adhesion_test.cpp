@@ -4,9 +4,8 @@
 
 #include <cmath>
 
-#include "railcontact/adhesion.hpp"
-#include "railcontact/ellipse.hpp"
-#include "railcontact/ellipse_coefficients.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 

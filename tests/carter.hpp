@@ -16,9 +16,7 @@
 #include <cmath>
 #include <vector>
 
-#include "railcontact/material.hpp"
-#include "railcontact/mesh.hpp"
-#include "railcontact/patch.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact::testing {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "railcontact/case.hpp"
+#include "case/case.hpp"
 #include "railcontact/error.hpp"
 
 namespace railcontact {

@@ -7,11 +7,8 @@
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
-#include "railcontact/adhesion.hpp"
-#include "railcontact/ellipse.hpp"
-#include "railcontact/fastsim.hpp"
-#include "railcontact/patch.hpp"
-#include "railcontact/rolling.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 namespace {

@@ -15,12 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "railcontact/adhesion.hpp"
-#include "railcontact/ellipse.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/fastsim.hpp"
 #include "railcontact/kalker.hpp"
-#include "railcontact/patch.hpp"
 #include "carter.hpp"
 
 namespace railcontact {

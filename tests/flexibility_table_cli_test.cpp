@@ -11,8 +11,8 @@
 
 #include "cli_run.hpp"
 #include "railcontact/flexibility_table.hpp"
-#include "railcontact/profile.hpp"
-#include "railcontact/wheel_rail_patch.hpp"
+#include "railcontact/geometry.hpp"
+#include "railcontact/wheel_rail.hpp"
 
 namespace {
 

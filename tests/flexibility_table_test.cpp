@@ -12,11 +12,11 @@
 #include <memory>
 #include <string>
 
-#include "railcontact/case_run.hpp"
+#include "case/case_run.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/fastsim.hpp"
+#include "railcontact/tangential.hpp"
 #include "railcontact/flexibility_table.hpp"
-#include "railcontact/flexibility_table_fastsim.hpp"
+#include "support/file_fingerprint.hpp"
 #include "study/flexibility_table_check.hpp"
 
 namespace railcontact {

@@ -12,7 +12,7 @@
 #include "hertz/elliptic_integrals.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/hertz.hpp"
-#include "railcontact/material.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 namespace {

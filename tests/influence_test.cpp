@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
-#include "railcontact/influence.hpp"
+#include "elastic/influence_coefficients.hpp"
 
 namespace railcontact {
 namespace {

@@ -13,12 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "hertz/kalker_asymptotics.hpp"
-#include "hertz/kalker_table_data.hpp"
-#include "hertz/monotone_cubic.hpp"
+#include "kalker/kalker_asymptotics.hpp"
+#include "kalker/monotone_cubic.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
-#include "railcontact/material.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 namespace {
@@ -28,7 +27,7 @@ constexpr double pi = std::numbers::pi;
 double rel_diff(double value, double reference) { return std::abs(value / reference - 1.0); }
 
 std::array<double, 3> as_array(const KalkerCoefficients& c) { return {c.C11, c.C22, c.C23}; }
-std::array<double, 3> as_array(const detail::KalkerTableRow& row) { return {row.c11, row.c22, row.c23}; }
+std::array<double, 3> as_array(const KalkerTableRow& row) { return {row.c11, row.c22, row.c23}; }
 
 // 2001 points log-spaced over the whole admissible range a/b = 0.01 ... 100.
 std::vector<double> a_over_b_grid() {
@@ -42,9 +41,9 @@ std::vector<double> a_over_b_grid() {
 // nu must lie in [0, 0.5) (as for Material), so the nu = 0.5 rows are checked at the largest double
 // below 0.5; the quadratic in nu moves by ~1e-16 relative there.
 TEST(KalkerCoefficients, ExactAtEveryTableRow) {
-  const auto rows = detail::kalker_table_rows();
+  const auto rows = kalker_table_rows();
   ASSERT_EQ(rows.size(), 57u);
-  for (const detail::KalkerTableRow& row : rows) {
+  for (const KalkerTableRow& row : rows) {
     const double nu = row.nu < 0.5 ? row.nu : std::nextafter(0.5, 0.0);
     const auto value = as_array(kalker_coefficients(row.a_over_b, nu));
     const auto table = as_array(row);
@@ -58,11 +57,11 @@ TEST(KalkerCoefficients, ExactAtEveryTableRow) {
 // ln C against ln(a/b)): every interior row of every (nu, coefficient) column is interpolated from
 // the other 18 rows. Measured: max 0.62 % (C11, nu = 0.5, a/b = 0.5); the table has 3 digits.
 TEST(KalkerCoefficients, LeaveOneOutInterpolationError) {
-  const auto rows = detail::kalker_table_rows();
+  const auto rows = kalker_table_rows();
   double worst = 0.0;
   int cases = 0;
   for (const double nu : {0.0, 0.25, 0.5}) {
-    std::vector<detail::KalkerTableRow> column;
+    std::vector<KalkerTableRow> column;
     for (const auto& row : rows) {
       if (row.nu == nu) column.push_back(row);
     }
@@ -141,7 +140,7 @@ TEST(KalkerCoefficients, MonotoneInAOverB) {
 // kalker_coefficients.cpp.
 TEST(KalkerCoefficients, JointMismatchOfTheAsymptotes) {
   double worst_narrow = 0.0, worst_long = 0.0;
-  for (const auto& row : detail::kalker_table_rows()) {
+  for (const auto& row : kalker_table_rows()) {
     if (row.a_over_b == 0.1) {
       const auto asym = as_array(detail::kalker_asymptotic_narrow(0.1, row.nu));
       for (std::size_t c = 0; c < 3; ++c) worst_narrow = std::max(worst_narrow, rel_diff(asym[c], as_array(row)[c]));

@@ -4,10 +4,9 @@
 
 #include "elastic/influence_operator.hpp"
 #include "elastic/krylov.hpp"
-#include "railcontact/adhesion.hpp"
-#include "railcontact/ellipse.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/fastsim.hpp"
 #include "tangential/steady_rolling_preconditioner.hpp"
 
 namespace railcontact {

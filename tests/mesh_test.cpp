@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "railcontact/error.hpp"
-#include "railcontact/mesh.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 namespace {

@@ -8,11 +8,9 @@
 #include <cmath>
 #include <iostream>
 
-#include "railcontact/adhesion.hpp"
-#include "railcontact/ellipse.hpp"
-#include "railcontact/fastsim.hpp"
-#include "railcontact/rolling.hpp"
-#include "railcontact/wheel_rail_patch.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/wheel_rail.hpp"
 
 namespace railcontact {
 namespace {

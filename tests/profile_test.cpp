@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "railcontact/error.hpp"
-#include "railcontact/profile.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 namespace {

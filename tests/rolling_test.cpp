@@ -4,12 +4,10 @@
 
 #include <cmath>
 
-#include "railcontact/adhesion.hpp"
-#include "railcontact/ellipse.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/fastsim.hpp"
 #include "railcontact/kalker.hpp"
-#include "railcontact/rolling.hpp"
 #include "carter.hpp"
 
 namespace railcontact {

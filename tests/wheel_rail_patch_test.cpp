@@ -11,10 +11,9 @@
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
-#include "railcontact/conicity_spin.hpp"
-#include "railcontact/contact_regions.hpp"
+#include "railcontact/wheel_rail.hpp"
+#include "railcontact/normal.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/wheel_rail_patch.hpp"
 
 namespace railcontact {
 namespace {

@@ -10,8 +10,7 @@
 #include <vector>
 
 #include "railcontact/error.hpp"
-#include "railcontact/profile.hpp"
-#include "railcontact/wheel_rail.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 namespace {

@@ -2,7 +2,7 @@
 // Hertz's solution for two quasi-identical elastic bodies whose undeformed distance is
 // h(x1, x2) = A x1^2 + B x2^2 (A, B > 0: the relative curvatures halved), Johnson,
 // Contact Mechanics (1985) §4.2. Semi-axis a lies along X1 (rolling), b along X2.
-#include "railcontact/material.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 

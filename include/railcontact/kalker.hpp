@@ -2,7 +2,9 @@
 // Kalker's linear theory of rolling contact for elliptical patches: the creepage coefficients
 // C11, C22, C23 (Kalker 1990, Table E.3, compiled in from data/kalker_creepage_coefficients.csv)
 // and the flexibility parameters of original FastSim (paper Eq 9).
-#include "railcontact/material.hpp"
+#include <span>
+
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 
@@ -30,5 +32,14 @@ struct Flexibility {
 // Original FastSim flexibilities of an ellipse with semi-axes a (along X1) and b (Eq 9):
 // L1 = 8a/(3 C11 G), L2 = 8a/(3 C22 G), L3 = pi a^1.5 / (4 sqrt(b) C23 G).
 Flexibility fastsim_flexibility(double a_m, double b_m, const Material& material);
+
+// Kalker's published table (Kalker 1990, Table E.3) that kalker_coefficients interpolates, compiled
+// in from data/kalker_creepage_coefficients.csv: one row per (a/b, nu).
+struct KalkerTableRow {
+  double a_over_b;  // a = semi-axis along X1 (rolling direction)
+  double nu;        // Poisson's ratio: 0, 0.25 or 0.5
+  double c11, c22, c23;
+};
+std::span<const KalkerTableRow> kalker_table_rows();
 
 }  // namespace railcontact

@@ -1,4 +1,12 @@
 #pragma once
+// Stage: normal problem. Non-Hertzian normal contact on a regular mesh (docs/NORMAL.md,
+// docs/METHOD.md §5) and the connected contact regions of its solution.
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "railcontact/contact_patch.hpp"
+
 // The normal contact problem on a regular mesh (METHOD.md §5): given the undeformed distance
 // h(x1, x2) between the two profiles at the element centres (X3 points into the wheel; h > 0
 // means separated, h < 0 interpenetration before the approach) and the normal force F3, find
@@ -11,12 +19,7 @@
 // zero-padded FFT operator, preconditioned by a stencil approximation of the inverse influence
 // operator on the contact set, started from a Hertz-like pressure on an interpenetration region
 // fitted to the load. See docs/NORMAL.md.
-#include <cstddef>
-#include <memory>
-#include <vector>
 
-#include "railcontact/material.hpp"
-#include "railcontact/mesh.hpp"
 
 namespace railcontact {
 
@@ -69,5 +72,27 @@ class NormalContactSolver {
   struct Plan;
   std::unique_ptr<Plan> plan_;
 };
+
+}  // namespace railcontact
+
+// Connected contact regions of a normal solution: the elements with p3 > 0, grouped into
+// 4-neighbour connected components (elements sharing an edge). A wheel-rail contact may form
+// several separate patches (two-point contact, flange contact); docs/WHEEL_RAIL.md §5.
+
+
+namespace railcontact {
+
+struct ContactRegion {
+  std::vector<std::size_t> elements;  // mesh indices, increasing
+  double normal_force_N = 0.0;        // sum of S p3 over the region
+  double load_fraction = 0.0;         // normal_force_N / total over all regions
+  // Centre of pressure of the region in mesh coordinates.
+  double x1_centre_m = 0.0;
+  double x2_centre_m = 0.0;
+};
+
+// The regions sorted by decreasing normal force. pressure_Pa: one value per mesh element
+// (elements with p3 > 0 are in contact). Throws Error if the sizes differ.
+std::vector<ContactRegion> contact_regions(const Mesh& mesh, const std::vector<double>& pressure_Pa);
 
 }  // namespace railcontact

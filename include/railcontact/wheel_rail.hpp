@@ -1,148 +1,143 @@
 #pragma once
-// Wheel–rail contact geometry of one wheel–rail pair (METHOD.md §2, §9; docs/GEOMETRY.md):
-// wheelset position on the track, the contact point, contact angle, rolling radius, and the
-// undeformed distance h(x1, x2) in the tangent plane of the contact.
-//
-// Frames (docs/GEOMETRY.md §1–3):
-// - Track frame: x along the track in the direction of travel, y lateral to the LEFT, z UP.
-// - The modelled pair is the RIGHT wheel on the RIGHT rail (looking in the direction of travel).
-// - Both profiles are given in their profile frames (profile.hpp): y_p to the right (away from
-//   the track centre, towards the field side), z_p down — the track frame turned by 180° about x.
-// - Wheelset lateral displacement y (m) along the track y axis: y < 0 moves the wheelset to the
-//   right, the right wheel's flange towards the right rail's gauge face, and the contact point
-//   towards the flange (on the rail: towards the gauge corner).
-// - Contact frame: X1 = x (rolling direction); X3 = the contact normal pointing into the wheel;
-//   X2 = X3 × X1 lies in the tangent plane and points towards the flange / gauge side. Origin:
-//   the point of first touch (the normal solver may move it to the centre of pressure).
-// - Contact angle γ: the angle of the common tangent from the horizontal track plane, positive
-//   when the normal into the wheel leans towards the track centre (the flange side), so
-//   X3 = (0, sin γ, cos γ) and X2 = (0, cos γ, −sin γ) in the track frame.
+// Stage: wheel–rail contact. Profiles and the wheelset on the track in; the contact patch of a
+// wheel–rail pair with its contact angle, rolling radius, spin creepage and normal force out
+// (docs/WHEEL_RAIL.md, docs/METHOD.md §9).
 #include <array>
 #include <cstddef>
+#include <filesystem>
+#include <optional>
 #include <vector>
 
-#include "railcontact/mesh.hpp"
-#include "railcontact/profile.hpp"
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/geometry.hpp"
+#include "railcontact/hertz.hpp"
+#include "railcontact/normal.hpp"
+
+// Spin creepage of a wheel rolling forward on its rail, from the conicity of the contact
+// (paper Eq 24, |φ| = 2 sin γ / d) with its sign (docs/WHEEL_RAIL.md §3).
+//
+// Track frame: x along the track in the direction of travel, y to the LEFT, z UP. A wheelset
+// rolling forward at speed V without slip at the nominal radius r0 = d/2 turns with
+// ω = (0, V/r0, 0) (both wheels: one axle). The contact normal into the wheel leans towards the
+// track centre by the contact angle γ: X3 = (0, +sin γ, cos γ) on the right wheel and
+// (0, −sin γ, cos γ) on the left one (the mirror image). The rigid slip of the wheel relative
+// to the rail, w = (ξ − φ x2, η + φ x1) (METHOD.md §6), contains the rotation of the wheel about
+// X3, so φ = ω·X3 / V:
+//   right wheel φ = +2 sin γ / d,   left wheel φ = −2 sin γ / d.
 
 namespace railcontact {
 
-// Track and wheelset data (METHOD.md §9 defaults). The rail inclination (1:40) is part of the
-// rail profile's coordinates and is not applied again.
-struct TrackWheelsetParameters {
-  double track_gauge_m = 1.435;               // between the gauge faces ...
-  double gauge_measuring_depth_m = 0.014;     // ... measured this far below the top of the rails
-  double flange_back_distance_m = 1.360;      // between the flange backs of the wheelset
-  double flange_back_y_m = -0.070;            // the flange back in the wheel profile frame
-  double taping_line_from_flange_back_m = 0.070;  // lateral distance flange back -> taping line
-  double nominal_rolling_radius_m = 0.46;     // wheel radius at the taping line
+enum class WheelSide { right, left };
+
+// Unit contact normal into the wheel, in the track frame, for contact angle γ (rad; positive
+// when the normal leans towards the track centre, docs/GEOMETRY.md §3).
+std::array<double, 3> contact_normal_in_track_frame(double contact_angle_rad, WheelSide side);
+
+// φ = ω·X3 / V (1/m) for a wheelset rolling forward, ω / V = (0, 1/r0, 0); x3_axis_track is the
+// contact normal into the wheel in the track frame (e.g. WheelRailContactPoint::x3_axis_track).
+double spin_creepage_per_m(const std::array<double, 3>& x3_axis_track, double nominal_rolling_radius_m);
+
+// Eq 24 with its sign: φ = ±2 sin γ / d (+ right wheel, − left wheel). Throws Error unless γ is
+// finite and d > 0.
+double conicity_spin_per_m(double contact_angle_rad, WheelSide side, double nominal_wheel_diameter_m = 0.92);
+
+}  // namespace railcontact
+
+// The normal contact of one wheel–rail pair at one wheelset position (METHOD.md §5, §9;
+// docs/WHEEL_RAIL.md): profiles → contact point → undeformed distance on a potential contact
+// area → normal problem → the single contact patch, with its contact angle, rolling radius,
+// spin creepage (Eq 24, signed) and normal force F3 = Fz / cos γ (frictionless equilibrium).
+//
+// Frames as in wheel_rail.hpp: the right wheel on the right rail; contact frame X1 rolling
+// direction, X3 the contact normal into the wheel, X2 = X3 × X1 towards the flange / gauge side.
+
+
+namespace railcontact {
+
+// Shape of the elements of the potential contact area (cf. EllipseMeshLayout).
+enum class PatchMeshLayout {
+  square,            // dx1 = dx2
+  rolling_resolved,  // dx1 = dx2 min(1, L1/L2) with L1, L2 the patch extents along X1, X2:
+                     // square when the patch is longer than wide, else as many elements along
+                     // X1 as along X2 (the rolling direction is never resolved more coarsely)
 };
 
-// Throws Error unless all lengths are positive and finite (flange_back_y finite).
-void validate(const TrackWheelsetParameters& parameters);
+struct WheelRailPatchOptions {
+  double vertical_load_N = 98100;  // Fz (METHOD.md §9: 10 t); F3 = Fz / cos γ
+  int target_elements = 3000;      // about this many elements in contact
+  NormalOptions normal;
+  Material material{2.1e11, 0.3};
+  PatchMeshLayout layout = PatchMeshLayout::rolling_resolved;
+  // The mesh is refined (element area scaled by count / target) while the number of elements in
+  // contact is off the target by more than this fraction, in at most max_mesh_passes solves.
+  double element_count_tolerance = 0.15;
+  int max_mesh_passes = 3;
+  // The first potential area holds h < 1.5 × this approach estimate; default: Hertz's approach
+  // for the local curvatures. A potential area that the patch touches is enlarged (margin × 1.5,
+  // approach estimate up to × 2) at most max_enlargements times.
+  std::optional<double> initial_approach_m;
+  int max_enlargements = 4;
+  // Connected contact regions carrying more than this fraction of F3 are patches; smaller ones
+  // (specks) are dropped from `patch`. More than one patch throws Error unless
+  // allow_several_patches (then `patch` holds the largest one and `regions` all of them).
+  double significant_load_fraction = 0.01;
+  bool allow_several_patches = false;
+};
 
-// The geometric contact point of one lateral displacement.
-struct WheelRailContactPoint {
+struct WheelRailPatch {
+  WheelRailContactPoint contact;    // point of first touch, contact frame, local curvatures
   double lateral_displacement_m = 0.0;  // wheelset y (track frame, positive to the left)
-  double y_rail_m = 0.0;    // contact point in the rail profile frame
-  double z_rail_m = 0.0;
-  double y_wheel_m = 0.0;   // contact point in the wheel profile frame
-  double z_wheel_m = 0.0;
-  double y_track_m = 0.0;   // lateral position in the track frame (from the centreline, left +)
-  double contact_angle_rad = 0.0;   // γ, see above
-  double rolling_radius_m = 0.0;    // wheel radius at the contact point
-  // Vertical position of the wheel profile frame in the rail profile frame after lowering the
-  // wheel onto the rail (z_p of the wheel origin; z_p points down).
-  double wheel_drop_m = 0.0;
-  // Offset from wheel to rail profile coordinates: y_rail = y_wheel + wheel_to_rail_offset.
-  double wheel_to_rail_offset_m = 0.0;
-  // Lateral curvatures of the profiles at the contact (signed, profile frame, 1/m; see
-  // SmoothProfile::curvature_at) and the quadratic form of h at the contact:
-  // h ≈ A x1² + B x2² with A = cos γ / (2 r), B = (κ_rail − κ_wheel) / 2.
-  double rail_curvature_per_m = 0.0;
-  double wheel_curvature_per_m = 0.0;
-  double A_per_m = 0.0;
-  double B_per_m = 0.0;
-  // Contact frame axes in the track frame (x, y, z).
-  std::array<double, 3> x2_axis_track{};
-  std::array<double, 3> x3_axis_track{};
-  // Second-lowest local minimum of the vertical gap more than 1 mm away laterally (a candidate
-  // second contact point): its gap (m) and rail position; gap = +inf when there is none.
-  double secondary_gap_m = 0.0;
-  double secondary_y_rail_m = 0.0;
+  double contact_angle_rad = 0.0;       // γ
+  double rolling_radius_m = 0.0;        // wheel radius at the contact point
+  double spin_per_m = 0.0;              // Eq 24 signed: +2 sin γ / d (right wheel)
+  double vertical_load_N = 0.0;         // Fz
+  double normal_force_N = 0.0;          // F3 = Fz / cos γ
+  // The patch (the largest connected region) on the potential-area mesh cropped to the patch's
+  // bounding box, with its origin at its centre of pressure.
+  ContactPatch patch;
+  // The normal solution on the potential-area mesh (all regions) and that mesh. The mesh origin
+  // is the point of first touch; h on it is potential_h_m.
+  NormalSolution normal;
+  Mesh potential_area;
+  std::vector<double> potential_h_m;
+  // Connected contact regions of `normal`, by decreasing load (regions.size() >= 1).
+  std::vector<ContactRegion> regions;
+  std::size_t patches = 1;            // regions carrying more than significant_load_fraction
+  double dropped_load_fraction = 0.0; // load of the regions not in `patch` / F3
+  // Centre of pressure of `patch` in the tangent plane, from the point of first touch.
+  double pressure_centre_x1_m = 0.0;
+  double pressure_centre_x2_m = 0.0;
+  // The centre of pressure on the rail (rail profile frame, the tangent-plane point) and the
+  // rail's slope angle there: unlike γ (first touch) it varies continuously through a contact
+  // jump (docs/WHEEL_RAIL.md §6). For information; F3 and the spin use γ.
+  double pressure_centre_y_rail_m = 0.0;
+  double pressure_centre_contact_angle_rad = 0.0;
+  // Measures of `patch`: extents along X1 and X2 (element edges), area (elements × S), p3 max.
+  double extent_x1_m = 0.0, extent_x2_m = 0.0, area_m2 = 0.0, max_pressure_Pa = 0.0;
+  double approach_m = 0.0;            // δ of the normal solution
+  std::size_t elements_in_contact = 0;  // elements of `patch`
+  int iterations = 0;                 // normal-solver iterations of the final solve
+  int mesh_passes = 0;                // normal solves performed (mesh refinements, enlargements)
+  // Hertz's solution for the local curvatures A, B of the contact point and F3, for comparison
+  // (all zero when B <= 0: no Hertzian contact exists).
+  HertzContact local_hertz;
 };
 
-// One wheel–rail pair: the two smoothed profiles placed on the track.
-class WheelRailPair {
- public:
-  // Throws Error when a profile is not oriented as documented (flange / gauge side at -y, z
-  // down) or the taping line / gauge point cannot be found.
-  WheelRailPair(const Profile& wheel, const Profile& rail, const TrackWheelsetParameters& parameters = {},
-                const SmoothingOptions& smoothing = {});
+// Solves the normal contact at wheelset displacement y_m (track frame, m). Throws Error when the
+// profiles never touch, the load or options are invalid, the normal solver does not converge,
+// the potential area cannot hold the patch, or (unless allowed) y gives several patches.
+WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options = {});
 
-  [[nodiscard]] const SmoothProfile& wheel() const { return wheel_; }
-  [[nodiscard]] const SmoothProfile& rail() const { return rail_; }
-  [[nodiscard]] const TrackWheelsetParameters& parameters() const { return parameters_; }
+// The shipped S1002 wheel on the UIC60 rail (1:40) of METHOD.md §9 (data/profiles/), with the
+// default track and wheelset parameters. The data directory is the one of the build
+// (RAILCONTACT_DATA_DIR) unless the environment variable RAILCONTACT_DATA names another.
+std::filesystem::path default_wheel_profile_path();
+std::filesystem::path default_rail_profile_path();
+WheelRailPair default_wheel_rail_pair();
 
-  // Rail: highest point (z_p minimum) and the gauge point (gauge side, measuring depth below
-  // the top), profile frame. Wheel: taping line (y_p, z_p) in the wheel profile frame.
-  [[nodiscard]] double rail_top_z_m() const { return rail_top_z_m_; }
-  [[nodiscard]] double rail_gauge_point_y_m() const { return rail_gauge_y_m_; }
-  [[nodiscard]] double taping_line_y_m() const { return taping_y_m_; }
-  [[nodiscard]] double taping_line_z_m() const { return taping_z_m_; }
-  // Wheel radius at wheel profile position y (r0 + z_w(y) − z_w(taping line)).
-  [[nodiscard]] double wheel_radius_m(double y_wheel_m) const;
-
-  // Lowers the wheel (vertically, zero roll and yaw) onto the rail until first touch at
-  // wheelset displacement y. Throws Error when the profiles never touch (no lateral overlap) or
-  // first touch is at the end of a profile (no common tangent).
-  [[nodiscard]] WheelRailContactPoint contact_point(double lateral_displacement_m) const;
-
-  // Exact undeformed distance (m) at tangent-plane point (x1, x2) of a contact: the distance
-  // along the contact normal between the rail surface and the wheel surface on the line
-  // through (x1, x2) (docs/GEOMETRY.md §4). Throws Error when the line misses a profile.
-  [[nodiscard]] double undeformed_distance(const WheelRailContactPoint& contact, double x1_m, double x2_m) const;
-
-  // h at every element centre of the mesh (X1 rolling, X2 as above), stored as mesh.index().
-  [[nodiscard]] std::vector<double> undeformed_distance(const WheelRailContactPoint& contact, const Mesh& mesh) const;
-
- private:
-  SmoothProfile wheel_;
-  SmoothProfile rail_;
-  TrackWheelsetParameters parameters_;
-  double rail_top_z_m_ = 0.0;
-  double rail_gauge_y_m_ = 0.0;
-  double taping_y_m_ = 0.0;
-  double taping_z_m_ = 0.0;
-  double wheel_origin_lateral_m_ = 0.0;  // wheel profile origin from the track centreline, outward
-  double rail_origin_lateral_m_ = 0.0;   // rail profile origin from the track centreline, outward
-};
-
-// Choice of the potential contact area.
-struct PotentialAreaOptions {
-  // The area holds the region where h < margin_factor × approach (the undeformed
-  // interpenetration h < approach holds every contact patch of the normal problem).
-  double margin_factor = 1.5;
-  // Element sizes: if positive they are used as given; otherwise the interpenetration region
-  // (h < approach) spans about elements_across elements along X1 and along X2.
-  double dx1_m = 0.0;
-  double dx2_m = 0.0;
-  int elements_across = 30;
-  // Extra elements around the margin region; the area grows while the margin region reaches
-  // into this border ring, at most max_growth_steps times.
-  int border_elements = 3;
-  int max_growth_steps = 10;
-};
-
-// A potential contact area with the undeformed distance on it.
-struct PotentialContactArea {
-  Mesh mesh;
-  std::vector<double> h_m;  // at the element centres, mesh.index() order
-  int growth_steps = 0;     // how often the area had to be enlarged
-};
-
-// Mesh and h for an approach estimate (m), e.g. Hertz's approach for the local curvatures
-// A_per_m, B_per_m of the contact point (hertz_from_curvatures in hertz.hpp).
-PotentialContactArea potential_contact_area(const WheelRailPair& pair, const WheelRailContactPoint& contact,
-                                            double approach_m, const PotentialAreaOptions& options = {});
+// A pair from profile files (formats: profile.hpp); errors name the file and the line.
+WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile,
+                                   const std::filesystem::path& rail_profile,
+                                   const TrackWheelsetParameters& parameters = {});
 
 }  // namespace railcontact

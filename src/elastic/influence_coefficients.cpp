@@ -1,5 +1,5 @@
 // Closed-form influence coefficients of a uniformly loaded rectangle (METHOD.md §4).
-#include "railcontact/influence.hpp"
+#include "elastic/influence_coefficients.hpp"
 
 #include "elastic/rectangle_antiderivatives.hpp"
 

@@ -4,7 +4,7 @@
 
 #include "elastic/rectangle_antiderivatives.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/influence.hpp"
+#include "elastic/influence_coefficients.hpp"
 
 namespace railcontact {
 namespace {

@@ -13,8 +13,7 @@
 #include <vector>
 
 #include "elastic/fft_convolution.hpp"
-#include "railcontact/material.hpp"
-#include "railcontact/mesh.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 

@@ -10,7 +10,7 @@
 #include <cstddef>
 
 #include "geometry/profile_text.hpp"
-#include "railcontact/profile.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 

@@ -13,7 +13,7 @@
 
 #include "geometry/tangent_section.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/wheel_rail.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 

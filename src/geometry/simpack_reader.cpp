@@ -11,7 +11,7 @@
 #include <map>
 
 #include "geometry/profile_text.hpp"
-#include "railcontact/profile.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 

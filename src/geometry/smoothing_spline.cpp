@@ -19,7 +19,7 @@
 
 #include "geometry/root_finding.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/profile.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 

@@ -4,7 +4,7 @@
 // contact and reused for many (x1, x2).
 #include <utility>
 
-#include "railcontact/wheel_rail.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact::geometry {
 

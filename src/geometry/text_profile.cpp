@@ -7,7 +7,7 @@
 
 #include "geometry/profile_text.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/profile.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 

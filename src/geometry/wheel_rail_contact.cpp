@@ -11,7 +11,7 @@
 
 #include "geometry/root_finding.hpp"
 #include "railcontact/error.hpp"
-#include "railcontact/wheel_rail.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact {
 

@@ -17,7 +17,7 @@
 #include <cstdint>
 #include <span>
 
-#include "railcontact/mesh.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact::detail {
 

@@ -8,7 +8,7 @@
 
 #include "elastic/influence_operator.hpp"
 #include "elastic/krylov.hpp"
-#include "railcontact/adhesion.hpp"
+#include "railcontact/tangential.hpp"
 #include "railcontact/error.hpp"
 #include "tangential/steady_rolling_preconditioner.hpp"
 

@@ -1,4 +1,4 @@
-#include "railcontact/ellipse_coefficients.hpp"
+#include "railcontact/tangential.hpp"
 
 #include <chrono>
 #include <cmath>

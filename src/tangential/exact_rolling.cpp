@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "railcontact/error.hpp"
-#include "railcontact/rolling.hpp"
+#include "railcontact/tangential.hpp"
 #include "tangential/rolling_system.hpp"
 
 namespace railcontact {

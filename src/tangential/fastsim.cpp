@@ -8,7 +8,7 @@
 // leading side with empty slots (step 0, bound 0: the traction stays 0 there). Slot
 // (block, step j, lane r) holds the j-th element, counted from the leading side, of the block's
 // r-th run; a block's slots are contiguous, step after step (structure of arrays, aligned).
-#include "railcontact/fastsim.hpp"
+#include "railcontact/tangential.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "railcontact/patch.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact::fastsim_detail {
 

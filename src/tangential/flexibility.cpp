@@ -12,7 +12,7 @@
 #include <fmt/format.h>
 
 #include "railcontact/error.hpp"
-#include "railcontact/fastsim.hpp"
+#include "railcontact/tangential.hpp"
 
 namespace railcontact {
 namespace {

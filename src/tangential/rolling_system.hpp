@@ -7,8 +7,7 @@
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
-#include "railcontact/creepage.hpp"
-#include "railcontact/patch.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 
@@ -72,7 +71,7 @@ NewtonStepReport solve_newton_step(NewtonMatrix& J, const std::vector<double>& r
 
 }  // namespace railcontact
 
-#include "railcontact/rolling.hpp"
+#include "railcontact/tangential.hpp"
 
 namespace railcontact {
 

@@ -15,7 +15,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "railcontact/mesh.hpp"
+#include "railcontact/contact_patch.hpp"
 
 namespace railcontact {
 

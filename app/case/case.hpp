@@ -1,0 +1,68 @@
+#pragma once
+// A contact case, as read from a TOML case file (`railcontact run CASE.toml`): geometry,
+// material, load, friction, creepage, mesh and the solvers to run. Documented with an example
+// in docs/CASE_FILES.md and examples/.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/tangential.hpp"
+
+namespace railcontact {
+
+enum class SolverKind { nh_fastsim, fastsim, exact, exact_regularised };
+std::string_view solver_name(SolverKind kind);
+
+enum class GeometryKind { ellipse, wheel_rail };
+
+struct EllipseGeometry {
+  // Either the semi-axes (a along X1) or the curvatures of h = A x1^2 + B x2^2 (Hertz).
+  std::optional<double> a_m, b_m;
+  std::optional<double> A_per_m, B_per_m;
+};
+
+struct WheelRailGeometry {
+  std::string wheel_file;  // empty: the shipped S1002 wheel
+  std::string rail_file;   // empty: the shipped UIC60 rail (inclined 1:40)
+  double y_m = 0.0;        // wheelset lateral displacement; y < 0 towards the flange
+};
+
+struct CreepageInput {
+  Creepage raw;                         // xi, eta, phi as given
+  std::optional<double> xi_normalised;  // xi' of Eq 22 (needs the patch's K2)
+  std::optional<double> eta_normalised; // eta' of Eq 23
+  bool phi_from_conicity = false;       // phi from Eq 24
+};
+
+struct Case {
+  std::string source;  // file name, for messages
+  GeometryKind geometry = GeometryKind::ellipse;
+  EllipseGeometry ellipse;
+  WheelRailGeometry wheel_rail;
+  Material material;
+  double normal_force_N = 0.0;
+  double mu = 0.3;
+  CreepageInput creepage;
+  int target_elements = 2800;
+  std::vector<SolverKind> solvers{SolverKind::nh_fastsim, SolverKind::fastsim, SolverKind::exact,
+                                  SolverKind::exact_regularised};
+  RollingOptions rolling;
+  // nH-FastSim flexibilities (and the normalisation's f11, f22) from K2 of the patch coarsened
+  // by this factor (1: the patch itself; 2: about 4x cheaper, docs/VALIDATION.md §3); 0: automatic,
+  // automatic_flexibility_coarsening() (a coarse patch of >= 250 elements; 2 from 400).
+  int flexibility_coarsening = 0;
+  // nh-fastsim's traction bound (fastsim.hpp TractionBound): 0 = the paper's parabola (Eq 1).
+  // The classical `fastsim` always uses the parabola.
+  double bound_skew = TractionBound{}.skew;
+};
+
+// Reads and validates a case file. Throws railcontact::Error naming the file, the line and the
+// key for malformed TOML, unknown keys, missing sections, wrong types, non-finite or
+// non-physical values and unknown solver names.
+Case read_case_file(const std::filesystem::path& path);
+Case parse_case(std::string_view toml_text, const std::string& source_name);
+
+}  // namespace railcontact

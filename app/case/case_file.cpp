@@ -1,0 +1,280 @@
+// TOML case files: every key is checked, every error names the file, the line and the key.
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "case/case.hpp"
+#include "railcontact/error.hpp"
+
+namespace railcontact {
+
+std::string_view solver_name(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::nh_fastsim: return "nh-fastsim";
+    case SolverKind::fastsim: return "fastsim";
+    case SolverKind::exact: return "exact";
+    case SolverKind::exact_regularised: return "exact-regularised";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string where(const std::string& source, const toml::source_region& region) {
+  return fmt::format("{}:{}", source, region.begin.line);
+}
+
+// One [section] of the case file: typed access, and a check that no unknown key is left.
+class Section {
+ public:
+  Section(const toml::table& table, std::string name, const std::string& source)
+      : table_(table), name_(std::move(name)), source_(source) {}
+
+  [[nodiscard]] bool has(const std::string& key) const { return table_.contains(key); }
+
+  std::optional<double> optional_number(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (node == nullptr) return std::nullopt;
+    double value;
+    if (const auto* i = node->as_integer()) value = static_cast<double>(i->get());
+    else if (const auto* f = node->as_floating_point()) value = f->get();
+    else throw Error(fmt::format("{}: [{}] {} must be a number", where(source_, node->source()), name_, key));
+    if (!std::isfinite(value))
+      throw Error(fmt::format("{}: [{}] {} must be a finite number (got {})", where(source_, node->source()), name_, key, value));
+    return value;
+  }
+
+  double number(const std::string& key) {
+    const std::optional<double> value = optional_number(key);
+    if (!value) throw Error(fmt::format("{}: [{}] is missing the key '{}'", where(source_, table_.source()), name_, key));
+    return *value;
+  }
+
+  double positive(const std::string& key) {
+    const double value = number(key);
+    check_positive(key, value);
+    return value;
+  }
+
+  std::optional<double> optional_positive(const std::string& key) {
+    const std::optional<double> value = optional_number(key);
+    if (value) check_positive(key, *value);
+    return value;
+  }
+
+  std::optional<std::string> optional_string(const std::string& key) {
+    used_.insert(key);
+    const toml::node* node = table_.get(key);
+    if (node == nullptr) return std::nullopt;
+    const auto* s = node->as_string();
+    if (s == nullptr) throw Error(fmt::format("{}: [{}] {} must be a string", where(source_, node->source()), name_, key));
+    return s->get();
+  }
+
+  [[nodiscard]] const toml::node* node(const std::string& key) {
+    used_.insert(key);
+    return table_.get(key);
+  }
+
+  [[nodiscard]] std::string location(const std::string& key) const {
+    const toml::node* n = table_.get(key);
+    return where(source_, n != nullptr ? n->source() : table_.source());
+  }
+
+  // Throws on the first key that was never asked for.
+  void finish() const {
+    for (const auto& [key, node] : table_) {
+      if (!used_.contains(std::string(key.str())))
+        throw Error(fmt::format("{}: unknown key '{}' in [{}]", where(source_, node.source()), key.str(), name_));
+    }
+  }
+
+ private:
+  void check_positive(const std::string& key, double value) const {
+    if (!(value > 0))
+      throw Error(fmt::format("{}: [{}] {} must be positive (got {})", location(key), name_, key, value));
+  }
+  const toml::table& table_;
+  std::string name_;
+  const std::string& source_;
+  std::set<std::string> used_;
+};
+
+const toml::table& section_table(const toml::table& root, const std::string& name, const std::string& source,
+                                 bool required, const toml::table& empty) {
+  const toml::node* node = root.get(name);
+  if (node == nullptr) {
+    if (required) throw Error(fmt::format("{}: missing section [{}]", source, name));
+    return empty;
+  }
+  const toml::table* table = node->as_table();
+  if (table == nullptr) throw Error(fmt::format("{}: {} must be a section [{}]", where(source, node->source()), name, name));
+  return *table;
+}
+
+}  // namespace
+
+Case parse_case(std::string_view text, const std::string& source) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    throw Error(fmt::format("{}:{}: malformed TOML: {}", source, e.source().begin.line, e.description()));
+  }
+  static const std::set<std::string> kSections{"geometry", "material", "load", "friction", "creepage", "mesh", "solvers"};
+  for (const auto& [key, node] : root)
+    if (!kSections.contains(std::string(key.str())))
+      throw Error(fmt::format("{}: unknown section or key '{}'", where(source, node.source()), key.str()));
+
+  const toml::table empty;
+  Case c;
+  c.source = source;
+
+  Section geometry(section_table(root, "geometry", source, true, empty), "geometry", source);
+  const std::string type = geometry.optional_string("type").value_or("");
+  if (type == "ellipse") {
+    c.geometry = GeometryKind::ellipse;
+    c.ellipse.a_m = geometry.optional_positive("a");
+    c.ellipse.b_m = geometry.optional_positive("b");
+    c.ellipse.A_per_m = geometry.optional_positive("A");
+    c.ellipse.B_per_m = geometry.optional_positive("B");
+    const bool axes = c.ellipse.a_m && c.ellipse.b_m, curvatures = c.ellipse.A_per_m && c.ellipse.B_per_m;
+    if (axes == curvatures)
+      throw Error(fmt::format("{}: [geometry] an ellipse needs either a and b (m) or the curvatures A and B (1/m)",
+                              geometry.location("type")));
+  } else if (type == "wheel-rail") {
+    c.geometry = GeometryKind::wheel_rail;
+    c.wheel_rail.wheel_file = geometry.optional_string("wheel").value_or("");
+    c.wheel_rail.rail_file = geometry.optional_string("rail").value_or("");
+    c.wheel_rail.y_m = geometry.optional_number("y").value_or(0.0);
+    if (std::fabs(c.wheel_rail.y_m) > 0.05)
+      throw Error(fmt::format("{}: [geometry] y = {} m is not a plausible lateral displacement (|y| <= 0.05 m)",
+                              geometry.location("y"), c.wheel_rail.y_m));
+  } else {
+    throw Error(fmt::format("{}: [geometry] type must be \"ellipse\" or \"wheel-rail\" (got \"{}\")",
+                            geometry.location("type"), type));
+  }
+  geometry.finish();
+
+  Section material(section_table(root, "material", source, true, empty), "material", source);
+  const std::optional<double> E = material.optional_positive("E");
+  const std::optional<double> G = material.optional_positive("G");
+  const double nu = material.number("nu");
+  if (!(nu >= 0 && nu < 0.5))
+    throw Error(fmt::format("{}: [material] nu must lie in [0, 0.5) (got {})", material.location("nu"), nu));
+  if (E.has_value() == G.has_value())
+    throw Error(fmt::format("{}: [material] give either E or G (Pa)", material.location("nu")));
+  c.material = E ? Material{*E, nu} : Material::from_shear_modulus(*G, nu);
+  material.finish();
+
+  Section load(section_table(root, "load", source, true, empty), "load", source);
+  c.normal_force_N = load.positive("normal_force");
+  load.finish();
+
+  Section friction(section_table(root, "friction", source, true, empty), "friction", source);
+  c.mu = friction.positive("mu");
+  if (c.mu > 2.0)
+    throw Error(fmt::format("{}: [friction] mu = {} is not physical (at most 2)", friction.location("mu"), c.mu));
+  friction.finish();
+
+  Section creepage(section_table(root, "creepage", source, true, empty), "creepage", source);
+  c.creepage.raw.xi = creepage.optional_number("xi").value_or(0.0);
+  c.creepage.raw.eta = creepage.optional_number("eta").value_or(0.0);
+  c.creepage.xi_normalised = creepage.optional_number("xi_normalised");
+  c.creepage.eta_normalised = creepage.optional_number("eta_normalised");
+  if (creepage.has("xi") && c.creepage.xi_normalised)
+    throw Error(fmt::format("{}: [creepage] give xi or xi_normalised, not both", creepage.location("xi")));
+  if (creepage.has("eta") && c.creepage.eta_normalised)
+    throw Error(fmt::format("{}: [creepage] give eta or eta_normalised, not both", creepage.location("eta")));
+  if (const toml::node* phi = creepage.node("phi")) {
+    if (const auto* s = phi->as_string()) {
+      if (s->get() != "from-conicity")
+        throw Error(fmt::format("{}: [creepage] phi must be a number (1/m) or \"from-conicity\"", where(source, phi->source())));
+      c.creepage.phi_from_conicity = true;
+    } else {
+      c.creepage.raw.phi = creepage.optional_number("phi").value_or(0.0);
+    }
+  }
+  for (const char* key : {"xi", "eta"})
+    if (std::fabs(key[0] == 'x' ? c.creepage.raw.xi : c.creepage.raw.eta) > 0.5)
+      throw Error(fmt::format("{}: [creepage] {} is absurd (|{}| <= 0.5)", creepage.location(key), key, key));
+  if (std::fabs(c.creepage.raw.phi) > 100.0)
+    throw Error(fmt::format("{}: [creepage] phi = {} 1/m is absurd (|phi| <= 100 1/m)", creepage.location("phi"),
+                            c.creepage.raw.phi));
+  for (const char* key : {"xi_normalised", "eta_normalised"}) {
+    const auto& v = key[0] == 'x' ? c.creepage.xi_normalised : c.creepage.eta_normalised;
+    if (v && std::fabs(*v) > 100.0)
+      throw Error(fmt::format("{}: [creepage] {} is absurd (at most 100 in magnitude)", creepage.location(key), key));
+  }
+  if (c.geometry == GeometryKind::ellipse && (c.creepage.xi_normalised || c.creepage.eta_normalised ||
+                                              c.creepage.phi_from_conicity))
+    throw Error(fmt::format("{}: [creepage] normalised creepages and phi = \"from-conicity\" need a wheel-rail patch",
+                            source));
+  creepage.finish();
+
+  Section mesh(section_table(root, "mesh", source, false, empty), "mesh", source);
+  if (const std::optional<double> elements = mesh.optional_positive("elements")) {
+    if (*elements < 20 || *elements > 1e6 || std::floor(*elements) != *elements)
+      throw Error(fmt::format("{}: [mesh] elements must be a whole number in [20, 1000000] (got {})",
+                              mesh.location("elements"), *elements));
+    c.target_elements = static_cast<int>(*elements);
+  }
+  mesh.finish();
+
+  Section solvers(section_table(root, "solvers", source, false, empty), "solvers", source);
+  if (const toml::node* run = solvers.node("run")) {
+    const toml::array* list = run->as_array();
+    if (list == nullptr || list->empty())
+      throw Error(fmt::format("{}: [solvers] run must be a non-empty list of solver names", where(source, run->source())));
+    c.solvers.clear();
+    for (const toml::node& item : *list) {
+      const auto* name = item.as_string();
+      const std::string solver = name != nullptr ? name->get() : std::string("?");
+      SolverKind kind;
+      if (solver == "nh-fastsim") kind = SolverKind::nh_fastsim;
+      else if (solver == "fastsim") kind = SolverKind::fastsim;
+      else if (solver == "exact") kind = SolverKind::exact;
+      else if (solver == "exact-regularised") kind = SolverKind::exact_regularised;
+      else
+        throw Error(fmt::format("{}: [solvers] unknown solver '{}' (nh-fastsim, fastsim, exact, exact-regularised)",
+                                where(source, item.source()), solver));
+      c.solvers.push_back(kind);
+    }
+  }
+  if (const std::optional<double> alpha = solvers.optional_number("alpha")) {
+    if (!(*alpha > -1 && *alpha <= 1))
+      throw Error(fmt::format("{}: [solvers] alpha must lie in (-1, 1]", solvers.location("alpha")));
+    c.rolling.collocation_offset = *alpha;
+  }
+  if (const std::optional<double> eps = solvers.optional_positive("regularisation")) c.rolling.regularisation = *eps;
+  if (const std::optional<double> tol = solvers.optional_positive("tolerance")) c.rolling.tolerance = *tol;
+  if (const std::optional<double> f = solvers.optional_positive("flexibility_coarsening")) {
+    if (*f != std::floor(*f) || *f > kMaximumCoarsening)
+      throw Error(fmt::format("{}: [solvers] flexibility_coarsening must be an integer from 1 to {}",
+                              solvers.location("flexibility_coarsening"), kMaximumCoarsening));
+    c.flexibility_coarsening = static_cast<int>(*f);
+  }
+  if (const std::optional<double> skew = solvers.optional_number("bound_skew")) {
+    if (!(*skew >= 0 && *skew <= 1))
+      throw Error(fmt::format("{}: [solvers] bound_skew must lie in [0, 1] (0: the paper's parabola, Eq 1)",
+                              solvers.location("bound_skew")));
+    c.bound_skew = *skew;
+  }
+  solvers.finish();
+  return c;
+}
+
+Case read_case_file(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) throw Error(fmt::format("cannot read the case file {}", path.string()));
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  return parse_case(buffer.str(), path.string());
+}
+
+}  // namespace railcontact

@@ -1,0 +1,240 @@
+// The main job: a case from patch to creep forces with every requested solver.
+#include "case/case_run.hpp"
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/hertz.hpp"
+#include "railcontact/wheel_rail.hpp"
+
+namespace railcontact {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+void summarise(const ContactPatch& patch, PatchSummary& s) {
+  s.normal_force_N = patch.normal_force_N();
+  s.area_m2 = patch.area_m2();
+  s.elements_in_contact = patch.elements().count();
+  s.n1 = patch.mesh().n1;
+  s.n2 = patch.mesh().n2;
+  s.dx1_m = patch.mesh().dx1_m;
+  s.dx2_m = patch.mesh().dx2_m;
+  double x1_min = 1e300, x1_max = -1e300, x2_min = 1e300, x2_max = -1e300;
+  for (std::size_t e = 0; e < patch.elements().count(); ++e) {
+    s.max_pressure_Pa = std::max(s.max_pressure_Pa, patch.pressure_Pa()[e]);
+    x1_min = std::min(x1_min, patch.x1(e));
+    x1_max = std::max(x1_max, patch.x1(e));
+    x2_min = std::min(x2_min, patch.x2(e));
+    x2_max = std::max(x2_max, patch.x2(e));
+  }
+  s.extent_x1_m = x1_max - x1_min + s.dx1_m;
+  s.extent_x2_m = x2_max - x2_min + s.dx2_m;
+}
+
+// Elliptical Hertzian patch from the semi-axes or from the curvatures (Hertz).
+ContactPatch elliptical_patch(const Case& c, PatchSummary& s) {
+  double a = 0, b = 0;
+  if (c.ellipse.a_m && c.ellipse.b_m) {
+    a = *c.ellipse.a_m;
+    b = *c.ellipse.b_m;
+  } else {
+    const HertzContact h = hertz_from_curvatures(*c.ellipse.A_per_m, *c.ellipse.B_per_m, c.normal_force_N, c.material);
+    a = h.a_m;
+    b = h.b_m;
+  }
+  require(a / b >= 0.01 && a / b <= 100,
+          [&] { return fmt::format("{}: the ellipse's a/b = {} lies outside [0.01, 100]", c.source, a / b); });
+  s.geometry = "ellipse";
+  s.a_m = a;
+  s.b_m = b;
+  const ContactElements elements =
+      elliptical_contact_with_count(a, b, c.target_elements, EllipseMeshLayout::rolling_resolved);
+  return hertzian_patch(elements, a, b, c.normal_force_N, c.material);
+}
+
+// The profile pair of a wheel-rail case (the shipped one unless files are named).
+WheelRailPair case_pair(const Case& c) {
+  if (c.wheel_rail.wheel_file.empty() && c.wheel_rail.rail_file.empty()) return default_wheel_rail_pair();
+  return load_wheel_rail_pair(
+      c.wheel_rail.wheel_file.empty() ? default_wheel_profile_path() : std::filesystem::path(c.wheel_rail.wheel_file),
+      c.wheel_rail.rail_file.empty() ? default_rail_profile_path() : std::filesystem::path(c.wheel_rail.rail_file));
+}
+
+// A flexibility table must belong to the case: its pair, material, collocation offset, y and Fz.
+void check_table_fits(const FlexibilityTable& table, const Case& c, const WheelRailPair& pair) {
+  table.check_profiles(pair);
+  table.check_material(c.material, c.rolling.collocation_offset);
+  (void)table.lookup(c.wheel_rail.y_m, c.normal_force_N);  // range and gaps
+}
+
+// The wheel-rail patch of METHOD.md §9; [load] normal_force is the vertical wheel load Fz. With a
+// flexibility table, its values for the patch are returned in `table_values`.
+ContactPatch wheel_rail_patch(const Case& c, const WheelRailPair& pair, PatchSummary& s, const FlexibilityTable* table,
+                              std::optional<FlexibilityTableValues>& table_values) {
+  WheelRailPatchOptions options;
+  options.vertical_load_N = c.normal_force_N;
+  options.target_elements = c.target_elements;
+  options.material = c.material;
+  const WheelRailPatch wr = solve_wheel_rail_patch(pair, c.wheel_rail.y_m, options);
+  if (table != nullptr) table_values = table->lookup_for_patch(c.wheel_rail.y_m, c.normal_force_N, wr.area_m2);
+  s.geometry = "wheel-rail";
+  s.lateral_displacement_m = wr.lateral_displacement_m;
+  s.contact_angle_rad = wr.contact_angle_rad;
+  s.rolling_radius_m = wr.rolling_radius_m;
+  s.spin_per_m = wr.spin_per_m;
+  // Equivalent ellipse (classical FastSim on a non-elliptical patch): the same area, the axis
+  // ratio of the rectangle circumscribing the patch (Piotrowski & Kik 2008).
+  const double ratio = wr.extent_x1_m / wr.extent_x2_m;
+  s.a_m = std::sqrt(wr.area_m2 * ratio / M_PI);
+  s.b_m = std::sqrt(wr.area_m2 / (M_PI * ratio));
+  return wr.patch;
+}
+
+void take_fastsim_result(const FastSimResult& r, SolverRun& run) {
+  run.forces = r.forces;
+  run.p1_Pa = r.p1_Pa;
+  run.p2_Pa = r.p2_Pa;
+  run.slip = r.slip;
+  run.adhesion_fraction = r.adhesion_fraction;
+}
+
+}  // namespace
+
+const SolverRun* CaseResult::find(SolverKind kind) const {
+  for (const SolverRun& run : runs)
+    if (run.kind == kind) return &run;
+  return nullptr;
+}
+
+CaseResult run_case(const Case& input, std::ostream* progress) { return run_case(input, CaseRunOptions{}, progress); }
+
+CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::ostream* progress) {
+  validate(input.material);
+  require(input.normal_force_N > 0 && std::isfinite(input.normal_force_N), "the normal force must be positive");
+  require(input.mu > 0 && std::isfinite(input.mu), "the friction coefficient must be positive");
+  const FlexibilityTable* table = run_options.flexibility_table.get();
+  if (table != nullptr && input.geometry != GeometryKind::wheel_rail)
+    throw Error(fmt::format("the {} applies to wheel-rail cases only ({} is an ellipse case)", table->name(), input.source));
+  CaseResult result{input, {}, {}, input.creepage.raw, std::nullopt, {}, std::nullopt, {}, 0};
+  if (table != nullptr) {
+    result.flexibility_table_file = table->source();
+    result.flexibility_table_target_elements = table->metadata().target_elements;
+  }
+  std::optional<WheelRailPair> pair;
+  if (input.geometry == GeometryKind::wheel_rail) {
+    pair = case_pair(input);
+    if (table != nullptr) check_table_fits(*table, input, *pair);  // before any solve
+  }
+  if (progress) fmt::print(*progress, "  contact patch ...\n");
+  result.patch = input.geometry == GeometryKind::ellipse
+                     ? elliptical_patch(input, result.summary)
+                     : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
+  summarise(result.patch, result.summary);
+  const ContactPatch& patch = result.patch;
+  const FastSim fastsim(patch, TractionBound{input.bound_skew});  // nh-fastsim
+
+  // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them and no
+  // flexibility table gives them.
+  const std::optional<FlexibilityTableValues>& tabled = result.flexibility_table_values;
+  const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
+  const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
+  double K2_time_s = 0.0;
+  int K2_iterations = 0;
+  std::optional<ContactPatch> flexibility_patch;  // the coarsened patch, if any
+  int coarsening = 1;
+  if ((normalised || wants_nh) && !tabled) {
+    if (progress) fmt::print(*progress, "  creepage matrix K2 ...\n");
+    const auto start = Clock::now();
+    AdhesionOptions adhesion = nh_fastsim_adhesion_options();
+    adhesion.collocation_offset = input.rolling.collocation_offset;
+    coarsening = input.flexibility_coarsening > 0 ? input.flexibility_coarsening : automatic_flexibility_coarsening(patch);
+    if (coarsening > 1) flexibility_patch = coarsened(patch, coarsening);
+    const ContactPatch& K2_patch = flexibility_patch ? *flexibility_patch : patch;
+    const AdhesionSolution K2 = solve_full_adhesion(K2_patch.elements(), K2_patch.material(), adhesion);
+    result.creepage_matrix = K2.creepage_matrix;
+    K2_time_s = seconds_since(start);
+    K2_iterations = K2.iterations;
+  }
+  // Normalised creepages (Eq 22-23) with f11 = -K2_11, f22 = -K2_22 of this patch (or the
+  // table's); spin (Eq 24).
+  const double saturation = 3.0 * input.mu * patch.normal_force_N();
+  const double f11 = tabled ? tabled->f11_N : normalised ? -(*result.creepage_matrix)(0, 0) : 0.0;
+  const double f22 = tabled ? tabled->f22_N : normalised ? -(*result.creepage_matrix)(1, 1) : 0.0;
+  if (input.creepage.xi_normalised) result.creepage.xi = *input.creepage.xi_normalised * saturation / f11;
+  if (input.creepage.eta_normalised) result.creepage.eta = *input.creepage.eta_normalised * saturation / f22;
+  if (input.creepage.phi_from_conicity) result.creepage.phi = result.summary.spin_per_m;
+  const Creepage& creepage = result.creepage;
+
+  for (SolverKind kind : input.solvers) {
+    if (progress) fmt::print(*progress, "  {} ...\n", solver_name(kind));
+    SolverRun run;
+    run.kind = kind;
+    const auto start = Clock::now();
+    switch (kind) {
+      case SolverKind::nh_fastsim: {
+        run.flexibility = tabled              ? tabled->flexibility
+                          : flexibility_patch ? nh_fastsim_flexibility(*flexibility_patch, *result.creepage_matrix)
+                                              : nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
+        run.flexibility_source = tabled ? "table" : flexibility_patch ? fmt::format("K2 of the patch coarsened by {}", coarsening) : "K2";
+        run.flexibility_time_s = seconds_since(start) + K2_time_s;  // K2 counts: it is nH-FastSim's
+        run.iterations = K2_iterations;
+        take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
+        break;
+      }
+      case SolverKind::fastsim: {
+        run.flexibility = fastsim_flexibility(result.summary.a_m, result.summary.b_m, patch.material());
+        run.flexibility_source = "Eq 9";
+        run.flexibility_time_s = seconds_since(start);
+        const FastSim classical(patch, TractionBound::parabolic());  // the classical bound, Eq 1
+        take_fastsim_result(classical.solve(creepage, *run.flexibility, input.mu), run);
+        break;
+      }
+      case SolverKind::exact:
+      case SolverKind::exact_regularised: {
+        const RollingSolution r = kind == SolverKind::exact
+                                      ? solve_rolling_exact(patch, creepage, input.mu, input.rolling)
+                                      : solve_rolling_regularised(patch, creepage, input.mu, input.rolling);
+        run.forces = r.forces;
+        run.iterations = r.newton_iterations;
+        run.krylov_iterations = r.krylov_iterations;
+        run.converged = r.converged;
+        run.p1_Pa = r.p1_Pa;
+        run.p2_Pa = r.p2_Pa;
+        run.slip = r.slip;
+        run.adhesion_fraction = r.adhesion_fraction;
+        break;
+      }
+    }
+    run.time_s = seconds_since(start) + (kind == SolverKind::nh_fastsim ? K2_time_s : 0.0);
+    result.runs.push_back(std::move(run));
+  }
+  return result;
+}
+
+Case default_case() {
+  // The paper's set-up (METHOD.md §9): S1002 on UIC60 1:40, y = 0, Fz = 98.1 kN, E = 2.1e11 Pa,
+  // nu = 0.3, mu = 0.3, xi' = eta' = 0.5, spin from conicity.
+  Case c;
+  c.source = "built-in default case (S1002 / UIC60, y = 0, xi' = eta' = 0.5, spin from conicity)";
+  c.geometry = GeometryKind::wheel_rail;
+  c.material = Material{2.1e11, 0.3};
+  c.normal_force_N = 98100.0;
+  c.mu = 0.3;
+  c.creepage.xi_normalised = 0.5;
+  c.creepage.eta_normalised = 0.5;
+  c.creepage.phi_from_conicity = true;
+  c.target_elements = 3000;
+  return c;
+}
+
+}  // namespace railcontact

@@ -1,0 +1,234 @@
+// `railcontact flextable build|check`: the flexibility table of a profile pair (docs/FLEXTABLE.md).
+#include <fmt/core.h>
+#include <fmt/ostream.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/flexibility_table.hpp"
+#include "study/flexibility_table_check.hpp"
+
+namespace railcontact::cli {
+namespace {
+
+constexpr double kMm = 1e-3;
+
+struct BuildArguments {
+  std::string out;
+  double y_from_m = -4.5e-3;
+  double y_to_m = 4.5e-3;
+  double y_step_m = 0.25e-3;
+  std::vector<double> loads_N{98100.0};
+  std::optional<std::string> wheel;
+  std::optional<std::string> rail;
+  int elements = 3000;
+};
+
+struct CheckArguments {
+  std::string table;
+  std::optional<std::string> wheel;
+  std::optional<std::string> rail;
+  std::vector<double> y_m;
+  std::vector<double> loads_N;
+  double mu = 0.3;
+  int elements = 0;
+  std::string interpolation = "area-scaled";
+  bool json = false;
+};
+
+WheelRailPair pair_of(const std::optional<std::string>& wheel, const std::optional<std::string>& rail) {
+  return load_wheel_rail_pair(wheel ? std::filesystem::path(*wheel) : default_wheel_profile_path(),
+                              rail ? std::filesystem::path(*rail) : default_rail_profile_path());
+}
+
+void print_nodes(const FlexibilityTable& table) {
+  fmt::print("\n{:>9} {:>9} {:>15} {:>8} {:>9} {:>11} {:>11} {:>11} {:>10} {:>10} {:>10} {:>8}\n", "y (mm)", "Fz (kN)",
+             "status", "elements", "area mm2", "L1 (m/Pa)", "L2 (m/Pa)", "L3 (m/Pa)", "f11 (MN)", "f22 (MN)",
+             "f23 (kN m)", "spin 1/m");
+  for (const FlexibilityTableNode& n : table.nodes()) {
+    fmt::print("{:>+9.4f} {:>9.2f} {:>15}", n.y_m / kMm, n.vertical_load_N * 1e-3, flexibility_node_status_name(n.status));
+    if (n.status == FlexibilityNodeStatus::solved)
+      fmt::print(" {:>8} {:>9.2f} {:>11.4e} {:>11.4e} {:>11.4e} {:>10.4f} {:>10.4f} {:>10.4f} {:>8.4f}", n.elements_in_contact,
+                 n.area_m2 * 1e6, n.flexibility.L1, n.flexibility.L2, n.flexibility.L3, n.f11_N * 1e-6, n.f22_N * 1e-6,
+                 n.f23_Nm * 1e-3, n.spin_per_m);
+    else
+      fmt::print("  {}", n.message);
+    fmt::print("\n");
+  }
+}
+
+int run_build(const BuildArguments& args) {
+  require(!args.out.empty(), "--out must name the table file to write");
+  require(args.elements >= 10 && args.elements <= 200000,
+          [&] { return fmt::format("--elements must lie in [10, 200000] (got {})", args.elements); });
+  for (double load : args.loads_N)
+    require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load must be positive (got {} N)", load); });
+  std::vector<double> loads = args.loads_N;
+  std::sort(loads.begin(), loads.end());
+  require(std::adjacent_find(loads.begin(), loads.end()) == loads.end(), "--load values must differ");
+  const std::vector<double> y = flexibility_table_y_grid(args.y_from_m, args.y_to_m, args.y_step_m);
+  const WheelRailPair pair = pair_of(args.wheel, args.rail);
+  // Fail on an unwritable output before the work.
+  const std::filesystem::path out(args.out);
+  require(out.parent_path().empty() || std::filesystem::is_directory(out.parent_path()), [&] {
+    return fmt::format("cannot write the flexibility table {}: no directory {}", args.out, out.parent_path().string());
+  });
+
+  FlexibilityTableOptions options;
+  options.patch.target_elements = args.elements;
+  fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact\n", y.size(), loads.size(),
+             args.elements);
+  const auto start = std::chrono::steady_clock::now();
+  FlexibilityTable table = build_flexibility_table(pair, y, loads, options, &std::cerr);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  save_flexibility_table(table, out);
+
+  const FlexibilityTableMetadata& m = table.metadata();
+  std::size_t solved = 0, several = 0, failed = 0;
+  for (const FlexibilityTableNode& n : table.nodes()) {
+    solved += n.status == FlexibilityNodeStatus::solved;
+    several += n.status == FlexibilityNodeStatus::several_patches;
+    failed += n.status == FlexibilityNodeStatus::failed;
+  }
+  fmt::print("Flexibility table {}\n", args.out);
+  fmt::print("  wheel    {} (fnv1a64 {})\n  rail     {} (fnv1a64 {})\n", m.wheel_profile.file,
+             m.wheel_profile.hash_hex(), m.rail_profile.file, m.rail_profile.hash_hex());
+  fmt::print("  y        {:.4f} ... {:.4f} mm: {} values ({} from the grid, {} bracketing {} contact jump(s))\n",
+             table.y_m().front() / kMm, table.y_m().back() / kMm, table.y_m().size(), y.size(), table.y_m().size() - y.size(),
+             table.contact_jumps().size());
+  for (const ContactJump& j : table.contact_jumps())
+    fmt::print("  jump     between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
+               table.y_m()[j.interval] / kMm, table.y_m()[j.interval + 1] / kMm, j.y_rail_left_m / kMm, j.y_rail_right_m / kMm);
+  std::string load_list;
+  for (double load : loads) load_list += fmt::format("{}{:g}", load_list.empty() ? "" : ", ", load);
+  fmt::print("  Fz       {} N\n", load_list);
+  fmt::print("  nodes    {} solved, {} with several patches, {} failed (gaps: lookups next to them are refused)\n", solved,
+             several, failed);
+  fmt::print("  material E = {:g} Pa, nu = {:g}; about {} elements in contact; built in {:.1f} s\n",
+             m.material.youngs_modulus_Pa, m.material.poisson_ratio, m.target_elements, seconds);
+  print_nodes(table);
+  return 0;
+}
+
+int run_check(const CheckArguments& args) {
+  const FlexibilityTable table = load_flexibility_table(args.table);
+  const WheelRailPair pair = pair_of(args.wheel, args.rail);
+  study::FlexibilityTableCheckOptions options;
+  options.y_m = args.y_m;
+  options.vertical_loads_N = args.loads_N;
+  options.mu = args.mu;
+  options.target_elements = args.elements;
+  options.interpolation =
+      args.interpolation == "plain" ? FlexibilityInterpolation::plain : FlexibilityInterpolation::area_scaled;
+  const auto start = std::chrono::steady_clock::now();
+  const study::FlexibilityTableCheck check =
+      study::check_flexibility_table(table, pair, options, args.json ? nullptr : &std::cerr);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const study::FlexibilityTableCheckPoint& worst = check.points[check.max_point];
+
+  if (args.json) {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : check.points) {
+      points.push_back({{"y_m", p.y_m},
+                        {"vertical_load_N", p.vertical_load_N},
+                        {"elements_in_contact", p.elements_in_contact},
+                        {"flexibility_on_the_fly", {p.on_the_fly.L1, p.on_the_fly.L2, p.on_the_fly.L3}},
+                        {"flexibility_table", {p.table.L1, p.table.L2, p.table.L3}},
+                        {"f11_on_the_fly_N", p.f11_on_the_fly_N},
+                        {"f22_on_the_fly_N", p.f22_on_the_fly_N},
+                        {"f11_table_N", p.f11_table_N},
+                        {"f22_table_N", p.f22_table_N},
+                        {"force_difference", p.force_difference},
+                        {"force_difference_table_normalised", p.force_difference_table_normalised}});
+    }
+    nlohmann::json families = nlohmann::json::array();
+    for (const auto& f : check.families) families.push_back(f.name);
+    const nlohmann::json out = {{"table", args.table},
+                                {"interpolation", args.interpolation},
+                                {"mu", args.mu},
+                                {"families", families},
+                                {"points", points},
+                                {"skipped", check.skipped},
+                                {"max_force_difference", check.max_force_difference},
+                                {"max_at", {{"y_m", worst.y_m},
+                                            {"vertical_load_N", worst.vertical_load_N},
+                                            {"family", check.families[check.max_family].name}}},
+                                {"mean_force_difference", check.mean_force_difference},
+                                {"max_force_difference_table_normalised", check.max_force_difference_table_normalised},
+                                {"mean_force_difference_table_normalised", check.mean_force_difference_table_normalised},
+                                {"time_s", seconds}};
+    fmt::print("{}\n", out.dump(2));
+    return 0;
+  }
+  fmt::print("Flexibility table {}: nH-FastSim forces with the table's flexibilities against on-the-fly (K2) ones\n",
+             args.table);
+  fmt::print("  the same patch per point; the same raw creepages (xi, eta from the on-the-fly f11, f22); mu = {:g}; "
+             "interpolation {}\n\n",
+             args.mu, args.interpolation);
+  fmt::print("{:>43}  |F_table - F_onthefly| / |F_onthefly| (%)\n", "");
+  fmt::print("{:>9} {:>8} {:>8} {:>7} {:>7} {:>7} ", "y (mm)", "Fz (kN)", "elements", "dL1 %", "dL2 %", "dL3 %");
+  for (const auto& f : check.families) fmt::print(" {:>17}", f.name);
+  fmt::print("\n");
+  for (const auto& p : check.points) {
+    fmt::print("{:>+9.4f} {:>8.2f} {:>8} {:>+7.3f} {:>+7.3f} {:>+7.3f} ", p.y_m / kMm, p.vertical_load_N * 1e-3,
+               p.elements_in_contact, 100 * (p.table.L1 / p.on_the_fly.L1 - 1), 100 * (p.table.L2 / p.on_the_fly.L2 - 1),
+               100 * (p.table.L3 / p.on_the_fly.L3 - 1));
+    for (double d : p.force_difference) fmt::print(" {:>17.3f}", 100 * d);
+    fmt::print("\n");
+  }
+  for (const std::string& s : check.skipped) fmt::print("skipped: {}\n", s);
+  fmt::print("\nmax |F_table - F_onthefly| / |F_onthefly| = {:.3f} % at y = {:+.4f} mm, Fz = {:g} N, {}; mean {:.3f} % "
+             "({} points x {} families)\n",
+             100 * check.max_force_difference, worst.y_m / kMm, worst.vertical_load_N,
+             check.families[check.max_family].name, 100 * check.mean_force_difference, check.points.size(),
+             check.families.size());
+  fmt::print("with the table's own normalisation (as run --flextable): max {:.3f} %, mean {:.3f} %\n",
+             100 * check.max_force_difference_table_normalised, 100 * check.mean_force_difference_table_normalised);
+  fmt::print("target < 0.5 %: {}; checked in {:.1f} s\n", check.max_force_difference < 0.005 ? "met" : "NOT met", seconds);
+  return 0;
+}
+
+}  // namespace
+
+void add_flextable_command(CLI::App& app, Action& action) {
+  CLI::App* flextable = app.add_subcommand("flextable", "flexibility table of a profile pair: build it, check its accuracy");
+  flextable->require_subcommand(1);
+
+  auto build = std::make_shared<BuildArguments>();
+  CLI::App* b = flextable->add_subcommand("build", "precompute nH-FastSim's L1-L3 and f11, f22, f23 over y (and Fz)");
+  b->add_option("--out", build->out, "table file to write (JSON, docs/FLEXTABLE.md)")->required();
+  b->add_option("--y-from", build->y_from_m, "first wheelset displacement (m)")->capture_default_str();
+  b->add_option("--y-to", build->y_to_m, "last wheelset displacement (m)")->capture_default_str();
+  b->add_option("--y-step", build->y_step_m, "step of the displacement (m)")->capture_default_str();
+  b->add_option("--load", build->loads_N, "vertical wheel load(s) Fz (N); several give a load axis")->capture_default_str();
+  b->add_option("--wheel", build->wheel, "wheel profile file (default: the shipped S1002)");
+  b->add_option("--rail", build->rail, "rail profile file (default: the shipped UIC60 1:40)");
+  b->add_option("--elements", build->elements, "about this many elements in contact")->capture_default_str();
+  b->callback([build, &action] { action = [build] { return run_build(*build); }; });
+
+  auto check = std::make_shared<CheckArguments>();
+  CLI::App* c = flextable->add_subcommand(
+      "check", "force error of the table against on-the-fly flexibilities between its nodes (the paper's creepages)");
+  c->add_option("--table", check->table, "flexibility table file")->required();
+  c->add_option("--wheel", check->wheel, "wheel profile file (default: the shipped S1002)");
+  c->add_option("--rail", check->rail, "rail profile file (default: the shipped UIC60 1:40)");
+  c->add_option("--y", check->y_m, "check at these y (m; default: the midpoints between the table's nodes)");
+  c->add_option("--load", check->loads_N, "check at these Fz (N; default: the table's loads and their geometric midpoints)");
+  c->add_option("--mu", check->mu, "friction coefficient")->capture_default_str();
+  c->add_option("--elements", check->elements, "elements in contact of the check patches (default: the table's)");
+  c->add_option("--interpolation", check->interpolation, "area-scaled (the table's lookup) or plain (L and f themselves)")
+      ->check(CLI::IsMember({"area-scaled", "plain"}))
+      ->capture_default_str();
+  c->add_flag("--json", check->json, "print one JSON object");
+  c->callback([check, &action] { action = [check] { return run_check(*check); }; });
+}
+
+}  // namespace railcontact::cli

@@ -1,0 +1,59 @@
+// `railcontact run [CASE.toml] [--json] [--out DIR] [--flextable FILE]`: the main job.
+#include <fmt/core.h>
+
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "cli/commands.hpp"
+#include "case/case.hpp"
+#include "case/case_output.hpp"
+#include "case/case_run.hpp"
+#include "railcontact/flexibility_table.hpp"
+
+namespace railcontact::cli {
+namespace {
+
+struct RunArguments {
+  std::string case_file;
+  std::string out;
+  std::string flextable;
+  bool json = false;
+};
+
+int run(const RunArguments& args) {
+  const bool built_in = args.case_file.empty();
+  const Case input = built_in ? default_case() : read_case_file(args.case_file);
+  CaseRunOptions options;
+  if (!args.flextable.empty())
+    options.flexibility_table = std::make_shared<const FlexibilityTable>(load_flexibility_table(args.flextable));
+  const CaseResult result = run_case(input, options, args.json ? nullptr : &std::cerr);
+  if (args.json) {
+    fmt::print("{}\n", case_result_json(result));
+  } else {
+    print_case_report(result, std::cout);
+  }
+  // The built-in case always writes its outputs (default railcontact-out/).
+  const std::string out = !args.out.empty() ? args.out : (built_in ? "railcontact-out" : "");
+  if (!out.empty()) {
+    write_case_outputs(result, out, std::cerr);
+    if (!args.json) fmt::print("\nWrote {}/ (result.json, tractions_*.csv, tractions.png)\n", out);
+  }
+  return 0;
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, Action& action) {
+  auto args = std::make_shared<RunArguments>();
+  CLI::App* cmd = app.add_subcommand("run", "run a case file (default: the built-in case) with its solvers");
+  cmd->add_option("case", args->case_file, "TOML case file (docs/CASE_FILES.md)");
+  cmd->add_flag("--json", args->json, "print one JSON object");
+  cmd->add_option("--out", args->out, "write tractions (CSV), result.json and traction maps into this directory");
+  cmd->add_option("--flextable", args->flextable,
+                  "flexibility table (flextable build): nh-fastsim takes L1-L3 and the normalisation's f11, f22 from it "
+                  "instead of K2 (wheel-rail cases)");
+  cmd->callback([args, &action] { action = [args] { return run(*args); }; });
+}
+
+}  // namespace railcontact::cli

@@ -1,0 +1,124 @@
+// The traction-bound skew study (bound_study.hpp). For each patch: K2 and the nH-FastSim
+// flexibilities once, `exact` once per creepage, then FastSim with every skew. Creepages: the
+// three families of the paper's Fig 5 (pure xi'; eta' with spin; xi' = eta' with spin) at levels
+// 0.1 ... 1.0, normalised with f11, f22 of the patch's K2 (Eq 22-23); spin from conicity on the
+// wheel-rail patches, 0.1 1/m on the ellipses. Ellipses: c = sqrt(ab) = 6 mm, F3 = 98.1 kN.
+#include "study/bound_study.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include "railcontact/tangential.hpp"
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/wheel_rail.hpp"
+
+namespace railcontact::study {
+namespace {
+
+constexpr double kMu = 0.3;
+constexpr double kLoad = 98100.0;
+constexpr std::array<double, 7> kSkews{0.0, 0.3, 0.35, 0.4, 0.45, 0.5, 0.6};
+constexpr std::array<double, 11> kRatios{0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0, 3.0, 5.0, 10.0};
+
+// Largest |F - F_exact| / F_exact over the 15 creepages, per skew of kSkews.
+std::array<double, kSkews.size()> worst_errors(const ContactPatch& patch, double phi) {
+  const Eigen::Matrix3d K2 =
+      solve_full_adhesion(patch.elements(), patch.material(), nh_fastsim_adhesion_options()).creepage_matrix;
+  std::vector<FastSim> fastsims;
+  for (double skew : kSkews) fastsims.emplace_back(patch, TractionBound{skew});
+  const Flexibility L = nh_fastsim_flexibility(fastsims.front(), K2);
+  const double unit = 3.0 * kMu * patch.normal_force_N();
+  std::array<double, kSkews.size()> worst{};
+  for (int family = 0; family < 3; ++family) {
+    for (double level : {0.1, 0.25, 0.5, 0.75, 1.0}) {
+      const double xi = family != 1 ? level * unit / -K2(0, 0) : 0.0;
+      const double eta = family != 0 ? level * unit / -K2(1, 1) : 0.0;
+      const Creepage c{xi, eta, family != 0 ? phi : 0.0};
+      const RollingSolution exact = solve_rolling_exact(patch, c, kMu);
+      if (!exact.converged) throw Error("study bound: the exact solver did not converge");
+      const double F = std::hypot(exact.forces.F1_N, exact.forces.F2_N);
+      for (std::size_t k = 0; k < kSkews.size(); ++k) {
+        const TangentialForces f = fastsims[k].forces(c, L, kMu);
+        worst[k] = std::max(worst[k], std::fabs(std::hypot(f.F1_N, f.F2_N) / F - 1.0));
+      }
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
+  require(options.elements >= 200 && options.elements <= 30000,
+          [&] { return fmt::format("study bound: --elements must lie in [200, 30000] (got {})", options.elements); });
+  require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study bound: --y-step must lie in (0, 4.5e-3] m");
+  const auto& dir = options.output_directory;
+  std::filesystem::create_directories(dir);
+  std::ofstream csv(dir / "bound_sweep.csv");
+  if (!csv) throw Error("cannot write " + (dir / "bound_sweep.csv").string());
+  csv << "patch,parameter,skew,worst_rel_error\n";
+  std::string rows;
+  std::array<double, kSkews.size()> ellipse_worst{}, wheel_rail_worst{};
+  auto record = [&](const char* kind, double parameter, const std::string& label,
+                    const std::array<double, kSkews.size()>& worst, std::array<double, kSkews.size()>& overall) {
+    rows += "| " + label;
+    for (std::size_t k = 0; k < kSkews.size(); ++k) {
+      fmt::print(csv, "{},{:.6g},{},{:.6f}\n", kind, parameter, kSkews[k], worst[k]);
+      rows += fmt::format(" | {:.2f} %", 100 * worst[k]);
+      overall[k] = std::max(overall[k], worst[k]);
+    }
+    rows += " |\n";
+  };
+
+  const Material steel{2.1e11, 0.3};
+  for (double ratio : kRatios) {
+    const double c = 6e-3, a = c * std::sqrt(ratio), b = c / std::sqrt(ratio);
+    const ContactPatch patch = hertzian_patch(
+        elliptical_contact_with_count(a, b, options.elements, EllipseMeshLayout::rolling_resolved), a, b, kLoad, steel);
+    record("ellipse", ratio, fmt::format("ellipse a/b = {:g}", ratio), worst_errors(patch, 0.1), ellipse_worst);
+    fmt::print(progress, "  ellipse a/b = {:g} done\n", ratio);
+  }
+  const WheelRailPair pair = default_wheel_rail_pair();
+  WheelRailPatchOptions patch_options;
+  patch_options.vertical_load_N = kLoad;
+  patch_options.target_elements = options.elements;
+  const int y_count = static_cast<int>(std::lround(9e-3 / options.y_step_m)) + 1;
+  for (int i = 0; i < y_count; ++i) {
+    const double y = -4.5e-3 + i * options.y_step_m;
+    try {
+      const WheelRailPatch wr = solve_wheel_rail_patch(pair, y, patch_options);
+      record("wheel-rail", y, fmt::format("S1002/UIC60 y = {:+.2f} mm", 1e3 * y), worst_errors(wr.patch, wr.spin_per_m),
+             wheel_rail_worst);
+      fmt::print(progress, "  [{:2}/{}] y = {:+.2f} mm done\n", i + 1, y_count, 1e3 * y);
+    } catch (const Error& e) {  // several patches: out of scope, as in `study paper`
+      fmt::print(progress, "  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
+    }
+  }
+
+  std::ofstream md(dir / "summary.md");
+  md << "# nH-FastSim's traction-bound skew (docs/FASTSIM.md)\n\n"
+     << fmt::format("Largest |F - F_exact| / F_exact of nH-FastSim over the three families of the paper's Fig 5 at "
+                    "levels 0.1 ... 1.0 (K2-normalised; spin from conicity on the wheel-rail patches, 0.1 1/m on the "
+                    "ellipses), about {} elements per patch, mu = 0.3. Skew 0 is the paper's parabola (Eq 1); "
+                    "railcontact's default is {:g}.\n\n| patch",
+                    options.elements, TractionBound{}.skew);
+  for (double skew : kSkews) fmt::print(md, " | skew {:g}", skew);
+  md << " |\n|---";
+  for (std::size_t k = 0; k < kSkews.size(); ++k) md << "|---";
+  md << "|\n" << rows << "| **worst, ellipses**";
+  for (double w : ellipse_worst) fmt::print(md, " | {:.2f} %", 100 * w);
+  md << " |\n| **worst, wheel-rail**";
+  for (double w : wheel_rail_worst) fmt::print(md, " | {:.2f} %", 100 * w);
+  md << " |\n";
+  fmt::print(progress, "Wrote {}\n", dir.string());
+}
+
+}  // namespace railcontact::study

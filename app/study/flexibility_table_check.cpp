@@ -1,0 +1,147 @@
+// Force error of a flexibility table against on-the-fly nH-FastSim (docs/FLEXTABLE.md §4).
+#include "study/flexibility_table_check.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <cmath>
+
+#include "railcontact/error.hpp"
+#include "railcontact/tangential.hpp"
+
+namespace railcontact::study {
+namespace {
+
+constexpr double kMm = 1e-3;
+
+std::vector<double> default_y(const FlexibilityTable& table) {
+  std::vector<double> y;
+  const auto& grid = table.y_m();
+  std::vector<std::uint8_t> jump(grid.size(), 0);
+  for (const ContactJump& j : table.contact_jumps()) jump[j.interval] = 1;
+  for (std::size_t k = 0; k + 1 < grid.size(); ++k) {
+    bool solved = jump[k] == 0;
+    for (std::size_t il = 0; il < table.vertical_loads_N().size(); ++il)
+      solved = solved && table.node(k, il).status == FlexibilityNodeStatus::solved &&
+               table.node(k + 1, il).status == FlexibilityNodeStatus::solved;
+    if (solved) y.push_back(0.5 * (grid[k] + grid[k + 1]));
+  }
+  return y;
+}
+
+std::vector<double> default_loads(const FlexibilityTable& table) {
+  const auto& loads = table.vertical_loads_N();
+  std::vector<double> out;
+  for (std::size_t k = 0; k < loads.size(); ++k) {
+    out.push_back(loads[k]);
+    if (k + 1 < loads.size()) out.push_back(std::sqrt(loads[k] * loads[k + 1]));
+  }
+  return out;
+}
+
+double relative_difference(const TangentialForces& table, const TangentialForces& reference) {
+  return std::hypot(table.F1_N - reference.F1_N, table.F2_N - reference.F2_N) / std::hypot(reference.F1_N, reference.F2_N);
+}
+
+}  // namespace
+
+std::vector<CreepageFamily> paper_creepage_families() {
+  return {{"xi'=0.1", 0.1, 0.0, false},
+          {"xi'=0.5", 0.5, 0.0, false},
+          {"xi'=1.0", 1.0, 0.0, false},
+          {"eta'=0.5+spin", 0.0, 0.5, true},
+          {"xi'=eta'=0.5+spin", 0.5, 0.5, true}};
+}
+
+FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, const WheelRailPair& pair,
+                                              const FlexibilityTableCheckOptions& options, std::ostream* progress) {
+  require(std::isfinite(options.mu) && options.mu > 0.0 && options.mu <= 2.0,
+          [&] { return fmt::format("flextable check: mu must lie in (0, 2] (got {})", options.mu); });
+  require(options.target_elements == 0 || (options.target_elements >= 10 && options.target_elements <= 200000), [&] {
+    return fmt::format("flextable check: the elements must lie in [10, 200000] (got {})", options.target_elements);
+  });
+  table.check_profiles(pair);
+  const std::vector<double> ys = options.y_m.empty() ? default_y(table) : options.y_m;
+  const std::vector<double> loads = options.vertical_loads_N.empty() ? default_loads(table) : options.vertical_loads_N;
+  require(!ys.empty(), [&] { return fmt::format("flextable check: the {} has no interval to check", table.name()); });
+  // Range and gaps of every point first: a bad point fails before any solve.
+  for (double y : ys)
+    for (double Fz : loads) (void)table.lookup(y, Fz, options.interpolation);
+
+  FlexibilityTableCheck check;
+  check.families = paper_creepage_families();
+  WheelRailPatchOptions patch_options;
+  patch_options.material = table.metadata().material;
+  patch_options.target_elements = options.target_elements > 0 ? options.target_elements : table.metadata().target_elements;
+  AdhesionOptions adhesion = nh_fastsim_adhesion_options();
+  adhesion.collocation_offset = table.metadata().collocation_offset;
+  const double mu = options.mu;
+  double sum = 0.0, sum_table_normalised = 0.0;
+  std::size_t count = 0;
+
+  for (double Fz : loads) {
+    for (double y : ys) {
+      patch_options.vertical_load_N = Fz;
+      WheelRailPatch p;
+      try {
+        p = solve_wheel_rail_patch(pair, y, patch_options);
+      } catch (const Error& e) {
+        check.skipped.push_back(fmt::format("y = {:.4f} mm, Fz = {:g} N: {}", y / kMm, Fz, e.what()));
+        if (progress) fmt::print(*progress, "  skipped {}\n", check.skipped.back());
+        continue;
+      }
+      const FastSim fastsim(p.patch);
+      const Eigen::Matrix3d K2 = solve_full_adhesion(p.patch.elements(), p.patch.material(), adhesion).creepage_matrix;
+      const FlexibilityTableValues v = table.lookup_for_patch(y, Fz, p.area_m2, options.interpolation);
+      FlexibilityTableCheckPoint point;
+      point.y_m = y;
+      point.vertical_load_N = Fz;
+      point.elements_in_contact = p.elements_in_contact;
+      point.on_the_fly = nh_fastsim_flexibility(fastsim, K2);
+      point.table = v.flexibility;
+      point.f11_on_the_fly_N = -K2(0, 0);
+      point.f22_on_the_fly_N = -K2(1, 1);
+      point.f11_table_N = v.f11_N;
+      point.f22_table_N = v.f22_N;
+      const double saturation = 3.0 * mu * p.normal_force_N;  // Eq 22-23
+      for (const CreepageFamily& family : check.families) {
+        const double phi = family.spin_from_conicity ? p.spin_per_m : 0.0;
+        const Creepage raw{family.xi_normalised * saturation / point.f11_on_the_fly_N,
+                           family.eta_normalised * saturation / point.f22_on_the_fly_N, phi};
+        const Creepage table_raw{family.xi_normalised * saturation / v.f11_N, family.eta_normalised * saturation / v.f22_N,
+                                 phi};
+        const TangentialForces reference = fastsim.forces(raw, point.on_the_fly, mu);
+        const TangentialForces tabled = fastsim.forces(raw, point.table, mu);
+        const TangentialForces table_normalised = fastsim.forces(table_raw, point.table, mu);
+        point.force_difference.push_back(relative_difference(tabled, reference));
+        point.force_difference_table_normalised.push_back(relative_difference(table_normalised, reference));
+      }
+      for (std::size_t f = 0; f < check.families.size(); ++f) {
+        const double d = point.force_difference[f];
+        if (d > check.max_force_difference) {
+          check.max_force_difference = d;
+          check.max_point = check.points.size();
+          check.max_family = f;
+        }
+        check.max_force_difference_table_normalised =
+            std::max(check.max_force_difference_table_normalised, point.force_difference_table_normalised[f]);
+        sum += d;
+        sum_table_normalised += point.force_difference_table_normalised[f];
+        ++count;
+      }
+      if (progress) {
+        double worst = 0.0;
+        for (double d : point.force_difference) worst = std::max(worst, d);
+        fmt::print(*progress, "  y = {:+.4f} mm, Fz = {:g} N: {} elements, max |dF|/|F| = {:.3f} %\n", y / kMm, Fz,
+                   p.elements_in_contact, 100 * worst);
+      }
+      check.points.push_back(std::move(point));
+    }
+  }
+  require(!check.points.empty(), "flextable check: no check point could be solved");
+  check.mean_force_difference = sum / static_cast<double>(count);
+  check.mean_force_difference_table_normalised = sum_table_normalised / static_cast<double>(count);
+  return check;
+}
+
+}  // namespace railcontact::study

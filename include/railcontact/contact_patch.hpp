@@ -1,0 +1,207 @@
+#pragma once
+// Stage: contact patch types, shared by every solver.
+// The material of two quasi-identical elastic half-spaces, the creepages and tangential forces of
+// steady rolling, the regular mesh of the potential contact area, the elements in contact, and the
+// contact patch (mesh + pressure + strip structure) the tangential solvers work on, with elliptical
+// (Hertzian) patches and coarsening. Frame and signs: docs/CONVENTIONS.md; mesh: docs/METHOD.md §3.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+// Elastic material of two quasi-identical half-spaces (METHOD.md §2): the normal and
+// tangential problems decouple and one shear modulus G and Poisson ratio nu describe both.
+
+namespace railcontact {
+
+struct Material {
+  double youngs_modulus_Pa = 2.1e11;
+  double poisson_ratio = 0.3;
+
+  // G = E / (2 (1 + nu)) for equal materials.
+  [[nodiscard]] double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
+  // Combined plane-strain modulus E* = E / (2 (1 - nu^2)) of two equal bodies (Hertz).
+  [[nodiscard]] double contact_modulus_Pa() const {
+    return youngs_modulus_Pa / (2.0 * (1.0 - poisson_ratio * poisson_ratio));
+  }
+  // Builds a material from G and nu.
+  static Material from_shear_modulus(double shear_modulus_Pa, double nu) {
+    return Material{2.0 * shear_modulus_Pa * (1.0 + nu), nu};
+  }
+};
+
+// Throws railcontact::Error unless E > 0 (finite) and 0 <= nu < 0.5.
+void validate(const Material& material);
+
+}  // namespace railcontact
+
+// Rigid creepages of steady rolling (METHOD.md §2): xi, eta dimensionless, spin phi in 1/m.
+// Forces follow Kalker's sign convention: F1 = -G c^2 C11 xi, etc.
+
+namespace railcontact {
+
+struct Creepage {
+  double xi = 0.0;    // longitudinal creepage (-)
+  double eta = 0.0;   // lateral creepage (-)
+  double phi = 0.0;   // spin creepage (1/m)
+};
+
+// Tangential force and spin moment on the wheel (upper body), in the contact frame.
+struct TangentialForces {
+  double F1_N = 0.0;   // longitudinal force
+  double F2_N = 0.0;   // lateral force
+  double M3_Nm = 0.0;  // spin moment about X3 through the pressure centre
+};
+
+}  // namespace railcontact
+
+// The regular mesh of the potential contact area (METHOD.md §3) and the set of elements in
+// contact on it. Element (i1, i2) has its centre at
+//   x1 = x1_first + i1 * dx1,  x2 = x2_first + i2 * dx2,
+// and is stored at index i2 * n1 + i1: a strip (fixed x2, all x1) is contiguous, and x1 grows
+// towards the leading edge (rolling direction +X1).
+
+namespace railcontact {
+
+struct Mesh {
+  int n1 = 0;             // elements along X1 (rolling direction)
+  int n2 = 0;             // elements along X2 (lateral)
+  double dx1_m = 0.0;     // element length along X1
+  double dx2_m = 0.0;     // element width along X2
+  double x1_first_m = 0.0;  // centre of the first element column
+  double x2_first_m = 0.0;  // centre of the first element row
+
+  [[nodiscard]] std::size_t size() const { return static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2); }
+  [[nodiscard]] std::size_t index(int i1, int i2) const {
+    return static_cast<std::size_t>(i2) * static_cast<std::size_t>(n1) + static_cast<std::size_t>(i1);
+  }
+  [[nodiscard]] double x1(int i1) const { return x1_first_m + i1 * dx1_m; }
+  [[nodiscard]] double x2(int i2) const { return x2_first_m + i2 * dx2_m; }
+  [[nodiscard]] double element_area_m2() const { return dx1_m * dx2_m; }
+
+  // Mesh of n1 x n2 elements exactly covering [x1_min, x1_max] x [x2_min, x2_max].
+  static Mesh covering(double x1_min, double x1_max, double x2_min, double x2_max, int n1, int n2);
+};
+
+// Throws railcontact::Error unless the mesh has positive size and element lengths, and fits
+// the memory budget of the solvers (at most max_elements elements).
+void validate(const Mesh& mesh, std::size_t max_elements = 16u << 20);
+
+// Elements in contact on a mesh: a flag per mesh element and the list of their indices in
+// increasing order (strip by strip, each strip from trailing to leading edge).
+class ContactElements {
+ public:
+  ContactElements() = default;
+  ContactElements(const Mesh& mesh, std::vector<std::uint8_t> in_contact);
+
+  [[nodiscard]] const Mesh& mesh() const { return mesh_; }
+  [[nodiscard]] std::size_t count() const { return active_.size(); }
+  [[nodiscard]] bool in_contact(std::size_t mesh_index) const { return flags_[mesh_index] != 0; }
+  [[nodiscard]] const std::vector<std::uint8_t>& flags() const { return flags_; }
+  // Mesh indices of the elements in contact.
+  [[nodiscard]] const std::vector<std::size_t>& indices() const { return active_; }
+
+ private:
+  Mesh mesh_;
+  std::vector<std::uint8_t> flags_;
+  std::vector<std::size_t> active_;
+};
+
+}  // namespace railcontact
+
+// The contact patch shared by every tangential solver (FastSim, nH-FastSim, the adhesion and
+// exact steady-rolling solvers): the mesh of the potential contact area, the elements in
+// contact, the normal pressure p3 on them, the material, and the strip structure.
+//
+// Frame (METHOD.md §2): X1 rolling direction (leading edge at the largest x1), X2 lateral,
+// X3 normal into the wheel; the origin is the centre of pressure, so the mesh coordinates of
+// a patch are shifted to make sum(p3 x1) = sum(p3 x2) = 0.
+
+
+namespace railcontact {
+
+// One run of consecutive contact elements in one strip (row of the mesh at fixed x2). A strip
+// may hold several runs when the patch is not convex along X1.
+struct StripRun {
+  int i2 = 0;                 // strip (row) index
+  int i1_trailing = 0;        // first element of the run (smallest x1)
+  int i1_leading = 0;         // last element of the run (largest x1), inclusive
+  std::size_t first = 0;      // position of the trailing element in ContactElements::indices()
+  double x1_trailing_m = 0;   // trailing edge: x1(i1_trailing) - dx1/2
+  double x1_leading_m = 0;    // leading edge:  x1(i1_leading)  + dx1/2
+  [[nodiscard]] int length() const { return i1_leading - i1_trailing + 1; }
+};
+
+class ContactPatch {
+ public:
+  ContactPatch() = default;
+  // pressure_Pa: one value per mesh element; elements with p3 > 0 are in contact. The mesh is
+  // re-centred on the centre of pressure. Throws railcontact::Error if no element carries
+  // pressure or a value is negative or not finite.
+  ContactPatch(const Mesh& mesh, const std::vector<double>& pressure_Pa, const Material& material);
+
+  [[nodiscard]] const Mesh& mesh() const { return elements_.mesh(); }
+  [[nodiscard]] const ContactElements& elements() const { return elements_; }
+  [[nodiscard]] const Material& material() const { return material_; }
+  // p3 on the elements in contact, in the order of elements().indices().
+  [[nodiscard]] const std::vector<double>& pressure_Pa() const { return pressure_; }
+  [[nodiscard]] const std::vector<StripRun>& runs() const { return runs_; }
+  [[nodiscard]] double normal_force_N() const { return normal_force_N_; }
+  [[nodiscard]] double area_m2() const { return static_cast<double>(elements_.count()) * mesh().element_area_m2(); }
+  // Shift applied to the input mesh coordinates to put the origin at the centre of pressure.
+  [[nodiscard]] double x1_shift_m() const { return x1_shift_m_; }
+  [[nodiscard]] double x2_shift_m() const { return x2_shift_m_; }
+  // Coordinates of contact element e (position in indices()).
+  [[nodiscard]] double x1(std::size_t e) const { return mesh().x1(static_cast<int>(elements_.indices()[e] % mesh().n1)); }
+  [[nodiscard]] double x2(std::size_t e) const { return mesh().x2(static_cast<int>(elements_.indices()[e] / mesh().n1)); }
+
+ private:
+  ContactElements elements_;
+  Material material_;
+  std::vector<double> pressure_;
+  std::vector<StripRun> runs_;
+  double normal_force_N_ = 0.0;
+  double x1_shift_m_ = 0.0, x2_shift_m_ = 0.0;
+};
+
+// The patch on a mesh `factor` times coarser along both axes: each block of factor x factor
+// elements becomes one element, in contact when at least half of its elements are, carrying the
+// block's normal force (so the load and, nearly, the centre of pressure are kept). Used for
+// cheaper nH-FastSim flexibilities: K2 and FastSim's adhesion terms depend only on the shape.
+// factor in [1, kMaximumCoarsening].
+inline constexpr int kMaximumCoarsening = 8;
+ContactPatch coarsened(const ContactPatch& patch, int factor);
+
+// Hertzian pressure p0 sqrt(1 - (x1/a)^2 - (x2/b)^2) on an elliptical patch (elements whose
+// centre lies inside the ellipse), scaled so that the discrete normal force equals F3.
+ContactPatch hertzian_patch(const ContactElements& ellipse, double a_m, double b_m, double normal_force_N,
+                            const Material& material);
+
+}  // namespace railcontact
+
+// An elliptical contact patch on a regular mesh: the mesh covers the bounding rectangle
+// [-a, a] x [-b, b] and the elements whose centre lies inside the ellipse are in contact
+// (paper §3).
+
+namespace railcontact {
+
+// How the bounding box is divided.
+enum class EllipseMeshLayout {
+  // n x n elements whatever a/b (the paper's meshes): elements are a/b times longer along X1
+  // than across, coarse along the rolling direction when a > b.
+  equal_counts,
+  // dx1 = dx2 min(1, a/b): square elements when a >= b, the paper's layout when a < b, so the
+  // rolling direction is never resolved more coarsely than the lateral one.
+  rolling_resolved,
+};
+
+// Mesh with n1 x n2 elements over the bounding box.
+ContactElements elliptical_contact(double a_m, double b_m, int n1, int n2);
+// Mesh with n x n elements over the bounding box.
+ContactElements elliptical_contact(double a_m, double b_m, int elements_per_axis);
+
+// About target_elements inside the ellipse (pi/4 of the mesh), with the given layout.
+ContactElements elliptical_contact_with_count(double a_m, double b_m, int target_elements,
+                                              EllipseMeshLayout layout = EllipseMeshLayout::equal_counts);
+
+}  // namespace railcontact

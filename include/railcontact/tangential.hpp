@@ -1,0 +1,307 @@
+#pragma once
+// Stage: tangential problem. Full adhesion and the creepage matrix K2 (Eq 10-18), FastSim on a
+// regular mesh (Eq 1-9), nH-FastSim (Eq 19-21) and the exact steady-rolling solvers with Coulomb
+// friction (Appendix, Eq A1). docs/ADHESION.md, docs/FASTSIM.md, docs/ROLLING.md.
+#include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/kalker.hpp"
+
+// Full-adhesion steady-state rolling on an arbitrary set of contact elements (paper §2.2,
+// Eq 10-18; METHOD.md §6): the non-Hertzian analogue of Kalker's linear theory.
+//
+// Steady rolling in +X1 (leading edge at the largest x1): the slip velocity at the collocation
+// points is s = V (w - R p), R the upwind X1-difference of the tangential influence (the
+// paper's (A - A0)/dx1 of Eq 10) and w = (xi - phi x2, eta + phi x1) the rigid slip (Eq 11-12).
+// Full adhesion, s = 0: R p = D^T (xi, eta, phi)  (Eq 14), and the creepage-coefficient matrix
+//   K2 = S D R^-1 D^T  (Eq 18),  (F1, F2, M3) = K2 (xi, eta, phi)  (Eq 13, 15).
+// With this sign convention K2 has the pattern of Kalker's K1 (Eq 16): negative diagonal.
+// Coordinates are the mesh's: put the origin at the pressure centre (METHOD.md §2).
+
+
+namespace railcontact {
+
+enum class LinearSolver {
+  krylov,  // GMRES on the FFT operator, preconditioned by strip marching (fast path)
+  dense,   // dense LU (reference path; O(N^3))
+};
+
+// Where the rigid slip w is evaluated along X1 for each element.
+enum class RigidSlipPoint {
+  collocation,         // at the collocation point x1 + alpha dx1/2 (the paper)
+  difference_centre,   // at the centre of the upwind difference, x1 + (alpha + 1) dx1/2
+};
+
+// Preconditioner of the Krylov path (see src/tangential/steady_rolling_preconditioner.hpp).
+enum class AdhesionPreconditioner {
+  marching_half_laplacian,  // FastSim marching followed by c0 - Laplacian (default)
+  marching,                 // FastSim marching alone
+};
+
+// What to compute of K2.
+enum class CreepageMatrixPart {
+  full,        // all of K2 and the tractions: one direct solve R p = D^T e_j per creepage (3 solves)
+  // Rows 1 and 2 (F1 and F2 per unit xi, eta, phi) by adjoint solves R^T y = (S D)^T e_i, one per
+  // force (2 solves): all term-by-term nH-FastSim needs (K2_11, K2_22, K2_23) and the
+  // normalisation of Eq 22-23 (f11, f22). Row 3 (M3) is NaN and no tractions are returned.
+  force_rows,
+};
+
+struct AdhesionOptions {
+  double collocation_offset = 0.0;  // alpha in (-1, 1]: collocation point at x1 + alpha dx1/2 (METHOD.md §3)
+  // Collocation offset for the spin column of K2 only (unit phi); unset = collocation_offset.
+  // The paper (Fig 3) finds alpha = 0 best for C11, C22 and alpha = 0.5 best for C23; each
+  // column of K2 is a separate solve, so each may use its own offset.
+  std::optional<double> spin_collocation_offset;
+  RigidSlipPoint rigid_slip_point = RigidSlipPoint::collocation;
+  LinearSolver solver = LinearSolver::krylov;
+  double tolerance = 1e-10;         // Krylov: relative residual
+  int max_iterations = 400;         // Krylov
+  AdhesionPreconditioner preconditioner = AdhesionPreconditioner::marching_half_laplacian;
+  // marching_half_laplacian's shift c0 = gamma pi^2 / (patch size sqrt(dx1 dx2)); 3 is best for
+  // tight solves on ellipses (steady_rolling_preconditioner.hpp).
+  double half_laplacian_gamma = 3.0;
+  CreepageMatrixPart part = CreepageMatrixPart::full;
+};
+
+struct AdhesionSolution {
+  // (F1, F2, M3) = K2 (xi, eta, phi): units N, N, N m per unit xi, eta and per 1/m of phi.
+  Eigen::Matrix3d creepage_matrix;
+  // Tractions (Pa) per unit creepage: column j for creepage j (xi, eta, phi); rows
+  // [p1 on elements 0..N-1, p2 on elements 0..N-1] in the order of ContactElements::indices().
+  Eigen::MatrixXd unit_tractions;
+  int iterations = 0;               // Krylov iterations, all three right-hand sides
+  double relative_residual = 0.0;   // largest over the right-hand sides
+};
+
+// Throws railcontact::Error on bad input (no elements, bad material, alpha outside (-1, 1];
+// alpha = -1 centres the difference on the element and decouples odd and even elements)
+// or when the Krylov solver does not converge.
+AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
+                                     const AdhesionOptions& options = {});
+
+// Kalker's creepage coefficients from K2 with c = sqrt(a b) (paper §3, METHOD.md §2):
+// C11 = -K2_11/(G c^2), C22 = -K2_22/(G c^2), C23 = -K2_23/(G c^3), C33 = -K2_33/(G c^4).
+struct CreepageCoefficients {
+  double C11 = 0.0, C22 = 0.0, C23 = 0.0, C33 = 0.0;
+};
+CreepageCoefficients creepage_coefficients(const Eigen::Matrix3d& creepage_matrix, double shear_modulus_Pa, double c_m);
+
+}  // namespace railcontact
+
+// FastSim on a regular mesh (paper §2.1, Eq 1-9; METHOD.md §7) and the nH-FastSim
+// flexibilities matched to the full-adhesion creepage matrix K2 (paper §2.3, Eq 19-21).
+//
+// Frame and signs (METHOD.md §2): X1 rolling direction, the leading edge of a strip run at its
+// largest x1; Kalker's sign convention, F1 = -f11 xi, F2 = -f22 eta - f23 phi,
+// M3 = f23 eta - f33 phi in the linear regime. Forces are those on the wheel (upper body).
+//
+// The algorithm, per strip run (consecutive contact elements at one x2):
+//  1. the normal pressure is replaced by a traction bound mu p3e with the run's own leading and
+//     trailing edges and the same discrete strip force: the paper's parabola (Eq 1) or, by
+//     default, that parabola skewed towards the trailing edge (TractionBound below);
+//  2. the run is marched from the leading edge: the leading element gets the adhesion traction
+//     of Eq 2-3 at its centre, each following element the previous element's traction plus the
+//     increment of Eq 2-3 between the two centres; the sum is limited to |p| <= mu p3e by
+//     scaling (Eq 7-8), and the limited traction is the start of the next increment (Kalker's
+//     FASTSIM). Elements where the limit is active slip.
+// For pure creepage (phi = 0) this equals element-wise clipping of Eq 2-3; with spin it does not.
+
+
+namespace railcontact {
+
+// FastSim's traction bound (docs/FASTSIM.md §1, §6). Per strip run the normal pressure is
+// replaced by
+//   p3e = h t (1 - t) (1 + skew t),   t = (x_l - x1) / (x_l - x_t)  (0 at the leading edge),
+// h keeping the run's strip force. skew = 0 is the paper's per-strip parabola (Eq 1);
+// skew = 1 is the bound with which FastSim reproduces Carter's exact two-dimensional creep curve
+// F/(mu F3) = 1 - (1 - xi/xi_sat)^2 once its flexibility fits the linear slope; in between, bound
+// weight moves from the leading towards the trailing side. The default 0.45 (the flat optimum is
+// 0.45-0.5) minimises the largest creep-force error against the exact solver on Hertzian ellipses
+// a/b = 0.1 ... 10: 3.0 % instead of 6.2 % with the parabola (docs/FASTSIM.md "Traction bound").
+// The shape is concave for skew in [0, 1], the accepted range.
+struct TractionBound {
+  double skew = 0.45;
+  static constexpr TractionBound parabolic() { return {0.0}; }  // Eq 1
+};
+
+struct FastSimResult {
+  TangentialForces forces;
+  // Per contact element, in the order of patch.elements().indices():
+  std::vector<double> p1_Pa, p2_Pa;  // tangential traction on the wheel
+  std::vector<std::uint8_t> slip;    // 1 where the traction bound mu p3e is active (Eq 8)
+  double adhesion_fraction = 1.0;    // elements in adhesion / elements in contact (= area fraction)
+};
+
+// FastSim prepared for one contact patch: the traction bound and the marching geometry are
+// computed once, so each evaluation costs only the marching. Immutable after construction;
+// copies share the prepared data; evaluations are thread-safe.
+class FastSim {
+ public:
+  // Throws railcontact::Error if the patch has no element in contact or bound.skew is not in
+  // [0, 1].
+  explicit FastSim(const ContactPatch& patch, TractionBound bound = {});
+
+  // Forces only (no per-element output is allocated). Throws railcontact::Error unless mu > 0,
+  // L1, L2, L3 > 0 (all finite) and the creepages are finite.
+  [[nodiscard]] TangentialForces forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
+  // Forces, tractions, slip flags. Same checks as forces().
+  [[nodiscard]] FastSimResult solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
+
+  [[nodiscard]] std::size_t element_count() const;
+  [[nodiscard]] TractionBound bound() const;
+  // The bound's pressure p3e (Pa) per contact element (patch order; Eq 1 for skew 0): the bound
+  // on |p| is mu p3e.
+  [[nodiscard]] const std::vector<double>& bound_pressure_Pa() const;
+  // S D B of Eq 19: (F1, F2, M3) of FastSim's full-adhesion traction with L1 = L2 = L3 = 1
+  // (units N, N, N m per unit creepage per Pa/m of 1/L), column j for creepage j (xi, eta,
+  // phi). Without slip FastSim gives F = (S D B) diag(1/L1, 1/L2, 1/L3) (xi, eta, phi).
+  [[nodiscard]] const Eigen::Matrix3d& adhesion_force_matrix() const;
+
+  struct Layout;  // the marching data, lane-interleaved (fastsim.cpp)
+
+ private:
+  std::shared_ptr<const Layout> layout_;
+};
+
+// One-shot conveniences (prepare, then evaluate once).
+FastSimResult fastsim(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility, double mu);
+TangentialForces fastsim_forces(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility,
+                                double mu);
+
+// How nH-FastSim's flexibilities are matched to K2 (paper §2.3; METHOD.md §7 Decision).
+enum class FlexibilityMatch {
+  // L1 = S(DB)_11 / K2_11 (F1 per xi), L2 = S(DB)_22 / K2_22 (F2 per eta),
+  // L3 = S(DB)_23 / K2_23 (F2 per phi, as Kalker's L3 comes from C23). Reproduces K2_11, K2_22
+  // and K2_23 exactly in the small-creepage limit. The default.
+  term_by_term,
+  // Eq 21: L = S K2^-1 D B, its diagonal entries (the paper found it inaccurate).
+  full_matrix,
+  // As term_by_term, but L3 = S(DB)_33 / K2_33 (M3 per phi).
+  spin_from_moment,
+};
+
+// nH-FastSim flexibilities (m/Pa) from the full-adhesion creepage matrix K2 (Eq 18, Kalker's
+// sign convention, as returned by solve_full_adhesion) of the same patch. Throws
+// railcontact::Error if K2 is not finite or a resulting flexibility is not positive and finite
+// (e.g. K2_23 of the wrong sign), or, for full_matrix, if K2 is singular.
+Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d& K2,
+                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
+Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2,
+                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
+// The adhesion options nH-FastSim uses for its flexibilities: the two force rows of K2 by
+// adjoint solves (CreepageMatrixPart::force_rows), GMRES tolerance 1e-3 (K2 to ~5e-4, far below
+// the flexibilities' discretisation error of about 1 %).
+AdhesionOptions nh_fastsim_adhesion_options();
+
+// nH-FastSim flexibilities computed on the patch coarsened by `factor` (coarsened(), patch.hpp):
+// about factor^2 fewer elements, so K2 costs about 5x less for factor 2; with at least 250 coarse
+// elements the flexibilities differ from the fine patch's by ~1 % (L1, L2) and ~2-4 % (L3) on
+// the S1002/UIC60 patches, and the largest creep-force error against `exact` moves by at most
+// 0.1 points (docs/FASTSIM.md "Flexibilities on a coarser patch").
+Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor,
+                                             const AdhesionOptions& options = nh_fastsim_adhesion_options());
+
+// The coarsening factor railcontact's case runs use unless told otherwise: the largest factor
+// (at most 8) that leaves the coarse patch at least 250 elements, and at least 2 from 400
+// elements in contact. Measured on the S1002/UIC60 sweep (docs/FASTSIM.md "Flexibilities on a
+// coarser patch"): flexibilities from >= 250 coarse elements change nH-FastSim's largest
+// creep-force error by at most 0.1 points at 1000-8000 elements in contact, and below 1000
+// elements FastSim's own discretisation error dominates (5.3 % at 500 elements, coarsened or
+// not). K2 then costs about the same at any patch size (about 0.3-1 ms).
+int automatic_flexibility_coarsening(const ContactPatch& patch);
+
+// The same with K2 = solve_full_adhesion(patch.elements(), patch.material(), options).
+Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options = nh_fastsim_adhesion_options(),
+                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
+
+}  // namespace railcontact
+
+// Exact steady-state rolling with Coulomb friction on a contact patch (paper §2.2 and Appendix;
+// METHOD.md §8): the reference the simplified methods are measured against.
+//
+// Slip per unit rolling speed at the collocation points: s = w - R p (Eq 10, sign derived in
+// docs/CONVENTIONS.md), w = (xi - phi x2, eta + phi x1). Two friction laws:
+//  - exact Coulomb: adhesion where |p| < mu p3 and s = 0; slip where |p| = mu p3 and p = -mu p3 s/|s|;
+//  - regularised Coulomb (Eq A1): p = -(2 mu p3 / pi) atan(|s|/epsilon) s/|s|.
+// Both are solved by Newton's method with GMRES on the FFT operator (docs/ROLLING.md).
+
+
+namespace railcontact {
+
+struct RollingOptions {
+  double collocation_offset = 0.0;  // alpha (METHOD.md §3), the same as the adhesion solver's
+  double tolerance = 1e-9;          // Newton: max residual relative to mu max(p3)
+  int max_newton_iterations = 100;
+  double krylov_tolerance = 1e-6;   // inner GMRES, relative
+  int max_krylov_iterations = 300;
+  // Regularised law only: epsilon as a slip velocity per unit rolling speed (dimensionless;
+  // equals the paper's epsilon in m/s at V = 1 m/s). The paper uses 1e-8.
+  double regularisation = 1e-8;
+};
+
+struct RollingSolution {
+  TangentialForces forces;
+  // Per contact element, in the order of patch.elements().indices():
+  std::vector<double> p1_Pa, p2_Pa;     // tangential traction on the wheel
+  std::vector<double> s1, s2;           // slip velocity per unit rolling speed (-)
+  std::vector<std::uint8_t> slip;       // 1 where the element slips (|p| at the traction bound)
+  double adhesion_fraction = 0.0;       // share of the contact area in adhesion
+  int newton_iterations = 0;
+  int krylov_iterations = 0;            // all inner GMRES iterations
+  double residual = 0.0;                // final Newton residual, relative to mu max(p3)
+  bool converged = false;
+};
+
+// Throws railcontact::Error on bad input (mu <= 0 or not finite, non-finite creepage) and when
+// Newton does not converge within max_newton_iterations.
+RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& creepage, double mu,
+                                    const RollingOptions& options = {});
+RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creepage& creepage, double mu,
+                                          const RollingOptions& options = {});
+
+}  // namespace railcontact
+
+// Kalker's creepage coefficients computed numerically: K2 (Eq 18) on an elliptical patch on a
+// regular mesh, converted with c = sqrt(a b) (paper §3). Compares directly with Kalker's table.
+
+
+namespace railcontact {
+
+struct EllipseCoefficientOptions {
+  int target_elements = 2800;  // about this many elements in contact
+  EllipseMeshLayout layout = EllipseMeshLayout::rolling_resolved;
+  AdhesionOptions adhesion = default_adhesion_for_coefficients();
+  // false: c = sqrt(a b) of the ellipse (the paper). true: c from the discrete patch's area,
+  // c^2 = N S / pi, which removes the staircase-area error of the mesh from the comparison.
+  bool c_from_discrete_area = false;
+
+  // alpha = 0 for the xi and eta columns, alpha = 0.5 for the spin column (paper Fig 3).
+  static AdhesionOptions default_adhesion_for_coefficients() {
+    AdhesionOptions options;
+    options.spin_collocation_offset = 0.5;
+    return options;
+  }
+};
+
+struct EllipseCoefficientResult {
+  CreepageCoefficients coefficients;
+  Eigen::Matrix3d creepage_matrix;
+  std::size_t elements_in_contact = 0;
+  int n1 = 0, n2 = 0;               // mesh over the bounding box
+  double area_error = 0.0;          // (N S - pi a b) / (pi a b)
+  int iterations = 0;
+  double solve_time_s = 0.0;        // K2 (operator set-up and the three solves)
+};
+
+// For semi-axis ratio a/b (a along X1) and Poisson's ratio nu in [0, 0.5); E = 2.1e11 Pa and
+// c = sqrt(a b) = 6 mm (the coefficients do not depend on either).
+EllipseCoefficientResult ellipse_creepage_coefficients(double a_over_b, double nu,
+                                                       const EllipseCoefficientOptions& options = {});
+
+}  // namespace railcontact

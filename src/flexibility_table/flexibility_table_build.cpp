@@ -1,0 +1,225 @@
+// Building a flexibility table (docs/FLEXTABLE.md §2): contact jumps located on the geometry
+// alone, then per node (y, Fz) the wheel–rail patch, K2's force rows and the term-by-term
+// nH-FastSim flexibilities, exactly as a wheel–rail case computes them on the fly.
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <optional>
+
+#include "railcontact/error.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/flexibility_table.hpp"
+
+#ifndef RAILCONTACT_VERSION
+#define RAILCONTACT_VERSION "unknown"
+#endif
+
+namespace railcontact {
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr std::size_t kMaxYValues = 10000;
+constexpr std::size_t kMaxLoads = 100;
+
+using Clock = std::chrono::steady_clock;
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+std::optional<WheelRailContactPoint> try_contact_point(const WheelRailPair& pair, double y_m) {
+  try {
+    return pair.contact_point(y_m);
+  } catch (const Error&) {
+    return std::nullopt;  // the node at this y fails and reports why
+  }
+}
+
+double first_touch_change_m(const WheelRailContactPoint& a, const WheelRailContactPoint& b) {
+  return std::max(std::fabs(a.y_rail_m - b.y_rail_m), std::fabs(a.y_wheel_m - b.y_wheel_m));
+}
+
+struct JumpBracket {
+  double y_left_m, y_right_m;
+  double y_rail_left_m, y_rail_right_m;
+};
+
+// Bisects [a, b] while the first-touch point moves by more than the threshold: a piece no longer
+// than the resolution across which it still moves that much holds a jump. A continuous motion
+// ends the recursion after about (its extent / threshold) pieces.
+void find_jumps(const WheelRailPair& pair, double a, const WheelRailContactPoint& ca, double b,
+                const WheelRailContactPoint& cb, const FlexibilityTableOptions& options, std::vector<JumpBracket>& jumps) {
+  if (first_touch_change_m(ca, cb) <= options.contact_jump_m) return;
+  if (b - a <= options.contact_jump_resolution_m) {
+    jumps.push_back({a, b, ca.y_rail_m, cb.y_rail_m});
+    return;
+  }
+  const double m = 0.5 * (a + b);
+  const std::optional<WheelRailContactPoint> cm = try_contact_point(pair, m);
+  if (!cm) return;
+  find_jumps(pair, a, ca, m, *cm, options, jumps);
+  find_jumps(pair, m, *cm, b, cb, options, jumps);
+}
+
+// "2 patches carrying 67.5 %, 32.5 % of the load"
+std::string several_patches_message(const WheelRailPatch& p) {
+  std::string shares;
+  for (std::size_t k = 0; k < p.patches && k < p.regions.size(); ++k)
+    shares += fmt::format("{}{:.1f} %", k == 0 ? "" : ", ", 100.0 * p.regions[k].load_fraction);
+  return fmt::format("{} contact patches carrying {} of the load", p.patches, shares);
+}
+
+FlexibilityTableNode solve_node(const WheelRailPair& pair, double y_m, double Fz_N, const FlexibilityTableOptions& options) {
+  FlexibilityTableNode n;
+  n.y_m = y_m;
+  n.vertical_load_N = Fz_N;
+  WheelRailPatchOptions patch_options = options.patch;
+  patch_options.vertical_load_N = Fz_N;
+  patch_options.allow_several_patches = true;  // marked, not thrown
+  try {
+    const WheelRailPatch p = solve_wheel_rail_patch(pair, y_m, patch_options);
+    if (p.patches > 1) {
+      n.status = FlexibilityNodeStatus::several_patches;
+      n.message = several_patches_message(p);
+      return n;
+    }
+    // As a wheel-rail case computes nH-FastSim on the fly (case_run.cpp).
+    const FastSim fastsim(p.patch);
+    const Eigen::Matrix3d K2 = solve_full_adhesion(p.patch.elements(), p.patch.material(), options.adhesion).creepage_matrix;
+    n.flexibility = nh_fastsim_flexibility(fastsim, K2);
+    n.f11_N = -K2(0, 0);
+    n.f22_N = -K2(1, 1);
+    n.f23_Nm = -K2(1, 2);
+    n.normal_force_N = p.normal_force_N;
+    n.contact_angle_rad = p.contact_angle_rad;
+    n.spin_per_m = p.spin_per_m;
+    n.area_m2 = p.area_m2;
+    n.elements_in_contact = p.elements_in_contact;
+  } catch (const Error& e) {
+    n = FlexibilityTableNode{};
+    n.y_m = y_m;
+    n.vertical_load_N = Fz_N;
+    n.status = FlexibilityNodeStatus::failed;
+    n.message = e.what();
+  }
+  return n;
+}
+
+void validate(const FlexibilityTableOptions& o) {
+  require(std::isfinite(o.contact_jump_m) && o.contact_jump_m > 0.0,
+          "flexibility table: the contact-jump threshold must be positive");
+  require(std::isfinite(o.contact_jump_resolution_m) && o.contact_jump_resolution_m > 0.0 &&
+              o.contact_jump_resolution_m < o.contact_jump_m,
+          "flexibility table: the contact-jump resolution must be positive and below the threshold");
+}
+
+void validate_grid(const std::vector<double>& values, const char* what, std::size_t max_count) {
+  require(!values.empty(), [&] { return fmt::format("flexibility table: at least one {} is needed", what); });
+  require(values.size() <= max_count,
+          [&] { return fmt::format("flexibility table: at most {} {} values", max_count, what); });
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    require(std::isfinite(values[k]), [&] { return fmt::format("flexibility table: every {} must be finite", what); });
+    require(k == 0 || values[k] > values[k - 1],
+            [&] { return fmt::format("flexibility table: the {} values must be strictly increasing", what); });
+  }
+}
+
+}  // namespace
+
+std::vector<double> flexibility_table_y_grid(double y_from_m, double y_to_m, double y_step_m) {
+  require(std::isfinite(y_from_m) && std::isfinite(y_to_m) && y_to_m >= y_from_m, [&] {
+    return fmt::format("flexibility table: the y range must be finite with y_to >= y_from (got {} ... {} m)", y_from_m,
+                       y_to_m);
+  });
+  require(std::isfinite(y_step_m) && y_step_m > 0.0,
+          [&] { return fmt::format("flexibility table: the y step must be positive (got {} m)", y_step_m); });
+  const double count = std::floor((y_to_m - y_from_m) / y_step_m + 1e-9) + 1.0;
+  require(count <= static_cast<double>(kMaxYValues),
+          [&] { return fmt::format("flexibility table: at most {} y values", kMaxYValues); });
+  std::vector<double> y;
+  for (int k = 0; k < static_cast<int>(count); ++k) {
+    const double value = y_from_m + k * y_step_m;
+    y.push_back(std::fabs(value) < 1e-12 ? 0.0 : value);
+  }
+  return y;
+}
+
+FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::vector<double>& y_grid_m,
+                                         const std::vector<double>& load_grid_N, const FlexibilityTableOptions& options,
+                                         std::ostream* progress) {
+  validate(options);
+  validate_grid(y_grid_m, "y", kMaxYValues);
+  validate_grid(load_grid_N, "vertical load", kMaxLoads);
+  require(load_grid_N.front() > 0.0, "flexibility table: the vertical loads must be positive");
+  validate(options.patch.material);
+
+  FlexibilityTableMetadata metadata;
+  metadata.wheel_profile = file_fingerprint(pair.wheel().source());
+  metadata.rail_profile = file_fingerprint(pair.rail().source());
+  metadata.track = pair.parameters();
+  metadata.material = options.patch.material;
+  metadata.target_elements = options.patch.target_elements;
+  metadata.collocation_offset = options.adhesion.collocation_offset;
+  metadata.railcontact_version = RAILCONTACT_VERSION;
+  metadata.created_utc = utc_now();
+
+  // Contact jumps: on the geometry alone (the first-touch point does not depend on the load).
+  std::vector<JumpBracket> brackets;
+  if (options.locate_contact_jumps) {
+    std::vector<std::optional<WheelRailContactPoint>> points;
+    for (double y : y_grid_m) points.push_back(try_contact_point(pair, y));
+    for (std::size_t k = 0; k + 1 < y_grid_m.size(); ++k)
+      if (points[k] && points[k + 1])
+        find_jumps(pair, y_grid_m[k], *points[k], y_grid_m[k + 1], *points[k + 1], options, brackets);
+  }
+  std::vector<double> y = y_grid_m;
+  for (const JumpBracket& j : brackets) {
+    y.push_back(j.y_left_m);
+    y.push_back(j.y_right_m);
+  }
+  std::sort(y.begin(), y.end());
+  y.erase(std::unique(y.begin(), y.end()), y.end());
+  std::vector<ContactJump> jumps;
+  for (const JumpBracket& j : brackets) {
+    const auto left = static_cast<std::size_t>(std::lower_bound(y.begin(), y.end(), j.y_left_m) - y.begin());
+    jumps.push_back({left, j.y_rail_left_m, j.y_rail_right_m});
+    if (progress)
+      fmt::print(*progress, "  contact jump between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
+                 j.y_left_m / kMm, j.y_right_m / kMm, j.y_rail_left_m / kMm, j.y_rail_right_m / kMm);
+  }
+
+  std::vector<FlexibilityTableNode> nodes;
+  const std::size_t total = y.size() * load_grid_N.size();
+  std::size_t solved = 0;
+  for (double y_m : y) {
+    for (double Fz : load_grid_N) {
+      const auto start = Clock::now();
+      nodes.push_back(solve_node(pair, y_m, Fz, options));
+      const FlexibilityTableNode& n = nodes.back();
+      solved += n.status == FlexibilityNodeStatus::solved;
+      if (progress) {
+        const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        if (n.status == FlexibilityNodeStatus::solved)
+          fmt::print(*progress, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} elements, {:.2f} s\n", nodes.size(), total,
+                     y_m / kMm, Fz, n.elements_in_contact, seconds);
+        else
+          fmt::print(*progress, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} ({}), a gap in the table\n", nodes.size(),
+                     total, y_m / kMm, Fz, flexibility_node_status_name(n.status), n.message);
+      }
+    }
+  }
+  require(solved > 0,
+          [&] { return fmt::format("flexibility table: no node could be solved (first: {})", nodes.front().message); });
+  return FlexibilityTable(std::move(metadata), std::move(y), load_grid_N, std::move(nodes), std::move(jumps));
+}
+
+}  // namespace railcontact

@@ -1,0 +1,288 @@
+// The flexibility-table file (docs/FLEXTABLE.md §3): one JSON object, every field documented;
+// read strictly (unknown keys, missing keys and wrong types are errors naming the key).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "railcontact/error.hpp"
+#include "railcontact/flexibility_table.hpp"
+#include "support/file_fingerprint.hpp"
+
+namespace railcontact {
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "railcontact flexibility table";
+constexpr int kFormatVersion = 1;
+
+// Doubles are written with 17 significant digits (nlohmann's default): a round trip is exact.
+json number_or_null(double value, bool solved) { return solved ? json(value) : json(nullptr); }
+
+json node_json(const FlexibilityTableNode& n) {
+  const bool s = n.status == FlexibilityNodeStatus::solved;
+  return json{{"y_m", n.y_m},
+              {"vertical_load_N", n.vertical_load_N},
+              {"status", std::string(flexibility_node_status_name(n.status))},
+              {"message", n.message},
+              {"L1_m_per_Pa", number_or_null(n.flexibility.L1, s)},
+              {"L2_m_per_Pa", number_or_null(n.flexibility.L2, s)},
+              {"L3_m_per_Pa", number_or_null(n.flexibility.L3, s)},
+              {"f11_N", number_or_null(n.f11_N, s)},
+              {"f22_N", number_or_null(n.f22_N, s)},
+              {"f23_Nm", number_or_null(n.f23_Nm, s)},
+              {"normal_force_N", number_or_null(n.normal_force_N, s)},
+              {"contact_angle_rad", number_or_null(n.contact_angle_rad, s)},
+              {"spin_per_m", number_or_null(n.spin_per_m, s)},
+              {"area_m2", number_or_null(n.area_m2, s)},
+              {"elements_in_contact", s ? json(n.elements_in_contact) : json(nullptr)}};
+}
+
+// Strict access to one JSON object: typed getters naming the key, and a check for unknown keys.
+class Reader {
+ public:
+  Reader(const json& object, std::string path, const std::string& source) : object_(object), path_(std::move(path)), source_(source) {
+    if (!object_.is_object()) fail(fmt::format("{} must be an object", path_.empty() ? "the file" : path_));
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw Error(fmt::format("flexibility table {}: {}", source_, what)); }
+
+  const json& get(const std::string& key) {
+    used_.insert(key);
+    const auto it = object_.find(key);
+    if (it == object_.end()) fail(fmt::format("missing key '{}'", qualified(key)));
+    return *it;
+  }
+  double number(const std::string& key) {
+    const json& v = get(key);
+    if (!v.is_number()) fail(fmt::format("{} must be a number", qualified(key)));
+    const double x = v.get<double>();
+    if (!std::isfinite(x)) fail(fmt::format("{} must be finite", qualified(key)));
+    return x;
+  }
+  std::string string(const std::string& key) {
+    const json& v = get(key);
+    if (!v.is_string()) fail(fmt::format("{} must be a string", qualified(key)));
+    return v.get<std::string>();
+  }
+  std::size_t count(const std::string& key) {
+    const json& v = get(key);
+    if (!v.is_number_unsigned()) fail(fmt::format("{} must be a non-negative whole number", qualified(key)));
+    return v.get<std::size_t>();
+  }
+  std::vector<double> numbers(const std::string& key) {
+    const json& v = get(key);
+    if (!v.is_array()) fail(fmt::format("{} must be a list of numbers", qualified(key)));
+    std::vector<double> values;
+    for (const json& item : v) {
+      if (!item.is_number()) fail(fmt::format("{} must be a list of numbers", qualified(key)));
+      values.push_back(item.get<double>());
+    }
+    return values;
+  }
+  const json& array(const std::string& key) {
+    const json& v = get(key);
+    if (!v.is_array()) fail(fmt::format("{} must be a list", qualified(key)));
+    return v;
+  }
+  [[nodiscard]] std::string qualified(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+  void finish() const {
+    for (const auto& item : object_.items())
+      if (!used_.contains(item.key())) fail(fmt::format("unknown key '{}'", qualified(item.key())));
+  }
+
+ private:
+  const json& object_;
+  std::string path_;
+  const std::string& source_;
+  std::set<std::string> used_;
+};
+
+FileFingerprint read_fingerprint(Reader& parent, const std::string& key, const std::string& source) {
+  Reader r(parent.get(key), parent.qualified(key), source);
+  FileFingerprint f;
+  f.file = r.string("file");
+  try {
+    f.fnv1a64 = parse_fnv1a64_hex(r.string("fnv1a64"));
+  } catch (const Error& e) {
+    r.fail(fmt::format("{}: {}", r.qualified("fnv1a64"), e.what()));
+  }
+  r.finish();
+  return f;
+}
+
+FlexibilityTableNode read_node(const json& item, std::size_t index, const std::string& source) {
+  Reader r(item, fmt::format("nodes[{}]", index), source);
+  FlexibilityTableNode n;
+  n.y_m = r.number("y_m");
+  n.vertical_load_N = r.number("vertical_load_N");
+  const std::string status = r.string("status");
+  n.message = r.string("message");
+  if (status == "solved") n.status = FlexibilityNodeStatus::solved;
+  else if (status == "several-patches") n.status = FlexibilityNodeStatus::several_patches;
+  else if (status == "failed") n.status = FlexibilityNodeStatus::failed;
+  else r.fail(fmt::format("{} must be \"solved\", \"several-patches\" or \"failed\" (got \"{}\")", r.qualified("status"), status));
+  static const char* const kValues[] = {"L1_m_per_Pa", "L2_m_per_Pa", "L3_m_per_Pa", "f11_N", "f22_N", "f23_Nm",
+                                        "normal_force_N", "contact_angle_rad", "spin_per_m", "area_m2",
+                                        "elements_in_contact"};
+  if (n.status != FlexibilityNodeStatus::solved) {
+    for (const char* key : kValues)
+      if (!r.get(key).is_null()) r.fail(fmt::format("{} must be null: the node is not solved", r.qualified(key)));
+    r.finish();
+    return n;
+  }
+  n.flexibility = {r.number("L1_m_per_Pa"), r.number("L2_m_per_Pa"), r.number("L3_m_per_Pa")};
+  n.f11_N = r.number("f11_N");
+  n.f22_N = r.number("f22_N");
+  n.f23_Nm = r.number("f23_Nm");
+  n.normal_force_N = r.number("normal_force_N");
+  n.contact_angle_rad = r.number("contact_angle_rad");
+  n.spin_per_m = r.number("spin_per_m");
+  n.area_m2 = r.number("area_m2");
+  n.elements_in_contact = r.count("elements_in_contact");
+  r.finish();
+  return n;
+}
+
+}  // namespace
+
+std::string flexibility_table_json(const FlexibilityTable& table) {
+  const FlexibilityTableMetadata& m = table.metadata();
+  const TrackWheelsetParameters& t = m.track;
+  json nodes = json::array();
+  for (const FlexibilityTableNode& n : table.nodes()) nodes.push_back(node_json(n));
+  json jumps = json::array();
+  for (const ContactJump& j : table.contact_jumps())
+    jumps.push_back({{"interval", j.interval},
+                     {"y_left_m", table.y_m()[j.interval]},
+                     {"y_right_m", table.y_m()[j.interval + 1]},
+                     {"y_rail_left_m", j.y_rail_left_m},
+                     {"y_rail_right_m", j.y_rail_right_m}});
+  const json out = {
+      {"format", kFormat},
+      {"format_version", kFormatVersion},
+      {"railcontact_version", m.railcontact_version},
+      {"created_utc", m.created_utc},
+      {"profiles",
+       {{"wheel", {{"file", m.wheel_profile.file}, {"fnv1a64", fnv1a64_hex(m.wheel_profile.fnv1a64)}}},
+        {"rail", {{"file", m.rail_profile.file}, {"fnv1a64", fnv1a64_hex(m.rail_profile.fnv1a64)}}}}},
+      {"track",
+       {{"track_gauge_m", t.track_gauge_m},
+        {"gauge_measuring_depth_m", t.gauge_measuring_depth_m},
+        {"flange_back_distance_m", t.flange_back_distance_m},
+        {"flange_back_y_m", t.flange_back_y_m},
+        {"taping_line_from_flange_back_m", t.taping_line_from_flange_back_m},
+        {"nominal_rolling_radius_m", t.nominal_rolling_radius_m}}},
+      {"material", {{"youngs_modulus_Pa", m.material.youngs_modulus_Pa}, {"poisson_ratio", m.material.poisson_ratio}}},
+      {"target_elements", m.target_elements},
+      {"collocation_offset", m.collocation_offset},
+      {"flexibility_match", "term-by-term"},
+      {"y_m", table.y_m()},
+      {"vertical_load_N", table.vertical_loads_N()},
+      {"contact_jumps", jumps},
+      {"nodes", nodes}};
+  return out.dump(1);
+}
+
+FlexibilityTable parse_flexibility_table(const std::string& text, const std::string& source) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    const std::size_t end = std::min<std::size_t>(e.byte, text.size());
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n');
+    throw Error(fmt::format("flexibility table {}:{}: malformed JSON (is it a flexibility table?)", source, line));
+  }
+  Reader r(root, "", source);
+  if (!root.contains("format") || !root["format"].is_string() || root["format"].get<std::string>() != kFormat)
+    r.fail(fmt::format("not a flexibility table (the key 'format' must be \"{}\")", kFormat));
+  r.get("format");
+  const json& version = r.get("format_version");
+  if (!version.is_number_integer() || version.get<int>() != kFormatVersion)
+    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", version.dump(), kFormatVersion));
+
+  FlexibilityTableMetadata m;
+  m.railcontact_version = r.string("railcontact_version");
+  m.created_utc = r.string("created_utc");
+  {
+    Reader profiles(r.get("profiles"), "profiles", source);
+    m.wheel_profile = read_fingerprint(profiles, "wheel", source);
+    m.rail_profile = read_fingerprint(profiles, "rail", source);
+    profiles.finish();
+  }
+  {
+    Reader t(r.get("track"), "track", source);
+    m.track.track_gauge_m = t.number("track_gauge_m");
+    m.track.gauge_measuring_depth_m = t.number("gauge_measuring_depth_m");
+    m.track.flange_back_distance_m = t.number("flange_back_distance_m");
+    m.track.flange_back_y_m = t.number("flange_back_y_m");
+    m.track.taping_line_from_flange_back_m = t.number("taping_line_from_flange_back_m");
+    m.track.nominal_rolling_radius_m = t.number("nominal_rolling_radius_m");
+    t.finish();
+  }
+  {
+    Reader material(r.get("material"), "material", source);
+    m.material.youngs_modulus_Pa = material.number("youngs_modulus_Pa");
+    m.material.poisson_ratio = material.number("poisson_ratio");
+    material.finish();
+  }
+  const std::size_t elements = r.count("target_elements");
+  if (elements > static_cast<std::size_t>(std::numeric_limits<int>::max())) r.fail("target_elements is too large");
+  m.target_elements = static_cast<int>(elements);
+  m.collocation_offset = r.number("collocation_offset");
+  if (r.string("flexibility_match") != "term-by-term") r.fail("flexibility_match must be \"term-by-term\"");
+  std::vector<double> y = r.numbers("y_m");
+  std::vector<double> loads = r.numbers("vertical_load_N");
+
+  std::vector<ContactJump> jumps;
+  const json& jump_list = r.array("contact_jumps");
+  for (std::size_t k = 0; k < jump_list.size(); ++k) {
+    Reader j(jump_list[k], fmt::format("contact_jumps[{}]", k), source);
+    ContactJump jump;
+    jump.interval = j.count("interval");
+    const double left = j.number("y_left_m"), right = j.number("y_right_m");
+    jump.y_rail_left_m = j.number("y_rail_left_m");
+    jump.y_rail_right_m = j.number("y_rail_right_m");
+    j.finish();
+    if (jump.interval + 1 >= y.size() || y[jump.interval] != left || y[jump.interval + 1] != right)
+      j.fail(fmt::format("contact_jumps[{}] does not name an interval of y_m", k));
+    jumps.push_back(jump);
+  }
+  std::vector<FlexibilityTableNode> nodes;
+  const json& node_list = r.array("nodes");
+  for (std::size_t k = 0; k < node_list.size(); ++k) nodes.push_back(read_node(node_list[k], k, source));
+  r.finish();
+  try {
+    FlexibilityTable table(std::move(m), std::move(y), std::move(loads), std::move(nodes), std::move(jumps));
+    table.set_source(source);
+    return table;
+  } catch (const Error& e) {
+    // "flexibility table: …" from the constructor, with the file named.
+    const std::string what = e.what();
+    const std::string prefix = "flexibility table: ";
+    throw Error(fmt::format("flexibility table {}: {}", source, what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
+  }
+}
+
+void save_flexibility_table(const FlexibilityTable& table, const std::filesystem::path& path) {
+  std::ofstream file(path);
+  if (!(file << flexibility_table_json(table) << '\n')) throw Error(fmt::format("cannot write the flexibility table {}", path.string()));
+  file.close();
+  if (!file) throw Error(fmt::format("cannot write the flexibility table {}", path.string()));
+}
+
+FlexibilityTable load_flexibility_table(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  if (!file) throw Error(fmt::format("cannot read the flexibility table {}", path.string()));
+  std::stringstream buffer;
+  buffer << file.rdbuf();
+  return parse_flexibility_table(buffer.str(), path.string());
+}
+
+}  // namespace railcontact

@@ -1,0 +1,53 @@
+#include "railcontact/contact_patch.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "railcontact/error.hpp"
+
+namespace railcontact {
+
+Mesh Mesh::covering(double x1_min, double x1_max, double x2_min, double x2_max, int n1, int n2) {
+  require(n1 > 0 && n2 > 0, "mesh: the number of elements along each axis must be positive");
+  require(std::isfinite(x1_min) && std::isfinite(x1_max) && x1_max > x1_min,
+          "mesh: the X1 extent must be finite and positive");
+  require(std::isfinite(x2_min) && std::isfinite(x2_max) && x2_max > x2_min,
+          "mesh: the X2 extent must be finite and positive");
+  Mesh mesh;
+  mesh.n1 = n1;
+  mesh.n2 = n2;
+  mesh.dx1_m = (x1_max - x1_min) / n1;
+  mesh.dx2_m = (x2_max - x2_min) / n2;
+  mesh.x1_first_m = x1_min + 0.5 * mesh.dx1_m;
+  mesh.x2_first_m = x2_min + 0.5 * mesh.dx2_m;
+  return mesh;
+}
+
+void validate(const Mesh& mesh, std::size_t max_elements) {
+  require(mesh.n1 > 0 && mesh.n2 > 0, "mesh: the number of elements along each axis must be positive");
+  require(std::isfinite(mesh.dx1_m) && std::isfinite(mesh.dx2_m) && mesh.dx1_m > 0 && mesh.dx2_m > 0,
+          "mesh: element sizes must be positive and finite");
+  require(std::isfinite(mesh.x1_first_m) && std::isfinite(mesh.x2_first_m),
+          "mesh: element coordinates must be finite");
+  require(mesh.size() <= max_elements, [&] {
+    return "mesh: " + std::to_string(mesh.n1) + " x " + std::to_string(mesh.n2) +
+           " elements would not fit in memory (at most " + std::to_string(max_elements) + ")";
+  });
+}
+
+ContactElements::ContactElements(const Mesh& mesh, std::vector<std::uint8_t> in_contact)
+    : mesh_(mesh), flags_(std::move(in_contact)) {
+  require(flags_.size() == mesh_.size(), "contact elements: one flag per mesh element is required");
+  for (std::size_t k = 0; k < flags_.size(); ++k) {
+    if (flags_[k] != 0) active_.push_back(k);
+  }
+}
+
+void validate(const Material& material) {
+  require(std::isfinite(material.youngs_modulus_Pa) && material.youngs_modulus_Pa > 0,
+          "material: Young's modulus must be positive and finite");
+  require(std::isfinite(material.poisson_ratio) && material.poisson_ratio >= 0.0 && material.poisson_ratio < 0.5,
+          "material: Poisson's ratio must lie in [0, 0.5)");
+}
+
+}  // namespace railcontact

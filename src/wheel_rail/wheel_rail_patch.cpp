@@ -1,0 +1,242 @@
+// The wheel–rail normal-contact pipeline of one wheelset position (docs/WHEEL_RAIL.md §1–2):
+// contact point → F3 = Fz / cos γ → mesh from a Hertz estimate → normal solve → mesh refined
+// until about target_elements elements are in contact → connected regions → the single patch.
+#include "railcontact/wheel_rail.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "railcontact/error.hpp"
+
+namespace railcontact {
+
+namespace {
+
+constexpr double kMm = 1e-3;
+// Margin factor of the potential area (h < margin × δ) once δ is known from a solve.
+constexpr double kKnownApproachMargin = 1.15;
+
+void validate(const WheelRailPatchOptions& o) {
+  require(std::isfinite(o.vertical_load_N) && o.vertical_load_N > 0.0, [&] {
+    return fmt::format("wheel-rail patch: the vertical wheel load must be positive (got {} N)", o.vertical_load_N);
+  });
+  require(o.target_elements >= 10 && o.target_elements <= 200000, [&] {
+    return fmt::format("wheel-rail patch: the target number of elements in contact must lie in [10, 200000] (got {})",
+                       o.target_elements);
+  });
+  require(std::isfinite(o.element_count_tolerance) && o.element_count_tolerance > 0.0 &&
+              o.element_count_tolerance < 1.0,
+          "wheel-rail patch: the element-count tolerance must lie in (0, 1)");
+  require(o.max_mesh_passes >= 1, "wheel-rail patch: at least one mesh pass is needed");
+  require(o.max_enlargements >= 0, "wheel-rail patch: max_enlargements must be non-negative");
+  require(!o.initial_approach_m || (std::isfinite(*o.initial_approach_m) && *o.initial_approach_m > 0.0),
+          "wheel-rail patch: the initial approach must be positive");
+  require(std::isfinite(o.significant_load_fraction) && o.significant_load_fraction >= 0.0 &&
+              o.significant_load_fraction < 1.0,
+          "wheel-rail patch: the significant load fraction must lie in [0, 1)");
+  validate(o.material);
+}
+
+// Element sizes for an element area S and patch extents L1 x L2 (PatchMeshLayout).
+struct ElementSizes {
+  double dx1_m, dx2_m;
+};
+ElementSizes element_sizes(double element_area_m2, double extent_x1_m, double extent_x2_m, PatchMeshLayout layout) {
+  const double dx1_over_dx2 = layout == PatchMeshLayout::square ? 1.0 : std::min(1.0, extent_x1_m / extent_x2_m);
+  return {std::sqrt(element_area_m2 * dx1_over_dx2), std::sqrt(element_area_m2 / dx1_over_dx2)};
+}
+
+// Index bounding box of a region: elements lo1..hi1 along X1, lo2..hi2 along X2 (inclusive).
+struct IndexBox {
+  int lo1, hi1, lo2, hi2;
+};
+IndexBox bounding_box(const Mesh& mesh, const ContactRegion& region) {
+  IndexBox box{mesh.n1, -1, mesh.n2, -1};
+  for (std::size_t k : region.elements) {
+    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
+    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+    box.lo1 = std::min(box.lo1, i1);
+    box.hi1 = std::max(box.hi1, i1);
+    box.lo2 = std::min(box.lo2, i2);
+    box.hi2 = std::max(box.hi2, i2);
+  }
+  return box;
+}
+
+// Extents of a region along X1 and X2, edge to edge.
+struct Extents {
+  double x1_m, x2_m;
+};
+Extents extents(const Mesh& mesh, const ContactRegion& region) {
+  const IndexBox box = bounding_box(mesh, region);
+  return {(box.hi1 - box.lo1 + 1) * mesh.dx1_m, (box.hi2 - box.lo2 + 1) * mesh.dx2_m};
+}
+
+// The patch on the mesh cropped to its bounding box (as the elliptical patches of ellipse.hpp):
+// the tangential solvers' FFTs then cover the patch only, not the potential area.
+ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa, const ContactRegion& region,
+                           const Material& material) {
+  const IndexBox box = bounding_box(mesh, region);
+  Mesh crop = mesh;
+  crop.n1 = box.hi1 - box.lo1 + 1;
+  crop.n2 = box.hi2 - box.lo2 + 1;
+  crop.x1_first_m = mesh.x1(box.lo1);
+  crop.x2_first_m = mesh.x2(box.lo2);
+  std::vector<double> p(crop.size(), 0.0);
+  for (std::size_t k : region.elements) {
+    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
+    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+    p[crop.index(i1 - box.lo1, i2 - box.lo2)] = pressure_Pa[k];
+  }
+  return ContactPatch(crop, p, material);
+}
+
+// "67.5 % of the load at x2 = +0.3 mm, 32.5 % at x2 = +10.6 mm"
+std::string load_shares(const std::vector<ContactRegion>& regions, std::size_t count) {
+  std::string text;
+  for (std::size_t k = 0; k < count; ++k)
+    text += fmt::format("{}{:.1f} %{} at x2 = {:+.1f} mm", k == 0 ? "" : ", ", 100.0 * regions[k].load_fraction,
+                        k == 0 ? " of the load" : "", regions[k].x2_centre_m / kMm);
+  return text;
+}
+
+struct Solve {
+  PotentialContactArea area;
+  NormalSolution normal;
+  std::vector<ContactRegion> regions;
+};
+
+}  // namespace
+
+WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options) {
+  validate(options);
+  require(std::isfinite(y_m), "wheel-rail patch: the lateral displacement y must be finite");
+  const std::string where = fmt::format("y = {:.3f} mm", y_m / kMm);
+
+  WheelRailPatch r;
+  r.contact = pair.contact_point(y_m);
+  r.lateral_displacement_m = y_m;
+  r.contact_angle_rad = r.contact.contact_angle_rad;
+  r.rolling_radius_m = r.contact.rolling_radius_m;
+  // Eq 24, signed: the modelled pair is the right wheel (docs/WHEEL_RAIL.md §3).
+  r.spin_per_m = conicity_spin_per_m(r.contact_angle_rad, WheelSide::right,
+                                     2.0 * pair.parameters().nominal_rolling_radius_m);
+  r.vertical_load_N = options.vertical_load_N;
+  const double cos_gamma = std::cos(r.contact_angle_rad);
+  require(cos_gamma > 0.05, [&] {
+    return fmt::format("wheel-rail patch at {}: the contact angle {:.3f} rad is too steep", where, r.contact_angle_rad);
+  });
+  // Frictionless equilibrium of the vertical forces (METHOD.md §9): F3 cos γ = Fz.
+  r.normal_force_N = options.vertical_load_N / cos_gamma;
+  const double F3 = r.normal_force_N;
+
+  // First estimate: Hertz for the local curvatures. B <= 0 (laterally conformal or concave) has
+  // no Hertzian contact; a small positive B then only seeds the mesh passes.
+  const double A = r.contact.A_per_m, B = r.contact.B_per_m;
+  if (B > 0.0) r.local_hertz = hertz_from_curvatures(A, B, F3, options.material);
+  const HertzContact estimate = B > 0.0 ? r.local_hertz : hertz_from_curvatures(A, 0.05 * A, F3, options.material);
+
+  double approach_m = options.initial_approach_m.value_or(estimate.approach_m);
+  double margin = PotentialAreaOptions{}.margin_factor;
+  double element_area_m2 = M_PI * estimate.a_m * estimate.b_m / options.target_elements;
+  double extent1 = 2.0 * estimate.a_m, extent2 = 2.0 * estimate.b_m;
+  const auto target = static_cast<double>(options.target_elements);
+  std::optional<Solve> best;
+  int enlargements = 0;
+
+  for (int pass = 0; pass < options.max_mesh_passes;) {
+    const ElementSizes dx = element_sizes(element_area_m2, extent1, extent2, options.layout);
+    PotentialAreaOptions area_options;
+    area_options.dx1_m = dx.dx1_m;
+    area_options.dx2_m = dx.dx2_m;
+    area_options.margin_factor = margin;
+    Solve s;
+    try {
+      s.area = potential_contact_area(pair, r.contact, approach_m, area_options);
+    } catch (const Error& e) {
+      throw Error(fmt::format("wheel-rail patch at {}: {} (is the load Fz = {:g} N too large for these profiles?)",
+                              where, e.what(), options.vertical_load_N));
+    }
+    s.normal = solve_normal_contact(s.area.mesh, s.area.h_m, F3, options.material, options.normal);
+    ++r.mesh_passes;
+    require(s.normal.converged, [&] {
+      return fmt::format(
+          "wheel-rail patch at {}: the normal solver did not converge in {} iterations (residual {:.2g})", where,
+          s.normal.iterations, s.normal.residual);
+    });
+    if (s.normal.touches_border) {
+      // The undeformed interpenetration h < δ holds every patch: cover it with a wider margin.
+      require(enlargements < options.max_enlargements, [&] {
+        return fmt::format(
+            "wheel-rail patch at {}: the potential contact area cannot hold the patch (it still touches "
+            "the border of a {} x {} mesh after {} enlargements)",
+            where, s.area.mesh.n1, s.area.mesh.n2, enlargements);
+      });
+      // The truncated patch's δ overestimates the true one: grow by at most a factor 2 × 1.5.
+      ++enlargements;
+      margin *= 1.5;
+      approach_m = std::clamp(s.normal.approach_m, approach_m, 2.0 * approach_m);
+      continue;
+    }
+    s.regions = contact_regions(s.area.mesh, s.normal.pressure_Pa);
+    const auto count = static_cast<double>(s.normal.elements_in_contact);
+    const double approach_solved_m = s.normal.approach_m;
+    const Extents e = extents(s.area.mesh, s.regions.front());
+    const auto misfit = [&](const Solve& t) {
+      return std::abs(static_cast<double>(t.normal.elements_in_contact) / target - 1.0);
+    };
+    const bool within = misfit(s) <= options.element_count_tolerance;
+    if (!best || misfit(s) < misfit(*best)) best = std::move(s);
+    if (within) break;
+    // Elements in contact ∝ area / S: scale S (each dx by sqrt(count / target)).
+    element_area_m2 *= count / target;
+    extent1 = e.x1_m;
+    extent2 = e.x2_m;
+    // δ is now known to discretisation accuracy and the patch lies in h < δ: a tighter margin
+    // keeps the next mesh small (a patch that still touches the border enlarges it again).
+    approach_m = approach_solved_m;
+    margin = kKnownApproachMargin;
+    ++pass;
+  }
+
+  require(best.has_value(), [&] { return fmt::format("wheel-rail patch at {}: no normal solution", where); });
+  Solve& s = *best;
+  const Mesh& mesh = s.area.mesh;
+  const ContactRegion& main = s.regions.front();
+  r.patches = static_cast<std::size_t>(std::count_if(s.regions.begin(), s.regions.end(), [&](const ContactRegion& g) {
+    return g.load_fraction > options.significant_load_fraction;
+  }));
+  if (r.patches > 1 && !options.allow_several_patches) {
+    throw Error(fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope "
+                            "for now",
+                            where, r.patches, load_shares(s.regions, r.patches)));
+  }
+  double max_pressure = 0.0;
+  for (std::size_t k : main.elements) max_pressure = std::max(max_pressure, s.normal.pressure_Pa[k]);
+  r.patch = cropped_patch(mesh, s.normal.pressure_Pa, main, options.material);
+  r.dropped_load_fraction = 1.0 - main.load_fraction;
+  r.pressure_centre_x1_m = main.x1_centre_m;
+  r.pressure_centre_x2_m = main.x2_centre_m;
+  // The tangent-plane point C + x2 X2 with X2 = (−cos γ, sin γ) in the rail profile frame.
+  r.pressure_centre_y_rail_m = r.contact.y_rail_m - main.x2_centre_m * cos_gamma;
+  r.pressure_centre_contact_angle_rad = std::atan(-pair.rail().dz_dy(r.pressure_centre_y_rail_m));
+  const Extents e = extents(mesh, main);
+  r.extent_x1_m = e.x1_m;
+  r.extent_x2_m = e.x2_m;
+  r.elements_in_contact = main.elements.size();
+  r.area_m2 = static_cast<double>(r.elements_in_contact) * mesh.element_area_m2();
+  r.max_pressure_Pa = max_pressure;
+  r.approach_m = s.normal.approach_m;
+  r.iterations = s.normal.iterations;
+  r.normal = std::move(s.normal);
+  r.potential_area = mesh;
+  r.potential_h_m = std::move(s.area.h_m);
+  r.regions = std::move(s.regions);
+  return r;
+}
+
+}  // namespace railcontact
