@@ -84,7 +84,7 @@ BENCHMARK(BM_CachedPatchStep)->Unit(benchmark::kMicrosecond);
 void BM_CachedPatchWithLookup(benchmark::State& state) {
   measure(state, [](const Setup& s) {
     const FlexibilityTableValues v = s.nh.table().lookup_for_patch(kY, kFz, s.patch.wheel_rail_patch().area_m2);
-    benchmark::DoNotOptimize(s.patch.fastsim().forces(s.creepage, v.flexibility, kMu));
+    benchmark::DoNotOptimize(s.patch.nh_fastsim().fastsim().forces(s.creepage, v.flexibility, kMu));
   });
 }
 BENCHMARK(BM_CachedPatchWithLookup)->Unit(benchmark::kMicrosecond);
@@ -96,10 +96,8 @@ BENCHMARK(BM_FullStep)->Unit(benchmark::kMillisecond);
 
 void BM_OnTheFlyNhFastSim(benchmark::State& state) {
   measure(state, [](const Setup& s) {
-    const ContactPatch& patch = s.patch.wheel_rail_patch().patch;
-    const FastSim fastsim(patch);
-    const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), nh_fastsim_adhesion_options());
-    benchmark::DoNotOptimize(fastsim.forces(s.creepage, nh_fastsim_flexibility(fastsim, K2.creepage_matrix), kMu));
+    // The recipe of the table (and of `railcontact run`): K2 of the automatically coarsened patch.
+    benchmark::DoNotOptimize(NhFastSim(s.patch.wheel_rail_patch().patch).forces(s.creepage, kMu));
   });
 }
 BENCHMARK(BM_OnTheFlyNhFastSim)->Unit(benchmark::kMillisecond);

@@ -35,11 +35,9 @@ BENCHMARK_CAPTURE(BM_FastSimEvaluation, with_spin, kCombined)->Arg(700)->Arg(280
 
 void BM_NhFastSimWithFlexibilities(benchmark::State& state) {
   const ContactPatch p = patch(static_cast<int>(state.range(0)));
-  for (auto _ : state) {
-    const FastSim fastsim(p);
-    const Flexibility L = nh_fastsim_flexibility(p);
-    benchmark::DoNotOptimize(fastsim.forces(kCombined, L, kMu));
-  }
+  NhFastSimOptions full_resolution;  // K2 of the patch itself
+  full_resolution.flexibility_coarsening = 1;
+  for (auto _ : state) benchmark::DoNotOptimize(NhFastSim(p, full_resolution).forces(kCombined, kMu));
   state.counters["elements"] = static_cast<double>(p.elements().count());
 }
 BENCHMARK(BM_NhFastSimWithFlexibilities)->Arg(700)->Arg(2800)->Arg(11000)->Unit(benchmark::kMillisecond);
@@ -47,12 +45,8 @@ BENCHMARK(BM_NhFastSimWithFlexibilities)->Arg(700)->Arg(2800)->Arg(11000)->Unit(
 // As `railcontact run` computes it: flexibilities from K2 of the automatically coarsened patch.
 void BM_NhFastSimWithDefaultFlexibilities(benchmark::State& state) {
   const ContactPatch p = patch(static_cast<int>(state.range(0)));
-  const int factor = automatic_flexibility_coarsening(p);
-  for (auto _ : state) {
-    const FastSim fastsim(p);
-    const Flexibility L = nh_fastsim_flexibility_coarsened(p, factor);
-    benchmark::DoNotOptimize(fastsim.forces(kCombined, L, kMu));
-  }
+  const int factor = NhFastSim::automatic_coarsening(p);
+  for (auto _ : state) benchmark::DoNotOptimize(NhFastSim(p).forces(kCombined, kMu));
   state.counters["elements"] = static_cast<double>(p.elements().count());
   state.counters["coarsening"] = factor;
 }

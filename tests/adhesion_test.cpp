@@ -7,6 +7,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
+#include "tangential/adhesion_tuning.hpp"
 #include "railcontact/kalker.hpp"
 
 namespace railcontact {
@@ -129,11 +130,11 @@ TEST(Adhesion, RejectsBadInput) {
   EXPECT_THROW(solve_full_adhesion(ellipse, kSteel, bad_alpha), Error);
   bad_alpha.collocation_offset = std::nan("");
   EXPECT_THROW(solve_full_adhesion(ellipse, kSteel, bad_alpha), Error);
-  AdhesionOptions bad_gamma;
+  AdhesionTuning bad_gamma;
   bad_gamma.half_laplacian_gamma = 0.0;
-  EXPECT_THROW(solve_full_adhesion(ellipse, kSteel, bad_gamma), Error);
+  EXPECT_THROW(solve_full_adhesion(ellipse, kSteel, {}, bad_gamma), Error);
   bad_gamma.half_laplacian_gamma = std::nan("");
-  EXPECT_THROW(solve_full_adhesion(ellipse, kSteel, bad_gamma), Error);
+  EXPECT_THROW(solve_full_adhesion(ellipse, kSteel, {}, bad_gamma), Error);
   EXPECT_THROW(solve_full_adhesion(ellipse, Material{2.1e11, 0.5}, {}), Error);
   EXPECT_THROW(solve_full_adhesion(ellipse, Material{-1.0, 0.3}, {}), Error);
   const Mesh mesh = Mesh::covering(0, 1, 0, 1, 4, 4);

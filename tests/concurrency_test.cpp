@@ -57,7 +57,7 @@ PatchResults solve_patch(int elements) {
   const double a = 6e-3, b = 4e-3;
   const ContactPatch patch = hertzian_patch(elliptical_contact_with_count(a, b, elements), a, b, 8e4, kSteel);
   PatchResults r;
-  r.flexibility = nh_fastsim_flexibility(patch);
+  r.flexibility = NhFastSim(patch).flexibility();
   r.exact = solve_rolling_exact(patch, Creepage{1e-3, -5e-4, 0.5}, 0.3).forces;
   return r;
 }

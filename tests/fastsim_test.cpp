@@ -328,9 +328,19 @@ void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
   // spin_from_moment matches M3 per phi instead.
   const Flexibility Lm = nh_fastsim_flexibility(fastsim, K2, FlexibilityMatch::spin_from_moment);
   EXPECT_LT(rel_diff(fastsim.forces({0, 0, phi}, Lm, kMu).M3_Nm, K2(2, 2) * phi), 1e-9);
-  // Also through the convenience that runs the adhesion solver itself (the two force rows of
-  // K2 by adjoint solves at GMRES tolerance 1e-3: K2, hence L, to ~5e-4; measured 9e-5 ... 2.2e-4).
-  const Flexibility L2 = nh_fastsim_flexibility(patch);
+  // Also through NhFastSim on the patch itself (the two force rows of K2 by adjoint solves at
+  // GMRES tolerance 1e-3: K2, hence L, to ~5e-4; measured 9e-5 ... 2.2e-4), which also reports
+  // f11, f22, f23 = -K2_11, -K2_22, -K2_23 and forces equal to FastSim's with its flexibilities.
+  NhFastSimOptions full_resolution;
+  full_resolution.flexibility_coarsening = 1;
+  const NhFastSim nh(patch, full_resolution);
+  const Flexibility L2 = nh.flexibility();
+  EXPECT_EQ(nh.coarsening(), 1);
+  EXPECT_LT(rel_diff(nh.flexibilities().f11_N, -K2(0, 0)), 1e-3);
+  EXPECT_LT(rel_diff(nh.flexibilities().f22_N, -K2(1, 1)), 1e-3);
+  EXPECT_LT(rel_diff(nh.flexibilities().f23_Nm, -K2(1, 2)), 1e-3);
+  const Creepage c{2e-4, -1e-4, 0.3};
+  EXPECT_EQ(nh.forces(c, kMu).F2_N, fastsim.forces(c, L2, kMu).F2_N);
   EXPECT_LT(rel_diff(L2.L1, L.L1), 1e-3);
   EXPECT_LT(rel_diff(L2.L2, L.L2), 1e-3);
   EXPECT_LT(rel_diff(L2.L3, L.L3), 1e-3);
@@ -556,12 +566,24 @@ TEST(NhFastSim, FlexibilitiesFromTheCoarsenedPatchAreCloseToTheFinePatchs) {
   EXPECT_NEAR(static_cast<double>(coarse.elements().count()) / fine.elements().count(), 0.25, 0.03);
   EXPECT_NEAR(coarse.normal_force_N(), fine.normal_force_N(), 1e-9 * fine.normal_force_N());
   EXPECT_NEAR(coarse.area_m2(), fine.area_m2(), 0.03 * fine.area_m2());
-  const Flexibility L = nh_fastsim_flexibility(fine);
-  const Flexibility Lc = nh_fastsim_flexibility_coarsened(fine, 2);
+  NhFastSimOptions options;
+  options.flexibility_coarsening = 1;
+  const Flexibility L = NhFastSim(fine, options).flexibility();
+  options.flexibility_coarsening = 2;
+  const NhFastSim nh_coarse(fine, options);
+  EXPECT_EQ(nh_coarse.coarsening(), 2);
+  const Flexibility Lc = nh_coarse.flexibility();
   EXPECT_NEAR(Lc.L1 / L.L1, 1.0, 0.02);
   EXPECT_NEAR(Lc.L2 / L.L2, 1.0, 0.02);
   EXPECT_NEAR(Lc.L3 / L.L3, 1.0, 0.04);
   EXPECT_THROW(coarsened(fine, 0), Error);
+  options.flexibility_coarsening = kMaximumCoarsening + 1;
+  EXPECT_THROW(NhFastSim(fine, options), Error);
+  options.flexibility_coarsening = -1;
+  EXPECT_THROW(NhFastSim(fine, options), Error);
+  // Given flexibilities must be positive and finite.
+  EXPECT_THROW(NhFastSim(fine, NhFastSimFlexibilities{Flexibility{L.L1, -L.L2, L.L3}}), Error);
+  EXPECT_THROW(NhFastSim(fine, NhFastSimFlexibilities{Flexibility{L.L1, L.L2, std::nan("")}}), Error);
 }
 
 }  // namespace

@@ -36,10 +36,12 @@ std::string wheel_rail_case(double y_m, const std::string& rail = "") {
          "[mesh]\nelements = 800\n[solvers]\nrun = [\"nh-fastsim\", \"fastsim\"]\n";
 }
 
-// A small table (y = 0, 0.25, 0.5 mm, ~800 elements) written by the library, not the CLI.
+// A small table (y = 0, 0.25, 0.5 mm, ~800 elements, K2 of the patch itself) written by the
+// library, not the CLI.
 std::filesystem::path small_table(const std::filesystem::path& dir) {
   railcontact::FlexibilityTableOptions options;
   options.patch.target_elements = 800;
+  options.nh_fastsim.flexibility_coarsening = 1;
   const railcontact::FlexibilityTable table = railcontact::build_flexibility_table(
       railcontact::default_wheel_rail_pair(), {0.0, 0.25e-3, 0.5e-3}, {98100.0}, options);
   const std::filesystem::path path = dir / "table.json";

@@ -31,9 +31,12 @@ const WheelRailPair& pair() {
   return p;
 }
 
+// The tables of these tests take K2 on the patch itself (flexibility coarsening 1): their
+// interpolation is then measured without the coarse patch's shape noise (docs/FLEXTABLE.md §4).
 FlexibilityTableOptions coarse_options() {
   FlexibilityTableOptions options;
   options.patch.target_elements = kElements;
+  options.nh_fastsim.flexibility_coarsening = 1;
   return options;
 }
 
@@ -69,7 +72,7 @@ std::string error_of(const std::function<void()>& f) {
   return "no error";
 }
 
-// nH-FastSim as a wheel-rail case computes it on the fly (case_run.cpp).
+// nH-FastSim on the fly with the recipe of the tables above (NhFastSim, K2 of the patch itself).
 struct OnTheFly {
   WheelRailPatch patch;
   Flexibility L;
@@ -80,8 +83,9 @@ OnTheFly on_the_fly(double y_m, double Fz_N) {
   options.target_elements = kElements;
   options.vertical_load_N = Fz_N;
   OnTheFly r{solve_wheel_rail_patch(pair(), y_m, options), {}, {}};
-  r.K2 = solve_full_adhesion(r.patch.patch.elements(), r.patch.patch.material(), nh_fastsim_adhesion_options()).creepage_matrix;
-  r.L = nh_fastsim_flexibility(FastSim(r.patch.patch), r.K2);
+  const NhFastSim nh(r.patch.patch, coarse_options().nh_fastsim);
+  r.K2 = *nh.creepage_matrix();
+  r.L = nh.flexibility();
   return r;
 }
 
@@ -360,7 +364,7 @@ TEST(FlexibilityTableFile, MalformedFilesNameTheProblem) {
   EXPECT_NO_THROW((void)parse_flexibility_table(good, "t.json"));
   EXPECT_NE(error_for("{\n \"format\": ").find("t.json:2: malformed JSON"), std::string::npos) << error_for("{\n \"format\": ");
   EXPECT_NE(error_for("{}").find("not a flexibility table"), std::string::npos);
-  EXPECT_NE(error_for(replaced("\"format_version\": 1", "\"format_version\": 2")).find("format_version 2"), std::string::npos);
+  EXPECT_NE(error_for(replaced("\"format_version\": 2", "\"format_version\": 3")).find("format_version 3"), std::string::npos);
   EXPECT_NE(error_for(replaced("\"target_elements\"", "\"target_element\"")).find("missing key 'target_elements'"),
             std::string::npos);
   EXPECT_NE(error_for(replaced("\"target_elements\"", "\"extra\": 1, \"target_elements\"")).find("unknown key 'extra'"),
@@ -387,6 +391,38 @@ TEST(FlexibilityTableBuild, BadGridsAndOptionsThrow) {
   ASSERT_EQ(grid.size(), 37u);
   EXPECT_EQ(grid[18], 0.0);
   EXPECT_DOUBLE_EQ(grid.back(), 4.5e-3);
+}
+
+}  // namespace
+}  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+// The table's builder runs nH-FastSim's recipe itself (NhFastSim), by default the very one of
+// `railcontact run` (automatic coarsening), and records it: a node equals on-the-fly nH-FastSim.
+TEST(FlexibilityTable, DefaultBuildUsesTheRecipeOfRunAndRecordsIt) {
+  FlexibilityTableOptions options;
+  options.patch.target_elements = kElements;
+  const FlexibilityTable t = build_flexibility_table(pair(), {0.5e-3}, {kFz}, options);
+  EXPECT_EQ(t.metadata().flexibility_coarsening, 0);
+  WheelRailPatchOptions patch_options;
+  patch_options.target_elements = kElements;
+  const WheelRailPatch p = solve_wheel_rail_patch(pair(), 0.5e-3, patch_options);
+  const NhFastSim nh(p.patch);
+  EXPECT_EQ(nh.coarsening(), 2);  // ~800 elements
+  const FlexibilityTableNode& n = t.node(0, 0);
+  EXPECT_EQ(n.flexibility.L1, nh.flexibility().L1);
+  EXPECT_EQ(n.flexibility.L3, nh.flexibility().L3);
+  EXPECT_EQ(n.f22_N, nh.flexibilities().f22_N);
+  // Saved and loaded, the recipe stays; a version-1 file (before the recipe was recorded) was
+  // built on the patch itself.
+  const std::string json = flexibility_table_json(t);
+  EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().flexibility_coarsening, 0);
+  std::string v1 = json;
+  v1.replace(v1.find("\"format_version\": 2"), 19, "\"format_version\": 1");
+  v1.replace(v1.find("\"flexibility_coarsening\": 0,"), 28, "");
+  EXPECT_EQ(parse_flexibility_table(v1, "t.json").metadata().flexibility_coarsening, 1);
 }
 
 }  // namespace

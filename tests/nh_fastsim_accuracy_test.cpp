@@ -30,7 +30,7 @@ Errors worst_errors(const ContactPatch& patch, double phi) {
   const Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
   const FastSim ours(patch), paper(patch, TractionBound::parabolic());
   const Flexibility L = nh_fastsim_flexibility(ours, K2);
-  const Flexibility L_default = nh_fastsim_flexibility_coarsened(patch, automatic_flexibility_coarsening(patch));
+  const Flexibility L_default = NhFastSim(patch).flexibility();  // the default recipe
   const double unit = 3.0 * kMu * patch.normal_force_N();
   Errors worst;
   for (double level : {0.25, 0.5, 0.75}) {
@@ -73,7 +73,7 @@ TEST(NhFastSimAccuracy, BeatsTheParabolicBoundNearTheTwoPointContact) {
             << " %, default coarsened flexibilities " << 100 * e.ours_default << " %)\n";
   EXPECT_LT(e.ours, 0.04);
   EXPECT_GT(e.paper, 0.05);
-  EXPECT_EQ(automatic_flexibility_coarsening(wr.patch), 3);  // 3000 elements: a coarse patch of ~330
+  EXPECT_EQ(NhFastSim::automatic_coarsening(wr.patch), 3);  // 3000 elements: a coarse patch of ~330
   EXPECT_LT(e.ours_default, 0.04);
 }
 
@@ -84,7 +84,7 @@ TEST(NhFastSimFlexibility, AutomaticCoarseningKeepsAtLeast250Elements) {
   for (auto [elements, expected] : {std::pair{300, 1}, {600, 2}, {1200, 2}, {3000, 3}, {5000, 4}, {12000, 6}}) {
     const ContactPatch patch =
         hertzian_patch(elliptical_contact_with_count(a, b, elements), a, b, 98100.0, steel);
-    const int factor = automatic_flexibility_coarsening(patch);
+    const int factor = NhFastSim::automatic_coarsening(patch);
     EXPECT_EQ(factor, expected) << patch.elements().count() << " elements";
     if (factor > 2) EXPECT_GE(coarsened(patch, factor).elements().count(), 240u);
   }

@@ -141,37 +141,36 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
                      : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
   summarise(result.patch, result.summary);
   const ContactPatch& patch = result.patch;
-  const FastSim fastsim(patch, TractionBound{input.bound_skew});  // nh-fastsim
 
-  // K2's force rows (f11, f22, f23) once, if the normalisation or nH-FastSim needs them and no
-  // flexibility table gives them.
+  // nH-FastSim (flexibilities from K2, or from the table) once, if the normalisation or the
+  // nh-fastsim solver needs it; its set-up time counts towards nh-fastsim's.
   const std::optional<FlexibilityTableValues>& tabled = result.flexibility_table_values;
   const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
   const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
-  double K2_time_s = 0.0;
-  int K2_iterations = 0;
-  std::optional<ContactPatch> flexibility_patch;  // the coarsened patch, if any
-  int coarsening = 1;
-  if ((normalised || wants_nh) && !tabled) {
-    if (progress) fmt::print(*progress, "  creepage matrix K2 ...\n");
+  NhFastSimOptions nh_options;
+  nh_options.bound = TractionBound{input.bound_skew};
+  nh_options.flexibility_coarsening = input.flexibility_coarsening;
+  nh_options.collocation_offset = input.rolling.collocation_offset;
+  std::optional<NhFastSim> nh;
+  double nh_setup_time_s = 0.0;
+  if (normalised || wants_nh) {
+    if (progress) *progress << (tabled ? "  nH-FastSim from the flexibility table ...\n" : "  creepage matrix K2 ...\n");
     const auto start = Clock::now();
-    AdhesionOptions adhesion = nh_fastsim_adhesion_options();
-    adhesion.collocation_offset = input.rolling.collocation_offset;
-    coarsening = input.flexibility_coarsening > 0 ? input.flexibility_coarsening : automatic_flexibility_coarsening(patch);
-    if (coarsening > 1) flexibility_patch = coarsened(patch, coarsening);
-    const ContactPatch& K2_patch = flexibility_patch ? *flexibility_patch : patch;
-    const AdhesionSolution K2 = solve_full_adhesion(K2_patch.elements(), K2_patch.material(), adhesion);
-    result.creepage_matrix = K2.creepage_matrix;
-    K2_time_s = seconds_since(start);
-    K2_iterations = K2.iterations;
+    if (tabled)
+      nh.emplace(patch, NhFastSimFlexibilities{tabled->flexibility, tabled->f11_N, tabled->f22_N, tabled->f23_Nm},
+                 nh_options);
+    else
+      nh.emplace(patch, nh_options);
+    nh_setup_time_s = seconds_since(start);
+    result.creepage_matrix = nh->creepage_matrix();
   }
-  // Normalised creepages (Eq 22-23) with f11 = -K2_11, f22 = -K2_22 of this patch (or the
-  // table's); spin (Eq 24).
-  const double saturation = 3.0 * input.mu * patch.normal_force_N();
-  const double f11 = tabled ? tabled->f11_N : normalised ? -(*result.creepage_matrix)(0, 0) : 0.0;
-  const double f22 = tabled ? tabled->f22_N : normalised ? -(*result.creepage_matrix)(1, 1) : 0.0;
-  if (input.creepage.xi_normalised) result.creepage.xi = *input.creepage.xi_normalised * saturation / f11;
-  if (input.creepage.eta_normalised) result.creepage.eta = *input.creepage.eta_normalised * saturation / f22;
+  // Normalised creepages (Eq 22-23) with f11, f22 of nH-FastSim's K2 (or the table's); spin (Eq 24).
+  const Creepage normalised_creepage = normalised ? nh->creepage_from_normalised(input.creepage.xi_normalised.value_or(0.0),
+                                                                                input.creepage.eta_normalised.value_or(0.0),
+                                                                                0.0, input.mu, patch.normal_force_N())
+                                                  : Creepage{};
+  if (input.creepage.xi_normalised) result.creepage.xi = normalised_creepage.xi;
+  if (input.creepage.eta_normalised) result.creepage.eta = normalised_creepage.eta;
   if (input.creepage.phi_from_conicity) result.creepage.phi = result.summary.spin_per_m;
   const Creepage& creepage = result.creepage;
 
@@ -182,13 +181,13 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
     const auto start = Clock::now();
     switch (kind) {
       case SolverKind::nh_fastsim: {
-        run.flexibility = tabled              ? tabled->flexibility
-                          : flexibility_patch ? nh_fastsim_flexibility(*flexibility_patch, *result.creepage_matrix)
-                                              : nh_fastsim_flexibility(fastsim, *result.creepage_matrix);
-        run.flexibility_source = tabled ? "table" : flexibility_patch ? fmt::format("K2 of the patch coarsened by {}", coarsening) : "K2";
-        run.flexibility_time_s = seconds_since(start) + K2_time_s;  // K2 counts: it is nH-FastSim's
-        run.iterations = K2_iterations;
-        take_fastsim_result(fastsim.solve(creepage, *run.flexibility, input.mu), run);
+        run.flexibility = nh->flexibility();
+        run.flexibility_source = tabled ? "table"
+                                 : nh->coarsening() > 1 ? fmt::format("K2 of the patch coarsened by {}", nh->coarsening())
+                                                        : "K2";
+        run.flexibility_time_s = nh_setup_time_s;  // K2 counts: it is nH-FastSim's
+        run.iterations = nh->krylov_iterations();
+        take_fastsim_result(nh->solve(creepage, input.mu), run);
         break;
       }
       case SolverKind::fastsim: {
@@ -215,7 +214,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
         break;
       }
     }
-    run.time_s = seconds_since(start) + (kind == SolverKind::nh_fastsim ? K2_time_s : 0.0);
+    run.time_s = seconds_since(start) + (kind == SolverKind::nh_fastsim ? nh_setup_time_s : 0.0);
     result.runs.push_back(std::move(run));
   }
   return result;

@@ -30,6 +30,7 @@ struct BuildArguments {
   std::optional<std::string> wheel;
   std::optional<std::string> rail;
   int elements = 3000;
+  int flexibility_coarsening = 0;
 };
 
 struct CheckArguments {
@@ -84,6 +85,11 @@ int run_build(const BuildArguments& args) {
 
   FlexibilityTableOptions options;
   options.patch.target_elements = args.elements;
+  require(args.flexibility_coarsening >= 0 && args.flexibility_coarsening <= kMaximumCoarsening, [&] {
+    return fmt::format("flextable build: --flexibility-coarsening {} must lie in [0, {}] (0: automatic)",
+                       args.flexibility_coarsening, kMaximumCoarsening);
+  });
+  options.nh_fastsim.flexibility_coarsening = args.flexibility_coarsening;
   fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact\n", y.size(), loads.size(),
              args.elements);
   const auto start = std::chrono::steady_clock::now();
@@ -212,6 +218,9 @@ void add_flextable_command(CLI::App& app, Action& action) {
   b->add_option("--wheel", build->wheel, "wheel profile file (default: the shipped S1002)");
   b->add_option("--rail", build->rail, "rail profile file (default: the shipped UIC60 1:40)");
   b->add_option("--elements", build->elements, "about this many elements in contact")->capture_default_str();
+  b->add_option("--flexibility-coarsening", build->flexibility_coarsening,
+                "nH-FastSim's K2 on the patch coarsened by this factor (0: automatic, as `run`; 1: the patch itself)")
+      ->capture_default_str();
   b->callback([build, &action] { action = [build] { return run_build(*build); }; });
 
   auto check = std::make_shared<CheckArguments>();

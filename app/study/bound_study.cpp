@@ -30,20 +30,19 @@ constexpr std::array<double, 11> kRatios{0.1, 0.2, 0.35, 0.5, 0.7, 1.0, 1.4, 2.0
 
 // Largest |F - F_exact| / F_exact over the 15 creepages, per skew of kSkews.
 std::array<double, kSkews.size()> worst_errors(const ContactPatch& patch, double phi) {
-  const Eigen::Matrix3d K2 =
-      solve_full_adhesion(patch.elements(), patch.material(), nh_fastsim_adhesion_options()).creepage_matrix;
+  // nH-FastSim's flexibilities of the patch itself, then FastSim with each bound.
+  NhFastSimOptions options;
+  options.flexibility_coarsening = 1;
+  const NhFastSim nh(patch, options);
+  const Flexibility& L = nh.flexibility();
   std::vector<FastSim> fastsims;
   for (double skew : kSkews) fastsims.emplace_back(patch, TractionBound{skew});
-  const Flexibility L = nh_fastsim_flexibility(fastsims.front(), K2);
-  const double unit = 3.0 * kMu * patch.normal_force_N();
   std::array<double, kSkews.size()> worst{};
   for (int family = 0; family < 3; ++family) {
     for (double level : {0.1, 0.25, 0.5, 0.75, 1.0}) {
-      const double xi = family != 1 ? level * unit / -K2(0, 0) : 0.0;
-      const double eta = family != 0 ? level * unit / -K2(1, 1) : 0.0;
-      const Creepage c{xi, eta, family != 0 ? phi : 0.0};
+      const Creepage c = nh.creepage_from_normalised(family != 1 ? level : 0.0, family != 0 ? level : 0.0,
+                                                     family != 0 ? phi : 0.0, kMu, patch.normal_force_N());
       const RollingSolution exact = solve_rolling_exact(patch, c, kMu);
-      if (!exact.converged) throw Error("study bound: the exact solver did not converge");
       const double F = std::hypot(exact.forces.F1_N, exact.forces.F2_N);
       for (std::size_t k = 0; k < kSkews.size(); ++k) {
         const TangentialForces f = fastsims[k].forces(c, L, kMu);

@@ -73,8 +73,11 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
   WheelRailPatchOptions patch_options;
   patch_options.material = table.metadata().material;
   patch_options.target_elements = options.target_elements > 0 ? options.target_elements : table.metadata().target_elements;
-  AdhesionOptions adhesion = nh_fastsim_adhesion_options();
-  adhesion.collocation_offset = table.metadata().collocation_offset;
+  // nH-FastSim on the fly with the recipe the table was built with: the check then measures the
+  // table's interpolation alone.
+  NhFastSimOptions recipe;
+  recipe.collocation_offset = table.metadata().collocation_offset;
+  recipe.flexibility_coarsening = table.metadata().flexibility_coarsening;
   const double mu = options.mu;
   double sum = 0.0, sum_table_normalised = 0.0;
   std::size_t count = 0;
@@ -90,17 +93,17 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
         if (progress) fmt::print(*progress, "  skipped {}\n", check.skipped.back());
         continue;
       }
-      const FastSim fastsim(p.patch);
-      const Eigen::Matrix3d K2 = solve_full_adhesion(p.patch.elements(), p.patch.material(), adhesion).creepage_matrix;
+      const NhFastSim on_the_fly(p.patch, recipe);
+      const FastSim& fastsim = on_the_fly.fastsim();
       const FlexibilityTableValues v = table.lookup_for_patch(y, Fz, p.area_m2, options.interpolation);
       FlexibilityTableCheckPoint point;
       point.y_m = y;
       point.vertical_load_N = Fz;
       point.elements_in_contact = p.elements_in_contact;
-      point.on_the_fly = nh_fastsim_flexibility(fastsim, K2);
+      point.on_the_fly = on_the_fly.flexibility();
       point.table = v.flexibility;
-      point.f11_on_the_fly_N = -K2(0, 0);
-      point.f22_on_the_fly_N = -K2(1, 1);
+      point.f11_on_the_fly_N = on_the_fly.flexibilities().f11_N;
+      point.f22_on_the_fly_N = on_the_fly.flexibilities().f22_N;
       point.f11_table_N = v.f11_N;
       point.f22_table_N = v.f22_N;
       const double saturation = 3.0 * mu * p.normal_force_N;  // Eq 22-23

@@ -65,10 +65,11 @@ void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
     const ContactPatch patch = hertzian_patch(
         elliptical_contact_with_count(a, b, options.elements, EllipseMeshLayout::rolling_resolved), a, b, kLoad, material);
     const double F3 = patch.normal_force_N();
-    const FastSim fastsim(patch);                                     // nH-FastSim: railcontact's bound
     const FastSim classical(patch, TractionBound::parabolic());       // classical FastSim: Eq 1
     const auto t0 = Clock::now();
-    const Flexibility nh = nh_fastsim_flexibility(patch);
+    NhFastSimOptions nh_options;  // railcontact's bound; K2 of the patch itself
+    nh_options.flexibility_coarsening = 1;
+    const NhFastSim nh(patch, nh_options);
     const double nh_flexibility_time = std::chrono::duration<double>(Clock::now() - t0).count();
     const Flexibility original = fastsim_flexibility(a, b, material);
     // Kalker's normalisation with the linear theory of this ellipse.
@@ -86,7 +87,7 @@ void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
         for (int i = 0; i < 4; ++i) {
           const auto t = Clock::now();
           if (i < 2) {
-            const FastSimResult r = (i == 0 ? fastsim : classical).solve(creepage, i == 0 ? nh : original, kMu);
+            const FastSimResult r = i == 0 ? nh.solve(creepage, kMu) : classical.solve(creepage, original, kMu);
             forces[i] = r.forces;
             adhesion[i] = r.adhesion_fraction;
           } else {

@@ -36,14 +36,17 @@ constexpr double kVerticalLoad = 98100.0;
 // One wheel-rail patch prepared for the tangential solvers: flexibilities and normalisation.
 struct PreparedPatch {
   WheelRailPatch wheel_rail;
-  std::optional<FastSim> fastsim;        // railcontact's traction bound (TractionBound{})
+  std::optional<NhFastSim> nh;           // flexibilities from K2 of the patch itself (coarsening 1)
+  std::optional<NhFastSim> nh_default;   // as `railcontact run` computes them (automatic coarsening)
   std::optional<FastSim> paper_fastsim;  // the paper's parabola (Eq 1)
-  Flexibility nh;                        // from K2 of the patch itself
-  Flexibility nh_default;                // as `railcontact run` computes them (automatic coarsening)
-  int default_coarsening = 1;
   Flexibility equivalent_ellipse;
-  double f11 = 0, f22 = 0;
 };
+
+NhFastSimOptions full_resolution() {
+  NhFastSimOptions options;
+  options.flexibility_coarsening = 1;
+  return options;
+}
 
 PreparedPatch prepare(const WheelRailPair& pair, double y, int elements) {
   WheelRailPatchOptions options;
@@ -52,14 +55,9 @@ PreparedPatch prepare(const WheelRailPair& pair, double y, int elements) {
   PreparedPatch p;
   p.wheel_rail = solve_wheel_rail_patch(pair, y, options);
   const ContactPatch& patch = p.wheel_rail.patch;
-  p.fastsim.emplace(patch);
+  p.nh.emplace(patch, full_resolution());
+  p.nh_default.emplace(patch);
   p.paper_fastsim.emplace(patch, TractionBound::parabolic());
-  const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), nh_fastsim_adhesion_options());
-  p.nh = nh_fastsim_flexibility(*p.fastsim, K2.creepage_matrix);
-  p.f11 = -K2.creepage_matrix(0, 0);
-  p.f22 = -K2.creepage_matrix(1, 1);
-  p.default_coarsening = automatic_flexibility_coarsening(patch);
-  p.nh_default = nh_fastsim_flexibility_coarsened(patch, p.default_coarsening);
   // Equivalent ellipse: same area, axis ratio of the circumscribing rectangle (Piotrowski & Kik).
   const double ratio = p.wheel_rail.extent_x1_m / p.wheel_rail.extent_x2_m;
   const double a = std::sqrt(p.wheel_rail.area_m2 * ratio / M_PI), b = std::sqrt(p.wheel_rail.area_m2 / (M_PI * ratio));
@@ -81,10 +79,11 @@ double best_of_two_s(Work&& work) {
   return best;
 }
 
-// Raw creepages from the normalised ones (Eq 22-23) and the spin switch (Eq 24).
+// Raw creepages from the normalised ones (Eq 22-23, f11 and f22 of the patch's own K2) and the spin
+// switch (Eq 24).
 Creepage creepage_of(const PreparedPatch& p, double xi_n, double eta_n, bool spin) {
-  const double saturation = 3.0 * kMu * p.wheel_rail.normal_force_N;
-  return {xi_n * saturation / p.f11, eta_n * saturation / p.f22, spin ? p.wheel_rail.spin_per_m : 0.0};
+  return p.nh->creepage_from_normalised(xi_n, eta_n, spin ? p.wheel_rail.spin_per_m : 0.0, kMu,
+                                        p.wheel_rail.normal_force_N);
 }
 
 double magnitude(const TangentialForces& f) { return std::hypot(f.F1_N, f.F2_N); }
@@ -153,18 +152,20 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
     }
     const WheelRailPatch& wr = p->wheel_rail;
     fmt::print(patches, "{:.6f},ok,{:.6f},{:.6f},{:.3f},{:.6e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", y,
-               wr.contact_angle_rad, wr.spin_per_m, wr.normal_force_N, wr.area_m2, wr.elements_in_contact, p->nh.L1,
-               p->nh.L2, p->nh.L3, p->equivalent_ellipse.L1, p->equivalent_ellipse.L2, p->equivalent_ellipse.L3);
+               wr.contact_angle_rad, wr.spin_per_m, wr.normal_force_N, wr.area_m2, wr.elements_in_contact, p->nh->flexibility().L1,
+               p->nh->flexibility().L2, p->nh->flexibility().L3, p->equivalent_ellipse.L1, p->equivalent_ellipse.L2, p->equivalent_ellipse.L3);
     double worst = 0;
     for (const Family& family : kFamilies) {
       for (double level : kLevels) {
         const Creepage c = creepage_of(*p, family.xi * level, family.eta * level, family.spin);
         const double F_exact = magnitude(solve_rolling_exact(wr.patch, c, kMu).forces);
-        const FastSim& ours = *p->fastsim;
+        const FastSim& ours = p->nh->fastsim();
         const FastSim& paper = *p->paper_fastsim;
         for (const auto& [solver, fastsim, L] :
-             {std::tuple{"nh-fastsim", &ours, p->nh}, std::tuple{"nh-fastsim-default", &ours, p->nh_default},
-              std::tuple{"nh-fastsim-paper", &paper, p->nh}, std::tuple{"fastsim", &paper, p->equivalent_ellipse}}) {
+             {std::tuple{"nh-fastsim", &ours, p->nh->flexibility()},
+              std::tuple{"nh-fastsim-default", &ours, p->nh_default->flexibility()},
+              std::tuple{"nh-fastsim-paper", &paper, p->nh->flexibility()},
+              std::tuple{"fastsim", &paper, p->equivalent_ellipse}}) {
           const double F = magnitude(fastsim->forces(c, L, kMu));
           const double error = std::fabs(F - F_exact) / F_exact;
           fmt::print(fig5, "{},{:.6f},{},{},{:.6f},{},{:.4f},{:.4f},{:.6f}\n", family.name, y, family.xi * level,
@@ -198,7 +199,7 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
   std::ofstream fig6 = open_csv(dir / "fig6.csv", "case,solver,F1,F2,M3,adhesion_fraction\n");
   for (const MapCase& m : maps) {
     const Creepage c = creepage_of(centred, m.xi_n, m.eta_n, m.spin);
-    const FastSimResult nh = centred.fastsim->solve(c, centred.nh, kMu);
+    const FastSimResult nh = centred.nh->solve(c, kMu);
     const RollingSolution exact = solve_rolling_exact(centred.wheel_rail.patch, c, kMu);
     write_tractions(dir / fmt::format("fig6_{}_nh-fastsim.csv", m.name), centred.wheel_rail.patch, nh.p1_Pa, nh.p2_Pa, nh.slip);
     write_tractions(dir / fmt::format("fig6_{}_exact.csv", m.name), centred.wheel_rail.patch, exact.p1_Pa, exact.p2_Pa,
@@ -219,7 +220,7 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
       for (int k = 0; k <= 12; ++k) {
         const double xi_n = 1.5 * k / 12;
         const Creepage c = creepage_of(p, xi_n, eta_n, eta_n > 0);
-        const TangentialForces nh = p.fastsim->forces(c, p.nh, kMu);
+        const TangentialForces nh = p.nh->forces(c, kMu);
         const TangentialForces exact = solve_rolling_exact(p.wheel_rail.patch, c, kMu).forces;
         fmt::print(fig7, "{:.6f},{},{:.4f},nh-fastsim,{:.4f},{:.4f},{:.6f}\n", y, eta_n, xi_n, nh.F1_N, nh.F2_N, nh.M3_Nm);
         fmt::print(fig7, "{:.6f},{},{:.4f},exact,{:.4f},{:.4f},{:.6f}\n", y, eta_n, xi_n, exact.F1_N, exact.F2_N, exact.M3_Nm);
@@ -259,19 +260,12 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
       const ContactPatch& patch = p->wheel_rail.patch;
       // nH-FastSim as `railcontact run` computes it: FastSim's set-up, the flexibilities from K2
       // of the automatically coarsened patch, one evaluation.
-      const double t_default = best_of_two_s([&] {
-        const FastSim fastsim(patch);
-        sink += fastsim.forces(c, nh_fastsim_flexibility_coarsened(patch, p->default_coarsening), kMu).F1_N;
-      });
-      const double t_full = best_of_two_s([&] {
-        const FastSim fastsim(patch);
-        const AdhesionSolution K2 = solve_full_adhesion(patch.elements(), patch.material(), nh_fastsim_adhesion_options());
-        sink += fastsim.forces(c, nh_fastsim_flexibility(fastsim, K2.creepage_matrix), kMu).F1_N;
-      });
-      const double t_known = best_of_two_s([&] { sink += p->fastsim->forces(c, p->nh, kMu).F1_N; });
+      const double t_default = best_of_two_s([&] { sink += NhFastSim(patch).forces(c, kMu).F1_N; });
+      const double t_full = best_of_two_s([&] { sink += NhFastSim(patch, full_resolution()).forces(c, kMu).F1_N; });
+      const double t_known = best_of_two_s([&] { sink += p->nh->forces(c, kMu).F1_N; });
       const double t_exact = best_of_two_s([&] { sink += solve_rolling_exact(patch, c, kMu).forces.F1_N; });
       fmt::print(fig8, "{},{},{:.6f},{:.4f},{:.4f},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.3f},{:.3f},{:.1f}\n", target,
-                 p->wheel_rail.elements_in_contact, y, xi_n, eta_n, p->default_coarsening, t_exact, t_default, t_full,
+                 p->wheel_rail.elements_in_contact, y, xi_n, eta_n, p->nh_default->coarsening(), t_exact, t_default, t_full,
                  t_known, t_exact / t_default, t_exact / t_full, t_exact / t_known);
       Timings& t = timings[target];
       t.exact_s.push_back(t_exact);

@@ -87,7 +87,8 @@ struct FlexibilityTableMetadata {
   TrackWheelsetParameters track;
   Material material;
   int target_elements = 0;        // WheelRailPatchOptions::target_elements of the build
-  double collocation_offset = 0.0;  // AdhesionOptions::collocation_offset of K2
+  double collocation_offset = 0.0;  // NhFastSimOptions::collocation_offset of K2
+  int flexibility_coarsening = 0;   // NhFastSimOptions::flexibility_coarsening (0: automatic)
   std::string railcontact_version;
   std::string created_utc;        // ISO 8601, e.g. 2024-05-01T12:00:00Z
 };
@@ -168,8 +169,9 @@ class FlexibilityTable {
 struct FlexibilityTableOptions {
   // Mesh, material, normal solver of each node; vertical_load_N is replaced by the grid's loads.
   WheelRailPatchOptions patch;
-  // K2 (force rows) of each node; the default is nH-FastSim's (fastsim.hpp).
-  AdhesionOptions adhesion = nh_fastsim_adhesion_options();
+  // nH-FastSim's recipe at each node: the one `railcontact run` uses unless changed here (its
+  // traction bound does not enter the table).
+  NhFastSimOptions nh_fastsim;
   // Contact jumps: a change of the first-touch point (on rail or wheel) larger than
   // contact_jump_m between y values at most contact_jump_resolution_m apart.
   bool locate_contact_jumps = true;
@@ -244,14 +246,14 @@ class FlexibilityTableFastSim {
     [[nodiscard]] const WheelRailPatch& wheel_rail_patch() const { return *patch_; }
     [[nodiscard]] const FlexibilityTableValues& table_values() const { return values_; }
     [[nodiscard]] const Flexibility& flexibility() const { return values_.flexibility; }
-    [[nodiscard]] const FastSim& fastsim() const { return fastsim_; }
+    [[nodiscard]] const NhFastSim& nh_fastsim() const { return nh_fastsim_; }
     [[nodiscard]] double normal_force_N() const { return patch_->normal_force_N; }
     [[nodiscard]] double spin_per_m() const { return patch_->spin_per_m; }  // from conicity, Eq 24
 
    private:
     std::shared_ptr<const WheelRailPatch> patch_;
-    FastSim fastsim_;
     FlexibilityTableValues values_;
+    NhFastSim nh_fastsim_;
   };
 
   // Checks once that the pair is the table's (fingerprints of its profile files, track

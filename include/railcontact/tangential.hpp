@@ -37,12 +37,6 @@ enum class RigidSlipPoint {
   difference_centre,   // at the centre of the upwind difference, x1 + (alpha + 1) dx1/2
 };
 
-// Preconditioner of the Krylov path (see src/tangential/steady_rolling_preconditioner.hpp).
-enum class AdhesionPreconditioner {
-  marching_half_laplacian,  // FastSim marching followed by c0 - Laplacian (default)
-  marching,                 // FastSim marching alone
-};
-
 // What to compute of K2.
 enum class CreepageMatrixPart {
   full,        // all of K2 and the tractions: one direct solve R p = D^T e_j per creepage (3 solves)
@@ -62,10 +56,6 @@ struct AdhesionOptions {
   LinearSolver solver = LinearSolver::krylov;
   double tolerance = 1e-10;         // Krylov: relative residual
   int max_iterations = 400;         // Krylov
-  AdhesionPreconditioner preconditioner = AdhesionPreconditioner::marching_half_laplacian;
-  // marching_half_laplacian's shift c0 = gamma pi^2 / (patch size sqrt(dx1 dx2)); 3 is best for
-  // tight solves on ellipses (steady_rolling_preconditioner.hpp).
-  double half_laplacian_gamma = 3.0;
   CreepageMatrixPart part = CreepageMatrixPart::full;
 };
 
@@ -141,6 +131,10 @@ struct FastSimResult {
 // FastSim prepared for one contact patch: the traction bound and the marching geometry are
 // computed once, so each evaluation costs only the marching. Immutable after construction;
 // copies share the prepared data; evaluations are thread-safe.
+namespace detail {
+struct FastSimLayout;  // the marching data, lane-interleaved (fastsim.cpp)
+}  // namespace detail
+
 class FastSim {
  public:
   // Throws railcontact::Error if the patch has no element in contact or bound.skew is not in
@@ -163,10 +157,8 @@ class FastSim {
   // phi). Without slip FastSim gives F = (S D B) diag(1/L1, 1/L2, 1/L3) (xi, eta, phi).
   [[nodiscard]] const Eigen::Matrix3d& adhesion_force_matrix() const;
 
-  struct Layout;  // the marching data, lane-interleaved (fastsim.cpp)
-
  private:
-  std::shared_ptr<const Layout> layout_;
+  std::shared_ptr<const detail::FastSimLayout> layout_;
 };
 
 // One-shot conveniences (prepare, then evaluate once).
@@ -187,38 +179,88 @@ enum class FlexibilityMatch {
 };
 
 // nH-FastSim flexibilities (m/Pa) from the full-adhesion creepage matrix K2 (Eq 18, Kalker's
-// sign convention, as returned by solve_full_adhesion) of the same patch. Throws
+// sign convention, as returned by solve_full_adhesion) of the patch FastSim was prepared on
+// (Eq 19-20, or Eq 21 for full_matrix). The building block of NhFastSim; throws
 // railcontact::Error if K2 is not finite or a resulting flexibility is not positive and finite
 // (e.g. K2_23 of the wrong sign), or, for full_matrix, if K2 is singular.
 Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d& K2,
                                    FlexibilityMatch match = FlexibilityMatch::term_by_term);
-Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2,
-                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
-// The adhesion options nH-FastSim uses for its flexibilities: the two force rows of K2 by
-// adjoint solves (CreepageMatrixPart::force_rows), GMRES tolerance 1e-3 (K2 to ~5e-4, far below
-// the flexibilities' discretisation error of about 1 %).
-AdhesionOptions nh_fastsim_adhesion_options();
 
-// nH-FastSim flexibilities computed on the patch coarsened by `factor` (coarsened(), patch.hpp):
-// about factor^2 fewer elements, so K2 costs about 5x less for factor 2; with at least 250 coarse
-// elements the flexibilities differ from the fine patch's by ~1 % (L1, L2) and ~2-4 % (L3) on
-// the S1002/UIC60 patches, and the largest creep-force error against `exact` moves by at most
-// 0.1 points (docs/FASTSIM.md "Flexibilities on a coarser patch").
-Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor,
-                                             const AdhesionOptions& options = nh_fastsim_adhesion_options());
+// The recipe of nH-FastSim (docs/FASTSIM.md, docs/METHOD.md §7).
+struct NhFastSimOptions {
+  // FastSim's traction bound: railcontact's skewed bound by default, TractionBound::parabolic()
+  // for the paper's Eq 1.
+  TractionBound bound{};
+  // The flexibilities come from K2 of the patch coarsened by this factor (coarsened(); 1: the
+  // patch itself, up to kMaximumCoarsening); 0: automatic, NhFastSim::automatic_coarsening.
+  int flexibility_coarsening = 0;
+  // alpha of K2's collocation points (docs/METHOD.md §3), in (-1, 1].
+  double collocation_offset = 0.0;
+  FlexibilityMatch match = FlexibilityMatch::term_by_term;
+};
 
-// The coarsening factor railcontact's case runs use unless told otherwise: the largest factor
-// (at most 8) that leaves the coarse patch at least 250 elements, and at least 2 from 400
-// elements in contact. Measured on the S1002/UIC60 sweep (docs/FASTSIM.md "Flexibilities on a
-// coarser patch"): flexibilities from >= 250 coarse elements change nH-FastSim's largest
-// creep-force error by at most 0.1 points at 1000-8000 elements in contact, and below 1000
-// elements FastSim's own discretisation error dominates (5.3 % at 500 elements, coarsened or
-// not). K2 then costs about the same at any patch size (about 0.3-1 ms).
-int automatic_flexibility_coarsening(const ContactPatch& patch);
+// The flexibilities of nH-FastSim and the creepage coefficients of the K2 they were matched to:
+// f11 = -K2_11 (F1 per unit xi), f22 = -K2_22, f23 = -K2_23 (N, N, N m), which also normalise the
+// creepages of the paper's study (Eq 22-23).
+struct NhFastSimFlexibilities {
+  Flexibility flexibility;
+  double f11_N = 0.0, f22_N = 0.0, f23_Nm = 0.0;
+};
 
-// The same with K2 = solve_full_adhesion(patch.elements(), patch.material(), options).
-Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options = nh_fastsim_adhesion_options(),
-                                   FlexibilityMatch match = FlexibilityMatch::term_by_term);
+// nH-FastSim prepared for one contact patch: the whole method in one place. On the fly (the first
+// constructor) it
+//   1. coarsens the patch for the adhesion solve (NhFastSimOptions::flexibility_coarsening),
+//   2. solves the two force rows of K2 on it by adjoint GMRES solves to 1e-3 (Eq 18; K2 to ~5e-4,
+//      far below the flexibilities' discretisation error of ~1 %),
+//   3. matches FastSim's full-adhesion forces on that patch to K2 term by term (Eq 19-20): L1-L3,
+//   4. prepares FastSim with the traction bound on the patch itself (Eq 1 or the skewed bound),
+// and each evaluation is FastSim's march (Eq 2-8). The second constructor takes flexibilities
+// computed elsewhere (a flexibility table) and skips 1-3. Immutable after construction;
+// evaluations are thread-safe; copies share the prepared FastSim.
+class NhFastSim {
+ public:
+  // Throws Error for bad options or when the adhesion solve or the match fails (Error kinds
+  // not_converged / invalid_input).
+  explicit NhFastSim(const ContactPatch& patch, const NhFastSimOptions& options = {});
+  // With given flexibilities (no K2): options.bound is used, the rest of the options is ignored.
+  NhFastSim(const ContactPatch& patch, const NhFastSimFlexibilities& given, const NhFastSimOptions& options = {});
+
+  // The largest factor (at most kMaximumCoarsening) that leaves the coarse patch at least 250
+  // elements, and at least 2 from 400 elements in contact (docs/FASTSIM.md "Flexibilities on a
+  // coarser patch": from about 250 coarse elements the largest creep-force error moves by at most
+  // 0.1 points; below 1000 elements FastSim's own discretisation error dominates).
+  static int automatic_coarsening(const ContactPatch& patch);
+
+  // Creep forces and the spin moment on the wheel (Kalker's sign convention). Throws Error unless
+  // mu > 0 and the creepages are finite.
+  [[nodiscard]] TangentialForces forces(const Creepage& creepage, double mu) const;
+  // Forces, tractions and slip flags per contact element (patch order).
+  [[nodiscard]] FastSimResult solve(const Creepage& creepage, double mu) const;
+
+  // Raw creepages from the normalised ones of the paper's study (Eq 22-23):
+  // xi = xi' 3 mu F3 / f11, eta = eta' 3 mu F3 / f22; phi as given (1/m).
+  [[nodiscard]] Creepage creepage_from_normalised(double xi_normalised, double eta_normalised, double phi_per_m,
+                                                  double mu, double normal_force_N) const;
+
+  [[nodiscard]] const NhFastSimFlexibilities& flexibilities() const { return flexibilities_; }
+  [[nodiscard]] const Flexibility& flexibility() const { return flexibilities_.flexibility; }
+  // K2 of the coarsened patch as solved (rows 1-2; row 3 NaN with the term-by-term match), when
+  // computed on the fly.
+  [[nodiscard]] const std::optional<Eigen::Matrix3d>& creepage_matrix() const { return creepage_matrix_; }
+  // The coarsening factor used for K2 (0 when the flexibilities were given).
+  [[nodiscard]] int coarsening() const { return coarsening_; }
+  [[nodiscard]] int krylov_iterations() const { return krylov_iterations_; }
+  [[nodiscard]] const FastSim& fastsim() const { return fastsim_; }
+
+ private:
+  NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Eigen::Matrix3d> K2, int coarsening,
+            int krylov_iterations);
+  FastSim fastsim_;
+  NhFastSimFlexibilities flexibilities_;
+  std::optional<Eigen::Matrix3d> creepage_matrix_;
+  int coarsening_ = 0;
+  int krylov_iterations_ = 0;
+};
 
 }  // namespace railcontact
 

@@ -92,13 +92,12 @@ FlexibilityTableNode solve_node(const WheelRailPair& pair, double y_m, double Fz
       n.message = several_patches_message(p);
       return n;
     }
-    // As a wheel-rail case computes nH-FastSim on the fly (case_run.cpp).
-    const FastSim fastsim(p.patch);
-    const Eigen::Matrix3d K2 = solve_full_adhesion(p.patch.elements(), p.patch.material(), options.adhesion).creepage_matrix;
-    n.flexibility = nh_fastsim_flexibility(fastsim, K2);
-    n.f11_N = -K2(0, 0);
-    n.f22_N = -K2(1, 1);
-    n.f23_Nm = -K2(1, 2);
+    // nH-FastSim's recipe, the very one a wheel-rail case runs on the fly.
+    const NhFastSim nh(p.patch, options.nh_fastsim);
+    n.flexibility = nh.flexibility();
+    n.f11_N = nh.flexibilities().f11_N;
+    n.f22_N = nh.flexibilities().f22_N;
+    n.f23_Nm = nh.flexibilities().f23_Nm;
     n.normal_force_N = p.normal_force_N;
     n.contact_angle_rad = p.contact_angle_rad;
     n.spin_per_m = p.spin_per_m;
@@ -168,7 +167,8 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   metadata.track = pair.parameters();
   metadata.material = options.patch.material;
   metadata.target_elements = options.patch.target_elements;
-  metadata.collocation_offset = options.adhesion.collocation_offset;
+  metadata.collocation_offset = options.nh_fastsim.collocation_offset;
+  metadata.flexibility_coarsening = options.nh_fastsim.flexibility_coarsening;
   metadata.railcontact_version = RAILCONTACT_VERSION;
   metadata.created_utc = utc_now();
 

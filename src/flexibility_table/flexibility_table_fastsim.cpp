@@ -21,22 +21,21 @@ WheelRailPatchOptions table_patch_options(const FlexibilityTable& table) {
 
 FlexibilityTableFastSim::Patch::Patch(const FlexibilityTable& table, WheelRailPatch patch)
     : patch_(std::make_shared<const WheelRailPatch>(std::move(patch))),
-      fastsim_(patch_->patch),
-      values_(table.lookup_for_patch(patch_->lateral_displacement_m, patch_->vertical_load_N, patch_->area_m2)) {}
+      values_(table.lookup_for_patch(patch_->lateral_displacement_m, patch_->vertical_load_N, patch_->area_m2)),
+      nh_fastsim_(patch_->patch, NhFastSimFlexibilities{values_.flexibility, values_.f11_N, values_.f22_N, values_.f23_Nm}) {}
 
 TangentialForces FlexibilityTableFastSim::Patch::forces(const Creepage& creepage, double mu) const {
-  return fastsim_.forces(creepage, values_.flexibility, mu);
+  return nh_fastsim_.forces(creepage, mu);
 }
 
 FastSimResult FlexibilityTableFastSim::Patch::solve(const Creepage& creepage, double mu) const {
-  return fastsim_.solve(creepage, values_.flexibility, mu);
+  return nh_fastsim_.solve(creepage, mu);
 }
 
 Creepage FlexibilityTableFastSim::Patch::creepage_from_normalised(double xi_normalised, double eta_normalised,
                                                                   double phi_per_m, double mu) const {
   if (!(std::isfinite(mu) && mu > 0.0)) throw Error(fmt::format("normalised creepage: mu must be positive (got {})", mu));
-  const double saturation_N = 3.0 * mu * patch_->normal_force_N;  // Eq 22-23
-  return {xi_normalised * saturation_N / values_.f11_N, eta_normalised * saturation_N / values_.f22_N, phi_per_m};
+  return nh_fastsim_.creepage_from_normalised(xi_normalised, eta_normalised, phi_per_m, mu, patch_->normal_force_N);
 }
 
 FlexibilityTableFastSim::FlexibilityTableFastSim(FlexibilityTable table, WheelRailPair pair)

@@ -20,7 +20,9 @@ namespace {
 using nlohmann::json;
 
 constexpr const char* kFormat = "railcontact flexibility table";
-constexpr int kFormatVersion = 1;
+// Version 2 records the recipe's flexibility coarsening; version-1 tables (built on the full patch,
+// coarsening 1) are still read.
+constexpr int kFormatVersion = 2;
 
 // Doubles are written with 17 significant digits (nlohmann's default): a round trip is exact.
 json number_or_null(double value, bool solved) { return solved ? json(value) : json(nullptr); }
@@ -182,6 +184,7 @@ std::string flexibility_table_json(const FlexibilityTable& table) {
       {"material", {{"youngs_modulus_Pa", m.material.youngs_modulus_Pa}, {"poisson_ratio", m.material.poisson_ratio}}},
       {"target_elements", m.target_elements},
       {"collocation_offset", m.collocation_offset},
+      {"flexibility_coarsening", m.flexibility_coarsening},
       {"flexibility_match", "term-by-term"},
       {"y_m", table.y_m()},
       {"vertical_load_N", table.vertical_loads_N()},
@@ -204,7 +207,7 @@ FlexibilityTable parse_flexibility_table(const std::string& text, const std::str
     r.fail(fmt::format("not a flexibility table (the key 'format' must be \"{}\")", kFormat));
   r.get("format");
   const json& version = r.get("format_version");
-  if (!version.is_number_integer() || version.get<int>() != kFormatVersion)
+  if (!version.is_number_integer() || version.get<int>() < 1 || version.get<int>() > kFormatVersion)
     r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", version.dump(), kFormatVersion));
 
   FlexibilityTableMetadata m;
@@ -236,6 +239,13 @@ FlexibilityTable parse_flexibility_table(const std::string& text, const std::str
   if (elements > static_cast<std::size_t>(std::numeric_limits<int>::max())) r.fail("target_elements is too large");
   m.target_elements = static_cast<int>(elements);
   m.collocation_offset = r.number("collocation_offset");
+  m.flexibility_coarsening = 1;  // format version 1: K2 of the patch itself
+  if (version.get<int>() >= 2) {
+    const std::size_t coarsening = r.count("flexibility_coarsening");
+    if (coarsening > static_cast<std::size_t>(kMaximumCoarsening))
+      r.fail(fmt::format("flexibility_coarsening {} must lie in [0, {}]", coarsening, kMaximumCoarsening));
+    m.flexibility_coarsening = static_cast<int>(coarsening);
+  }
   if (r.string("flexibility_match") != "term-by-term") r.fail("flexibility_match must be \"term-by-term\"");
   std::vector<double> y = r.numbers("y_m");
   std::vector<double> loads = r.numbers("vertical_load_N");

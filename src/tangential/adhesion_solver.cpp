@@ -8,6 +8,7 @@
 
 #include "elastic/influence_operator.hpp"
 #include "elastic/krylov.hpp"
+#include "tangential/adhesion_tuning.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/error.hpp"
 #include "tangential/steady_rolling_preconditioner.hpp"
@@ -60,7 +61,7 @@ void require_valid_offset(double alpha) {
 // Solves R(alpha) P = W for the given columns of W (the unit creepages), writing into P.
 void solve_columns(const ContactElements& elements, const Material& material, double alpha,
                    RigidSlipPoint rigid_slip_point, const std::vector<int>& columns, const AdhesionOptions& options,
-                   AdhesionSolution& solution) {
+                   const AdhesionTuning& tuning, AdhesionSolution& solution) {
   const Mesh& mesh = elements.mesh();
   const auto n = static_cast<Eigen::Index>(elements.count());
   const double slip_offset =
@@ -76,7 +77,7 @@ void solve_columns(const ContactElements& elements, const Material& material, do
     R.apply(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
   });
   const SteadyRollingPreconditioner preconditioner(
-      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : options.half_laplacian_gamma);
+      elements, tuning.preconditioner == AdhesionPreconditioner::marching ? 0.0 : tuning.half_laplacian_gamma);
   const ApplyFunction precondition = [&preconditioner](const double* r, double* z) { preconditioner.apply(r, z); };
   KrylovOptions krylov;
   krylov.tolerance = options.tolerance;
@@ -99,7 +100,7 @@ void solve_columns(const ContactElements& elements, const Material& material, do
 
 // Rows 1 and 2 of K2 by adjoint solves: K2(i, :) = (R^-T (S D)^T e_i)^T W.
 void solve_force_rows(const ContactElements& elements, const Material& material, const AdhesionOptions& options,
-                      AdhesionSolution& solution) {
+                      const AdhesionTuning& tuning, AdhesionSolution& solution) {
   const Mesh& mesh = elements.mesh();
   const auto n = static_cast<Eigen::Index>(elements.count());
   const double alpha = options.collocation_offset;
@@ -118,7 +119,7 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
     R.apply_transpose(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
   });
   const SteadyRollingPreconditioner preconditioner(
-      elements, options.preconditioner == AdhesionPreconditioner::marching ? 0.0 : options.half_laplacian_gamma);
+      elements, tuning.preconditioner == AdhesionPreconditioner::marching ? 0.0 : tuning.half_laplacian_gamma);
   const ApplyFunction precondition = [&preconditioner](const double* r, double* z) {
     preconditioner.apply_transpose(r, z);
   };
@@ -146,13 +147,18 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
 
 AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
                                      const AdhesionOptions& options) {
+  return solve_full_adhesion(elements, material, options, AdhesionTuning{});
+}
+
+AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
+                                     const AdhesionOptions& options, const AdhesionTuning& tuning) {
   validate(material);
   validate(elements.mesh());
   require(elements.count() > 0, "adhesion solver: no elements in contact");
   require_valid_offset(options.collocation_offset);
   const double spin_alpha = options.spin_collocation_offset.value_or(options.collocation_offset);
   require_valid_offset(spin_alpha);
-  require(std::isfinite(options.half_laplacian_gamma) && options.half_laplacian_gamma > 0.0,
+  require(std::isfinite(tuning.half_laplacian_gamma) && tuning.half_laplacian_gamma > 0.0,
           "adhesion solver: the preconditioner's gamma must be positive and finite");
   if (options.solver == LinearSolver::krylov) {
     require(options.tolerance > 0 && options.max_iterations > 0,
@@ -170,15 +176,15 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
   if (options.part == CreepageMatrixPart::force_rows) {
     require(spin_alpha == options.collocation_offset,
             "adhesion solver: the force rows of K2 need one collocation offset for all creepages");
-    solve_force_rows(elements, material, options, solution);
+    solve_force_rows(elements, material, options, tuning, solution);
     return solution;
   }
   solution.unit_tractions.resize(2 * n, 3);
   if (spin_alpha == options.collocation_offset) {
-    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {0, 1, 2}, options, solution);
+    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {0, 1, 2}, options, tuning, solution);
   } else {
-    solve_columns(elements, material, options.collocation_offset, options.rigid_slip_point, {0, 1}, options, solution);
-    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {2}, options, solution);
+    solve_columns(elements, material, options.collocation_offset, options.rigid_slip_point, {0, 1}, options, tuning, solution);
+    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {2}, options, tuning, solution);
   }
   solution.creepage_matrix = force_rows(elements) * solution.unit_tractions;
   return solution;

@@ -57,7 +57,7 @@ using AlignedVector = std::vector<T, AlignedAllocator<T>>;
 
 }  // namespace
 
-struct FastSim::Layout {
+struct detail::FastSimLayout {
   std::size_t element_count = 0;
   double element_area_m2 = 0.0;
   std::size_t blocks = 0;
@@ -93,7 +93,7 @@ struct MarchCoefficients {
 // The march of every run (Eq 2-3 increments, Eq 7-8 limit), forces summed per Eq 13:
 // F1 = S sum p1, F2 = S sum p2, M3 = S sum (x1 p2 - x2 p1).
 template <bool kSpin, bool kRecord>
-TangentialForces march(const FastSim::Layout& layout, const MarchCoefficients& k, double mu, MarchRecord* record) {
+TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record) {
   Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
   const double* step_m = layout.step_m.data();
   const double* x1_m = layout.x1_m.data();
@@ -168,7 +168,7 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   require(patch.elements().count() > 0, "fastsim: the contact patch has no element in contact");
   require(std::isfinite(bound.skew) && bound.skew >= 0.0 && bound.skew <= 1.0,
           [&] { return fmt::format("fastsim: the traction bound's skew = {} must lie in [0, 1]", bound.skew); });
-  auto layout = std::make_shared<Layout>();
+  auto layout = std::make_shared<detail::FastSimLayout>();
   layout->bound = bound;
   layout->element_count = patch.elements().count();
   layout->element_area_m2 = patch.mesh().element_area_m2();

@@ -72,43 +72,4 @@ Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d
   return L;
 }
 
-Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const Eigen::Matrix3d& K2, FlexibilityMatch match) {
-  return nh_fastsim_flexibility(FastSim(patch), K2, match);
-}
-
-AdhesionOptions nh_fastsim_adhesion_options() {
-  AdhesionOptions options;
-  options.part = CreepageMatrixPart::force_rows;
-  // 1e-3: K2's force rows to ~5e-4 relative (measured on the S1002/UIC60 patches coarsened by 2:
-  // at most 5.3e-4; 4e-5 with 1e-4), far below K2's discretisation error (~1 %) and the change from
-  // coarsening the patch (1-3 %), with 20 % fewer GMRES iterations than 1e-4 and 60 % fewer than 1e-9.
-  options.tolerance = 1e-3;
-  // The adjoint solves on coarse S1002/UIC60 patches (130-800 elements) converge fastest with a
-  // smaller shift than ellipses' tight solves want: 14.3 GMRES iterations for both rows at
-  // gamma = 1.5 against 15.6 at 3 (mean over 30 patches); ellipses of 150-600 elements need at
-  // most 6 % more iterations than at 3 (docs/FASTSIM.md).
-  options.half_laplacian_gamma = 1.5;
-  return options;
-}
-
-int automatic_flexibility_coarsening(const ContactPatch& patch) {
-  constexpr double kMinimumCoarseElements = 250;
-  constexpr std::size_t kCoarsenFrom = 400;
-  const auto n = static_cast<double>(patch.elements().count());
-  int factor = 1;
-  while (factor < kMaximumCoarsening && n / ((factor + 1) * (factor + 1)) >= kMinimumCoarseElements) ++factor;
-  if (factor == 1 && patch.elements().count() >= kCoarsenFrom) factor = 2;
-  return factor;
-}
-
-Flexibility nh_fastsim_flexibility_coarsened(const ContactPatch& patch, int factor, const AdhesionOptions& options) {
-  const ContactPatch coarse = coarsened(patch, factor);
-  return nh_fastsim_flexibility(coarse, options);
-}
-
-Flexibility nh_fastsim_flexibility(const ContactPatch& patch, const AdhesionOptions& options, FlexibilityMatch match) {
-  const AdhesionSolution adhesion = solve_full_adhesion(patch.elements(), patch.material(), options);
-  return nh_fastsim_flexibility(FastSim(patch), adhesion.creepage_matrix, match);
-}
-
 }  // namespace railcontact
