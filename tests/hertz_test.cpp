@@ -1,6 +1,7 @@
-// Tests of the Hertz solution (src/hertz/hertz.cpp) and of the elliptic integrals it uses.
+// Tests of the Hertz solution (src/hertz/hertz.cpp) and of the elliptic integrals it uses
+// (src/hertz/elliptic_integrals.hpp, Boost.Math's Carlson integrals behind it).
 // References: the closed-form circle; Johnson, Contact Mechanics §4.2 eq. (4.39)-(4.42) evaluated
-// with the standard library's std::comp_ellint_1/2 (an implementation independent of ours);
+// with the standard library's std::comp_ellint_1/2 (an implementation independent of Boost's);
 // numbers from an independent script (arithmetic-geometric mean for K and E, bisection for e).
 #include <gtest/gtest.h>
 
@@ -23,12 +24,26 @@ double rel_diff(double value, double reference) { return std::abs(value / refere
 
 // ---- elliptic integrals ------------------------------------------------------------------------
 
-// Carlson (1995), Numerical Algorithms 10, test values of §3.
-TEST(EllipticIntegrals, CarlsonReferenceValues) {
-  EXPECT_NEAR(detail::carlson_rf(1.0, 2.0, 0.0), 1.3110287771461, 1e-13);
-  EXPECT_NEAR(detail::carlson_rf(2.0, 3.0, 4.0), 0.58408284167715, 1e-13);
-  EXPECT_NEAR(detail::carlson_rd(0.0, 2.0, 1.0), 1.7972103521034, 1e-13);
-  EXPECT_NEAR(detail::carlson_rd(2.0, 3.0, 4.0), 0.16510527294261, 1e-13);
+// Very slender ellipses, b/a = 1e-10 and 1e-50: the integrals depend on mc = (b/a)² itself, which
+// the modulus k = sqrt(1 - mc) rounds to 1 (libstdc++'s comp_ellint_1 then returns NaN). References:
+// Carlson's R_F(0, mc, 1), R_D(0, mc, 1)/3 in 40-digit mpmath; K ≈ ln(4/sqrt(mc)), E ≈ 1, D ≈ K - 1.
+// E = B + mc D with B = K - D is only good to about K eps (cancellation), hence 1e-14 for E.
+TEST(EllipticIntegrals, SlenderEllipseFromComplementaryParameter) {
+  const detail::CompleteEllipticIntegrals slender = detail::complete_elliptic_integrals(1e-20);
+  EXPECT_LT(rel_diff(slender.K, 24.412145291060347459), 2e-15);
+  EXPECT_LT(rel_diff(slender.D, 23.412145291060347459), 2e-15);
+  EXPECT_LT(rel_diff(slender.E, 1.0), 1e-14);
+  const detail::CompleteEllipticIntegrals extreme = detail::complete_elliptic_integrals(1e-100);
+  EXPECT_LT(rel_diff(extreme.K, 116.51554901082217482), 2e-15);
+  EXPECT_LT(rel_diff(extreme.D, 115.51554901082217482), 2e-15);
+  // m = 1/2, all four: K = 1.8540746773013719184, D = 1.0068615925073928318, B = K - D, E = B + D/2.
+  const detail::CompleteEllipticIntegrals half = detail::complete_elliptic_integrals(0.5);
+  EXPECT_LT(rel_diff(half.K, 1.8540746773013719184), 2e-15);
+  EXPECT_LT(rel_diff(half.D, 1.0068615925073928318), 2e-15);
+  EXPECT_LT(rel_diff(half.B, 0.84721308479397908661), 2e-15);
+  EXPECT_LT(rel_diff(half.E, 1.3506438810476755025), 2e-15);
+  EXPECT_THROW((void)detail::complete_elliptic_integrals(0.0), Error);
+  EXPECT_THROW((void)detail::complete_elliptic_integrals(1.5), Error);
 }
 
 // K and E for k = 0.99 by the arithmetic-geometric mean in 40-digit decimal arithmetic.

@@ -1,4 +1,4 @@
-// Tests of Kalker's creepage coefficients (src/hertz/kalker_coefficients.cpp) and of the FastSim
+// Tests of Kalker's creepage coefficients (src/kalker/kalker_coefficients.cpp) and of the FastSim
 // flexibilities (paper Eq 9). References: Kalker's Table E.3 itself (compiled-in rows), Kalker's
 // slender-ellipse asymptotes evaluated by an independent script, hand-evaluated Eq 9.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "kalker/kalker_asymptotics.hpp"
-#include "kalker/monotone_cubic.hpp"
+#include "kalker/pchip_interpolation.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 #include "railcontact/contact_patch.hpp"
@@ -56,6 +56,8 @@ TEST(KalkerCoefficients, ExactAtEveryTableRow) {
 // Leave-one-out check of the interpolation scheme in a/b used by kalker_coefficients (PCHIP of
 // ln C against ln(a/b)): every interior row of every (nu, coefficient) column is interpolated from
 // the other 18 rows. Measured: max 0.62 % (C11, nu = 0.5, a/b = 0.5); the table has 3 digits.
+// It also checks the end slopes of detail::pchip_interpolate: with Boost's default (the end secant)
+// the rows next to the ends (a/b = 0.2, 5) come out up to 1.13 % off.
 TEST(KalkerCoefficients, LeaveOneOutInterpolationError) {
   const auto rows = kalker_table_rows();
   double worst = 0.0;
@@ -74,9 +76,7 @@ TEST(KalkerCoefficients, LeaveOneOutInterpolationError) {
           x.push_back(std::log(column[i].a_over_b));
           y.push_back(std::log(as_array(column[i])[c]));
         }
-        std::vector<double> slopes(x.size());
-        detail::pchip_slopes(x, y, slopes);
-        const double value = std::exp(detail::hermite_interpolate(x, y, slopes, std::log(column[left_out].a_over_b)));
+        const double value = std::exp(detail::pchip_interpolate(x, y, std::log(column[left_out].a_over_b)));
         worst = std::max(worst, rel_diff(value, as_array(column[left_out])[c]));
         ++cases;
       }

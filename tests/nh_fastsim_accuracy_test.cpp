@@ -37,7 +37,7 @@ Errors worst_errors(const ContactPatch& patch, double phi) {
     const double xi = level * unit / -K2(0, 0), eta = level * unit / -K2(1, 1);
     for (const Creepage& c : {Creepage{xi, 0, 0}, Creepage{0, eta, phi}, Creepage{xi, eta, phi}}) {
       const RollingSolution exact = solve_rolling_exact(patch, c, kMu);
-      EXPECT_TRUE(exact.converged);
+      EXPECT_LE(exact.residual, RollingOptions{}.tolerance);
       const double F = magnitude(exact.forces);
       worst.ours = std::max(worst.ours, std::fabs(magnitude(ours.forces(c, L, kMu)) / F - 1.0));
       worst.paper = std::max(worst.paper, std::fabs(magnitude(paper.forces(c, L, kMu)) / F - 1.0));

@@ -49,7 +49,7 @@ TEST(ExactRolling, LargeCreepageSaturatesAtMuTimesNormalForce) {
 TEST(ExactRolling, SolutionSatisfiesCoulombsLawElementByElement) {
   const ContactPatch p = patch(6e-3, 6e-3, 1200);
   const RollingSolution s = solve_rolling_exact(p, {8e-4, 3e-4, 0.4}, kMu);
-  ASSERT_TRUE(s.converged);
+  ASSERT_LE(s.residual, RollingOptions{}.tolerance);
   int slipping = 0;
   for (std::size_t e = 0; e < p.elements().count(); ++e) {
     const double bound = kMu * p.pressure_Pa()[e];
@@ -80,7 +80,7 @@ TEST(ExactRolling, WideContactReproducesCartersTwoDimensionalSolution) {
   for (int i1 = 0; i1 < mesh.n1; ++i1) strip_load += p.pressure_Pa()[static_cast<std::size_t>(carter.centre_strip * mesh.n1 + i1)] * mesh.dx1_m;
   for (double r : {0.25, 0.5, 0.75}) {
     const RollingSolution s = solve_rolling_exact(p, {r * carter.xi_c, 0, 0}, kMu);
-    ASSERT_TRUE(s.converged);
+    ASSERT_LE(s.residual, RollingOptions{}.tolerance);
     double force = 0.0, adhesion_m = 0.0, adhesion_leading_m = -1.0;
     for (std::size_t e = 0; e < p.elements().count(); ++e) {
       if (static_cast<int>(p.elements().indices()[e] / static_cast<std::size_t>(mesh.n1)) != carter.centre_strip) continue;

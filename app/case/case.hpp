@@ -52,9 +52,9 @@ struct Case {
   RollingOptions rolling;
   // nH-FastSim flexibilities (and the normalisation's f11, f22) from K2 of the patch coarsened
   // by this factor (1: the patch itself; 2: about 4x cheaper, docs/VALIDATION.md §3); 0: automatic,
-  // automatic_flexibility_coarsening() (a coarse patch of >= 250 elements; 2 from 400).
+  // NhFastSim::automatic_coarsening() (a coarse patch of >= 250 elements; 2 from 400).
   int flexibility_coarsening = 0;
-  // nh-fastsim's traction bound (fastsim.hpp TractionBound): 0 = the paper's parabola (Eq 1).
+  // nh-fastsim's traction bound (tangential.hpp TractionBound): 0 = the paper's parabola (Eq 1).
   // The classical `fastsim` always uses the parabola.
   double bound_skew = TractionBound{}.skew;
 };

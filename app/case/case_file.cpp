@@ -86,6 +86,11 @@ class Section {
     return where(source_, n != nullptr ? n->source() : table_.source());
   }
 
+  // "file:line" of a node of this section.
+  [[nodiscard]] std::string location_of(const toml::node& n) const { return where(source_, n.source()); }
+
+  [[nodiscard]] const std::string& source() const { return source_; }
+
   // Throws on the first key that was never asked for.
   void finish() const {
     for (const auto& [key, node] : table_) {
@@ -117,9 +122,8 @@ const toml::table& section_table(const toml::table& root, const std::string& nam
   return *table;
 }
 
-}  // namespace
-
-Case parse_case(std::string_view text, const std::string& source) {
+// The whole file as TOML; only the known sections at the top level.
+toml::table parse_toml(std::string_view text, const std::string& source) {
   toml::table root;
   try {
     root = toml::parse(text, source);
@@ -130,38 +134,48 @@ Case parse_case(std::string_view text, const std::string& source) {
   for (const auto& [key, node] : root)
     if (!kSections.contains(std::string(key.str())))
       throw Error(fmt::format("{}: unknown section or key '{}'", where(source, node.source()), key.str()));
+  return root;
+}
 
-  const toml::table empty;
-  Case c;
-  c.source = source;
+// [geometry] type = "ellipse": the semi-axes a, b (m) or the curvatures A, B (1/m), not both.
+void read_ellipse(Section& geometry, Case& c) {
+  c.geometry = GeometryKind::ellipse;
+  c.ellipse.a_m = geometry.optional_positive("a");
+  c.ellipse.b_m = geometry.optional_positive("b");
+  c.ellipse.A_per_m = geometry.optional_positive("A");
+  c.ellipse.B_per_m = geometry.optional_positive("B");
+  const bool axes = c.ellipse.a_m && c.ellipse.b_m, curvatures = c.ellipse.A_per_m && c.ellipse.B_per_m;
+  if (axes == curvatures)
+    throw Error(fmt::format("{}: [geometry] an ellipse needs either a and b (m) or the curvatures A and B (1/m)",
+                            geometry.location("type")));
+}
 
-  Section geometry(section_table(root, "geometry", source, true, empty), "geometry", source);
+// [geometry] type = "wheel-rail": profile files (empty: the shipped pair) and the lateral displacement y.
+void read_wheel_rail(Section& geometry, Case& c) {
+  c.geometry = GeometryKind::wheel_rail;
+  c.wheel_rail.wheel_file = geometry.optional_string("wheel").value_or("");
+  c.wheel_rail.rail_file = geometry.optional_string("rail").value_or("");
+  c.wheel_rail.y_m = geometry.optional_number("y").value_or(0.0);
+  if (std::fabs(c.wheel_rail.y_m) > 0.05)
+    throw Error(fmt::format("{}: [geometry] y = {} m is not a plausible lateral displacement (|y| <= 0.05 m)",
+                            geometry.location("y"), c.wheel_rail.y_m));
+}
+
+void read_geometry(Section geometry, Case& c) {
   const std::string type = geometry.optional_string("type").value_or("");
   if (type == "ellipse") {
-    c.geometry = GeometryKind::ellipse;
-    c.ellipse.a_m = geometry.optional_positive("a");
-    c.ellipse.b_m = geometry.optional_positive("b");
-    c.ellipse.A_per_m = geometry.optional_positive("A");
-    c.ellipse.B_per_m = geometry.optional_positive("B");
-    const bool axes = c.ellipse.a_m && c.ellipse.b_m, curvatures = c.ellipse.A_per_m && c.ellipse.B_per_m;
-    if (axes == curvatures)
-      throw Error(fmt::format("{}: [geometry] an ellipse needs either a and b (m) or the curvatures A and B (1/m)",
-                              geometry.location("type")));
+    read_ellipse(geometry, c);
   } else if (type == "wheel-rail") {
-    c.geometry = GeometryKind::wheel_rail;
-    c.wheel_rail.wheel_file = geometry.optional_string("wheel").value_or("");
-    c.wheel_rail.rail_file = geometry.optional_string("rail").value_or("");
-    c.wheel_rail.y_m = geometry.optional_number("y").value_or(0.0);
-    if (std::fabs(c.wheel_rail.y_m) > 0.05)
-      throw Error(fmt::format("{}: [geometry] y = {} m is not a plausible lateral displacement (|y| <= 0.05 m)",
-                              geometry.location("y"), c.wheel_rail.y_m));
+    read_wheel_rail(geometry, c);
   } else {
     throw Error(fmt::format("{}: [geometry] type must be \"ellipse\" or \"wheel-rail\" (got \"{}\")",
                             geometry.location("type"), type));
   }
   geometry.finish();
+}
 
-  Section material(section_table(root, "material", source, true, empty), "material", source);
+// [material]: nu and either E or G.
+void read_material(Section material, Case& c) {
   const std::optional<double> E = material.optional_positive("E");
   const std::optional<double> G = material.optional_positive("G");
   const double nu = material.number("nu");
@@ -171,35 +185,37 @@ Case parse_case(std::string_view text, const std::string& source) {
     throw Error(fmt::format("{}: [material] give either E or G (Pa)", material.location("nu")));
   c.material = E ? Material{*E, nu} : Material::from_shear_modulus(*G, nu);
   material.finish();
+}
 
-  Section load(section_table(root, "load", source, true, empty), "load", source);
+// [load]: the normal force (for a wheel-rail case the vertical wheel load Fz).
+void read_load(Section load, Case& c) {
   c.normal_force_N = load.positive("normal_force");
   load.finish();
+}
 
-  Section friction(section_table(root, "friction", source, true, empty), "friction", source);
+// [friction]: mu.
+void read_friction(Section friction, Case& c) {
   c.mu = friction.positive("mu");
   if (c.mu > 2.0)
     throw Error(fmt::format("{}: [friction] mu = {} is not physical (at most 2)", friction.location("mu"), c.mu));
   friction.finish();
+}
 
-  Section creepage(section_table(root, "creepage", source, true, empty), "creepage", source);
-  c.creepage.raw.xi = creepage.optional_number("xi").value_or(0.0);
-  c.creepage.raw.eta = creepage.optional_number("eta").value_or(0.0);
-  c.creepage.xi_normalised = creepage.optional_number("xi_normalised");
-  c.creepage.eta_normalised = creepage.optional_number("eta_normalised");
-  if (creepage.has("xi") && c.creepage.xi_normalised)
-    throw Error(fmt::format("{}: [creepage] give xi or xi_normalised, not both", creepage.location("xi")));
-  if (creepage.has("eta") && c.creepage.eta_normalised)
-    throw Error(fmt::format("{}: [creepage] give eta or eta_normalised, not both", creepage.location("eta")));
+// [creepage] phi: a number (1/m) or "from-conicity" (Eq 24).
+void read_spin(Section& creepage, Case& c) {
   if (const toml::node* phi = creepage.node("phi")) {
     if (const auto* s = phi->as_string()) {
       if (s->get() != "from-conicity")
-        throw Error(fmt::format("{}: [creepage] phi must be a number (1/m) or \"from-conicity\"", where(source, phi->source())));
+        throw Error(fmt::format("{}: [creepage] phi must be a number (1/m) or \"from-conicity\"", creepage.location_of(*phi)));
       c.creepage.phi_from_conicity = true;
     } else {
       c.creepage.raw.phi = creepage.optional_number("phi").value_or(0.0);
     }
   }
+}
+
+// [creepage]: no absurd magnitudes of the raw or normalised creepages.
+void check_creepage_ranges(const Section& creepage, const Case& c) {
   for (const char* key : {"xi", "eta"})
     if (std::fabs(key[0] == 'x' ? c.creepage.raw.xi : c.creepage.raw.eta) > 0.5)
       throw Error(fmt::format("{}: [creepage] {} is absurd (|{}| <= 0.5)", creepage.location(key), key, key));
@@ -211,13 +227,30 @@ Case parse_case(std::string_view text, const std::string& source) {
     if (v && std::fabs(*v) > 100.0)
       throw Error(fmt::format("{}: [creepage] {} is absurd (at most 100 in magnitude)", creepage.location(key), key));
   }
+}
+
+// [creepage]: raw xi, eta or the normalised xi', eta' (Eq 22-23), and phi. Needs [geometry]: the
+// normalisation and the spin from conicity need a wheel-rail patch.
+void read_creepage(Section creepage, Case& c) {
+  c.creepage.raw.xi = creepage.optional_number("xi").value_or(0.0);
+  c.creepage.raw.eta = creepage.optional_number("eta").value_or(0.0);
+  c.creepage.xi_normalised = creepage.optional_number("xi_normalised");
+  c.creepage.eta_normalised = creepage.optional_number("eta_normalised");
+  if (creepage.has("xi") && c.creepage.xi_normalised)
+    throw Error(fmt::format("{}: [creepage] give xi or xi_normalised, not both", creepage.location("xi")));
+  if (creepage.has("eta") && c.creepage.eta_normalised)
+    throw Error(fmt::format("{}: [creepage] give eta or eta_normalised, not both", creepage.location("eta")));
+  read_spin(creepage, c);
+  check_creepage_ranges(creepage, c);
   if (c.geometry == GeometryKind::ellipse && (c.creepage.xi_normalised || c.creepage.eta_normalised ||
                                               c.creepage.phi_from_conicity))
     throw Error(fmt::format("{}: [creepage] normalised creepages and phi = \"from-conicity\" need a wheel-rail patch",
-                            source));
+                            creepage.source()));
   creepage.finish();
+}
 
-  Section mesh(section_table(root, "mesh", source, false, empty), "mesh", source);
+// [mesh] (optional): the number of elements in contact.
+void read_mesh(Section mesh, Case& c) {
   if (const std::optional<double> elements = mesh.optional_positive("elements")) {
     if (*elements < 20 || *elements > 1e6 || std::floor(*elements) != *elements)
       throw Error(fmt::format("{}: [mesh] elements must be a whole number in [20, 1000000] (got {})",
@@ -225,27 +258,36 @@ Case parse_case(std::string_view text, const std::string& source) {
     c.target_elements = static_cast<int>(*elements);
   }
   mesh.finish();
+}
 
-  Section solvers(section_table(root, "solvers", source, false, empty), "solvers", source);
-  if (const toml::node* run = solvers.node("run")) {
-    const toml::array* list = run->as_array();
-    if (list == nullptr || list->empty())
-      throw Error(fmt::format("{}: [solvers] run must be a non-empty list of solver names", where(source, run->source())));
-    c.solvers.clear();
-    for (const toml::node& item : *list) {
-      const auto* name = item.as_string();
-      const std::string solver = name != nullptr ? name->get() : std::string("?");
-      SolverKind kind;
-      if (solver == "nh-fastsim") kind = SolverKind::nh_fastsim;
-      else if (solver == "fastsim") kind = SolverKind::fastsim;
-      else if (solver == "exact") kind = SolverKind::exact;
-      else if (solver == "exact-regularised") kind = SolverKind::exact_regularised;
-      else
-        throw Error(fmt::format("{}: [solvers] unknown solver '{}' (nh-fastsim, fastsim, exact, exact-regularised)",
-                                where(source, item.source()), solver));
-      c.solvers.push_back(kind);
-    }
+// [solvers] run: the list of solver names; absent, the default list stays.
+void read_solver_list(Section& solvers, Case& c) {
+  const toml::node* run = solvers.node("run");
+  if (run == nullptr) return;
+  const toml::array* list = run->as_array();
+  if (list == nullptr || list->empty())
+    throw Error(fmt::format("{}: [solvers] run must be a non-empty list of solver names", solvers.location_of(*run)));
+  c.solvers.clear();
+  for (const toml::node& item : *list) {
+    const auto* name = item.as_string();
+    const std::string solver = name != nullptr ? name->get() : std::string("?");
+    SolverKind kind;
+    if (solver == "nh-fastsim") kind = SolverKind::nh_fastsim;
+    else if (solver == "fastsim") kind = SolverKind::fastsim;
+    else if (solver == "exact") kind = SolverKind::exact;
+    else if (solver == "exact-regularised") kind = SolverKind::exact_regularised;
+    else
+      throw Error(fmt::format("{}: [solvers] unknown solver '{}' (nh-fastsim, fastsim, exact, exact-regularised)",
+                              solvers.location_of(item), solver));
+    c.solvers.push_back(kind);
   }
+}
+
+// [solvers] (optional): the solvers to run and their options: the collocation offset alpha, the
+// regularisation, the tolerance, nH-FastSim's flexibility coarsening and its bound skew (0: the
+// paper's parabola, Eq 1).
+void read_solvers(Section solvers, Case& c) {
+  read_solver_list(solvers, c);
   if (const std::optional<double> alpha = solvers.optional_number("alpha")) {
     if (!(*alpha > -1 && *alpha <= 1))
       throw Error(fmt::format("{}: [solvers] alpha must lie in (-1, 1]", solvers.location("alpha")));
@@ -266,12 +308,31 @@ Case parse_case(std::string_view text, const std::string& source) {
     c.bound_skew = *skew;
   }
   solvers.finish();
+}
+
+}  // namespace
+
+Case parse_case(std::string_view text, const std::string& source) {
+  const toml::table root = parse_toml(text, source);
+  const toml::table empty;  // stands in for an absent optional section
+  const auto section = [&](const std::string& name, bool required) {
+    return Section(section_table(root, name, source, required, empty), name, source);
+  };
+  Case c;
+  c.source = source;
+  read_geometry(section("geometry", true), c);
+  read_material(section("material", true), c);
+  read_load(section("load", true), c);
+  read_friction(section("friction", true), c);
+  read_creepage(section("creepage", true), c);  // after [geometry]
+  read_mesh(section("mesh", false), c);
+  read_solvers(section("solvers", false), c);
   return c;
 }
 
 Case read_case_file(const std::filesystem::path& path) {
   std::ifstream file(path);
-  if (!file) throw Error(fmt::format("cannot read the case file {}", path.string()));
+  if (!file) throw Error(ErrorKind::io, fmt::format("cannot read the case file {}", path.string()));
   std::stringstream buffer;
   buffer << file.rdbuf();
   return parse_case(buffer.str(), path.string());

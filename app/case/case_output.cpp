@@ -53,8 +53,7 @@ std::string case_result_json(const CaseResult& r) {
                         {"F_over_muF3", magnitude(run.forces) / (r.input.mu * r.summary.normal_force_N)},
                         {"adhesion_fraction", run.adhesion_fraction},
                         {"time_s", run.time_s},
-                        {"iterations", run.iterations},
-                        {"converged", run.converged}};
+                        {"iterations", run.iterations}};
     if (run.flexibility) {
       j["flexibility"] = {run.flexibility->L1, run.flexibility->L2, run.flexibility->L3};
       j["flexibility_time_s"] = run.flexibility_time_s;
@@ -147,7 +146,7 @@ void write_case_outputs(const CaseResult& r, const std::filesystem::path& dir, s
   std::filesystem::create_directories(dir);
   auto open = [&](const std::string& name) {
     std::ofstream file(dir / name);
-    if (!file) throw Error("cannot write " + (dir / name).string());
+    if (!file) throw Error(ErrorKind::io, "cannot write " + (dir / name).string());
     return file;
   };
   {

@@ -10,7 +10,7 @@
 namespace railcontact {
 
 // {"patch": {...}, "creepage": {...}, "results": {"<solver>": {"F1", "F2", "M3", "time_s",
-//  "iterations", "converged", "flexibility": [L1, L2, L3] (FastSim solvers), ...}}}
+//  "iterations", "flexibility": [L1, L2, L3] (FastSim solvers), ...}}}
 std::string case_result_json(const CaseResult& result);
 
 // A readable report: patch, creepage, one line per solver with the differences to exact.

@@ -108,6 +108,138 @@ void take_fastsim_result(const FastSimResult& r, SolverRun& run) {
   run.adhesion_fraction = r.adhesion_fraction;
 }
 
+void check_input(const Case& input, const FlexibilityTable* table) {
+  validate(input.material);
+  require(input.normal_force_N > 0 && std::isfinite(input.normal_force_N), "the normal force must be positive");
+  require(input.mu > 0 && std::isfinite(input.mu), "the friction coefficient must be positive");
+  if (table != nullptr && input.geometry != GeometryKind::wheel_rail)
+    throw Error(fmt::format("the {} applies to wheel-rail cases only ({} is an ellipse case)", table->name(), input.source));
+}
+
+// The contact patch (the ellipse, or the wheel-rail patch with the table's values for it) and its
+// summary. A flexibility table is checked against the case before any solve.
+void solve_patch(const Case& input, const FlexibilityTable* table, CaseResult& result, std::ostream* progress) {
+  std::optional<WheelRailPair> pair;
+  if (input.geometry == GeometryKind::wheel_rail) {
+    pair = case_pair(input);
+    if (table != nullptr) check_table_fits(*table, input, *pair);  // before any solve
+  }
+  if (progress) fmt::print(*progress, "  contact patch ...\n");
+  result.patch = input.geometry == GeometryKind::ellipse
+                     ? elliptical_patch(input, result.summary)
+                     : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
+  summarise(result.patch, result.summary);
+}
+
+// nH-FastSim with its flexibilities (from K2, or from the table) and the time its set-up took.
+struct NhFastSimSetUp {
+  std::optional<NhFastSim> nh;  // empty when neither the normalisation nor the nh-fastsim solver needs it
+  double time_s = 0.0;
+};
+
+// nH-FastSim once, if the normalisation or the nh-fastsim solver needs it; its set-up time counts
+// towards nh-fastsim's. Its K2 goes into the result.
+NhFastSimSetUp set_up_nh_fastsim(const Case& input, CaseResult& result, std::ostream* progress) {
+  const std::optional<FlexibilityTableValues>& tabled = result.flexibility_table_values;
+  const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
+  const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
+  NhFastSimOptions nh_options;
+  nh_options.bound = TractionBound{input.bound_skew};
+  nh_options.flexibility_coarsening = input.flexibility_coarsening;
+  nh_options.collocation_offset = input.rolling.collocation_offset;
+  NhFastSimSetUp setup;
+  if (normalised || wants_nh) {
+    if (progress) *progress << (tabled ? "  nH-FastSim from the flexibility table ...\n" : "  creepage matrix K2 ...\n");
+    const auto start = Clock::now();
+    if (tabled)
+      setup.nh.emplace(result.patch,
+                       NhFastSimFlexibilities{tabled->flexibility, tabled->f11_N, tabled->f22_N, tabled->f23_Nm},
+                       nh_options);
+    else
+      setup.nh.emplace(result.patch, nh_options);
+    setup.time_s = seconds_since(start);
+    result.creepage_matrix = setup.nh->creepage_matrix();
+  }
+  return setup;
+}
+
+// The raw creepages of the case: normalised ones (Eq 22-23) with f11, f22 of nH-FastSim's K2 (or
+// the table's); spin from conicity (Eq 24).
+void resolve_creepage(const Case& input, const std::optional<NhFastSim>& nh, CaseResult& result) {
+  const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
+  const Creepage normalised_creepage = normalised ? nh->creepage_from_normalised(input.creepage.xi_normalised.value_or(0.0),
+                                                                                input.creepage.eta_normalised.value_or(0.0),
+                                                                                0.0, input.mu, result.patch.normal_force_N())
+                                                  : Creepage{};
+  if (input.creepage.xi_normalised) result.creepage.xi = normalised_creepage.xi;
+  if (input.creepage.eta_normalised) result.creepage.eta = normalised_creepage.eta;
+  if (input.creepage.phi_from_conicity) result.creepage.phi = result.summary.spin_per_m;
+}
+
+// nh-fastsim with the set-up's flexibilities; the set-up's time is its flexibility time.
+SolverRun run_nh_fastsim(const NhFastSimSetUp& setup, bool tabled, const Creepage& creepage, double mu) {
+  const NhFastSim& nh = *setup.nh;
+  SolverRun run;
+  run.flexibility = nh.flexibility();
+  run.flexibility_source = tabled ? "table"
+                           : nh.coarsening() > 1 ? fmt::format("K2 of the patch coarsened by {}", nh.coarsening())
+                                                 : "K2";
+  run.flexibility_time_s = setup.time_s;  // K2 counts: it is nH-FastSim's
+  run.iterations = nh.krylov_iterations();
+  take_fastsim_result(nh.solve(creepage, mu), run);
+  return run;
+}
+
+// Classical FastSim: the flexibilities of the (equivalent) ellipse (Eq 9), the parabolic bound (Eq 1).
+SolverRun run_fastsim(const ContactPatch& patch, const PatchSummary& summary, const Creepage& creepage, double mu) {
+  const auto start = Clock::now();
+  SolverRun run;
+  run.flexibility = fastsim_flexibility(summary.a_m, summary.b_m, patch.material());
+  run.flexibility_source = "Eq 9";
+  run.flexibility_time_s = seconds_since(start);
+  const FastSim classical(patch, TractionBound::parabolic());  // the classical bound, Eq 1
+  take_fastsim_result(classical.solve(creepage, *run.flexibility, mu), run);
+  return run;
+}
+
+// The exact solver (Coulomb's law) or the regularised one (Eq A1).
+SolverRun run_exact(SolverKind kind, const ContactPatch& patch, const Creepage& creepage, const Case& input) {
+  const RollingSolution r = kind == SolverKind::exact ? solve_rolling_exact(patch, creepage, input.mu, input.rolling)
+                                                      : solve_rolling_regularised(patch, creepage, input.mu, input.rolling);
+  SolverRun run;
+  run.forces = r.forces;
+  run.iterations = r.newton_iterations;
+  run.krylov_iterations = r.krylov_iterations;
+  run.p1_Pa = r.p1_Pa;
+  run.p2_Pa = r.p2_Pa;
+  run.slip = r.slip;
+  run.adhesion_fraction = r.adhesion_fraction;
+  return run;
+}
+
+// One requested solver on the result's patch and creepages, timed (nh-fastsim: with its set-up).
+SolverRun run_solver(SolverKind kind, const Case& input, const CaseResult& result, const NhFastSimSetUp& nh,
+                     std::ostream* progress) {
+  if (progress) fmt::print(*progress, "  {} ...\n", solver_name(kind));
+  const auto start = Clock::now();
+  SolverRun run;
+  switch (kind) {
+    case SolverKind::nh_fastsim:
+      run = run_nh_fastsim(nh, result.flexibility_table_values.has_value(), result.creepage, input.mu);
+      break;
+    case SolverKind::fastsim:
+      run = run_fastsim(result.patch, result.summary, result.creepage, input.mu);
+      break;
+    case SolverKind::exact:
+    case SolverKind::exact_regularised:
+      run = run_exact(kind, result.patch, result.creepage, input);
+      break;
+  }
+  run.kind = kind;
+  run.time_s = seconds_since(start) + (kind == SolverKind::nh_fastsim ? nh.time_s : 0.0);
+  return run;
+}
+
 }  // namespace
 
 const SolverRun* CaseResult::find(SolverKind kind) const {
@@ -119,104 +251,17 @@ const SolverRun* CaseResult::find(SolverKind kind) const {
 CaseResult run_case(const Case& input, std::ostream* progress) { return run_case(input, CaseRunOptions{}, progress); }
 
 CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::ostream* progress) {
-  validate(input.material);
-  require(input.normal_force_N > 0 && std::isfinite(input.normal_force_N), "the normal force must be positive");
-  require(input.mu > 0 && std::isfinite(input.mu), "the friction coefficient must be positive");
   const FlexibilityTable* table = run_options.flexibility_table.get();
-  if (table != nullptr && input.geometry != GeometryKind::wheel_rail)
-    throw Error(fmt::format("the {} applies to wheel-rail cases only ({} is an ellipse case)", table->name(), input.source));
+  check_input(input, table);
   CaseResult result{input, {}, {}, input.creepage.raw, std::nullopt, {}, std::nullopt, {}, 0};
   if (table != nullptr) {
     result.flexibility_table_file = table->source();
     result.flexibility_table_target_elements = table->metadata().target_elements;
   }
-  std::optional<WheelRailPair> pair;
-  if (input.geometry == GeometryKind::wheel_rail) {
-    pair = case_pair(input);
-    if (table != nullptr) check_table_fits(*table, input, *pair);  // before any solve
-  }
-  if (progress) fmt::print(*progress, "  contact patch ...\n");
-  result.patch = input.geometry == GeometryKind::ellipse
-                     ? elliptical_patch(input, result.summary)
-                     : wheel_rail_patch(input, *pair, result.summary, table, result.flexibility_table_values);
-  summarise(result.patch, result.summary);
-  const ContactPatch& patch = result.patch;
-
-  // nH-FastSim (flexibilities from K2, or from the table) once, if the normalisation or the
-  // nh-fastsim solver needs it; its set-up time counts towards nh-fastsim's.
-  const std::optional<FlexibilityTableValues>& tabled = result.flexibility_table_values;
-  const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
-  const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
-  NhFastSimOptions nh_options;
-  nh_options.bound = TractionBound{input.bound_skew};
-  nh_options.flexibility_coarsening = input.flexibility_coarsening;
-  nh_options.collocation_offset = input.rolling.collocation_offset;
-  std::optional<NhFastSim> nh;
-  double nh_setup_time_s = 0.0;
-  if (normalised || wants_nh) {
-    if (progress) *progress << (tabled ? "  nH-FastSim from the flexibility table ...\n" : "  creepage matrix K2 ...\n");
-    const auto start = Clock::now();
-    if (tabled)
-      nh.emplace(patch, NhFastSimFlexibilities{tabled->flexibility, tabled->f11_N, tabled->f22_N, tabled->f23_Nm},
-                 nh_options);
-    else
-      nh.emplace(patch, nh_options);
-    nh_setup_time_s = seconds_since(start);
-    result.creepage_matrix = nh->creepage_matrix();
-  }
-  // Normalised creepages (Eq 22-23) with f11, f22 of nH-FastSim's K2 (or the table's); spin (Eq 24).
-  const Creepage normalised_creepage = normalised ? nh->creepage_from_normalised(input.creepage.xi_normalised.value_or(0.0),
-                                                                                input.creepage.eta_normalised.value_or(0.0),
-                                                                                0.0, input.mu, patch.normal_force_N())
-                                                  : Creepage{};
-  if (input.creepage.xi_normalised) result.creepage.xi = normalised_creepage.xi;
-  if (input.creepage.eta_normalised) result.creepage.eta = normalised_creepage.eta;
-  if (input.creepage.phi_from_conicity) result.creepage.phi = result.summary.spin_per_m;
-  const Creepage& creepage = result.creepage;
-
-  for (SolverKind kind : input.solvers) {
-    if (progress) fmt::print(*progress, "  {} ...\n", solver_name(kind));
-    SolverRun run;
-    run.kind = kind;
-    const auto start = Clock::now();
-    switch (kind) {
-      case SolverKind::nh_fastsim: {
-        run.flexibility = nh->flexibility();
-        run.flexibility_source = tabled ? "table"
-                                 : nh->coarsening() > 1 ? fmt::format("K2 of the patch coarsened by {}", nh->coarsening())
-                                                        : "K2";
-        run.flexibility_time_s = nh_setup_time_s;  // K2 counts: it is nH-FastSim's
-        run.iterations = nh->krylov_iterations();
-        take_fastsim_result(nh->solve(creepage, input.mu), run);
-        break;
-      }
-      case SolverKind::fastsim: {
-        run.flexibility = fastsim_flexibility(result.summary.a_m, result.summary.b_m, patch.material());
-        run.flexibility_source = "Eq 9";
-        run.flexibility_time_s = seconds_since(start);
-        const FastSim classical(patch, TractionBound::parabolic());  // the classical bound, Eq 1
-        take_fastsim_result(classical.solve(creepage, *run.flexibility, input.mu), run);
-        break;
-      }
-      case SolverKind::exact:
-      case SolverKind::exact_regularised: {
-        const RollingSolution r = kind == SolverKind::exact
-                                      ? solve_rolling_exact(patch, creepage, input.mu, input.rolling)
-                                      : solve_rolling_regularised(patch, creepage, input.mu, input.rolling);
-        run.forces = r.forces;
-        run.iterations = r.newton_iterations;
-        run.krylov_iterations = r.krylov_iterations;
-        run.converged = r.converged;
-        run.p1_Pa = r.p1_Pa;
-        run.p2_Pa = r.p2_Pa;
-        run.slip = r.slip;
-        run.adhesion_fraction = r.adhesion_fraction;
-        break;
-      }
-    }
-    run.time_s = seconds_since(start) + (kind == SolverKind::nh_fastsim ? nh_setup_time_s : 0.0);
-    result.runs.push_back(std::move(run));
-  }
+  solve_patch(input, table, result, progress);
+  const NhFastSimSetUp nh = set_up_nh_fastsim(input, result, progress);
+  resolve_creepage(input, nh.nh, result);
+  for (SolverKind kind : input.solvers) result.runs.push_back(run_solver(kind, input, result, nh, progress));
   return result;
 }
 

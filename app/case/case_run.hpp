@@ -21,7 +21,6 @@ struct SolverRun {
   double flexibility_time_s = 0.0;     // part of time_s spent on the flexibilities (nh-fastsim: K2)
   int iterations = 0;                  // Newton (exact solvers), GMRES for K2 (nh-fastsim), 0 (fastsim)
   int krylov_iterations = 0;
-  bool converged = true;
   std::optional<Flexibility> flexibility;  // FastSim solvers
   std::string flexibility_source;          // "K2" or "table" (nh-fastsim), "Eq 9" (fastsim)
   double adhesion_fraction = 0.0;

@@ -43,6 +43,7 @@ struct CheckArguments {
   int elements = 0;
   std::string interpolation = "area-scaled";
   bool json = false;
+  bool exact = false;
 };
 
 WheelRailPair pair_of(const std::optional<std::string>& wheel, const std::optional<std::string>& rail) {
@@ -93,7 +94,24 @@ int run_build(const BuildArguments& args) {
   fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact\n", y.size(), loads.size(),
              args.elements);
   const auto start = std::chrono::steady_clock::now();
-  FlexibilityTable table = build_flexibility_table(pair, y, loads, options, &std::cerr);
+  // One progress line per node with the estimated time left (from the mean time per node so far).
+  const auto report = [&](const FlexibilityTableProgress& p) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double left = elapsed / static_cast<double>(p.nodes_done) * static_cast<double>(p.nodes_total - p.nodes_done);
+    const FlexibilityTableNode& n = *p.node;
+    if (n.status == FlexibilityNodeStatus::solved)
+      fmt::print(std::cerr, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} elements, {:.2f} s; {:.1f} s left\n",
+                 p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, n.elements_in_contact, p.node_seconds, left);
+    else
+      fmt::print(std::cerr, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} ({}), a gap in the table; {:.1f} s left\n",
+                 p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, flexibility_node_status_name(n.status),
+                 n.message, left);
+  };
+  FlexibilityTable table = build_flexibility_table(pair, y, loads, options, report);
+  for (const ContactJump& j : table.contact_jumps())
+    fmt::print(std::cerr, "  contact jump between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
+               table.y_m()[j.interval] / kMm, table.y_m()[j.interval + 1] / kMm, j.y_rail_left_m / kMm,
+               j.y_rail_right_m / kMm);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   save_flexibility_table(table, out);
 
@@ -134,6 +152,7 @@ int run_check(const CheckArguments& args) {
   options.target_elements = args.elements;
   options.interpolation =
       args.interpolation == "plain" ? FlexibilityInterpolation::plain : FlexibilityInterpolation::area_scaled;
+  options.against_exact = args.exact;
   const auto start = std::chrono::steady_clock::now();
   const study::FlexibilityTableCheck check =
       study::check_flexibility_table(table, pair, options, args.json ? nullptr : &std::cerr);
@@ -154,10 +173,14 @@ int run_check(const CheckArguments& args) {
                         {"f22_table_N", p.f22_table_N},
                         {"force_difference", p.force_difference},
                         {"force_difference_table_normalised", p.force_difference_table_normalised}});
+      if (args.exact) {
+        points.back()["table_error_against_exact"] = p.table_error_against_exact;
+        points.back()["on_the_fly_error_against_exact"] = p.on_the_fly_error_against_exact;
+      }
     }
     nlohmann::json families = nlohmann::json::array();
     for (const auto& f : check.families) families.push_back(f.name);
-    const nlohmann::json out = {{"table", args.table},
+    nlohmann::json out = {{"table", args.table},
                                 {"interpolation", args.interpolation},
                                 {"mu", args.mu},
                                 {"families", families},
@@ -171,6 +194,12 @@ int run_check(const CheckArguments& args) {
                                 {"max_force_difference_table_normalised", check.max_force_difference_table_normalised},
                                 {"mean_force_difference_table_normalised", check.mean_force_difference_table_normalised},
                                 {"time_s", seconds}};
+    if (args.exact) {
+      out["max_table_error_against_exact"] = check.max_table_error_against_exact;
+      out["mean_table_error_against_exact"] = check.mean_table_error_against_exact;
+      out["max_on_the_fly_error_against_exact"] = check.max_on_the_fly_error_against_exact;
+      out["mean_on_the_fly_error_against_exact"] = check.mean_on_the_fly_error_against_exact;
+    }
     fmt::print("{}\n", out.dump(2));
     return 0;
   }
@@ -198,6 +227,11 @@ int run_check(const CheckArguments& args) {
              check.families.size());
   fmt::print("with the table's own normalisation (as run --flextable): max {:.3f} %, mean {:.3f} %\n",
              100 * check.max_force_difference_table_normalised, 100 * check.mean_force_difference_table_normalised);
+  if (args.exact)
+    fmt::print("against exact (|F - F_exact| / |F_exact|): the table max {:.3f} %, mean {:.3f} %; on the fly max {:.3f} %, "
+               "mean {:.3f} %\n",
+               100 * check.max_table_error_against_exact, 100 * check.mean_table_error_against_exact,
+               100 * check.max_on_the_fly_error_against_exact, 100 * check.mean_on_the_fly_error_against_exact);
   fmt::print("target < 0.5 %: {}; checked in {:.1f} s\n", check.max_force_difference < 0.005 ? "met" : "NOT met", seconds);
   return 0;
 }
@@ -237,6 +271,7 @@ void add_flextable_command(CLI::App& app, Action& action) {
       ->check(CLI::IsMember({"area-scaled", "plain"}))
       ->capture_default_str();
   c->add_flag("--json", check->json, "print one JSON object");
+  c->add_flag("--exact", check->exact, "also the error of the table and of on-the-fly nH-FastSim against the exact solver");
   c->callback([check, &action] { action = [check] { return run_check(*check); }; });
 }
 

@@ -32,16 +32,19 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    const int code = app.exit(e);  // prints the message (or the help, code 0)
+    return code == 0 ? 0 : railcontact::cli::exit_code(railcontact::ErrorKind::invalid_input);
   }
   try {
     return action ? action() : 0;
   } catch (const railcontact::Error& e) {
     fmt::print(stderr, "railcontact: error: {}\n", e.what());
+    return railcontact::cli::exit_code(e.kind());
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "railcontact: error: out of memory (reduce the number of elements)\n");
+    return railcontact::cli::kExitOutOfMemory;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "railcontact: error: {}\n", e.what());
+    fmt::print(stderr, "railcontact: error: internal error: {}\n", e.what());
   }
-  return 1;
+  return railcontact::cli::exit_code(railcontact::ErrorKind::internal);
 }

@@ -85,7 +85,7 @@ int run_patch(const PatchArguments& args) {
     std::filesystem::create_directories(dir);
     study::write_pressure_csv(dir / "pressure.csv", patch.patch);
     std::ofstream file(dir / "patch.json");
-    if (!(file << json.dump(2) << '\n')) throw Error("cannot write " + (dir / "patch.json").string());
+    if (!(file << json.dump(2) << '\n')) throw Error(ErrorKind::io, "cannot write " + (dir / "patch.json").string());
     file.close();
     study::draw_figures("plot_patch.py", dir, std::cerr);
   }

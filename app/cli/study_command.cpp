@@ -11,10 +11,10 @@
 
 namespace railcontact::cli {
 
-void add_study_command(CLI::App& app, Action& action) {
-  CLI::App* study = app.add_subcommand("study", "accuracy studies (CSV + figures + summary.md)");
-  study->require_subcommand(1);
+namespace {
 
+// `study coefficients`: paper §3, Table 1, Fig 3 and Fig 4 against Kalker's table.
+void add_coefficients_study(CLI::App* study, Action& action) {
   auto coefficients = std::make_shared<study::CoefficientStudyOptions>();
   auto out = std::make_shared<std::string>();
   CLI::App* cmd = study->add_subcommand("coefficients", "paper §3: Table 1, Fig 3 and Fig 4 against Kalker's table");
@@ -28,7 +28,10 @@ void add_study_command(CLI::App& app, Action& action) {
       return 0;
     };
   });
+}
 
+// `study hertz`: creep curves on Hertzian ellipses with all four solvers.
+void add_hertz_study(CLI::App* study, Action& action) {
   auto hertz = std::make_shared<study::HertzStudyOptions>();
   auto hertz_out = std::make_shared<std::string>();
   CLI::App* h = study->add_subcommand("hertz", "creep curves on ellipses a/b = 0.5, 1, 2 with all four solvers");
@@ -43,7 +46,10 @@ void add_study_command(CLI::App& app, Action& action) {
       return 0;
     };
   });
+}
 
+// `study bound`: nH-FastSim's error vs the traction-bound skew.
+void add_bound_study(CLI::App* study, Action& action) {
   auto bound = std::make_shared<study::BoundStudyOptions>();
   auto bound_out = std::make_shared<std::string>();
   CLI::App* b = study->add_subcommand("bound", "nH-FastSim's error vs the traction-bound skew: ellipses and S1002/UIC60");
@@ -57,7 +63,10 @@ void add_study_command(CLI::App& app, Action& action) {
       return 0;
     };
   });
+}
 
+// `study patches`: wheel-rail normal contact over the wheelset displacement y.
+void add_patch_study(CLI::App* study, Action& action) {
   auto patches = std::make_shared<study::PatchStudyOptions>();
   auto patches_out = std::make_shared<std::string>();
   auto wheel = std::make_shared<std::string>();
@@ -82,7 +91,10 @@ void add_study_command(CLI::App& app, Action& action) {
       return 0;
     };
   });
+}
 
+// `study paper`: the paper's §4 on S1002/UIC60, Fig 5-8.
+void add_paper_study(CLI::App* study, Action& action) {
   auto paper = std::make_shared<study::PaperStudyOptions>();
   auto paper_out = std::make_shared<std::string>();
   CLI::App* pc = study->add_subcommand("paper", "paper §4 on S1002/UIC60: Fig 5 (error vs y), 6 (tractions), 7 (creep curves), 8 (time)");
@@ -98,6 +110,18 @@ void add_study_command(CLI::App& app, Action& action) {
       return 0;
     };
   });
+}
+
+}  // namespace
+
+void add_study_command(CLI::App& app, Action& action) {
+  CLI::App* study = app.add_subcommand("study", "accuracy studies (CSV + figures + summary.md)");
+  study->require_subcommand(1);
+  add_coefficients_study(study, action);
+  add_hertz_study(study, action);
+  add_bound_study(study, action);
+  add_patch_study(study, action);
+  add_paper_study(study, action);
 }
 
 }  // namespace railcontact::cli

@@ -70,7 +70,7 @@ struct TableStatistics {
 
 std::ofstream open_csv(const std::filesystem::path& path) {
   std::ofstream file(path);
-  if (!file) throw Error("cannot write " + path.string());
+  if (!file) throw Error(ErrorKind::io, "cannot write " + path.string());
   return file;
 }
 
@@ -205,7 +205,7 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   write_fig4(dir / "fig4.csv", options.fine_elements, progress);
 
   std::ofstream md(dir / "summary.md");
-  if (!md) throw Error("cannot write " + (dir / "summary.md").string());
+  if (!md) throw Error(ErrorKind::io, "cannot write " + (dir / "summary.md").string());
   md << "# Creepage coefficients from the full-adhesion steady-state solution (paper §3)\n\n"
         "Relative errors of C11, C22, C23 from K2 (Eq 18) against Kalker's table (57 entries: 19 a/b x 3 nu; "
         "the nu = 0.5 rows solved at nu = 0.5 - 1e-9). Kalker's table has three significant digits: the "

@@ -118,6 +118,11 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
         const TangentialForces table_normalised = fastsim.forces(table_raw, point.table, mu);
         point.force_difference.push_back(relative_difference(tabled, reference));
         point.force_difference_table_normalised.push_back(relative_difference(table_normalised, reference));
+        if (options.against_exact) {
+          const TangentialForces exact = solve_rolling_exact(p.patch, raw, mu).forces;
+          point.table_error_against_exact.push_back(relative_difference(tabled, exact));
+          point.on_the_fly_error_against_exact.push_back(relative_difference(reference, exact));
+        }
       }
       for (std::size_t f = 0; f < check.families.size(); ++f) {
         const double d = point.force_difference[f];
@@ -131,6 +136,13 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
         sum += d;
         sum_table_normalised += point.force_difference_table_normalised[f];
         ++count;
+        if (options.against_exact) {
+          check.max_table_error_against_exact = std::max(check.max_table_error_against_exact, point.table_error_against_exact[f]);
+          check.max_on_the_fly_error_against_exact =
+              std::max(check.max_on_the_fly_error_against_exact, point.on_the_fly_error_against_exact[f]);
+          check.mean_table_error_against_exact += point.table_error_against_exact[f];
+          check.mean_on_the_fly_error_against_exact += point.on_the_fly_error_against_exact[f];
+        }
       }
       if (progress) {
         double worst = 0.0;
@@ -144,6 +156,8 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
   require(!check.points.empty(), "flextable check: no check point could be solved");
   check.mean_force_difference = sum / static_cast<double>(count);
   check.mean_force_difference_table_normalised = sum_table_normalised / static_cast<double>(count);
+  check.mean_table_error_against_exact /= static_cast<double>(count);
+  check.mean_on_the_fly_error_against_exact /= static_cast<double>(count);
   return check;
 }
 

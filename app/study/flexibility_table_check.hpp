@@ -31,6 +31,9 @@ struct FlexibilityTableCheckOptions {
   double mu = 0.3;
   int target_elements = 0;  // 0: the table's
   FlexibilityInterpolation interpolation = FlexibilityInterpolation::area_scaled;
+  // Also solve the exact problem (Coulomb, `exact`) at every point and family: the error of the
+  // table and of on-the-fly nH-FastSim against it (a few exact solves per point: slower).
+  bool against_exact = false;
 };
 
 struct FlexibilityTableCheckPoint {
@@ -43,6 +46,8 @@ struct FlexibilityTableCheckPoint {
   std::vector<double> force_difference;
   // The same with the table's run normalised by the table's f11, f22 (as `run --flextable` does).
   std::vector<double> force_difference_table_normalised;
+  // With against_exact, per family: |F - F_exact| / |F_exact| of the table's run and of on the fly.
+  std::vector<double> table_error_against_exact, on_the_fly_error_against_exact;
 };
 
 struct FlexibilityTableCheck {
@@ -53,6 +58,9 @@ struct FlexibilityTableCheck {
   double max_force_difference = 0.0, mean_force_difference = 0.0;
   std::size_t max_point = 0, max_family = 0;
   double max_force_difference_table_normalised = 0.0, mean_force_difference_table_normalised = 0.0;
+  // With against_exact: over all points and families.
+  double max_table_error_against_exact = 0.0, max_on_the_fly_error_against_exact = 0.0;
+  double mean_table_error_against_exact = 0.0, mean_on_the_fly_error_against_exact = 0.0;
 };
 
 // Throws Error when the table does not belong to the pair, a check point lies outside the table,

@@ -101,7 +101,7 @@ constexpr std::array<double, 5> kLevels{0.1, 0.25, 0.5, 0.75, 1.0};
 
 std::ofstream open_csv(const std::filesystem::path& path, const char* header) {
   std::ofstream f(path);
-  if (!f) throw Error("cannot write " + path.string());
+  if (!f) throw Error(ErrorKind::io, "cannot write " + path.string());
   f << header;
   return f;
 }
@@ -119,77 +119,99 @@ struct ErrorStats {
   int count = 0;
 };
 
-}  // namespace
+// Fig 5's errors, by "family/solver", and the y values skipped (several contact patches).
+struct Fig5Errors {
+  std::map<std::string, ErrorStats> stats;
+  std::vector<double> skipped;
+};
 
-void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
+struct Timings {
+  std::vector<double> exact_s, default_s, ratio_default, ratio_full, ratio_known;
+};
+
+// What the summary needs from the figures: Fig 5's errors, Fig 8's timings (by target size) and
+// the study's start time.
+struct SummaryInputs {
+  Fig5Errors fig5;
+  std::map<int, Timings> fig8;
+  Clock::time_point study_start;
+};
+
+void check_options(const PaperStudyOptions& options) {
   require(options.elements >= 200 && options.elements <= 30000,
           [&] { return fmt::format("study paper: --elements must lie in [200, 30000] (got {})", options.elements); });
   require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study paper: --y-step must lie in (0, 4.5e-3] m");
   require(options.timing_samples >= 1 && options.timing_samples <= 50, "study paper: --samples must lie in [1, 50]");
-  const auto& dir = options.output_directory;
-  std::filesystem::create_directories(dir);
-  const auto study_start = Clock::now();
-  const WheelRailPair pair = default_wheel_rail_pair();
+}
 
-  // ---- Fig 5: relative total-force error vs y, three families, nh-fastsim and fastsim.
+// Fig 5 at one y: every family, level and solver against `exact` (Eq 25), one fig5.csv row each.
+// Returns the worst nh-fastsim error at this y.
+double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, Fig5Errors& errors) {
+  const WheelRailPatch& wr = p.wheel_rail;
+  double worst = 0;
+  for (const Family& family : kFamilies) {
+    for (double level : kLevels) {
+      const Creepage c = creepage_of(p, family.xi * level, family.eta * level, family.spin);
+      const double F_exact = magnitude(solve_rolling_exact(wr.patch, c, kMu).forces);
+      const FastSim& ours = p.nh->fastsim();
+      const FastSim& paper = *p.paper_fastsim;
+      for (const auto& [solver, fastsim, L] :
+           {std::tuple{"nh-fastsim", &ours, p.nh->flexibility()},
+            std::tuple{"nh-fastsim-default", &ours, p.nh_default->flexibility()},
+            std::tuple{"nh-fastsim-paper", &paper, p.nh->flexibility()},
+            std::tuple{"fastsim", &paper, p.equivalent_ellipse}}) {
+        const double F = magnitude(fastsim->forces(c, L, kMu));
+        const double error = std::fabs(F - F_exact) / F_exact;
+        fmt::print(fig5, "{},{:.6f},{},{},{:.6f},{},{:.4f},{:.4f},{:.6f}\n", family.name, y, family.xi * level,
+                   family.eta * level, c.phi, solver, F, F_exact, error);
+        ErrorStats& s = errors.stats[fmt::format("{}/{}", family.name, solver)];
+        if (error > s.max) {
+          s.max = error;
+          s.y_at_max = y;
+        }
+        s.sum += error;
+        ++s.count;
+        if (std::string(solver) == "nh-fastsim") worst = std::max(worst, error);
+      }
+    }
+  }
+  return worst;
+}
+
+// ---- Fig 5: relative total-force error vs y, three families, nh-fastsim and fastsim.
+Fig5Errors write_fig5_error_sweep(const WheelRailPair& pair, const PaperStudyOptions& options, std::ostream& progress) {
+  const auto& dir = options.output_directory;
   std::ofstream fig5 = open_csv(dir / "fig5.csv", "family,y,xi_n,eta_n,phi,solver,F,F_exact,rel_error\n");
   std::ofstream patches = open_csv(dir / "fig5_patches.csv",
                                    "y,status,contact_angle_rad,spin_per_m,normal_force_N,area_m2,elements,"
                                    "L1,L2,L3,L1_ellipse,L2_ellipse,L3_ellipse\n");
-  std::map<std::string, ErrorStats> stats;  // "family/solver"
-  std::vector<double> skipped;
+  Fig5Errors errors;
   const int y_count = static_cast<int>(std::lround(9e-3 / options.y_step_m)) + 1;
   for (int k = 0; k < y_count; ++k) {
     const double y = -4.5e-3 + k * options.y_step_m;
     std::optional<PreparedPatch> p;
     try {
       p = prepare(pair, y, options.elements);
-    } catch (const Error& e) {
+    } catch (const Error& e) {  // several contact patches: out of scope
+      if (e.kind() != ErrorKind::several_patches) throw;
       fmt::print(patches, "{:.6f},\"{}\",,,,,,,,,,,\n", y, e.what());
       fmt::print(progress, "  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
-      skipped.push_back(y);
+      errors.skipped.push_back(y);
       continue;
     }
     const WheelRailPatch& wr = p->wheel_rail;
     fmt::print(patches, "{:.6f},ok,{:.6f},{:.6f},{:.3f},{:.6e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", y,
                wr.contact_angle_rad, wr.spin_per_m, wr.normal_force_N, wr.area_m2, wr.elements_in_contact, p->nh->flexibility().L1,
                p->nh->flexibility().L2, p->nh->flexibility().L3, p->equivalent_ellipse.L1, p->equivalent_ellipse.L2, p->equivalent_ellipse.L3);
-    double worst = 0;
-    for (const Family& family : kFamilies) {
-      for (double level : kLevels) {
-        const Creepage c = creepage_of(*p, family.xi * level, family.eta * level, family.spin);
-        const double F_exact = magnitude(solve_rolling_exact(wr.patch, c, kMu).forces);
-        const FastSim& ours = p->nh->fastsim();
-        const FastSim& paper = *p->paper_fastsim;
-        for (const auto& [solver, fastsim, L] :
-             {std::tuple{"nh-fastsim", &ours, p->nh->flexibility()},
-              std::tuple{"nh-fastsim-default", &ours, p->nh_default->flexibility()},
-              std::tuple{"nh-fastsim-paper", &paper, p->nh->flexibility()},
-              std::tuple{"fastsim", &paper, p->equivalent_ellipse}}) {
-          const double F = magnitude(fastsim->forces(c, L, kMu));
-          const double error = std::fabs(F - F_exact) / F_exact;
-          fmt::print(fig5, "{},{:.6f},{},{},{:.6f},{},{:.4f},{:.4f},{:.6f}\n", family.name, y, family.xi * level,
-                     family.eta * level, c.phi, solver, F, F_exact, error);
-          ErrorStats& s = stats[fmt::format("{}/{}", family.name, solver)];
-          if (error > s.max) {
-            s.max = error;
-            s.y_at_max = y;
-          }
-          s.sum += error;
-          ++s.count;
-          if (std::string(solver) == "nh-fastsim") worst = std::max(worst, error);
-        }
-      }
-    }
+    const double worst = compare_solvers_at(*p, y, fig5, errors);
     fmt::print(progress, "  [{:2}/{}] y = {:+.2f} mm: {} elements, gamma {:.4f} rad, worst nh-fastsim error {:.2f}%\n",
                k + 1, y_count, 1e3 * y, wr.elements_in_contact, wr.contact_angle_rad, 100 * worst);
   }
-  fig5.close();
-  patches.close();
+  return errors;
+}
 
-  // ---- Fig 6: traction maps at y = 0, nh-fastsim and exact.
-  fmt::print(progress, "Fig 6 (traction maps at y = 0) ...\n");
-  const PreparedPatch centred = prepare(pair, 0.0, options.elements);
+// ---- Fig 6: traction maps at y = 0, nh-fastsim and exact.
+void write_fig6_traction_maps(const PreparedPatch& centred, const std::filesystem::path& dir) {
   struct MapCase {
     const char* name;
     double xi_n, eta_n;
@@ -209,13 +231,15 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
     fmt::print(fig6, "{},exact,{:.4f},{:.4f},{:.6f},{:.4f}\n", m.name, exact.forces.F1_N, exact.forces.F2_N,
                exact.forces.M3_Nm, exact.adhesion_fraction);
   }
-  fig6.close();
+}
 
-  // ---- Fig 7: F1 vs xi' for y in {-3 mm, 0} and eta' in {0, 0.5 (with spin)}.
-  fmt::print(progress, "Fig 7 (creep curves) ...\n");
+// ---- Fig 7: F1 vs xi' for y in {-3 mm, 0} and eta' in {0, 0.5 (with spin)}; `centred` is the
+// patch at y = 0.
+void write_fig7_creep_curves(const WheelRailPair& pair, const PreparedPatch& centred, int elements,
+                             const std::filesystem::path& dir) {
   std::ofstream fig7 = open_csv(dir / "fig7.csv", "y,eta_n,xi_n,solver,F1,F2,M3\n");
   for (double y : {-3e-3, 0.0}) {
-    const PreparedPatch p = y == 0.0 ? centred : prepare(pair, y, options.elements);
+    const PreparedPatch p = y == 0.0 ? centred : prepare(pair, y, elements);
     for (double eta_n : {0.0, 0.5}) {
       for (int k = 0; k <= 12; ++k) {
         const double xi_n = 1.5 * k / 12;
@@ -227,33 +251,40 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
       }
     }
   }
-  fig7.close();
+}
 
-  // ---- Fig 8: computing time vs elements in contact, random creepages and y (seeded).
-  fmt::print(progress, "Fig 8 (computing time) ...\n");
-  std::ofstream fig8 = open_csv(dir / "fig8.csv",
+// Fig 8: a patch of about `target` elements at a random y (the drawn y in `y`); up to 20 draws,
+// as y with several contact patches are drawn again. Empty when every draw had several patches.
+std::optional<PreparedPatch> random_patch(const WheelRailPair& pair, int target, std::mt19937& rng,
+                                          std::uniform_real_distribution<double>& uniform, double& y) {
+  std::optional<PreparedPatch> p;
+  for (int attempt = 0; attempt < 20 && !p; ++attempt) {
+    y = -4.5e-3 + 9e-3 * uniform(rng);
+    try {
+      p = prepare(pair, y, target);
+    } catch (const Error& e) {  // several patches: draw again
+      if (e.kind() != ErrorKind::several_patches) throw;
+    }
+  }
+  return p;
+}
+
+// ---- Fig 8: computing time vs elements in contact, random creepages and y (seeded).
+std::map<int, Timings> write_fig8_timings(const WheelRailPair& pair, const PaperStudyOptions& options,
+                                          std::ostream& progress) {
+  std::ofstream fig8 = open_csv(options.output_directory / "fig8.csv",
                                 "target_elements,elements,y,xi_n,eta_n,coarsening,time_exact_s,"
                                 "time_nh_fastsim_default_s,time_nh_fastsim_full_resolution_s,"
                                 "time_nh_fastsim_flexibilities_known_s,ratio_default,ratio_full_resolution,"
                                 "ratio_flexibilities_known\n");
   std::mt19937 rng(2023);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  struct Timings {
-    std::vector<double> exact_s, default_s, ratio_default, ratio_full, ratio_known;
-  };
   std::map<int, Timings> timings;  // by target size
   double sink = 0.0;               // keeps the timed work observable
   for (int target : {500, 1000, 2000, 3000, 5000, 8000}) {
     for (int sample = 0; sample < options.timing_samples; ++sample) {
-      std::optional<PreparedPatch> p;
       double y = 0;
-      for (int attempt = 0; attempt < 20 && !p; ++attempt) {
-        y = -4.5e-3 + 9e-3 * uniform(rng);
-        try {
-          p = prepare(pair, y, target);
-        } catch (const Error&) {  // several patches: draw again
-        }
-      }
+      const std::optional<PreparedPatch> p = random_patch(pair, target, rng, uniform, y);
       if (!p) continue;
       const double xi_n = uniform(rng), eta_n = uniform(rng);
       const Creepage c = creepage_of(*p, xi_n, eta_n, true);
@@ -278,27 +309,26 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
   }
   fig8.close();
   if (!std::isfinite(sink)) fmt::print(progress, "  (a timed result was not finite)\n");
+  return timings;
+}
 
-  // ---- summary.md
-  std::ofstream md(dir / "summary.md");
-  md << "# The paper's Section 4: S1002 wheel on UIC60 rail (1:40)\n\n"
-     << fmt::format("Fz = 98.1 kN, F3 = Fz / cos(gamma), E = 2.1e11 Pa, nu = 0.3, mu = 0.3, about {} elements in "
-                    "contact per patch. Reference: `exact` (Coulomb's law, semismooth Newton; equal to the paper's "
-                    "regularised reference to 1e-5). Error: |F - F_exact| / F_exact of the total tangential force "
-                    "(Eq 25). Creepages normalised with f11, f22 of each patch's K2 (Eq 22-23), spin from conicity "
-                    "(Eq 24). `fastsim` = FastSim with the flexibilities of the equivalent ellipse (same area, axis "
-                    "ratio of the circumscribing rectangle) and the paper's parabolic bound (Eq 1); `nh-fastsim` = "
-                    "railcontact's nH-FastSim (traction bound skewed towards the trailing edge, skew {:.2f}, "
-                    "docs/FASTSIM.md §6); `nh-fastsim-paper` = the paper's nH-FastSim (the same flexibilities, "
-                    "parabolic bound of Eq 1); `nh-fastsim-default` = railcontact's with the flexibilities `railcontact run` "
-                    "computes (K2 of the automatically coarsened patch).\n\n",
-                    options.elements, TractionBound{}.skew);
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// summary.md, Fig 5: the error table per family and solver, the maxima over all families and the
+// skipped y values.
+void summarise_fig5(std::ostream& md, const Fig5Errors& errors) {
   md << "## Fig 5: error vs y (levels 0.1, 0.25, 0.5, 0.75, 1.0)\n\n| family | solver | max error | at y (mm) | mean "
         "error |\n|---|---|---|---|---|\n";
   double nh_max = 0, nh_default_max = 0, nh_paper_max = 0, ellipse_max = 0;
   for (const Family& family : kFamilies)
     for (const char* solver : {"nh-fastsim", "nh-fastsim-default", "nh-fastsim-paper", "fastsim"}) {
-      const ErrorStats& s = stats[fmt::format("{}/{}", family.name, solver)];
+      const auto found = errors.stats.find(fmt::format("{}/{}", family.name, solver));
+      const ErrorStats s = found != errors.stats.end() ? found->second : ErrorStats{};
       fmt::print(md, "| {} ({}) | {} | {:.2f}% | {:+.1f} | {:.2f}% |\n", family.name, family.description, solver,
                  100 * s.max, 1e3 * s.y_at_max, 100 * s.sum / std::max(1, s.count));
       if (std::string(solver) == "nh-fastsim") nh_max = std::max(nh_max, s.max);
@@ -311,12 +341,15 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
              "flexibilities max {:.2f}%, the paper's nh-fastsim (parabolic bound) max {:.2f}%, equivalent-ellipse "
              "fastsim max {:.2f}%.\n",
              100 * nh_max, 100 * nh_default_max, 100 * nh_paper_max, 100 * ellipse_max);
-  if (!skipped.empty()) {
+  if (!errors.skipped.empty()) {
     md << "\nSkipped y values (several contact patches, out of scope): ";
-    for (double y : skipped) fmt::print(md, "{:+.2f} mm ", 1e3 * y);
+    for (double y : errors.skipped) fmt::print(md, "{:+.2f} mm ", 1e3 * y);
     md << "(`fig5_patches.csv` has the messages).\n";
   }
-  md << "\n## Fig 6: traction maps at y = 0 (`fig6.png`, forces in `fig6.csv`)\n\n## Fig 7: creep curves (`fig7.png`)\n\n";
+}
+
+// summary.md, Fig 8: median times and speed-ups per target size, and over all samples.
+void summarise_fig8(std::ostream& md, const std::map<int, Timings>& timings) {
   md << "## Fig 8: computing time (`fig8.png`, `fig8.csv`)\n\nOne thread; each method timed as the faster of two "
         "runs (FFTW plans a new transform size once per process). nh-fastsim `default` = what `railcontact run` "
         "does: FastSim's set-up, the flexibilities from K2 of the automatically coarsened patch "
@@ -325,12 +358,6 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
         "table).\n\n| target elements | median exact | median nh-fastsim default | median exact / default | "
         "smallest exact / default | median exact / full resolution | median exact / known |\n"
         "|---|---|---|---|---|---|---|\n";
-  auto median = [](std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  };
   std::vector<double> all_default, all_known;
   for (const auto& [target, t] : timings) {
     fmt::print(md, "| {} | {:.2f} ms | {:.3f} ms | {:.1f}x | {:.1f}x | {:.1f}x | {:.0f}x |\n", target,
@@ -343,8 +370,52 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
   fmt::print(md, "\nMedian over all samples: exact / nh-fastsim default {:.1f}x; exact / nh-fastsim evaluation alone "
                  "(flexibilities known, e.g. from a flexibility table) {:.0f}x.\n",
              median(all_default), median(all_known));
-  fmt::print(md, "\nStudy run time: {:.1f} s.\n", seconds_since(study_start));
-  md.close();
+}
+
+// ---- summary.md: the set-up, Fig 5's error table, pointers to Fig 6 and 7, Fig 8's timings.
+void write_summary(const PaperStudyOptions& options, const SummaryInputs& inputs) {
+  std::ofstream md(options.output_directory / "summary.md");
+  md << "# The paper's Section 4: S1002 wheel on UIC60 rail (1:40)\n\n"
+     << fmt::format("Fz = 98.1 kN, F3 = Fz / cos(gamma), E = 2.1e11 Pa, nu = 0.3, mu = 0.3, about {} elements in "
+                    "contact per patch. Reference: `exact` (Coulomb's law, semismooth Newton; equal to the paper's "
+                    "regularised reference to 1e-5). Error: |F - F_exact| / F_exact of the total tangential force "
+                    "(Eq 25). Creepages normalised with f11, f22 of each patch's K2 (Eq 22-23), spin from conicity "
+                    "(Eq 24). `fastsim` = FastSim with the flexibilities of the equivalent ellipse (same area, axis "
+                    "ratio of the circumscribing rectangle) and the paper's parabolic bound (Eq 1); `nh-fastsim` = "
+                    "railcontact's nH-FastSim (traction bound skewed towards the trailing edge, skew {:.2f}, "
+                    "docs/FASTSIM.md §6); `nh-fastsim-paper` = the paper's nH-FastSim (the same flexibilities, "
+                    "parabolic bound of Eq 1); `nh-fastsim-default` = railcontact's with the flexibilities `railcontact run` "
+                    "computes (K2 of the automatically coarsened patch).\n\n",
+                    options.elements, TractionBound{}.skew);
+  summarise_fig5(md, inputs.fig5);
+  md << "\n## Fig 6: traction maps at y = 0 (`fig6.png`, forces in `fig6.csv`)\n\n## Fig 7: creep curves (`fig7.png`)\n\n";
+  summarise_fig8(md, inputs.fig8);
+  fmt::print(md, "\nStudy run time: {:.1f} s.\n", seconds_since(inputs.study_start));
+}
+
+}  // namespace
+
+void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
+  check_options(options);
+  const auto& dir = options.output_directory;
+  std::filesystem::create_directories(dir);
+  SummaryInputs summary;
+  summary.study_start = Clock::now();
+  const WheelRailPair pair = default_wheel_rail_pair();
+
+  summary.fig5 = write_fig5_error_sweep(pair, options, progress);
+
+  fmt::print(progress, "Fig 6 (traction maps at y = 0) ...\n");
+  const PreparedPatch centred = prepare(pair, 0.0, options.elements);  // Fig 6, and Fig 7 at y = 0
+  write_fig6_traction_maps(centred, dir);
+
+  fmt::print(progress, "Fig 7 (creep curves) ...\n");
+  write_fig7_creep_curves(pair, centred, options.elements, dir);
+
+  fmt::print(progress, "Fig 8 (computing time) ...\n");
+  summary.fig8 = write_fig8_timings(pair, options, progress);
+
+  write_summary(options, summary);
   if (options.figures) draw_figures("plot_paper_study.py", dir, progress);
   fmt::print(progress, "Wrote {}\n", dir.string());
 }

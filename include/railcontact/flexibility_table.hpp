@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <ostream>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,9 +20,9 @@
 // Flexibility table (docs/FLEXTABLE.md): nH-FastSim's flexibilities L1, L2, L3 and the creepage
 // coefficients f11, f22, f23 of one wheel–rail profile pair, computed once over a grid of
 // wheelset lateral displacement y and vertical wheel load Fz (each node: solve_wheel_rail_patch,
-// then the force rows of K2 and the term-by-term match of fastsim.hpp), stored in a documented
+// then the force rows of K2 and the term-by-term match of tangential.hpp), stored in a documented
 // JSON file, and interpolated. A simulation step then costs one normal solve + FastSim, or
-// FastSim only with a cached patch (flexibility_table_fastsim.hpp); no K2 at run time.
+// FastSim only with a cached patch (FlexibilityTableFastSim below); no K2 at run time.
 //
 // Interpolation (measured in docs/FLEXTABLE.md §4): linear in y and linear in log Fz, of the
 // area-scaled quantities L/√A, f11/A, f22/A, f23/A^1.5 (A the patch area; the dimensions of
@@ -52,7 +52,7 @@ struct FlexibilityTableNode {
   double vertical_load_N = 0.0;  // Fz
   FlexibilityNodeStatus status = FlexibilityNodeStatus::solved;
   std::string message;           // why the node is not solved (empty when solved)
-  Flexibility flexibility;       // L1, L2, L3 (m/Pa), term by term (fastsim.hpp)
+  Flexibility flexibility;       // L1, L2, L3 (m/Pa), term by term (tangential.hpp)
   double f11_N = 0.0;            // -K2_11: F1 per unit xi (N)
   double f22_N = 0.0;            // -K2_22: F2 per unit eta (N)
   double f23_Nm = 0.0;           // -K2_23: F2 per 1/m of spin (N m)
@@ -179,14 +179,23 @@ struct FlexibilityTableOptions {
   double contact_jump_resolution_m = 1e-6;
 };
 
+// Progress of a build, reported after each node (the library does not print; the caller may).
+struct FlexibilityTableProgress {
+  std::size_t nodes_done = 0, nodes_total = 0;  // nodes_total includes the contact-jump brackets
+  const FlexibilityTableNode* node = nullptr;    // the node just computed (solved or a gap)
+  double node_seconds = 0.0;
+};
+using FlexibilityTableProgressCallback = std::function<void(const FlexibilityTableProgress&)>;
+
 // Builds the table of a pair over y_grid_m (strictly increasing, m) and load_grid_N (strictly
 // increasing, N, at least one), plus two bracket nodes per contact jump. The profile fingerprints
 // are those of the files the pair was read from. Nodes with several patches or a failing solve
 // are marked (a gap), not thrown; throws Error for bad grids or options, unreadable profile
-// files, or when no node can be solved. One progress line per node goes to `progress`.
+// files, or when no node can be solved. `progress` is called after each node.
 FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::vector<double>& y_grid_m,
                                          const std::vector<double>& load_grid_N,
-                                         const FlexibilityTableOptions& options = {}, std::ostream* progress = nullptr);
+                                         const FlexibilityTableOptions& options = {},
+                                         const FlexibilityTableProgressCallback& progress = {});
 
 // y from y_from to y_to (inclusive, within 1e-9 of a step) in steps of y_step (m); throws Error
 // for non-finite values, y_to < y_from, a non-positive step or more than 10000 values.

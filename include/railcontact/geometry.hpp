@@ -149,7 +149,7 @@ class SmoothProfile {
 // Frames (docs/GEOMETRY.md §1–3):
 // - Track frame: x along the track in the direction of travel, y lateral to the LEFT, z UP.
 // - The modelled pair is the RIGHT wheel on the RIGHT rail (looking in the direction of travel).
-// - Both profiles are given in their profile frames (profile.hpp): y_p to the right (away from
+// - Both profiles are given in their profile frames (geometry.hpp): y_p to the right (away from
 //   the track centre, towards the field side), z_p down — the track frame turned by 180° about x.
 // - Wheelset lateral displacement y (m) along the track y axis: y < 0 moves the wheelset to the
 //   right, the right wheel's flange towards the right rail's gauge face, and the contact point

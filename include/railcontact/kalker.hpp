@@ -19,7 +19,7 @@ struct KalkerCoefficients {
 // shape-preserving cubic (PCHIP) of ln C against ln(a/b); exact at the table's rows), Kalker's
 // slender-ellipse asymptotes outside it (a/b in [0.01, 0.1) and (10, 100]), blended onto the table
 // so that the coefficients are continuous at a/b = 0.1 and 10 (details in
-// src/hertz/kalker_coefficients.cpp). Throws railcontact::Error for a/b or nu out of range.
+// src/kalker/kalker_coefficients.cpp). Throws railcontact::Error for a/b or nu out of range.
 KalkerCoefficients kalker_coefficients(double a_over_b, double nu);
 
 // FastSim flexibility parameters (m/Pa), paper Eq 9.

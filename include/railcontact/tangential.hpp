@@ -296,12 +296,12 @@ struct RollingSolution {
   double adhesion_fraction = 0.0;       // share of the contact area in adhesion
   int newton_iterations = 0;
   int krylov_iterations = 0;            // all inner GMRES iterations
-  double residual = 0.0;                // final Newton residual, relative to mu max(p3)
-  bool converged = false;
+  double residual = 0.0;                // final Newton residual (<= tolerance), relative to mu max(p3)
 };
 
-// Throws railcontact::Error on bad input (mu <= 0 or not finite, non-finite creepage) and when
-// Newton does not converge within max_newton_iterations.
+// Throws railcontact::Error on bad input (mu <= 0 or not finite, non-finite creepage; kind
+// invalid_input) and when Newton does not converge within max_newton_iterations (kind
+// not_converged): a returned solution has converged (residual <= tolerance).
 RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& creepage, double mu,
                                     const RollingOptions& options = {});
 RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creepage& creepage, double mu,

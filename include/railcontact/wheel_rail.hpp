@@ -5,6 +5,7 @@
 #include <array>
 #include <cstddef>
 #include <filesystem>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -128,14 +129,28 @@ struct WheelRailPatch {
 // the potential area cannot hold the patch, or (unless allowed) y gives several patches.
 WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options = {});
 
-// The shipped S1002 wheel on the UIC60 rail (1:40) of METHOD.md §9 (data/profiles/), with the
-// default track and wheelset parameters. The data directory is the one of the build
-// (RAILCONTACT_DATA_DIR) unless the environment variable RAILCONTACT_DATA names another.
+// A wheel–rail set-up: a profile pair and its track, as data (a JSON file, docs/WHEEL_RAIL.md
+// "Set-up files"). The shipped default, data/wheel_rail/s1002_uic60.json, is the paper's test set:
+// S1002 on UIC60 1:40, 1435 mm gauge (docs/METHOD.md §9).
+struct WheelRailSetup {
+  std::string description;
+  std::filesystem::path wheel_profile;  // resolved against the set-up file's directory
+  std::filesystem::path rail_profile;
+  TrackWheelsetParameters track;
+};
+// Throws Error naming the file and the key: kind io when it cannot be read, invalid_input for
+// malformed JSON, missing or unknown keys, non-finite or non-physical track values.
+WheelRailSetup read_wheel_rail_setup(const std::filesystem::path& path);
+WheelRailPair load_wheel_rail_pair(const WheelRailSetup& setup);
+
+// The shipped default set-up. The data directory is the one of the build (RAILCONTACT_DATA_DIR)
+// unless the environment variable RAILCONTACT_DATA names another.
+std::filesystem::path default_wheel_rail_setup_path();
 std::filesystem::path default_wheel_profile_path();
 std::filesystem::path default_rail_profile_path();
 WheelRailPair default_wheel_rail_pair();
 
-// A pair from profile files (formats: profile.hpp); errors name the file and the line.
+// A pair from profile files (formats: geometry.hpp); errors name the file and the line.
 WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile,
                                    const std::filesystem::path& rail_profile,
                                    const TrackWheelsetParameters& parameters = {});

@@ -2,7 +2,6 @@
 // alone, then per node (y, Fz) the wheel–rail patch, K2's force rows and the term-by-term
 // nH-FastSim flexibilities, exactly as a wheel–rail case computes them on the fly.
 #include <fmt/format.h>
-#include <fmt/ostream.h>
 
 #include <algorithm>
 #include <chrono>
@@ -154,7 +153,7 @@ std::vector<double> flexibility_table_y_grid(double y_from_m, double y_to_m, dou
 
 FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::vector<double>& y_grid_m,
                                          const std::vector<double>& load_grid_N, const FlexibilityTableOptions& options,
-                                         std::ostream* progress) {
+                                         const FlexibilityTableProgressCallback& progress) {
   validate(options);
   validate_grid(y_grid_m, "y", kMaxYValues);
   validate_grid(load_grid_N, "vertical load", kMaxLoads);
@@ -192,9 +191,6 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   for (const JumpBracket& j : brackets) {
     const auto left = static_cast<std::size_t>(std::lower_bound(y.begin(), y.end(), j.y_left_m) - y.begin());
     jumps.push_back({left, j.y_rail_left_m, j.y_rail_right_m});
-    if (progress)
-      fmt::print(*progress, "  contact jump between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
-                 j.y_left_m / kMm, j.y_right_m / kMm, j.y_rail_left_m / kMm, j.y_rail_right_m / kMm);
   }
 
   std::vector<FlexibilityTableNode> nodes;
@@ -206,15 +202,7 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
       nodes.push_back(solve_node(pair, y_m, Fz, options));
       const FlexibilityTableNode& n = nodes.back();
       solved += n.status == FlexibilityNodeStatus::solved;
-      if (progress) {
-        const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-        if (n.status == FlexibilityNodeStatus::solved)
-          fmt::print(*progress, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} elements, {:.2f} s\n", nodes.size(), total,
-                     y_m / kMm, Fz, n.elements_in_contact, seconds);
-        else
-          fmt::print(*progress, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} ({}), a gap in the table\n", nodes.size(),
-                     total, y_m / kMm, Fz, flexibility_node_status_name(n.status), n.message);
-      }
+      if (progress) progress({nodes.size(), total, &n, std::chrono::duration<double>(Clock::now() - start).count()});
     }
   }
   require(solved > 0,

@@ -152,6 +152,101 @@ FlexibilityTableNode read_node(const json& item, std::size_t index, const std::s
   return n;
 }
 
+json parse_json(const std::string& text, const std::string& source) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    const std::size_t end = std::min<std::size_t>(e.byte, text.size());
+    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n');
+    throw Error(fmt::format("flexibility table {}:{}: malformed JSON (is it a flexibility table?)", source, line));
+  }
+}
+
+// "format" must name a flexibility table; returns "format_version" (1 to kFormatVersion).
+int read_format_version(Reader& r, const json& root) {
+  if (!root.contains("format") || !root["format"].is_string() || root["format"].get<std::string>() != kFormat)
+    r.fail(fmt::format("not a flexibility table (the key 'format' must be \"{}\")", kFormat));
+  r.get("format");
+  const json& version = r.get("format_version");
+  if (!version.is_number_integer() || version.get<int>() < 1 || version.get<int>() > kFormatVersion)
+    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", version.dump(), kFormatVersion));
+  return version.get<int>();
+}
+
+TrackWheelsetParameters read_track(Reader& parent, const std::string& source) {
+  Reader t(parent.get("track"), "track", source);
+  TrackWheelsetParameters track;
+  track.track_gauge_m = t.number("track_gauge_m");
+  track.gauge_measuring_depth_m = t.number("gauge_measuring_depth_m");
+  track.flange_back_distance_m = t.number("flange_back_distance_m");
+  track.flange_back_y_m = t.number("flange_back_y_m");
+  track.taping_line_from_flange_back_m = t.number("taping_line_from_flange_back_m");
+  track.nominal_rolling_radius_m = t.number("nominal_rolling_radius_m");
+  t.finish();
+  return track;
+}
+
+// The recipe of the table: version, profiles (file and hash), track, material, mesh size,
+// collocation offset, flexibility coarsening (format version 2) and the match of the
+// flexibilities (term by term).
+FlexibilityTableMetadata read_metadata(Reader& r, int version, const std::string& source) {
+  FlexibilityTableMetadata m;
+  m.railcontact_version = r.string("railcontact_version");
+  m.created_utc = r.string("created_utc");
+  {
+    Reader profiles(r.get("profiles"), "profiles", source);
+    m.wheel_profile = read_fingerprint(profiles, "wheel", source);
+    m.rail_profile = read_fingerprint(profiles, "rail", source);
+    profiles.finish();
+  }
+  m.track = read_track(r, source);
+  {
+    Reader material(r.get("material"), "material", source);
+    m.material.youngs_modulus_Pa = material.number("youngs_modulus_Pa");
+    m.material.poisson_ratio = material.number("poisson_ratio");
+    material.finish();
+  }
+  const std::size_t elements = r.count("target_elements");
+  if (elements > static_cast<std::size_t>(std::numeric_limits<int>::max())) r.fail("target_elements is too large");
+  m.target_elements = static_cast<int>(elements);
+  m.collocation_offset = r.number("collocation_offset");
+  m.flexibility_coarsening = 1;  // format version 1: K2 of the patch itself
+  if (version >= 2) {
+    const std::size_t coarsening = r.count("flexibility_coarsening");
+    if (coarsening > static_cast<std::size_t>(kMaximumCoarsening))
+      r.fail(fmt::format("flexibility_coarsening {} must lie in [0, {}]", coarsening, kMaximumCoarsening));
+    m.flexibility_coarsening = static_cast<int>(coarsening);
+  }
+  if (r.string("flexibility_match") != "term-by-term") r.fail("flexibility_match must be \"term-by-term\"");
+  return m;
+}
+
+// The contact jumps, each naming an interval of the y grid by its index and its two y values.
+std::vector<ContactJump> read_jumps(Reader& r, const std::vector<double>& y, const std::string& source) {
+  std::vector<ContactJump> jumps;
+  const json& jump_list = r.array("contact_jumps");
+  for (std::size_t k = 0; k < jump_list.size(); ++k) {
+    Reader j(jump_list[k], fmt::format("contact_jumps[{}]", k), source);
+    ContactJump jump;
+    jump.interval = j.count("interval");
+    const double left = j.number("y_left_m"), right = j.number("y_right_m");
+    jump.y_rail_left_m = j.number("y_rail_left_m");
+    jump.y_rail_right_m = j.number("y_rail_right_m");
+    j.finish();
+    if (jump.interval + 1 >= y.size() || y[jump.interval] != left || y[jump.interval + 1] != right)
+      j.fail(fmt::format("contact_jumps[{}] does not name an interval of y_m", k));
+    jumps.push_back(jump);
+  }
+  return jumps;
+}
+
+std::vector<FlexibilityTableNode> read_nodes(Reader& r, const std::string& source) {
+  std::vector<FlexibilityTableNode> nodes;
+  const json& node_list = r.array("nodes");
+  for (std::size_t k = 0; k < node_list.size(); ++k) nodes.push_back(read_node(node_list[k], k, source));
+  return nodes;
+}
+
 }  // namespace
 
 std::string flexibility_table_json(const FlexibilityTable& table) {
@@ -194,79 +289,14 @@ std::string flexibility_table_json(const FlexibilityTable& table) {
 }
 
 FlexibilityTable parse_flexibility_table(const std::string& text, const std::string& source) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    const std::size_t end = std::min<std::size_t>(e.byte, text.size());
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n');
-    throw Error(fmt::format("flexibility table {}:{}: malformed JSON (is it a flexibility table?)", source, line));
-  }
+  const json root = parse_json(text, source);
   Reader r(root, "", source);
-  if (!root.contains("format") || !root["format"].is_string() || root["format"].get<std::string>() != kFormat)
-    r.fail(fmt::format("not a flexibility table (the key 'format' must be \"{}\")", kFormat));
-  r.get("format");
-  const json& version = r.get("format_version");
-  if (!version.is_number_integer() || version.get<int>() < 1 || version.get<int>() > kFormatVersion)
-    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", version.dump(), kFormatVersion));
-
-  FlexibilityTableMetadata m;
-  m.railcontact_version = r.string("railcontact_version");
-  m.created_utc = r.string("created_utc");
-  {
-    Reader profiles(r.get("profiles"), "profiles", source);
-    m.wheel_profile = read_fingerprint(profiles, "wheel", source);
-    m.rail_profile = read_fingerprint(profiles, "rail", source);
-    profiles.finish();
-  }
-  {
-    Reader t(r.get("track"), "track", source);
-    m.track.track_gauge_m = t.number("track_gauge_m");
-    m.track.gauge_measuring_depth_m = t.number("gauge_measuring_depth_m");
-    m.track.flange_back_distance_m = t.number("flange_back_distance_m");
-    m.track.flange_back_y_m = t.number("flange_back_y_m");
-    m.track.taping_line_from_flange_back_m = t.number("taping_line_from_flange_back_m");
-    m.track.nominal_rolling_radius_m = t.number("nominal_rolling_radius_m");
-    t.finish();
-  }
-  {
-    Reader material(r.get("material"), "material", source);
-    m.material.youngs_modulus_Pa = material.number("youngs_modulus_Pa");
-    m.material.poisson_ratio = material.number("poisson_ratio");
-    material.finish();
-  }
-  const std::size_t elements = r.count("target_elements");
-  if (elements > static_cast<std::size_t>(std::numeric_limits<int>::max())) r.fail("target_elements is too large");
-  m.target_elements = static_cast<int>(elements);
-  m.collocation_offset = r.number("collocation_offset");
-  m.flexibility_coarsening = 1;  // format version 1: K2 of the patch itself
-  if (version.get<int>() >= 2) {
-    const std::size_t coarsening = r.count("flexibility_coarsening");
-    if (coarsening > static_cast<std::size_t>(kMaximumCoarsening))
-      r.fail(fmt::format("flexibility_coarsening {} must lie in [0, {}]", coarsening, kMaximumCoarsening));
-    m.flexibility_coarsening = static_cast<int>(coarsening);
-  }
-  if (r.string("flexibility_match") != "term-by-term") r.fail("flexibility_match must be \"term-by-term\"");
+  const int version = read_format_version(r, root);
+  FlexibilityTableMetadata m = read_metadata(r, version, source);
   std::vector<double> y = r.numbers("y_m");
   std::vector<double> loads = r.numbers("vertical_load_N");
-
-  std::vector<ContactJump> jumps;
-  const json& jump_list = r.array("contact_jumps");
-  for (std::size_t k = 0; k < jump_list.size(); ++k) {
-    Reader j(jump_list[k], fmt::format("contact_jumps[{}]", k), source);
-    ContactJump jump;
-    jump.interval = j.count("interval");
-    const double left = j.number("y_left_m"), right = j.number("y_right_m");
-    jump.y_rail_left_m = j.number("y_rail_left_m");
-    jump.y_rail_right_m = j.number("y_rail_right_m");
-    j.finish();
-    if (jump.interval + 1 >= y.size() || y[jump.interval] != left || y[jump.interval + 1] != right)
-      j.fail(fmt::format("contact_jumps[{}] does not name an interval of y_m", k));
-    jumps.push_back(jump);
-  }
-  std::vector<FlexibilityTableNode> nodes;
-  const json& node_list = r.array("nodes");
-  for (std::size_t k = 0; k < node_list.size(); ++k) nodes.push_back(read_node(node_list[k], k, source));
+  std::vector<ContactJump> jumps = read_jumps(r, y, source);
+  std::vector<FlexibilityTableNode> nodes = read_nodes(r, source);
   r.finish();
   try {
     FlexibilityTable table(std::move(m), std::move(y), std::move(loads), std::move(nodes), std::move(jumps));
@@ -282,14 +312,14 @@ FlexibilityTable parse_flexibility_table(const std::string& text, const std::str
 
 void save_flexibility_table(const FlexibilityTable& table, const std::filesystem::path& path) {
   std::ofstream file(path);
-  if (!(file << flexibility_table_json(table) << '\n')) throw Error(fmt::format("cannot write the flexibility table {}", path.string()));
+  if (!(file << flexibility_table_json(table) << '\n')) throw Error(ErrorKind::io, fmt::format("cannot write the flexibility table {}", path.string()));
   file.close();
-  if (!file) throw Error(fmt::format("cannot write the flexibility table {}", path.string()));
+  if (!file) throw Error(ErrorKind::io, fmt::format("cannot write the flexibility table {}", path.string()));
 }
 
 FlexibilityTable load_flexibility_table(const std::filesystem::path& path) {
   std::ifstream file(path);
-  if (!file) throw Error(fmt::format("cannot read the flexibility table {}", path.string()));
+  if (!file) throw Error(ErrorKind::io, fmt::format("cannot read the flexibility table {}", path.string()));
   std::stringstream buffer;
   buffer << file.rdbuf();
   return parse_flexibility_table(buffer.str(), path.string());

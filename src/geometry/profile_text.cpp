@@ -13,7 +13,7 @@ namespace railcontact::geometry {
 
 std::vector<NumberedLine> read_lines(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open the file for reading");
+  if (!in) throw Error(ErrorKind::io, fmt::format("profile {}: cannot open the file for reading", path.string()));
   std::vector<NumberedLine> lines;
   std::string text;
   std::size_t number = 0;
@@ -23,7 +23,7 @@ std::vector<NumberedLine> read_lines(const std::filesystem::path& path) {
     lines.push_back({number, std::move(text)});
     text.clear();
   }
-  if (in.bad()) fail(path, "read error");
+  if (in.bad()) throw Error(ErrorKind::io, fmt::format("profile {}: read error", path.string()));
   return lines;
 }
 

@@ -42,92 +42,110 @@ bool flag_value(const std::filesystem::path& path, const std::map<std::string, K
   return value == 1.0;
 }
 
-}  // namespace
+using KeyValues = std::map<std::string, KeyValue>;
+using Path = std::filesystem::path;
 
-Profile read_simpack_profile(const std::filesystem::path& path) {
-  const auto lines = geometry::read_lines(path);
+enum class Section { none, header, spline, points };
 
-  enum class Section { none, header, spline, points };
-  Section section = Section::none;
-  std::map<std::string, KeyValue> header_keys;
-  std::map<std::string, KeyValue> spline_keys;
+// The file as read: the keys of header.begin/header.end and of spline.begin/spline.end, and the
+// point list (in the file's length unit, flags not yet applied).
+struct SimpackFile {
+  KeyValues header_keys;
+  KeyValues spline_keys;
   std::vector<double> y, z;
   std::size_t points_begin_line = 0;
   bool points_seen = false;
   bool points_closed = false;
+};
 
+// A line inside point.begin/point.end: "y z [weight]" (the weight is ignored), or point.end.
+// Returns the section the next line is in.
+Section read_point_line(const Path& path, const geometry::NumberedLine& line, std::string_view text,
+                        const std::string& lower, SimpackFile& file) {
+  if (lower == "point.end") {
+    file.points_closed = true;
+    return Section::spline;
+  }
+  const auto values = geometry::parse_numbers(text);
+  if (!values || values->size() < 2 || values->size() > 3) {
+    fail(path, line.number, fmt::format("expected a point 'y z [weight]', got '{}'", text));
+  }
+  file.y.push_back((*values)[0]);
+  file.z.push_back((*values)[1]);
+  return Section::points;
+}
+
+// A line outside the point list: a section keyword (header/spline/point .begin/.end) or
+// "key = value", kept for the header or the spline section. Returns the section the next line is in.
+Section read_section_line(const Path& path, const geometry::NumberedLine& line, std::string_view text,
+                          const std::string& lower, Section section, SimpackFile& file) {
+  if (lower == "header.begin") return Section::header;
+  if (lower == "header.end") {
+    if (section != Section::header) fail(path, line.number, "header.end without header.begin");
+    return Section::none;
+  }
+  if (lower == "spline.begin") return Section::spline;
+  if (lower == "spline.end") {
+    if (section != Section::spline) fail(path, line.number, "spline.end without spline.begin");
+    return Section::none;
+  }
+  if (lower == "point.begin") {
+    if (section != Section::spline) fail(path, line.number, "point.begin outside spline.begin/spline.end");
+    if (file.points_seen) fail(path, line.number, "a second point.begin (one point list per file)");
+    file.points_seen = true;
+    file.points_begin_line = line.number;
+    return Section::points;
+  }
+  if (lower == "point.end") fail(path, line.number, "point.end without point.begin");
+  const auto eq = text.find('=');
+  if (eq == std::string_view::npos) {
+    fail(path, line.number, fmt::format("expected 'key = value' or a section keyword, got '{}'", text));
+  }
+  const std::string key = geometry::lower_case(geometry::trim(text.substr(0, eq)));
+  KeyValue value{std::string(geometry::trim(text.substr(eq + 1))), line.number};
+  if (section == Section::header) {
+    file.header_keys[key] = value;
+  } else if (section == Section::spline) {
+    file.spline_keys[key] = value;
+  }
+  // Keys outside the sections are ignored.
+  return section;
+}
+
+// The sections of the file ('!' starts a comment), with a point list of at least 4 points.
+SimpackFile read_sections(const Path& path) {
+  const auto lines = geometry::read_lines(path);
+  SimpackFile file;
+  Section section = Section::none;
   for (const auto& line : lines) {
     const std::string_view text = geometry::trim(geometry::strip_comment(line.text, "!"));
     if (text.empty()) continue;
     const std::string lower = geometry::lower_case(text);
-
-    if (section == Section::points) {
-      if (lower == "point.end") {
-        section = Section::spline;
-        points_closed = true;
-        continue;
-      }
-      const auto values = geometry::parse_numbers(text);
-      if (!values || values->size() < 2 || values->size() > 3) {
-        fail(path, line.number, fmt::format("expected a point 'y z [weight]', got '{}'", text));
-      }
-      y.push_back((*values)[0]);
-      z.push_back((*values)[1]);
-      continue;
-    }
-
-    if (lower == "header.begin") {
-      section = Section::header;
-    } else if (lower == "header.end") {
-      if (section != Section::header) fail(path, line.number, "header.end without header.begin");
-      section = Section::none;
-    } else if (lower == "spline.begin") {
-      section = Section::spline;
-    } else if (lower == "spline.end") {
-      if (section != Section::spline) fail(path, line.number, "spline.end without spline.begin");
-      section = Section::none;
-    } else if (lower == "point.begin") {
-      if (section != Section::spline) fail(path, line.number, "point.begin outside spline.begin/spline.end");
-      if (points_seen) fail(path, line.number, "a second point.begin (one point list per file)");
-      section = Section::points;
-      points_seen = true;
-      points_begin_line = line.number;
-    } else if (lower == "point.end") {
-      fail(path, line.number, "point.end without point.begin");
-    } else {
-      const auto eq = text.find('=');
-      if (eq == std::string_view::npos) {
-        fail(path, line.number, fmt::format("expected 'key = value' or a section keyword, got '{}'", text));
-      }
-      const std::string key = geometry::lower_case(geometry::trim(text.substr(0, eq)));
-      KeyValue value{std::string(geometry::trim(text.substr(eq + 1))), line.number};
-      if (section == Section::header) {
-        header_keys[key] = value;
-      } else if (section == Section::spline) {
-        spline_keys[key] = value;
-      }
-      // Keys outside the sections are ignored.
-    }
+    section = section == Section::points ? read_point_line(path, line, text, lower, file)
+                                         : read_section_line(path, line, text, lower, section, file);
   }
-  if (!points_seen) fail(path, "no point list (point.begin ... point.end)");
-  if (!points_closed) fail(path, points_begin_line, "point.begin without point.end");
-  if (y.size() < 4) fail(path, points_begin_line, fmt::format("{} points; at least 4 are needed", y.size()));
+  if (!file.points_seen) fail(path, "no point list (point.begin ... point.end)");
+  if (!file.points_closed) fail(path, file.points_begin_line, "point.begin without point.end");
+  if (file.y.size() < 4) fail(path, file.points_begin_line, fmt::format("{} points; at least 4 are needed", file.y.size()));
+  return file;
+}
 
-  Profile profile;
-  profile.source = path.string();
-  if (header_keys.count("type") != 0) {
-    const double type = numeric_value(path, header_keys, "type", -1.0);
-    if (type == 0.0) {
-      profile.kind = ProfileKind::rail;
-    } else if (type == 1.0) {
-      profile.kind = ProfileKind::wheel;
-    } else {
-      fail(path, header_keys.at("type").line, "header 'type' must be 0 (rail) or 1 (wheel)");
-    }
+// Header 'type': 0 rail, 1 wheel; absent, the kind stays unknown.
+void read_profile_kind(const Path& path, const KeyValues& header_keys, Profile& profile) {
+  if (header_keys.count("type") == 0) return;
+  const double type = numeric_value(path, header_keys, "type", -1.0);
+  if (type == 0.0) {
+    profile.kind = ProfileKind::rail;
+  } else if (type == 1.0) {
+    profile.kind = ProfileKind::wheel;
+  } else {
+    fail(path, header_keys.at("type").line, "header 'type' must be 0 (rail) or 1 (wheel)");
   }
+}
 
-  // 1: minimum point distance.
-  const double dist_min = numeric_value(path, spline_keys, "point.dist.min", 0.0);
+// 1: minimum point distance (a point closer than point.dist.min to the last one kept is dropped).
+void apply_point_distance(const Path& path, const KeyValues& keys, std::vector<double>& y, std::vector<double>& z) {
+  const double dist_min = numeric_value(path, keys, "point.dist.min", 0.0);
   if (dist_min > 0.0) {
     std::vector<double> ky{y.front()}, kz{z.front()};
     for (std::size_t i = 1; i < y.size(); ++i) {
@@ -139,20 +157,29 @@ Profile read_simpack_profile(const std::filesystem::path& path) {
     y = std::move(ky);
     z = std::move(kz);
   }
-  // 2: shift.
-  const double shift_y = numeric_value(path, spline_keys, "shift.y", 0.0);
-  const double shift_z = numeric_value(path, spline_keys, "shift.z", 0.0);
+}
+
+// 2: shift.
+void apply_shift(const Path& path, const KeyValues& keys, std::vector<double>& y, std::vector<double>& z) {
+  const double shift_y = numeric_value(path, keys, "shift.y", 0.0);
+  const double shift_z = numeric_value(path, keys, "shift.z", 0.0);
   for (auto& v : y) v += shift_y;
   for (auto& v : z) v += shift_z;
-  // 3: rotation (not supported).
-  if (numeric_value(path, spline_keys, "rotate", 0.0) != 0.0) {
-    fail(path, spline_keys.at("rotate").line, "a non-zero 'rotate' is not supported");
+}
+
+// 3: rotation (not supported).
+void check_no_rotation(const Path& path, const KeyValues& keys) {
+  if (numeric_value(path, keys, "rotate", 0.0) != 0.0) {
+    fail(path, keys.at("rotate").line, "a non-zero 'rotate' is not supported");
   }
-  // 4: bounds, active when min < max.
-  const double y_lo = numeric_value(path, spline_keys, "bound.y.min", 1.0);
-  const double y_hi = numeric_value(path, spline_keys, "bound.y.max", 0.0);
-  const double z_lo = numeric_value(path, spline_keys, "bound.z.min", 1.0);
-  const double z_hi = numeric_value(path, spline_keys, "bound.z.max", 0.0);
+}
+
+// 4: bounds, active when min < max.
+void apply_bounds(const Path& path, const KeyValues& keys, std::vector<double>& y, std::vector<double>& z) {
+  const double y_lo = numeric_value(path, keys, "bound.y.min", 1.0);
+  const double y_hi = numeric_value(path, keys, "bound.y.max", 0.0);
+  const double z_lo = numeric_value(path, keys, "bound.z.min", 1.0);
+  const double z_hi = numeric_value(path, keys, "bound.z.max", 0.0);
   if (y_lo < y_hi || z_lo < z_hi) {
     std::vector<double> ky, kz;
     for (std::size_t i = 0; i < y.size(); ++i) {
@@ -166,28 +193,55 @@ Profile read_simpack_profile(const std::filesystem::path& path) {
     y = std::move(ky);
     z = std::move(kz);
   }
-  // 5: mirroring, 6: inversion of the point order.
-  if (flag_value(path, spline_keys, "mirror.y")) {
+}
+
+// 5: mirroring, 6: inversion of the point order.
+void apply_mirroring_and_inversion(const Path& path, const KeyValues& keys, std::vector<double>& y,
+                                   std::vector<double>& z) {
+  if (flag_value(path, keys, "mirror.y")) {
     for (auto& v : y) v = -v;
   }
-  if (flag_value(path, spline_keys, "mirror.z")) {
+  if (flag_value(path, keys, "mirror.z")) {
     for (auto& v : z) v = -v;
   }
-  if (flag_value(path, spline_keys, "inversion")) {
+  if (flag_value(path, keys, "inversion")) {
     std::reverse(y.begin(), y.end());
     std::reverse(z.begin(), z.end());
   }
-  // 7: length unit (file units per metre).
-  const double per_metre = numeric_value(path, spline_keys, "units.len.f", 1.0);
+}
+
+// 7: length unit (file units per metre).
+void apply_length_unit(const Path& path, const KeyValues& keys, std::vector<double>& y, std::vector<double>& z) {
+  const double per_metre = numeric_value(path, keys, "units.len.f", 1.0);
   if (!(per_metre > 0.0)) {
-    fail(path, spline_keys.at("units.len.f").line, "'units.len.f' must be positive");
+    fail(path, keys.at("units.len.f").line, "'units.len.f' must be positive");
   }
   for (auto& v : y) v /= per_metre;
   for (auto& v : z) v /= per_metre;
+}
 
-  if (y.size() < 4) fail(path, fmt::format("{} points left after the bounds/point distance; at least 4 are needed", y.size()));
-  profile.y_m = std::move(y);
-  profile.z_m = std::move(z);
+// The spline section's processing flags, in the order numbered in the files' own comments.
+void apply_processing_flags(const Path& path, const KeyValues& keys, std::vector<double>& y, std::vector<double>& z) {
+  apply_point_distance(path, keys, y, z);
+  apply_shift(path, keys, y, z);
+  check_no_rotation(path, keys);
+  apply_bounds(path, keys, y, z);
+  apply_mirroring_and_inversion(path, keys, y, z);
+  apply_length_unit(path, keys, y, z);
+}
+
+}  // namespace
+
+Profile read_simpack_profile(const std::filesystem::path& path) {
+  SimpackFile file = read_sections(path);
+  Profile profile;
+  profile.source = path.string();
+  read_profile_kind(path, file.header_keys, profile);
+  apply_processing_flags(path, file.spline_keys, file.y, file.z);
+  if (file.y.size() < 4)
+    fail(path, fmt::format("{} points left after the bounds/point distance; at least 4 are needed", file.y.size()));
+  profile.y_m = std::move(file.y);
+  profile.z_m = std::move(file.z);
   return profile;
 }
 

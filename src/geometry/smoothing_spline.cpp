@@ -3,7 +3,9 @@
 // m-th derivative (Reinsch 1967; de Boor, A Practical Guide to Splines, ch. XIV; on a uniform
 // knot grid as in the P-splines of Eilers & Marx 1996). Basis functions and curve evaluation come from Eigen's
 // Splines module (unsupported/Eigen/Splines); the banded normal equations are solved with
-// Eigen's sparse Cholesky (SimplicialLDLT). See docs/GEOMETRY.md §5.
+// Eigen's sparse Cholesky (SimplicialLDLT). See docs/GEOMETRY.md §5. The assembly of the penalised
+// normal equations is our own: no Debian library fits this criterion (docs/DEPENDENCIES.md,
+// "Numerical routines: library or our own").
 //
 //   minimise  sum_i w_i |C(s_i) - P_i|^2 + L^(2m) ∫ |C^(m)(s)|^2 ds,   w_i = arc length per point.
 #include <fmt/core.h>
@@ -200,12 +202,8 @@ double SmoothProfile::parameter_at(double y_m) const {
   const auto j = static_cast<std::size_t>(it - ys.begin());
   const double lo = im.table_s_m[j - 1];
   const double hi = im.table_s_m[j];
-  const auto root = geometry::solve_bracketed(
-      [&](double s) {
-        const auto d = im.curve.derivatives<1>(s);
-        return std::pair{d(0, 0) - y_m, d(0, 1)};
-      },
-      lo, hi, 0.5 * (lo + hi), 1e-14);
+  const auto root = geometry::bracketed_root([&](double s) { return im.curve(s)(0) - y_m; }, lo, hi,
+                                             "the profile parameter at a lateral position");
   return root ? *root : 0.5 * (lo + hi);
 }
 

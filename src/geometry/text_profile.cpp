@@ -34,7 +34,7 @@ void write_text_profile(const std::filesystem::path& path, const Profile& profil
   validate(profile);
   require(std::isfinite(length_unit_m) && length_unit_m > 0.0, "profile: the length unit must be positive");
   std::ofstream out(path);
-  if (!out) geometry::fail(path, "cannot open the file for writing");
+  if (!out) throw Error(ErrorKind::io, fmt::format("profile {}: cannot open the file for writing", path.string()));
   out << fmt::format("# y z in units of {} m; profile frame: y lateral, z down\n", length_unit_m);
   for (std::size_t i = 0; i < profile.size(); ++i) {
     out << fmt::format("{:.17g} {:.17g}\n", profile.y_m[i] / length_unit_m, profile.z_m[i] / length_unit_m);

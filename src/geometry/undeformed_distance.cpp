@@ -78,7 +78,8 @@ double TangentPlaneSection::rail_normal_m(double x2_m) const {
     const auto p = rail.at(s);
     return std::pair{(p.y_m - cy_) * ty_ + (p.z_m - cz_) * tz_ - x2_m, p.dy_ds * ty_ + p.dz_ds * tz_};
   };
-  const auto s = solve_bracketed(f, rail_s_lo_, rail_s_hi_, rail_s_contact_ - x2_m, 1e-15);
+  const auto s =
+      newton_root(f, rail_s_lo_, rail_s_hi_, rail_s_contact_ - x2_m, 1e-15, "the rail point on the normal line");
   if (!s) beyond_reach("rail", x2_m);
   const auto p = rail.at(*s);
   return (p.y_m - cy_) * ny_ + (p.z_m - cz_) * nz_;
@@ -107,7 +108,7 @@ double TangentPlaneSection::wheel_normal_m(double x1_m, double x2_m, double& par
     const Point w = point(s);
     return std::pair{(w.y - cy_) * ty_ + (w.z - cz_) * tz_ - x2_m, w.dy * ty_ + w.dz * tz_};
   };
-  const auto s = solve_bracketed(f, wheel_s_lo_, wheel_s_hi_, parameter, 1e-15);
+  const auto s = newton_root(f, wheel_s_lo_, wheel_s_hi_, parameter, 1e-15, "the wheel point on the normal line");
   if (!s) beyond_reach("wheel", x2_m);
   parameter = *s;
   const Point w = point(*s);

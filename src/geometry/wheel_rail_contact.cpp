@@ -35,12 +35,8 @@ double lowest_z_parameter(const SmoothProfile& profile) {
     }
   }
   if (best == 0 || best == samples) return s0 + best * ds;
-  const auto root = geometry::solve_bracketed(
-      [&](double s) {
-        const auto p = profile.at(s);
-        return std::pair{p.dz_ds, p.d2z_ds2_per_m};
-      },
-      s0 + (best - 1) * ds, s0 + (best + 1) * ds, s0 + best * ds, 1e-14);
+  const auto root = geometry::bracketed_root([&](double s) { return profile.at(s).dz_ds; }, s0 + (best - 1) * ds,
+                                             s0 + (best + 1) * ds, "the highest point of a profile");
   return root ? *root : s0 + best * ds;
 }
 
@@ -54,12 +50,8 @@ std::optional<double> crossing_from_end(const SmoothProfile& profile, double lev
   if (profile.at(s_at(0)).z_m < level) return std::nullopt;
   for (int k = 1; k <= samples; ++k) {
     if (profile.at(s_at(k)).z_m <= level) {
-      return geometry::solve_bracketed(
-          [&](double s) {
-            const auto p = profile.at(s);
-            return std::pair{p.z_m - level, p.dz_ds};
-          },
-          s_at(k - 1), s_at(k), 0.5 * (s_at(k - 1) + s_at(k)), 1e-14);
+      return geometry::bracketed_root([&](double s) { return profile.at(s).z_m - level; }, s_at(k - 1), s_at(k),
+                                      "the crossing of a profile with a level");
     }
   }
   return std::nullopt;
@@ -147,17 +139,14 @@ WheelRailContactPoint WheelRailPair::contact_point(double lateral_displacement_m
   const double y_lo = std::max(rail_.y_min_m(), wheel_.y_min_m() + offset);
   const double y_hi = std::min(rail_.y_max_m(), wheel_.y_max_m() + offset);
   const auto never_touch = [&](const std::string& why) {
-    return Error(fmt::format("wheel-rail contact: the wheel and rail profiles never touch at lateral displacement "
+    return Error(ErrorKind::no_contact, fmt::format("wheel-rail contact: the wheel and rail profiles never touch at lateral displacement "
                              "y = {:.3f} mm ({})",
                              lateral_displacement_m * 1e3, why));
   };
   if (!(y_hi - y_lo > 4 * kScanStep_m)) throw never_touch("they do not overlap laterally");
 
   const auto gap = [&](double y) { return rail_.z(y) - wheel_.z(y - offset); };
-  const auto gap_slope = [&](double y) {
-    return std::pair{rail_.dz_dy(y) - wheel_.dz_dy(y - offset),
-                     rail_.d2z_dy2_per_m(y) - wheel_.d2z_dy2_per_m(y - offset)};
-  };
+  const auto gap_slope = [&](double y) { return rail_.dz_dy(y) - wheel_.dz_dy(y - offset); };
 
   const int n = static_cast<int>(std::floor((y_hi - y_lo) / kScanStep_m));
   const double step = (y_hi - y_lo) / n;
@@ -182,7 +171,7 @@ WheelRailContactPoint WheelRailPair::contact_point(double lateral_displacement_m
     if (!(g[i] <= g[i - 1] && g[i] <= g[i + 1] && g[i] < candidate_band)) continue;
     const double a = y_lo + (k - 1) * step, b = y_lo + (k + 1) * step;
     double y = y_lo + k * step;
-    if (const auto root = geometry::solve_bracketed(gap_slope, a, b, y, 1e-14)) {
+    if (const auto root = geometry::bracketed_root(gap_slope, a, b, "the common tangent (gap slope zero)")) {
       y = *root;
     }
     minima.push_back({y, gap(y)});

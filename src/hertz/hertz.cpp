@@ -14,7 +14,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <boost/math/tools/toms748_solve.hpp>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -36,8 +38,9 @@ double curvature_ratio(double g) {
   return ell.B / (g * g * ell.D);
 }
 
-// Solves curvature_ratio(g) = ratio >= 1 for g in (0, 1] by bisection on ln g. The function is
-// monotone, so the bracket is kept and the result is accurate to a few ulp of g.
+// Solves curvature_ratio(g) = ratio >= 1 for g in (0, 1]. The function is monotone: a bracket is
+// found by halving g, then Boost.Math's TOMS 748 solver (Alefeld, Potra & Shi 1995) narrows it on
+// ln(curvature_ratio(g) / ratio), a smooth function of g, to a width of 2 eps g (a few ulp of g).
 double axis_ratio_for_curvature_ratio(double ratio) {
   if (ratio == 1.0) return 1.0;
   // Upper bound: D >= B for m >= 0, so curvature_ratio(g) <= 1/g², hence the root g* <= 1/sqrt(ratio).
@@ -46,19 +49,23 @@ double axis_ratio_for_curvature_ratio(double ratio) {
   double g_low = 0.5 * g_high;
   constexpr double kSmallestAxisRatio = 1e-150;
   while (curvature_ratio(g_low) < ratio) {
+    g_high = g_low;
     g_low *= 0.5;
     require(g_low > kSmallestAxisRatio, [&] { return fmt::format("hertz: curvature ratio {} is too extreme", ratio); });
   }
   constexpr double kEps = std::numeric_limits<double>::epsilon();
-  for (int iteration = 0; iteration < 200 && g_high - g_low > 2.0 * kEps * g_high; ++iteration) {
-    const double g_mid = std::sqrt(g_low * g_high);  // bisection in ln g
-    if (curvature_ratio(g_mid) < ratio) {
-      g_high = g_mid;
-    } else {
-      g_low = g_mid;
-    }
+  const auto converged = [](double low, double high) { return high - low <= 2.0 * kEps * high; };
+  constexpr std::uintmax_t kMaxEvaluations = 200;
+  std::uintmax_t evaluations = kMaxEvaluations;
+  const auto [low, high] = boost::math::tools::toms748_solve(
+      [ratio](double g) { return std::log(curvature_ratio(g) / ratio); }, g_low, g_high, converged, evaluations);
+  if (!converged(low, high)) {
+    throw Error(ErrorKind::not_converged,
+                fmt::format("hertz: the axis ratio b/a for curvature ratio {} did not converge in {} evaluations "
+                            "(bracket [{}, {}])",
+                            ratio, kMaxEvaluations, low, high));
   }
-  return 0.5 * (g_low + g_high);
+  return 0.5 * (low + high);
 }
 
 }  // namespace

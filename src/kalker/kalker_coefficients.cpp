@@ -5,7 +5,7 @@
 // data/kalker_creepage_coefficients.csv):
 //  * in nu: quadratic Lagrange interpolation through nu = 0, 0.25, 0.5, exact at the table's nu
 //    (C22 is nearly linear in nu, C11 and C23 are not);
-//  * in a/b: shape-preserving cubic Hermite (PCHIP, hertz/monotone_cubic.hpp) of ln C against
+//  * in a/b: shape-preserving cubic Hermite (PCHIP, kalker/pchip_interpolation.hpp) of ln C against
 //    ln(a/b), one interpolant over all 19 rows (both halves of Kalker's table, a/b = 0.1 ... 1 and
 //    b/a = 0.9 ... 0.1). In log-log form the coefficients are nearly straight lines at both ends
 //    (C23 ~ (a/b)^{1/2} for small a/b, C ~ (a/b)^{1 or 3/2} / ln(a/b) for large a/b), so the cubic
@@ -19,7 +19,7 @@
 //    Removing a row doubles the local spacing, so the true interpolation error is much smaller.
 //
 // Outside the table (0.01 <= a/b < 0.1 and 10 < a/b <= 100): Kalker's slender-ellipse asymptotes
-// (hertz/kalker_asymptotics.hpp). At the joints they differ from the table by (asymptote/table - 1):
+// (kalker/kalker_asymptotics.hpp). At the joints they differ from the table by (asymptote/table - 1):
 //   a/b = 0.1:  nu = 0:    C11 -1.70 %, C22 -1.70 %, C23 -0.85 %
 //               nu = 0.25: C11 -0.61 %, C22 -2.09 %, C23 -4.90 %
 //               nu = 0.5:  C11 +1.75 %, C22 -2.47 %, C23 -5.99 %
@@ -44,7 +44,7 @@
 #include <span>
 
 #include "kalker/kalker_asymptotics.hpp"
-#include "kalker/monotone_cubic.hpp"
+#include "kalker/pchip_interpolation.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 
@@ -114,9 +114,7 @@ KalkerCoefficients table_coefficients(double a_over_b, double nu) {
       const double value = w[0] * table.value[c][0][i] + w[1] * table.value[c][1][i] + w[2] * table.value[c][2][i];
       log_value[i] = std::log(value);
     }
-    std::array<double, kRowsPerNu> slopes{};
-    detail::pchip_slopes(table.log_a_over_b, log_value, slopes);
-    result[c] = std::exp(detail::hermite_interpolate(table.log_a_over_b, log_value, slopes, std::log(a_over_b)));
+    result[c] = std::exp(detail::pchip_interpolate(table.log_a_over_b, log_value, std::log(a_over_b)));
   }
   return {result[0], result[1], result[2]};
 }

@@ -32,7 +32,7 @@ ContactPatch::ContactPatch(const Mesh& input_mesh, const std::vector<double>& pr
       }
     }
   }
-  require(force > 0.0, "contact patch: no element carries pressure (no contact)");
+  if (!(force > 0.0)) throw Error(ErrorKind::no_contact, "contact patch: no element carries pressure (no contact)");
   Mesh mesh = input_mesh;
   x1_shift_m_ = -moment1 / force;
   x2_shift_m_ = -moment2 / force;

@@ -103,7 +103,8 @@ NormalSolution NormalContactSolver::solve(const std::vector<double>& h, double n
       if (on_border(mesh, k)) solution.touches_border = true;
     }
   }
-  require(solution.elements_in_contact > 0, "normal contact: no contact formed (no element carries pressure)");
+  if (solution.elements_in_contact == 0)
+    throw Error(ErrorKind::no_contact, "normal contact: no contact formed (no element carries pressure)");
   solution.normal_force_N = S * sum;
   solution.approach_m = report.approach_m + h_min;
   solution.iterations = report.iterations;

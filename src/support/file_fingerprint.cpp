@@ -38,9 +38,9 @@ std::uint64_t parse_fnv1a64_hex(std::string_view hex) {
 
 std::uint64_t file_fnv1a64(const std::filesystem::path& path) {
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw Error(fmt::format("cannot read {} to fingerprint it", path.string()));
+  if (!file) throw Error(ErrorKind::io, fmt::format("cannot read {} to fingerprint it", path.string()));
   const std::string bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (file.bad()) throw Error(fmt::format("cannot read {} to fingerprint it", path.string()));
+  if (file.bad()) throw Error(ErrorKind::io, fmt::format("cannot read {} to fingerprint it", path.string()));
   return fnv1a64(bytes);
 }
 

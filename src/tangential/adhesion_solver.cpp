@@ -90,7 +90,7 @@ void solve_columns(const ContactElements& elements, const Material& material, do
     solution.relative_residual = std::max(solution.relative_residual, report.relative_residual);
     if (!report.converged) {
       static const char* const names[] = {"xi", "eta", "phi"};
-      throw Error(fmt::format(
+      throw Error(ErrorKind::not_converged, fmt::format(
           "adhesion solver: GMRES did not converge for unit {} in {} iterations (relative residual {:.2e} > {:.1e})",
           names[j], report.iterations, report.relative_residual, options.tolerance));
     }
@@ -136,7 +136,7 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
     solution.iterations += report.iterations;
     solution.relative_residual = std::max(solution.relative_residual, report.relative_residual);
     if (!report.converged)
-      throw Error(fmt::format("adhesion solver: GMRES did not converge for the adjoint of F{} in {} iterations "
+      throw Error(ErrorKind::not_converged, fmt::format("adhesion solver: GMRES did not converge for the adjoint of F{} in {} iterations "
                               "(relative residual {:.2e} > {:.1e})",
                               i + 1, report.iterations, report.relative_residual, options.tolerance));
     solution.creepage_matrix.row(i) = y.transpose() * W;

@@ -90,10 +90,11 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
   evaluate(system, w, bound, c, max_bound, st);
   ExactState trial = st;
   while (st.residual > options.tolerance) {
-    require(solution.newton_iterations < options.max_newton_iterations, [&] {
-      return fmt::format("exact rolling solver: Newton did not converge in {} iterations (residual {:.2e})",
-                         options.max_newton_iterations, st.residual);
-    });
+    if (solution.newton_iterations >= options.max_newton_iterations)
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("exact rolling solver: Newton did not converge in {} iterations (residual {:.2e} > "
+                              "tolerance {:.1e})",
+                              options.max_newton_iterations, st.residual, options.tolerance));
     ++solution.newton_iterations;
     // Generalised Jacobian of Phi, row blocks A_e (R dp)_e + B_e dp_e = rhs_e.
     for (std::size_t e = 0; e < n; ++e) {
@@ -127,7 +128,6 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
     std::swap(st, trial);
   }
   solution.residual = st.residual;
-  solution.converged = true;
   fill_rolling_solution(system, st.p, st.s, st.slip, solution);
   return solution;
 }

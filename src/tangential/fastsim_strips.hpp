@@ -26,7 +26,7 @@ inline double spin_step_m2(double step_m, double x1_m) { return step_m * (x1_m -
 // step_e (m) per contact element, in the order of patch.elements().indices().
 std::vector<double> march_steps_m(const ContactPatch& patch);
 
-// Traction bound p3e (Pa) per contact element (TractionBound in fastsim.hpp): for each run
+// Traction bound p3e (Pa) per contact element (TractionBound in tangential.hpp): for each run
 //   p3e = h t (1 - t) (1 + skew t),   t = (x_l - x1) / (x_l - x_t)
 // at the element centres, with the run's own leading and trailing edges x_l, x_t and h such that
 // sum(p3e) = sum(p3) over the run's elements (same discrete strip force). skew = 0 is the

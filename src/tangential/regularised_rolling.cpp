@@ -70,7 +70,6 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
   RegularisedState st{std::vector<double>(2 * n, 0.0), std::vector<double>(2 * n), std::vector<double>(2 * n), 0.0};
   if (w_max == 0.0) {  // no creepage: no traction
     fill_rolling_solution(system, st.p, st.s, std::vector<std::uint8_t>(n, 0), solution);
-    solution.converged = true;
     return solution;
   }
   const double slip_scale = w_max;
@@ -87,12 +86,11 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
     const double target = last ? options.tolerance : 1e-3;
     evaluate(system, w, bound, eps, slip_scale, st);
     while (st.residual > target) {
-      require(solution.newton_iterations < options.max_newton_iterations, [&] {
-        return fmt::format(
-            "regularised rolling solver: Newton did not converge in {} iterations (epsilon {:.1e}, "
-            "residual {:.2e})",
-            options.max_newton_iterations, eps, st.residual);
-      });
+      if (solution.newton_iterations >= options.max_newton_iterations)
+        throw Error(ErrorKind::not_converged,
+                    fmt::format("regularised rolling solver: Newton did not converge in {} iterations (epsilon "
+                                "{:.1e}, residual {:.2e} > {:.1e})",
+                                options.max_newton_iterations, eps, st.residual, target));
       ++solution.newton_iterations;
       for (std::size_t e = 0; e < n; ++e) {
         double p1, p2;
@@ -129,7 +127,6 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
   std::vector<std::uint8_t> slip(n, 0);
   for (std::size_t e = 0; e < n; ++e) slip[e] = std::hypot(st.s[e], st.s[n + e]) > 100.0 * options.regularisation;
   solution.residual = st.residual;
-  solution.converged = true;
   fill_rolling_solution(system, st.p, st.s, slip, solution);
   return solution;
 }

@@ -76,7 +76,7 @@ Extents extents(const Mesh& mesh, const ContactRegion& region) {
   return {(box.hi1 - box.lo1 + 1) * mesh.dx1_m, (box.hi2 - box.lo2 + 1) * mesh.dx2_m};
 }
 
-// The patch on the mesh cropped to its bounding box (as the elliptical patches of ellipse.hpp):
+// The patch on the mesh cropped to its bounding box (as the elliptical patches of contact_patch.hpp):
 // the tangential solvers' FFTs then cover the patch only, not the potential area.
 ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa, const ContactRegion& region,
                            const Material& material) {
@@ -158,16 +158,16 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     try {
       s.area = potential_contact_area(pair, r.contact, approach_m, area_options);
     } catch (const Error& e) {
-      throw Error(fmt::format("wheel-rail patch at {}: {} (is the load Fz = {:g} N too large for these profiles?)",
-                              where, e.what(), options.vertical_load_N));
+      throw Error(e.kind(), fmt::format("wheel-rail patch at {}: {} (is the load Fz = {:g} N too large for these profiles?)",
+                                        where, e.what(), options.vertical_load_N));
     }
     s.normal = solve_normal_contact(s.area.mesh, s.area.h_m, F3, options.material, options.normal);
     ++r.mesh_passes;
-    require(s.normal.converged, [&] {
-      return fmt::format(
-          "wheel-rail patch at {}: the normal solver did not converge in {} iterations (residual {:.2g})", where,
-          s.normal.iterations, s.normal.residual);
-    });
+    if (!s.normal.converged)
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations "
+                              "(residual {:.2g})",
+                              where, s.normal.iterations, s.normal.residual));
     if (s.normal.touches_border) {
       // The undeformed interpenetration h < δ holds every patch: cover it with a wider margin.
       require(enlargements < options.max_enlargements, [&] {
@@ -211,7 +211,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     return g.load_fraction > options.significant_load_fraction;
   }));
   if (r.patches > 1 && !options.allow_several_patches) {
-    throw Error(fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope "
+    throw Error(ErrorKind::several_patches, fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope "
                             "for now",
                             where, r.patches, load_shares(s.regions, r.patches)));
   }
