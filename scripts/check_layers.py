@@ -44,6 +44,7 @@ PUBLIC_LAYERS = {
     "normal.hpp": 6,
     "tangential.hpp": 7,
     "wheel_rail.hpp": 8,
+    "wheelset.hpp": 8,
     "flexibility_table.hpp": 9,
     UMBRELLA: UMBRELLA_LAYER,
 }

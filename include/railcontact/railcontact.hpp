@@ -9,6 +9,7 @@
 //   normal.hpp            the non-Hertzian normal problem (docs/METHOD.md §5)
 //   tangential.hpp        K2 (Eq 10-18), FastSim (Eq 1-9), NhFastSim (Eq 19-21), exact rolling (Eq A1)
 //   wheel_rail.hpp        the wheel–rail stage: profiles in, contact patch with angle, spin, F3 out
+//   wheelset.hpp          the wheelset's motion and the kinematic creepages of a contact
 //   flexibility_table.hpp precomputed nH-FastSim flexibilities over y and load
 // Units are SI throughout (m, N, Pa, rad; spin in 1/m); names carry the unit where it matters.
 #include "railcontact/contact_patch.hpp"
@@ -20,3 +21,4 @@
 #include "railcontact/normal.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheel_rail.hpp"
+#include "railcontact/wheelset.hpp"

@@ -1,0 +1,109 @@
+// Kinematic creepages of a contact from the wheelset's motion (railcontact/wheelset.hpp,
+// docs/WHEEL_RAIL.md §12): v_P = v_C + ω × p, then ξ = v_P·X1 / V, η = v_P·X2 / V, φ = ω·X3 / V.
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset.hpp"
+
+namespace railcontact {
+namespace {
+
+double dot(const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+Vector3 cross(const Vector3& a, const Vector3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+bool finite(const Vector3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+void require_finite(double value, const char* name) {
+  require(std::isfinite(value), [&] { return fmt::format("wheelset motion: {} = {} must be finite", name, value); });
+}
+
+void validate(const WheelsetMotion& m) {
+  require_finite(m.forward_speed_m_per_s, "the forward speed (m/s)");
+  require(m.forward_speed_m_per_s > 0.0, [&] {
+    return fmt::format(
+        "wheelset motion: the forward speed V = {} m/s must be positive (creepages are velocities over the "
+        "rolling speed; steady rolling at V = 0 has none)",
+        m.forward_speed_m_per_s);
+  });
+  require_finite(m.lateral_velocity_m_per_s, "the lateral velocity (m/s)");
+  require_finite(m.vertical_velocity_m_per_s, "the vertical velocity (m/s)");
+  require_finite(m.roll_rad, "the roll angle (rad)");
+  require_finite(m.yaw_rad, "the yaw angle (rad)");
+  require_finite(m.roll_rate_rad_per_s, "the roll rate (rad/s)");
+  require_finite(m.yaw_rate_rad_per_s, "the yaw rate (rad/s)");
+  require_finite(m.wheel_angular_velocity_rad_per_s, "the wheel angular velocity (rad/s)");
+}
+
+void validate(const ContactFrame& c) {
+  require(finite(c.point_from_wheelset_centre_m) && finite(c.x1) && finite(c.x2) && finite(c.x3),
+          "contact frame: the contact point and the axes must be finite");
+  constexpr double kTolerance = 1e-9;
+  const bool orthonormal = std::abs(dot(c.x1, c.x1) - 1.0) < kTolerance && std::abs(dot(c.x2, c.x2) - 1.0) < kTolerance &&
+                           std::abs(dot(c.x3, c.x3) - 1.0) < kTolerance && std::abs(dot(c.x1, c.x2)) < kTolerance &&
+                           std::abs(dot(c.x1, c.x3)) < kTolerance && std::abs(dot(c.x2, c.x3)) < kTolerance;
+  require(orthonormal, "contact frame: the axes X1, X2, X3 must be unit vectors, orthogonal to each other (to 1e-9)");
+}
+
+}  // namespace
+
+double wheel_angular_velocity_for_rolling(double forward_speed_m_per_s, double nominal_rolling_radius_m,
+                                          double extra_longitudinal_creepage) {
+  require(std::isfinite(forward_speed_m_per_s) && forward_speed_m_per_s > 0.0, [&] {
+    return fmt::format("rolling: the forward speed V = {} m/s must be positive and finite", forward_speed_m_per_s);
+  });
+  require(std::isfinite(nominal_rolling_radius_m) && nominal_rolling_radius_m > 0.0, [&] {
+    return fmt::format("rolling: the nominal rolling radius r0 = {} m must be positive and finite", nominal_rolling_radius_m);
+  });
+  require(std::isfinite(extra_longitudinal_creepage) && std::abs(extra_longitudinal_creepage) < 1.0, [&] {
+    return fmt::format("rolling: the extra longitudinal creepage {} must lie in (-1, 1)", extra_longitudinal_creepage);
+  });
+  // At the nominal radius below the axle, v_P·x = V − Ω r0 = ξ0 V.
+  return forward_speed_m_per_s * (1.0 - extra_longitudinal_creepage) / nominal_rolling_radius_m;
+}
+
+Vector3 axle_direction(double roll_rad, double yaw_rad) {
+  // Rx(roll) (0, 1, 0) = (0, cos φ, sin φ), then Rz(yaw).
+  const double cr = std::cos(roll_rad), sr = std::sin(roll_rad), cy = std::cos(yaw_rad), sy = std::sin(yaw_rad);
+  return {-sy * cr, cy * cr, sr};
+}
+
+Vector3 wheelset_angular_velocity(const WheelsetMotion& m) {
+  const Vector3 axle = axle_direction(m.roll_rad, m.yaw_rad);
+  const double cy = std::cos(m.yaw_rad), sy = std::sin(m.yaw_rad);  // the yawed x axis (cos ψ, sin ψ, 0)
+  const double W = m.wheel_angular_velocity_rad_per_s;
+  return {m.roll_rate_rad_per_s * cy + W * axle[0], m.roll_rate_rad_per_s * sy + W * axle[1],
+          m.yaw_rate_rad_per_s + W * axle[2]};
+}
+
+ContactFrame contact_frame(const Vector3& point_from_wheelset_centre_m, double contact_angle_rad, WheelSide side) {
+  require(std::isfinite(contact_angle_rad) && std::abs(contact_angle_rad) < 0.5 * M_PI, [&] {
+    return fmt::format("contact frame: the contact angle {} rad must be finite and below pi/2 in magnitude",
+                       contact_angle_rad);
+  });
+  const double s = std::sin(contact_angle_rad), c = std::cos(contact_angle_rad);
+  ContactFrame frame;
+  frame.point_from_wheelset_centre_m = point_from_wheelset_centre_m;
+  frame.x1 = {1.0, 0.0, 0.0};
+  frame.x3 = side == WheelSide::right ? Vector3{0.0, s, c} : Vector3{0.0, -s, c};
+  frame.x2 = cross(frame.x3, frame.x1);
+  return frame;
+}
+
+Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& contact) {
+  validate(motion);
+  validate(contact);
+  const Vector3 omega = wheelset_angular_velocity(motion);
+  const Vector3 centre_velocity{motion.forward_speed_m_per_s, motion.lateral_velocity_m_per_s,
+                                motion.vertical_velocity_m_per_s};
+  const Vector3 spin_part = cross(omega, contact.point_from_wheelset_centre_m);
+  const Vector3 v{centre_velocity[0] + spin_part[0], centre_velocity[1] + spin_part[1], centre_velocity[2] + spin_part[2]};
+  const double V = motion.forward_speed_m_per_s;
+  return {dot(v, contact.x1) / V, dot(v, contact.x2) / V, dot(omega, contact.x3) / V};
+}
+
+}  // namespace railcontact
