@@ -45,6 +45,7 @@ PUBLIC_LAYERS = {
     "tangential.hpp": 7,
     "wheel_rail.hpp": 8,
     "wheelset.hpp": 8,
+    "text_file.hpp": 0,
     "flexibility_table.hpp": 9,
     UMBRELLA: UMBRELLA_LAYER,
 }

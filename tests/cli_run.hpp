@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <system_error>
 
 namespace railcontact::test {
 
@@ -39,7 +40,8 @@ inline CommandResult run_cli(const std::string& arguments) {
   return result;
 }
 
-// A fresh directory per test process and name (ctest runs the tests in parallel).
+// A fresh directory per test process and name (ctest runs the tests in parallel):
+// <TempDir>/railcontact_<name>_<pid>. Prefer ScratchDirectory, which also removes it.
 inline std::filesystem::path scratch_directory(const std::string& name) {
   const std::filesystem::path dir =
       std::filesystem::path(::testing::TempDir()) / ("railcontact_" + name + "_" + std::to_string(getpid()));
@@ -47,6 +49,32 @@ inline std::filesystem::path scratch_directory(const std::string& name) {
   std::filesystem::create_directories(dir);
   return dir;
 }
+
+// A scratch directory (scratch_directory(name)) that is removed with everything in it when the
+// object goes out of scope, whether the test passes, fails an ASSERT or throws: tests leave nothing
+// in /tmp. Neither copied nor moved (one owner); use it as a path:
+//   const ScratchDirectory dir("flextable_build");
+//   write(dir / "case.toml", ...);  run_cli("... --out " + dir.string());
+class ScratchDirectory {
+ public:
+  explicit ScratchDirectory(const std::string& name) : path_(scratch_directory(name)) {}
+  ~ScratchDirectory() {
+    std::error_code ignored;  // never throw from a destructor; a vanished directory is fine
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  ScratchDirectory(ScratchDirectory&&) = delete;
+  ScratchDirectory& operator=(ScratchDirectory&&) = delete;
+
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  operator const std::filesystem::path&() const { return path_; }  // NOLINT: used as a path
+  [[nodiscard]] std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  [[nodiscard]] std::string string() const { return path_.string(); }
+
+ private:
+  std::filesystem::path path_;
+};
 
 inline int count_lines(const std::string& text) {
   int lines = 0;

@@ -51,7 +51,7 @@ TEST_P(CliBadInput, OneClearErrorLineAndNonZeroExit) {
 
 INSTANTIATE_TEST_SUITE_P(
     Coefficients, CliBadInput,
-    ::testing::Values(std::pair{"coefficients --a-over-b 1 --nu 0.5", "--nu"},
+    ::testing::Values(std::pair{"coefficients --a-over-b 1 --nu 0.51", "--nu"},
                       std::pair{"coefficients --a-over-b 1 --nu -0.1", "--nu"},
                       std::pair{"coefficients --a-over-b 0 --nu 0.3", "--a-over-b"},
                       std::pair{"coefficients --a-over-b 1000 --nu 0.3", "--a-over-b"},

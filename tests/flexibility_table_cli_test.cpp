@@ -20,7 +20,7 @@ using railcontact::test::CommandResult;
 using railcontact::test::count_lines;
 using railcontact::test::run_cli;
 
-std::filesystem::path scratch(const std::string& name) { return railcontact::test::scratch_directory("flextable_" + name); }
+using railcontact::test::ScratchDirectory;  // removed with its files at the end of each test
 
 void write(const std::filesystem::path& path, const std::string& text) {
   std::ofstream file(path);
@@ -52,7 +52,7 @@ std::filesystem::path small_table(const std::filesystem::path& dir) {
 using railcontact::test::expect_one_error_line;
 
 TEST(FlextableCli, BuildWritesATableThatRunUses) {
-  const std::filesystem::path dir = scratch("build");
+  const ScratchDirectory dir("flextable_build");
   const std::string table = (dir / "t.json").string();
   const CommandResult b =
       run_cli("flextable build --out " + table + " --y-from 0 --y-to 0.5e-3 --y-step 0.25e-3 --elements 800");
@@ -83,7 +83,7 @@ TEST(FlextableCli, BuildWritesATableThatRunUses) {
 }
 
 TEST(FlextableCli, CheckPrintsTheForceDifferencesAndTheirMaximum) {
-  const std::filesystem::path dir = scratch("check");
+  const ScratchDirectory dir("flextable_check");
   const std::string table = small_table(dir).string();
   const CommandResult r = run_cli("flextable check --table " + table);
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -98,7 +98,7 @@ TEST(FlextableCli, CheckPrintsTheForceDifferencesAndTheirMaximum) {
 }
 
 TEST(FlextableCli, BadInputGivesOneClearErrorLine) {
-  const std::filesystem::path dir = scratch("bad");
+  const ScratchDirectory dir("flextable_bad");
   const std::string table = small_table(dir).string();
   const std::string rail = (dir / "rail.txt").string();
   railcontact::write_text_profile(rail, railcontact::read_profile(railcontact::default_rail_profile_path()));

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "case/case_run.hpp"
+#include "cli_run.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/flexibility_table.hpp"
@@ -59,9 +60,6 @@ const FlexibilityTable& gap_table() {
   return t;
 }
 
-std::string temp_path(const std::string& name) {
-  return ::testing::TempDir() + "flextable_" + std::to_string(getpid()) + "_" + name;
-}
 
 std::string error_of(const std::function<void()>& f) {
   try {
@@ -165,8 +163,9 @@ TEST(FlexibilityTable, ContactJumpIsBracketedNotInterpolated) {
 }
 
 TEST(FlexibilityTable, SaveLoadRoundTripIsExact) {
+  const test::ScratchDirectory dir("flextable_roundtrip");  // removed with its files at the end
   for (const FlexibilityTable* t : {&jump_table(), &load_table(), &gap_table()}) {
-    const std::string path = temp_path("roundtrip.json");
+    const std::string path = (dir / "roundtrip.json").string();
     save_flexibility_table(*t, path);
     const FlexibilityTable back = load_flexibility_table(path);
     std::filesystem::remove(path);
@@ -228,7 +227,8 @@ TEST(FlexibilityTable, MetadataNamesProfilesMaterialAndVersion) {
 
 TEST(FlexibilityTable, OtherProfilesAreRejected) {
   // The same rail, rewritten as a text profile: the geometry is the same, the file is not.
-  const std::string rail = temp_path("rail.txt");
+  const test::ScratchDirectory dir("flextable_other_rail");  // removed with its files at the end
+  const std::string rail = (dir / "rail.txt").string();
   write_text_profile(rail, read_profile(default_rail_profile_path()));
   const WheelRailPair other = load_wheel_rail_pair(default_wheel_profile_path(), rail);
   const std::string e = error_of([&] { jump_table().check_profiles(other); });
@@ -239,7 +239,6 @@ TEST(FlexibilityTable, OtherProfilesAreRejected) {
               (void)nh;
             }).find("other profiles"),
             std::string::npos);
-  std::filesystem::remove(rail);
   EXPECT_NO_THROW(jump_table().check_profiles(pair()));
   // Another material or collocation offset.
   EXPECT_NE(error_of([&] { jump_table().check_material(Material{2.0e11, 0.3}); }).find("another material"), std::string::npos);

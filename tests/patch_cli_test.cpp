@@ -19,7 +19,7 @@ using railcontact::test::CommandResult;
 using railcontact::test::count_lines;
 using railcontact::test::run_cli;
 
-std::filesystem::path scratch(const std::string& name) { return railcontact::test::scratch_directory("" + name); }
+using railcontact::test::ScratchDirectory;  // removed with its files at the end of each test
 
 std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
   std::ifstream file(path);
@@ -56,7 +56,7 @@ TEST(PatchCli, JsonIsOneObjectWithTheDocumentedKeys) {
 }
 
 TEST(PatchCli, TextTableAndOutputFiles) {
-  const std::filesystem::path dir = scratch("patch_out");
+  const ScratchDirectory dir("patch_out");
   const CommandResult r = run_cli("patch --y -0.003 --load 80000 --elements 1500 --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("contact angle"), std::string::npos) << r.out;
@@ -83,11 +83,10 @@ TEST(PatchCli, TextTableAndOutputFiles) {
   EXPECT_NEAR(moment1 / force, 0.0, 1e-9);
   EXPECT_NEAR(moment2 / force, 0.0, 1e-9);
   EXPECT_TRUE(std::filesystem::exists(dir / "pressure.png"));
-  std::filesystem::remove_all(dir);
 }
 
 TEST(PatchCli, StudyWritesOneSinglePatchRowPerDisplacement) {
-  const std::filesystem::path dir = scratch("patch_study");
+  const ScratchDirectory dir("patch_study");
   const CommandResult r = run_cli("study patches --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(r.out.empty());  // progress on stderr
@@ -110,17 +109,15 @@ TEST(PatchCli, StudyWritesOneSinglePatchRowPerDisplacement) {
   }
   for (const char* file : {"summary.md", "contact_position.png", "patch_shapes.png", "patch_size.png"})
     EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
-  std::filesystem::remove_all(dir);
 }
 
 TEST(PatchCli, MalformedProfileNamesFileAndLine) {
-  const std::filesystem::path dir = scratch("bad_profiles");
+  const ScratchDirectory dir("bad_profiles");
   std::ofstream(dir / "wheel.txt") << "0 0\n1 0.1\nfoo bar\n2 0.3\n3 0.5\n";
   expect_one_error_line(run_cli("patch --wheel " + (dir / "wheel.txt").string()), "wheel.txt:3:");
   std::ofstream(dir / "rail.prr") << "header.begin\n type = 0\nheader.end\nspline.begin\n point.begin\n"
                                      "  1.0 2.0\n  1.5 x\n point.end\nspline.end\n";
   expect_one_error_line(run_cli("patch --rail " + (dir / "rail.prr").string()), "rail.prr:7:");
-  std::filesystem::remove_all(dir);
 }
 
 class PatchCliBadInput : public ::testing::TestWithParam<std::pair<const char*, const char*>> {};

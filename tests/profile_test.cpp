@@ -96,14 +96,15 @@ TEST(SimpackReader, HonoursShiftMirrorZAndUnitFactor) {
                              "header.begin\n type = 0\nheader.end\n"
                              "spline.begin\n"
                              "  shift.y = 1.0 ! cm\n  shift.z = -2.0\n  mirror.z = 1\n  units.len.f = 100\n"
-                             "  point.begin\n   0 0\n 1 1 1.0\n 2 4\n 3 9\n  point.end\nspline.end\n");
+                             "  point.begin\n   0 0\n 0.4 0.1 1.0\n 0.8 0.4\n 1.2 0.9\n  point.end\nspline.end\n");
   const Profile p = read_simpack_profile(path);
   ASSERT_EQ(p.size(), 4u);
-  // y = (y_raw + 1) / 100, z = -(z_raw - 2) / 100.
+  // y = (y_raw + 1) / 100, z = -(z_raw - 2) / 100 (a 12 mm wide profile, points 4 to 7 mm apart:
+  // a plausible one, docs/GEOMETRY.md §8).
   EXPECT_DOUBLE_EQ(p.y_m[0], 0.01);
   EXPECT_DOUBLE_EQ(p.z_m[0], 0.02);
-  EXPECT_DOUBLE_EQ(p.y_m[3], 0.04);
-  EXPECT_DOUBLE_EQ(p.z_m[3], -0.07);
+  EXPECT_DOUBLE_EQ(p.y_m[3], 0.022);
+  EXPECT_DOUBLE_EQ(p.z_m[3], 0.011);
 }
 
 TEST(SimpackReader, MalformedFilesNameFileAndLine) {
@@ -136,13 +137,13 @@ TEST(TextReader, RoundTripThroughTempFile) {
     EXPECT_DOUBLE_EQ(back.y_m[i], original.y_m[i]);
     EXPECT_DOUBLE_EQ(back.z_m[i], original.z_m[i]);
   }
-  // Metres as the unit, commas, comments and extra columns.
-  const auto metres = dir.file("metres.dat", "# y z\n0.001, 0.002, 7\n\n0.002 0.003\n! c\n0.003\t0.004\n0.004 0.005 % x\n");
+  // Metres as the unit, commas, comments and extra columns (15 mm wide: a plausible extent).
+  const auto metres = dir.file("metres.dat", "# y z\n0.010, 0.002, 7\n\n0.015 0.003\n! c\n0.020\t0.004\n0.025 0.005 % x\n");
   ProfileReadOptions options;
   options.text_length_unit_m = 1.0;
   const Profile m = read_profile(metres, options);
   ASSERT_EQ(m.size(), 4u);
-  EXPECT_DOUBLE_EQ(m.y_m[0], 0.001);
+  EXPECT_DOUBLE_EQ(m.y_m[0], 0.010);
   EXPECT_DOUBLE_EQ(m.z_m[3], 0.005);
 }
 

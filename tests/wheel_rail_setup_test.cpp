@@ -39,7 +39,7 @@ TEST(WheelRailSetup, TheDefaultPairIsTheShippedSetUpFile) {
 }
 
 TEST(WheelRailSetup, ProfilePathsResolveAgainstTheSetUpFileAndBadFilesAreNamed) {
-  const std::filesystem::path dir = test::scratch_directory("setup");
+  const test::ScratchDirectory dir("setup");  // removed with its files at the end
   std::filesystem::copy_file(default_wheel_profile_path(), dir / "wheel.prw");
   std::filesystem::copy_file(default_rail_profile_path(), dir / "rail.prr");
   const auto write = [&](const std::string& name, const std::string& track_extra) {
@@ -65,7 +65,6 @@ TEST(WheelRailSetup, ProfilePathsResolveAgainstTheSetUpFileAndBadFilesAreNamed) 
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::io);
   }
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

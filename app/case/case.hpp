@@ -61,8 +61,15 @@ struct Case {
 
 // Reads and validates a case file. Throws railcontact::Error naming the file, the line and the
 // key for malformed TOML, unknown keys, missing sections, wrong types, non-finite or
-// non-physical values and unknown solver names.
+// non-physical values and unknown solver names; Error(io) for a missing file, a directory or a
+// device, Error(invalid_input) for a file over 1 MiB or one that is not UTF-8 (line and column
+// of the first bad byte). Relative profile paths ([geometry] wheel, rail) are resolved against
+// the case file's directory.
 Case read_case_file(const std::filesystem::path& path);
-Case parse_case(std::string_view toml_text, const std::string& source_name);
+// The same from the text of a case file; source_name names it in messages. Relative profile
+// paths are resolved against base_directory, or left as they are (relative to the current
+// directory) when it is empty.
+Case parse_case(std::string_view toml_text, const std::string& source_name,
+                const std::filesystem::path& base_directory = {});
 
 }  // namespace railcontact

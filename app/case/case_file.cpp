@@ -1,14 +1,14 @@
 // TOML case files: every key is checked, every error names the file, the line and the key.
+#include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "case/case.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
 
 namespace railcontact {
 
@@ -23,6 +23,9 @@ std::string_view solver_name(SolverKind kind) {
 }
 
 namespace {
+
+// Case files are small; anything larger is not one (docs/CASE_FILES.md).
+constexpr std::uintmax_t kMaxCaseFileBytes = 1u << 20;  // 1 MiB
 
 std::string where(const std::string& source, const toml::source_region& region) {
   return fmt::format("{}:{}", source, region.begin.line);
@@ -95,7 +98,7 @@ class Section {
   void finish() const {
     for (const auto& [key, node] : table_) {
       if (!used_.contains(std::string(key.str())))
-        throw Error(fmt::format("{}: unknown key '{}' in [{}]", where(source_, node.source()), key.str(), name_));
+        throw Error(fmt::format("{}: unknown key '{}' in [{}]", where(source_, node.source()), printable_excerpt(key.str()), name_));
     }
   }
 
@@ -122,18 +125,38 @@ const toml::table& section_table(const toml::table& root, const std::string& nam
   return *table;
 }
 
+// The text must be UTF-8 (TOML requires it): toml++ 3.3.0, Debian 12's, has undefined behaviour
+// on some invalid UTF-8 (e.g. "x=1\xA7", a Latin-1 section sign), fixed upstream after 3.3.0; the
+// bytes are therefore checked before toml++ sees them. The error names the line and column
+// (characters, 1-based) of the first bad byte.
+void check_utf8(std::string_view text, const std::string& source) {
+  const std::size_t bad = valid_utf8_prefix(text);
+  if (bad == text.size()) return;
+  const std::string_view before = text.substr(0, bad);
+  const std::size_t line_start = before.rfind('\n') == std::string_view::npos ? 0 : before.rfind('\n') + 1;
+  const auto line = 1 + std::count(before.begin(), before.end(), '\n');
+  // Characters (not continuation bytes) before the bad byte on its line: the prefix is valid UTF-8.
+  const auto column = 1 + std::count_if(before.begin() + static_cast<std::ptrdiff_t>(line_start), before.end(),
+                                         [](char c) { return (static_cast<unsigned char>(c) & 0xC0u) != 0x80u; });
+  throw Error(fmt::format("{}:{}: the byte 0x{:02X} at column {} is not UTF-8; a case file must be UTF-8 text (save "
+                          "it as UTF-8, not Latin-1 or another legacy encoding)",
+                          source, line, static_cast<unsigned char>(text[bad]), column));
+}
+
 // The whole file as TOML; only the known sections at the top level.
 toml::table parse_toml(std::string_view text, const std::string& source) {
+  check_utf8(text, source);
   toml::table root;
   try {
     root = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    throw Error(fmt::format("{}:{}: malformed TOML: {}", source, e.source().begin.line, e.description()));
+    throw Error(fmt::format("{}:{}: malformed TOML: {}", source, e.source().begin.line,
+                            printable_excerpt(e.description(), 200)));
   }
   static const std::set<std::string> kSections{"geometry", "material", "load", "friction", "creepage", "mesh", "solvers"};
   for (const auto& [key, node] : root)
     if (!kSections.contains(std::string(key.str())))
-      throw Error(fmt::format("{}: unknown section or key '{}'", where(source, node.source()), key.str()));
+      throw Error(fmt::format("{}: unknown section or key '{}'", where(source, node.source()), printable_excerpt(key.str())));
   return root;
 }
 
@@ -169,7 +192,7 @@ void read_geometry(Section geometry, Case& c) {
     read_wheel_rail(geometry, c);
   } else {
     throw Error(fmt::format("{}: [geometry] type must be \"ellipse\" or \"wheel-rail\" (got \"{}\")",
-                            geometry.location("type"), type));
+                            geometry.location("type"), printable_excerpt(type)));
   }
   geometry.finish();
 }
@@ -278,7 +301,7 @@ void read_solver_list(Section& solvers, Case& c) {
     else if (solver == "exact-regularised") kind = SolverKind::exact_regularised;
     else
       throw Error(fmt::format("{}: [solvers] unknown solver '{}' (nh-fastsim, fastsim, exact, exact-regularised)",
-                              solvers.location_of(item), solver));
+                              solvers.location_of(item), printable_excerpt(solver)));
     c.solvers.push_back(kind);
   }
 }
@@ -312,7 +335,7 @@ void read_solvers(Section solvers, Case& c) {
 
 }  // namespace
 
-Case parse_case(std::string_view text, const std::string& source) {
+Case parse_case(std::string_view text, const std::string& source, const std::filesystem::path& base_directory) {
   const toml::table root = parse_toml(text, source);
   const toml::table empty;  // stands in for an absent optional section
   const auto section = [&](const std::string& name, bool required) {
@@ -327,15 +350,16 @@ Case parse_case(std::string_view text, const std::string& source) {
   read_creepage(section("creepage", true), c);  // after [geometry]
   read_mesh(section("mesh", false), c);
   read_solvers(section("solvers", false), c);
+  // Relative profile paths are relative to the case file's directory (base_directory).
+  for (std::string* file : {&c.wheel_rail.wheel_file, &c.wheel_rail.rail_file})
+    if (!file->empty() && std::filesystem::path(*file).is_relative() && !base_directory.empty())
+      *file = (base_directory / *file).lexically_normal().string();
   return c;
 }
 
 Case read_case_file(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) throw Error(ErrorKind::io, fmt::format("cannot read the case file {}", path.string()));
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  return parse_case(buffer.str(), path.string());
+  const std::string text = read_text_file(path, "case file", kMaxCaseFileBytes);
+  return parse_case(text, path.string(), path.parent_path());
 }
 
 }  // namespace railcontact

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
@@ -108,10 +109,56 @@ void take_fastsim_result(const FastSimResult& r, SolverRun& run) {
   run.adhesion_fraction = r.adhesion_fraction;
 }
 
+// [a, b] contains x (false for NaN).
+bool within(double x, double a, double b) { return x >= a && x <= b; }
+
+// The case's values against the library's ranges, before any solve, each error naming the case
+// key (docs/CASE_FILES.md), its value and the allowed range. The library checks the same ranges
+// again (and names its own parameters) for callers of the API.
+void check_values(const Case& input) {
+  const std::string& file = input.source;
+  const Material& m = input.material;
+  require(within(m.youngs_modulus_Pa, kMinimumYoungsModulus_Pa, kMaximumYoungsModulus_Pa), [&] {
+    return fmt::format("{}: [material] Young's modulus E = {:g} Pa (E, or 2 G (1 + nu) from G) must lie in [{:g}, {:g}] Pa",
+                       file, m.youngs_modulus_Pa, kMinimumYoungsModulus_Pa, kMaximumYoungsModulus_Pa);
+  });
+  require(within(m.poisson_ratio, 0.0, 0.5), [&] {
+    return fmt::format("{}: [material] nu = {:g} must lie in [0, 0.5]", file, m.poisson_ratio);
+  });
+  validate_normal_force(input.normal_force_N,
+                        fmt::format("{}: [load] normal_force{}", file,
+                                    input.geometry == GeometryKind::wheel_rail ? " (the vertical wheel load Fz)" : ""));
+  require(input.mu > 0 && std::isfinite(input.mu),
+          [&] { return fmt::format("{}: [friction] mu = {:g} must be positive", file, input.mu); });
+  if (input.geometry == GeometryKind::wheel_rail)
+    require(input.target_elements >= kMinimumWheelRailElements && input.target_elements <= kMaximumWheelRailElements,
+            [&] {
+              return fmt::format("{}: [mesh] elements = {} must lie in [{}, {}] for a wheel-rail case (with fewer, the "
+                                 "elements are too large for the patch and the profiles: the potential contact area "
+                                 "reaches beyond the rail head, and the patch area is up to 15 % off)",
+                                 file, input.target_elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
+            });
+  const RollingOptions& r = input.rolling;
+  require(within(r.collocation_offset, kMinimumCollocationOffset, 1.0), [&] {
+    return fmt::format("{}: [solvers] alpha = {:g} must lie in [{:g}, 1] (closer to -1 the steady-rolling operator is "
+                       "too ill-conditioned for the Krylov solver)",
+                       file, r.collocation_offset, kMinimumCollocationOffset);
+  });
+  require(within(r.regularisation, kMinimumRegularisation, kMaximumRegularisation), [&] {
+    return fmt::format("{}: [solvers] regularisation = {:g} must lie in [{:g}, {:g}] (a slip per unit rolling speed; "
+                       "the paper uses 1e-08)",
+                       file, r.regularisation, kMinimumRegularisation, kMaximumRegularisation);
+  });
+  require(r.tolerance > 0.0 && r.tolerance <= kMaximumRollingTolerance, [&] {
+    return fmt::format("{}: [solvers] tolerance = {:g} must lie in (0, {:g}]", file, r.tolerance,
+                       kMaximumRollingTolerance);
+  });
+}
+
 void check_input(const Case& input, const FlexibilityTable* table) {
-  validate(input.material);
-  require(input.normal_force_N > 0 && std::isfinite(input.normal_force_N), "the normal force must be positive");
-  require(input.mu > 0 && std::isfinite(input.mu), "the friction coefficient must be positive");
+  check_values(input);
+  validate(input.material);  // the library's checks too (whatever a future key adds)
+  validate(input.rolling);
   if (table != nullptr && input.geometry != GeometryKind::wheel_rail)
     throw Error(fmt::format("the {} applies to wheel-rail cases only ({} is an ellipse case)", table->name(), input.source));
 }

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "cli/commands.hpp"
 #include "railcontact/tangential.hpp"
@@ -26,11 +27,23 @@ struct CoefficientsArguments {
 };
 
 int run_coefficients(const CoefficientsArguments& args) {
-  require(args.nu >= 0.0 && args.nu < 0.5, [&] { return fmt::format("--nu must lie in [0, 0.5) (got {})", args.nu); });
+  require(args.nu >= 0.0 && args.nu <= 0.5, [&] { return fmt::format("--nu {:g} must lie in [0, 0.5]", args.nu); });
   require(args.a_over_b >= 0.01 && args.a_over_b <= 100.0,
           [&] { return fmt::format("--a-over-b must lie in [0.01, 100] (got {})", args.a_over_b); });
   require(args.elements >= 4 && args.elements <= 1'000'000,
           [&] { return fmt::format("--elements must lie in [4, 1000000] (got {})", args.elements); });
+  for (const auto& [option, value] : {std::pair{"--alpha", args.alpha}, std::pair{"--alpha-spin", args.alpha_spin}})
+    require(!value || (*value >= kMinimumCollocationOffset && *value <= 1.0), [&] {
+      return fmt::format("{} {:g} must lie in [{:g}, 1] (closer to -1 the steady-rolling operator is too "
+                         "ill-conditioned for the Krylov solver)",
+                         option, *value, kMinimumCollocationOffset);
+    });
+  // The dense solver's matrix and LU take 2 (2N)^2 doubles: 9 GB at N = 12000 (as the library checks).
+  require(args.solver != "dense" || args.elements <= 12000, [&] {
+    return fmt::format("--elements {} is too many for --solver dense (at most 12000: its matrix would not fit in "
+                       "memory); use --solver krylov",
+                       args.elements);
+  });
   EllipseCoefficientOptions options;
   options.target_elements = args.elements;
   options.layout = args.mesh == "equal-counts" ? EllipseMeshLayout::equal_counts : EllipseMeshLayout::rolling_resolved;
@@ -93,10 +106,10 @@ void add_coefficients_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<CoefficientsArguments>();
   CLI::App* cmd = app.add_subcommand("coefficients", "Kalker's creepage coefficients of an ellipse from K2 (Eq 18)");
   cmd->add_option("--a-over-b", args->a_over_b, "semi-axis ratio a/b, a along the rolling direction")->required();
-  cmd->add_option("--nu", args->nu, "Poisson's ratio in [0, 0.5)")->required();
+  cmd->add_option("--nu", args->nu, "Poisson's ratio in [0, 0.5] (0.5: incompressible)")->required();
   cmd->add_option("--elements", args->elements, "about this many elements in contact")->capture_default_str();
-  cmd->add_option("--alpha", args->alpha, "collocation offset alpha (all columns; default 0, spin 0.5)");
-  cmd->add_option("--alpha-spin", args->alpha_spin, "collocation offset for the spin column");
+  cmd->add_option("--alpha", args->alpha, "collocation offset alpha in [-0.95, 1] (all columns; default 0, spin 0.5)");
+  cmd->add_option("--alpha-spin", args->alpha_spin, "collocation offset for the spin column, in [-0.95, 1]");
   cmd->add_option("--solver", args->solver, "linear solver")
       ->check(CLI::IsMember({"krylov", "dense"}))
       ->capture_default_str();

@@ -69,10 +69,15 @@ void print_nodes(const FlexibilityTable& table) {
 
 int run_build(const BuildArguments& args) {
   require(!args.out.empty(), "--out must name the table file to write");
-  require(args.elements >= 10 && args.elements <= 200000,
-          [&] { return fmt::format("--elements must lie in [10, 200000] (got {})", args.elements); });
-  for (double load : args.loads_N)
+  require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
+    return fmt::format("--elements {} must lie in [{}, {}] (with fewer, the elements are too large for the patch and "
+                       "the profiles)",
+                       args.elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
+  });
+  for (double load : args.loads_N) {
     require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load must be positive (got {} N)", load); });
+    validate_normal_force(load, "--load");
+  }
   std::vector<double> loads = args.loads_N;
   std::sort(loads.begin(), loads.end());
   require(std::adjacent_find(loads.begin(), loads.end()) == loads.end(), "--load values must differ");

@@ -62,8 +62,12 @@ int run_patch(const PatchArguments& args) {
   require(std::isfinite(args.y_m), "--y must be a finite number of metres");
   require(std::isfinite(args.load_N) && args.load_N > 0.0,
           [&] { return fmt::format("--load must be positive (got {} N)", args.load_N); });
-  require(args.elements >= 10 && args.elements <= 200000,
-          [&] { return fmt::format("--elements must lie in [10, 200000] (got {})", args.elements); });
+  validate_normal_force(args.load_N, "--load");
+  require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
+    return fmt::format("--elements {} must lie in [{}, {}] (with fewer, the elements are too large for the patch and "
+                       "the profiles)",
+                       args.elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
+  });
   const std::filesystem::path wheel = args.wheel ? std::filesystem::path(*args.wheel) : default_wheel_profile_path();
   const std::filesystem::path rail = args.rail ? std::filesystem::path(*args.rail) : default_rail_profile_path();
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string_view>
 #include <vector>
 
 // Elastic material of two quasi-identical half-spaces (METHOD.md §2): the normal and
@@ -20,7 +21,8 @@ struct Material {
 
   // G = E / (2 (1 + nu)) for equal materials.
   [[nodiscard]] double shear_modulus_Pa() const { return youngs_modulus_Pa / (2.0 * (1.0 + poisson_ratio)); }
-  // Combined plane-strain modulus E* = E / (2 (1 - nu^2)) of two equal bodies (Hertz).
+  // Combined plane-strain modulus E* = E / (2 (1 - nu^2)) of two equal bodies (Hertz): finite for
+  // every allowed nu, E* = 2E/3 for the incompressible nu = 0.5.
   [[nodiscard]] double contact_modulus_Pa() const {
     return youngs_modulus_Pa / (2.0 * (1.0 - poisson_ratio * poisson_ratio));
   }
@@ -30,8 +32,31 @@ struct Material {
   }
 };
 
-// Throws railcontact::Error unless E > 0 (finite) and 0 <= nu < 0.5.
+// The physical range of Young's modulus: from soft polymers (1 MPa) to beyond diamond (1.2e12 Pa).
+// Outside it the elastic constants are not those of a solid, and the solvers' numbers (tractions
+// of G times a creepage, flexibilities of a/G) leave the range in which they are meaningful
+// (E = 1e308 Pa gives flexibilities of 1e-322 m/Pa, denormal).
+inline constexpr double kMinimumYoungsModulus_Pa = 1e6;
+inline constexpr double kMaximumYoungsModulus_Pa = 1e13;
+
+// Throws railcontact::Error (invalid_input) naming the value and the range unless E lies in
+// [kMinimumYoungsModulus_Pa, kMaximumYoungsModulus_Pa] and 0 <= nu <= 0.5. nu = 0.5
+// (incompressible) is valid: no formula of railcontact divides by 1 - 2 nu, and Kalker's table
+// has a column for it.
 void validate(const Material& material);
+
+// The physical range of a normal force F3 of one contact (N): from a laboratory twin-disc rig
+// (tens to hundreds of N) to a heavy-haul wheel load (about 200 kN static) under the largest
+// dynamic factors (wheel flats, rail joints: up to about 5), with a factor 10 to spare. Beyond
+// 1e7 N steel yields long before (p0 of several 10 GPa) and a wheel-rail patch outgrows the rail
+// head; below 1 N the patch is micrometres wide. A value like 1e300 N is a typing error, not a load.
+inline constexpr double kMinimumNormalForce_N = 1.0;
+inline constexpr double kMaximumNormalForce_N = 1e7;
+
+// Throws railcontact::Error (invalid_input) unless normal_force_N lies in [kMinimumNormalForce_N,
+// kMaximumNormalForce_N]; the message starts with `what`, says what is wrong and gives the value
+// and the range: "hertz: the normal force F3 is too large (1e+300 N; allowed [1, 1e+07] N)".
+void validate_normal_force(double normal_force_N, std::string_view what);
 
 }  // namespace railcontact
 
@@ -173,7 +198,9 @@ inline constexpr int kMaximumCoarsening = 8;
 ContactPatch coarsened(const ContactPatch& patch, int factor);
 
 // Hertzian pressure p0 sqrt(1 - (x1/a)^2 - (x2/b)^2) on an elliptical patch (elements whose
-// centre lies inside the ellipse), scaled so that the discrete normal force equals F3.
+// centre lies inside the ellipse), scaled so that the discrete normal force equals F3. Throws
+// Error unless a, b are positive and finite and F3 lies in [kMinimumNormalForce_N,
+// kMaximumNormalForce_N].
 ContactPatch hertzian_patch(const ContactElements& ellipse, double a_m, double b_m, double normal_force_N,
                             const Material& material);
 

@@ -114,7 +114,10 @@ class FlexibilityTable {
   FlexibilityTable() = default;
   // Nodes in y-major order: nodes[iy * loads + iload]. Throws Error unless y and the loads are
   // finite and strictly increasing (loads positive), every node sits on its grid point, solved
-  // nodes hold positive finite values, and the jumps name distinct intervals.
+  // nodes hold plausible values (0 < L1, L2, L3 < 1e-6 m/Pa; 0 < f11, f22 < 1e12 N;
+  // 0 < f23 < 1e10 N m; 0 < F3 <= 1e8 N; |γ| <= 1.5 rad; |spin| <= 100 1/m; 0 < area < 0.01 m²;
+  // at least one element; the message names nodes[k] and the key), and the jumps name distinct
+  // intervals.
   FlexibilityTable(FlexibilityTableMetadata metadata, std::vector<double> y_m, std::vector<double> vertical_loads_N,
                    std::vector<FlexibilityTableNode> nodes, std::vector<ContactJump> contact_jumps = {});
 
@@ -140,6 +143,10 @@ class FlexibilityTable {
   void check_profiles(const WheelRailPair& pair) const;
   // Throws Error unless the material and K2's collocation offset are the table's.
   void check_material(const Material& material, double collocation_offset = 0.0) const;
+  // Throws Error unless nH-FastSim's recipe of the caller is the table's: the flexibility
+  // coarsening (NhFastSimOptions::flexibility_coarsening, 0: automatic, compared as recorded) and
+  // K2's collocation offset. A case run with a table calls it with the case's values.
+  void check_recipe(int flexibility_coarsening, double collocation_offset) const;
 
   // Interpolated values at (y, Fz). Throws Error naming the range when y or Fz lies outside the
   // grid (a table with one load holds that load only), or naming the node when an interval next

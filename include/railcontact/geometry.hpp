@@ -80,7 +80,31 @@ void write_text_profile(const std::filesystem::path& path, const Profile& profil
 Profile mirrored_y(Profile profile);
 Profile mirrored_z(Profile profile);
 
-// Throws Error unless the profile has at least 4 points, finite coordinates, as many y as z.
+// What a wheel or rail profile's point list must satisfy (docs/GEOMETRY.md §8): checked by
+// validate, by every reader and by SmoothProfile, before a spline is built.
+struct ProfileLimits {
+  static constexpr std::size_t max_points = 100000;
+  // The lateral span (max y - min y) and the vertical span (max z - min z) of the points: a
+  // tenth of these or a thousand times them is the tell-tale of a wrong length unit.
+  static constexpr double min_lateral_extent_m = 0.010;
+  static constexpr double max_lateral_extent_m = 0.400;
+  static constexpr double max_vertical_extent_m = 0.200;
+  // Consecutive points: further apart than coincident_m, at most max_point_gap_m apart, and the
+  // direction of the point list turns by less than 150 degrees at every point.
+  static constexpr double coincident_m = 1e-12;
+  static constexpr double max_point_gap_m = 0.010;
+  static constexpr double min_turn_cosine = -0.8660254037844386;  // cos 150°
+  // The length of the polyline through the points.
+  static constexpr double max_length_m = 1.0;
+  // The self-intersection check compares the segments that overlap laterally, at most this often.
+  static constexpr std::size_t max_crossing_comparisons = 20000000;
+};
+
+// Throws Error unless the profile is a plausible wheel or rail profile: as many y as z, 4 to
+// ProfileLimits::max_points finite points spanning 10 to 400 mm laterally and at most 200 mm
+// vertically (else the message suggests a wrong length unit), consecutive points distinct and at
+// most 10 mm apart, no reversal of direction (more than 150 degrees) at a point, a polyline at
+// most 1 m long that does not cross itself. The message names the points at fault.
 void validate(const Profile& profile);
 
 // Smoothing of the point list (docs/GEOMETRY.md §5).

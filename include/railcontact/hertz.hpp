@@ -17,12 +17,14 @@ struct HertzContact {
 
 // Contact ellipse, pressure and approach for curvatures A, B (1/m) and normal force F3 (N).
 // The longer semi-axis lies along the axis of the smaller curvature (a > b if A < B). Exact for
-// A = B (circle) and robust for very slender ellipses. Throws railcontact::Error unless A, B, F3 are
-// positive and finite and the material is valid.
+// A = B (circle) and robust for very slender ellipses. Throws railcontact::Error unless A, B are
+// positive and finite, F3 lies in [kMinimumNormalForce_N, kMaximumNormalForce_N] (1 N ... 1e7 N,
+// contact_patch.hpp) and the material is valid.
 HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal_force_N, const Material& material);
 
 // The curvatures (A, B) that give semi-axes a, b under normal force F3: inverse of the above
-// (closed form, no iteration). Throws railcontact::Error unless a, b, F3 are positive and finite.
+// (closed form, no iteration). Throws railcontact::Error unless a, b are positive and finite and
+// F3 lies in [kMinimumNormalForce_N, kMaximumNormalForce_N].
 struct HertzCurvatures {
   double A_per_m = 0.0;
   double B_per_m = 0.0;

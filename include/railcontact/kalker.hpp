@@ -14,7 +14,8 @@ struct KalkerCoefficients {
   double C23 = 0.0;
 };
 
-// Kalker's coefficients for semi-axis ratio a/b (a along X1) and Poisson's ratio nu in [0, 0.5):
+// Kalker's coefficients for semi-axis ratio a/b (a along X1) and Poisson's ratio nu in [0, 0.5]
+// (nu = 0.5, incompressible, is the table's third column and is returned exactly):
 // interpolated in the table for 0.1 <= a/b <= 10 (quadratic Lagrange in nu through 0, 0.25, 0.5;
 // shape-preserving cubic (PCHIP) of ln C against ln(a/b); exact at the table's rows), Kalker's
 // slender-ellipse asymptotes outside it (a/b in [0.01, 0.1) and (10, 100]), blended onto the table

@@ -46,9 +46,12 @@ struct NormalSolution {
 };
 
 // Solves the normal problem above. undeformed_distance_m holds one h per mesh element (mesh
-// index order, see Mesh). Non-convergence is reported (converged = false), not thrown.
-// Throws railcontact::Error on bad input: invalid mesh or material, h of the wrong size or not
-// finite, F3 not positive and finite, options out of range, or no contact forming.
+// index order, see Mesh). Non-convergence within max_iterations is reported (converged = false),
+// not thrown. Throws railcontact::Error on bad input (kind invalid_input): invalid mesh or
+// material, h of the wrong size or not finite, F3 outside [kMinimumNormalForce_N,
+// kMaximumNormalForce_N] (1 N ... 1e7 N, contact_patch.hpp), options out of range; kind no_contact
+// when no contact forms; kind not_converged when the iteration breaks down (a non-finite pressure
+// or approach: nothing non-finite is ever returned).
 NormalSolution solve_normal_contact(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
                                     double normal_force_N, const Material& material,
                                     const NormalOptions& options = {});

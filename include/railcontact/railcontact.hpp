@@ -2,6 +2,7 @@
 // railcontact: wheel–rail rolling contact with nH-FastSim and its exact reference solvers.
 // The whole public API, one header per pipeline stage (docs/ARCHITECTURE.md):
 //   error.hpp             Error and its kinds
+//   text_file.hpp         bounded, checked reading of input files
 //   contact_patch.hpp     material, creepages, forces, mesh, contact patch (docs/METHOD.md §2-3)
 //   hertz.hpp             Hertz's solution (the normal problem of an ellipse)
 //   kalker.hpp            Kalker's linear theory: C11, C22, C23, FastSim's flexibilities (Eq 9)
@@ -20,5 +21,6 @@
 #include "railcontact/kalker.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/text_file.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"

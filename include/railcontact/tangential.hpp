@@ -46,16 +46,24 @@ enum class CreepageMatrixPart {
   force_rows,
 };
 
+// The smallest collocation offset alpha the solvers accept (docs/ROLLING.md "Options"). alpha = -1
+// centres the upwind difference on the element and makes R singular; approaching it, R's
+// condition grows like 1/(1 + alpha): GMRES needs about 70 iterations per solve at alpha = -0.9,
+// 115 at -0.95, 240 at -0.98 and 400 (the default limit) at -0.99, on ellipses of 700 to 11000
+// elements alike, and fails from -0.995; the exact solver needs 18 Newton steps at -0.95, 40-50 at
+// -0.97 ... -0.99 and does not converge from -0.995. -0.95 keeps a factor 3.5 below the limits.
+inline constexpr double kMinimumCollocationOffset = -0.95;
+
 struct AdhesionOptions {
-  double collocation_offset = 0.0;  // alpha in (-1, 1]: collocation point at x1 + alpha dx1/2 (METHOD.md §3)
+  double collocation_offset = 0.0;  // alpha in [-0.95, 1]: collocation point at x1 + alpha dx1/2 (METHOD.md §3)
   // Collocation offset for the spin column of K2 only (unit phi); unset = collocation_offset.
   // The paper (Fig 3) finds alpha = 0 best for C11, C22 and alpha = 0.5 best for C23; each
   // column of K2 is a separate solve, so each may use its own offset.
   std::optional<double> spin_collocation_offset;
   RigidSlipPoint rigid_slip_point = RigidSlipPoint::collocation;
   LinearSolver solver = LinearSolver::krylov;
-  double tolerance = 1e-10;         // Krylov: relative residual
-  int max_iterations = 400;         // Krylov
+  double tolerance = 1e-10;         // Krylov: relative residual, in (0, 1e-2]
+  int max_iterations = 400;         // Krylov, positive
   CreepageMatrixPart part = CreepageMatrixPart::full;
 };
 
@@ -69,9 +77,11 @@ struct AdhesionSolution {
   double relative_residual = 0.0;   // largest over the right-hand sides
 };
 
-// Throws railcontact::Error on bad input (no elements, bad material, alpha outside (-1, 1];
-// alpha = -1 centres the difference on the element and decouples odd and even elements)
-// or when the Krylov solver does not converge.
+// Throws railcontact::Error on bad input (kind invalid_input: no elements, bad material, alpha
+// outside [kMinimumCollocationOffset, 1] = [-0.95, 1], tolerance outside (0, 1e-2], a
+// non-positive iteration limit), when the Krylov solver does not converge (not_converged), and
+// with kind internal if K2 or the tractions come out non-finite (with valid input an invariant of
+// the solver is broken; nothing non-finite is returned).
 AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
                                      const AdhesionOptions& options = {});
 
@@ -142,7 +152,10 @@ class FastSim {
   explicit FastSim(const ContactPatch& patch, TractionBound bound = {});
 
   // Forces only (no per-element output is allocated). Throws railcontact::Error unless mu > 0,
-  // L1, L2, L3 > 0 (all finite) and the creepages are finite.
+  // L1, L2, L3 > 0 (all finite) and the creepages are finite, and when the adhesion tractions
+  // (creepage / L times the patch length) would exceed 1e150 Pa, beyond what the march can square
+  // (non-physical flexibilities; kind invalid_input). A non-finite result is never returned (kind
+  // internal: with checked input it would be a bug).
   [[nodiscard]] TangentialForces forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
   // Forces, tractions, slip flags. Same checks as forces().
   [[nodiscard]] FastSimResult solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
@@ -194,7 +207,7 @@ struct NhFastSimOptions {
   // The flexibilities come from K2 of the patch coarsened by this factor (coarsened(); 1: the
   // patch itself, up to kMaximumCoarsening); 0: automatic, NhFastSim::automatic_coarsening.
   int flexibility_coarsening = 0;
-  // alpha of K2's collocation points (docs/METHOD.md §3), in (-1, 1].
+  // alpha of K2's collocation points (docs/METHOD.md §3), in [kMinimumCollocationOffset, 1].
   double collocation_offset = 0.0;
   FlexibilityMatch match = FlexibilityMatch::term_by_term;
 };
@@ -276,16 +289,34 @@ class NhFastSim {
 
 namespace railcontact {
 
+// Ranges of RollingOptions (validate(RollingOptions); docs/ROLLING.md "Options").
+// regularisation: epsilon is a slip per unit rolling speed. The law reaches 99.4 % of mu p3 at
+// |s| = 100 epsilon, so at 1e-2 only at a slip of 1 (a locked wheel): beyond, no creepage a
+// rolling wheel can have approaches Coulomb's law, and at 1e10 the forces vanish (1e200 gave NaN
+// reported as converged). Below 1e-14 nothing changes (the forces equal the exact solver's to six
+// digits from 1e-10 down) while each decade of the continuation costs ~5 Newton steps, so the
+// default budget of 100 runs out near 1e-17: use the exact solver instead.
+inline constexpr double kMinimumRegularisation = 1e-14;
+inline constexpr double kMaximumRegularisation = 1e-2;
+// tolerance (relative to mu max p3): above 1e-3 a "converged" traction may be off by more than
+// 0.1 % of the traction bound per element (1 would accept the starting guess).
+inline constexpr double kMaximumRollingTolerance = 1e-3;
+
 struct RollingOptions {
-  double collocation_offset = 0.0;  // alpha (METHOD.md §3), the same as the adhesion solver's
-  double tolerance = 1e-9;          // Newton: max residual relative to mu max(p3)
-  int max_newton_iterations = 100;
-  double krylov_tolerance = 1e-6;   // inner GMRES, relative
-  int max_krylov_iterations = 300;
+  double collocation_offset = 0.0;  // alpha in [-0.95, 1] (METHOD.md §3), the same as the adhesion solver's
+  double tolerance = 1e-9;          // Newton: max residual relative to mu max(p3), in (0, 1e-3]
+  int max_newton_iterations = 100;  // positive
+  double krylov_tolerance = 1e-6;   // inner GMRES, relative, in (0, 0.5]
+  int max_krylov_iterations = 300;  // positive
   // Regularised law only: epsilon as a slip velocity per unit rolling speed (dimensionless;
-  // equals the paper's epsilon in m/s at V = 1 m/s). The paper uses 1e-8.
+  // equals the paper's epsilon in m/s at V = 1 m/s), in [1e-14, 1e-2]. The paper uses 1e-8.
   double regularisation = 1e-8;
 };
+
+// Throws railcontact::Error (invalid_input) naming the RollingOptions field, its value and its
+// range unless every option lies in the range given above (the regularisation is checked whichever
+// solver the options are for).
+void validate(const RollingOptions& options);
 
 struct RollingSolution {
   TangentialForces forces;
@@ -299,9 +330,12 @@ struct RollingSolution {
   double residual = 0.0;                // final Newton residual (<= tolerance), relative to mu max(p3)
 };
 
-// Throws railcontact::Error on bad input (mu <= 0 or not finite, non-finite creepage; kind
-// invalid_input) and when Newton does not converge within max_newton_iterations (kind
-// not_converged): a returned solution has converged (residual <= tolerance).
+// Throws railcontact::Error on bad input (mu <= 0 or not finite, non-finite creepage, options
+// outside their ranges: validate(RollingOptions); kind invalid_input), when Newton does not
+// converge within max_newton_iterations or breaks down with a non-finite residual (kind
+// not_converged), and with kind internal should a converged solution hold a non-finite number (an
+// invariant of the solver broken): a returned solution has converged (residual <= tolerance) and
+// every number in it is finite.
 RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& creepage, double mu,
                                     const RollingOptions& options = {});
 RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creepage& creepage, double mu,
@@ -341,7 +375,7 @@ struct EllipseCoefficientResult {
   double solve_time_s = 0.0;        // K2 (operator set-up and the three solves)
 };
 
-// For semi-axis ratio a/b (a along X1) and Poisson's ratio nu in [0, 0.5); E = 2.1e11 Pa and
+// For semi-axis ratio a/b (a along X1) and Poisson's ratio nu in [0, 0.5]; E = 2.1e11 Pa and
 // c = sqrt(a b) = 6 mm (the coefficients do not depend on either).
 EllipseCoefficientResult ellipse_creepage_coefficients(double a_over_b, double nu,
                                                        const EllipseCoefficientOptions& options = {});

@@ -63,9 +63,22 @@ enum class PatchMeshLayout {
                      // X1 as along X2 (the rolling direction is never resolved more coarsely)
 };
 
+// The fewest elements in contact a wheel–rail patch may be asked for (target_elements). With fewer,
+// the elements are so large that the first potential contact area, which has a border of whole
+// elements, can reach beyond the rail head: the default S1002/UIC60 pair fails at y = 0 with 10
+// elements (98.1 kN), with 15 at 200 kN and with 20–50 from 300 kN–1 MN, while 100 elements serve
+// every y in −4.5 … 4.5 mm up to 1 MN. Such patches are also wrong: with 20 elements the area is
+// 6–15 % too large and the maximum pressure up to 24 % too small, with 100 within 7 % and 1 %
+// (y = −3, 0, 3 mm at 98.1 kN, against 3000 elements).
+inline constexpr int kMinimumWheelRailElements = 100;
+inline constexpr int kMaximumWheelRailElements = 200000;
+
 struct WheelRailPatchOptions {
-  double vertical_load_N = 98100;  // Fz (METHOD.md §9: 10 t); F3 = Fz / cos γ
-  int target_elements = 3000;      // about this many elements in contact
+  // Fz (METHOD.md §9: 10 t), in [kMinimumNormalForce_N, kMaximumNormalForce_N] (1 N ... 1e7 N,
+  // contact_patch.hpp), as is F3 = Fz / cos γ.
+  double vertical_load_N = 98100;
+  // About this many elements in contact, in [kMinimumWheelRailElements, kMaximumWheelRailElements].
+  int target_elements = 3000;
   NormalOptions normal;
   Material material{2.1e11, 0.3};
   PatchMeshLayout layout = PatchMeshLayout::rolling_resolved;
@@ -126,7 +139,8 @@ struct WheelRailPatch {
 
 // Solves the normal contact at wheelset displacement y_m (track frame, m). Throws Error when the
 // profiles never touch, the load or options are invalid, the normal solver does not converge,
-// the potential area cannot hold the patch, or (unless allowed) y gives several patches.
+// the potential area cannot hold the patch (the message says whether the elements or the load
+// are too large for the profiles), or (unless allowed) y gives several patches.
 WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options = {});
 
 // A wheel–rail set-up: a profile pair and its track, as data (a JSON file, docs/WHEEL_RAIL.md

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
 
 namespace railcontact {
 
@@ -21,8 +22,6 @@ namespace {
 
 constexpr double kMm = 1e-3;
 
-bool positive_finite(double value) { return std::isfinite(value) && value > 0.0; }
-
 void check_increasing(const std::vector<double>& values, const char* what) {
   for (std::size_t k = 0; k < values.size(); ++k) {
     require(std::isfinite(values[k]), [&] { return fmt::format("flexibility table: the {} must be finite", what); });
@@ -31,17 +30,32 @@ void check_increasing(const std::vector<double>& values, const char* what) {
   }
 }
 
-void check_node(const FlexibilityTableNode& n) {
+// A solved node's values: finite and physically plausible (a table file may hold anything). The
+// message names the node by its index (as in the file, nodes[k]), the key and the allowed range.
+void check_node(const FlexibilityTableNode& n, std::size_t index) {
   if (n.status != FlexibilityNodeStatus::solved) return;
-  const std::string where = fmt::format("flexibility table: node y = {:.4f} mm, Fz = {:g} N", n.y_m / kMm, n.vertical_load_N);
-  require(positive_finite(n.flexibility.L1) && positive_finite(n.flexibility.L2) && positive_finite(n.flexibility.L3),
-          [&] { return where + ": the flexibilities must be positive and finite"; });
-  require(positive_finite(n.f11_N) && positive_finite(n.f22_N) && positive_finite(n.f23_Nm),
-          [&] { return where + ": f11, f22, f23 must be positive and finite"; });
-  require(positive_finite(n.normal_force_N) && positive_finite(n.area_m2) && n.elements_in_contact > 0,
-          [&] { return where + ": the normal force, area and elements must be positive"; });
-  require(std::isfinite(n.contact_angle_rad) && std::isfinite(n.spin_per_m),
-          [&] { return where + ": the contact angle and spin must be finite"; });
+  const auto check = [&](const char* key, double value, bool plausible, const char* allowed) {
+    require(std::isfinite(value) && plausible, [&] {
+      return fmt::format("flexibility table: nodes[{}] (y = {:.4f} mm, Fz = {:g} N): {} = {:g} is not plausible ({})",
+                         index, n.y_m / kMm, n.vertical_load_N, key, value, allowed);
+    });
+  };
+  const auto in_open = [](double value, double low, double high) { return value > low && value < high; };
+  check("L1_m_per_Pa", n.flexibility.L1, in_open(n.flexibility.L1, 0.0, 1e-6), "0 < L1 < 1e-6 m/Pa");
+  check("L2_m_per_Pa", n.flexibility.L2, in_open(n.flexibility.L2, 0.0, 1e-6), "0 < L2 < 1e-6 m/Pa");
+  check("L3_m_per_Pa", n.flexibility.L3, in_open(n.flexibility.L3, 0.0, 1e-6), "0 < L3 < 1e-6 m/Pa");
+  check("f11_N", n.f11_N, in_open(n.f11_N, 0.0, 1e12), "0 < f11 < 1e12 N");
+  check("f22_N", n.f22_N, in_open(n.f22_N, 0.0, 1e12), "0 < f22 < 1e12 N");
+  check("f23_Nm", n.f23_Nm, in_open(n.f23_Nm, 0.0, 1e10), "0 < f23 < 1e10 N m");
+  check("normal_force_N", n.normal_force_N, n.normal_force_N > 0.0 && n.normal_force_N <= 1e8, "0 < F3 <= 1e8 N");
+  check("contact_angle_rad", n.contact_angle_rad, std::abs(n.contact_angle_rad) <= 1.5, "|contact angle| <= 1.5 rad");
+  check("spin_per_m", n.spin_per_m, std::abs(n.spin_per_m) <= 100.0, "|spin| <= 100 1/m");
+  check("area_m2", n.area_m2, in_open(n.area_m2, 0.0, 0.01), "0 < area < 0.01 m2");
+  require(n.elements_in_contact >= 1, [&] {
+    return fmt::format("flexibility table: nodes[{}] (y = {:.4f} mm, Fz = {:g} N): elements_in_contact = 0 is not "
+                       "plausible (at least 1 for a solved node)",
+                       index, n.y_m / kMm, n.vertical_load_N);
+  });
 }
 
 // Interpolation weights of one axis: up to two (index, weight) pairs with non-zero weight.
@@ -103,7 +117,7 @@ FlexibilityTable::FlexibilityTable(FlexibilityTableMetadata metadata, std::vecto
         return fmt::format("flexibility table: node {} is not on its grid point (y = {:.6g} m, Fz = {:g} N)",
                            iy * loads_N_.size() + il, y_m_[iy], loads_N_[il]);
       });
-      check_node(n);
+      check_node(n, iy * loads_N_.size() + il);
     }
   }
   jump_after_.assign(y_m_.size() > 1 ? y_m_.size() - 1 : 0, 0);
@@ -163,6 +177,20 @@ void FlexibilityTable::check_material(const Material& material, double collocati
   });
 }
 
+void FlexibilityTable::check_recipe(int flexibility_coarsening, double collocation_offset) const {
+  require(flexibility_coarsening == metadata_.flexibility_coarsening, [&] {
+    const auto described = [](int f) { return f == 0 ? std::string("0 (automatic)") : std::to_string(f); };
+    return fmt::format(
+        "{} was built with the flexibility coarsening {} and is used with {}: its flexibilities come from another "
+        "nH-FastSim recipe (use the table's coarsening, or build a table with this one)",
+        name(), described(metadata_.flexibility_coarsening), described(flexibility_coarsening));
+  });
+  require(collocation_offset == metadata_.collocation_offset, [&] {
+    return fmt::format("{} was built with the collocation offset alpha = {:g} (given {:g})", name(),
+                       metadata_.collocation_offset, collocation_offset);
+  });
+}
+
 FlexibilityTableValues FlexibilityTable::lookup(double y_m, double vertical_load_N,
                                                 FlexibilityInterpolation interpolation) const {
   return interpolate(y_m, vertical_load_N, 0.0, interpolation);
@@ -211,7 +239,8 @@ FlexibilityTableValues FlexibilityTable::interpolate(double y_m, double vertical
         throw Error(fmt::format("{}: no flexibilities at y = {:.4f} mm, Fz = {:g} N: the table has a gap next to the node "
                                 "y = {:.4f} mm, Fz = {:g} N ({}{}{})",
                                 name(), y_m / kMm, vertical_load_N, n.y_m / kMm, n.vertical_load_N,
-                                flexibility_node_status_name(n.status), n.message.empty() ? "" : ": ", n.message));
+                                flexibility_node_status_name(n.status), n.message.empty() ? "" : ": ",
+                                printable_excerpt(n.message, 200)));
       terms[count++] = {&n, wy.weight[a] * wl.weight[b]};
     }
   }

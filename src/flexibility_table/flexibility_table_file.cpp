@@ -8,9 +8,9 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
 #include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "support/file_fingerprint.hpp"
 
@@ -23,6 +23,8 @@ constexpr const char* kFormat = "railcontact flexibility table";
 // Version 2 records the recipe's flexibility coarsening; version-1 tables (built on the full patch,
 // coarsening 1) are still read.
 constexpr int kFormatVersion = 2;
+// The largest table file read (a 100 × 20 grid is about 1 MB).
+constexpr std::uintmax_t kMaxTableFileBytes = 256u << 20;  // 256 MiB
 
 // Doubles are written with 17 significant digits (nlohmann's default): a round trip is exact.
 json number_or_null(double value, bool solved) { return solved ? json(value) : json(nullptr); }
@@ -96,7 +98,7 @@ class Reader {
   [[nodiscard]] std::string qualified(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
   void finish() const {
     for (const auto& item : object_.items())
-      if (!used_.contains(item.key())) fail(fmt::format("unknown key '{}'", qualified(item.key())));
+      if (!used_.contains(item.key())) fail(fmt::format("unknown key '{}'", printable_excerpt(qualified(item.key()))));
   }
 
  private:
@@ -110,10 +112,12 @@ FileFingerprint read_fingerprint(Reader& parent, const std::string& key, const s
   Reader r(parent.get(key), parent.qualified(key), source);
   FileFingerprint f;
   f.file = r.string("file");
+  const std::string hex = r.string("fnv1a64");
   try {
-    f.fnv1a64 = parse_fnv1a64_hex(r.string("fnv1a64"));
-  } catch (const Error& e) {
-    r.fail(fmt::format("{}: {}", r.qualified("fnv1a64"), e.what()));
+    f.fnv1a64 = parse_fnv1a64_hex(hex);
+  } catch (const Error&) {
+    r.fail(fmt::format("{} = \"{}\" is not a 64-bit FNV-1a hash (16 hexadecimal digits)", r.qualified("fnv1a64"),
+                       printable_excerpt(hex)));
   }
   r.finish();
   return f;
@@ -129,7 +133,7 @@ FlexibilityTableNode read_node(const json& item, std::size_t index, const std::s
   if (status == "solved") n.status = FlexibilityNodeStatus::solved;
   else if (status == "several-patches") n.status = FlexibilityNodeStatus::several_patches;
   else if (status == "failed") n.status = FlexibilityNodeStatus::failed;
-  else r.fail(fmt::format("{} must be \"solved\", \"several-patches\" or \"failed\" (got \"{}\")", r.qualified("status"), status));
+  else r.fail(fmt::format("{} must be \"solved\", \"several-patches\" or \"failed\" (got \"{}\")", r.qualified("status"), printable_excerpt(status)));
   static const char* const kValues[] = {"L1_m_per_Pa", "L2_m_per_Pa", "L3_m_per_Pa", "f11_N", "f22_N", "f23_Nm",
                                         "normal_force_N", "contact_angle_rad", "spin_per_m", "area_m2",
                                         "elements_in_contact"};
@@ -169,7 +173,7 @@ int read_format_version(Reader& r, const json& root) {
   r.get("format");
   const json& version = r.get("format_version");
   if (!version.is_number_integer() || version.get<int>() < 1 || version.get<int>() > kFormatVersion)
-    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", version.dump(), kFormatVersion));
+    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", printable_excerpt(version.dump()), kFormatVersion));
   return version.get<int>();
 }
 
@@ -318,11 +322,7 @@ void save_flexibility_table(const FlexibilityTable& table, const std::filesystem
 }
 
 FlexibilityTable load_flexibility_table(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  if (!file) throw Error(ErrorKind::io, fmt::format("cannot read the flexibility table {}", path.string()));
-  std::stringstream buffer;
-  buffer << file.rdbuf();
-  return parse_flexibility_table(buffer.str(), path.string());
+  return parse_flexibility_table(read_text_file(path, "flexibility table", kMaxTableFileBytes), path.string());
 }
 
 }  // namespace railcontact

@@ -78,17 +78,17 @@ Profile read_miniprof_profile(const std::filesystem::path& path, bool auto_verti
       continue;  // other header keys and old-style free-text header lines are not needed
     }
     if (text.find('=') != std::string_view::npos) {
-      fail(path, line.number, fmt::format("a 'Key=Value' line inside the point list: '{}'", text));
+      fail(path, line.number, fmt::format("a 'Key=Value' line inside the point list: '{}'", geometry::quoted(text)));
     }
     const int ix = column_index(column_def, 'X');
     const int iy = column_index(column_def, 'Y');
     if (ix < 0 || iy < 0) {
-      fail(path, column_def_line, fmt::format("ColumnDef '{}' must name the columns X and Y", column_def));
+      fail(path, column_def_line, fmt::format("ColumnDef '{}' must name the columns X and Y", geometry::quoted(column_def)));
     }
     const auto values = geometry::parse_numbers(text);
     const auto needed = static_cast<std::size_t>(std::max(ix, iy)) + 1;
     if (!values || values->size() < needed) {
-      fail(path, line.number, fmt::format("expected a point with columns '{}', got '{}'", column_def, text));
+      fail(path, line.number, fmt::format("expected a point with columns '{}', got '{}'", geometry::quoted(column_def), geometry::quoted(text)));
     }
     if (first_data_line == 0) first_data_line = line.number;
     profile.y_m.push_back((*values)[static_cast<std::size_t>(ix)] * 1e-3);
@@ -102,6 +102,7 @@ Profile read_miniprof_profile(const std::filesystem::path& path, bool auto_verti
     for (auto& v : profile.y_m) v = -v;
     for (auto& v : profile.z_m) v = -v;
   }
+  geometry::check_profile(profile, "a MiniProf profile: the numbers are read as millimetres");
   return profile;
 }
 

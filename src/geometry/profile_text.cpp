@@ -5,27 +5,28 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 
 #include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
 
 namespace railcontact::geometry {
 
 std::vector<NumberedLine> read_lines(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorKind::io, fmt::format("profile {}: cannot open the file for reading", path.string()));
+  const std::string bytes = read_text_file(path, "profile", kMaxProfileFileBytes);
   std::vector<NumberedLine> lines;
-  std::string text;
-  std::size_t number = 0;
-  while (std::getline(in, text)) {
-    ++number;
+  std::size_t number = 0, begin = 0;
+  while (begin < bytes.size()) {
+    std::size_t end = bytes.find('\n', begin);
+    if (end == std::string::npos) end = bytes.size();
+    std::string text = bytes.substr(begin, end - begin);
     if (!text.empty() && text.back() == '\r') text.pop_back();
-    lines.push_back({number, std::move(text)});
-    text.clear();
+    lines.push_back({++number, std::move(text)});
+    begin = end + 1;
   }
-  if (in.bad()) throw Error(ErrorKind::io, fmt::format("profile {}: read error", path.string()));
   return lines;
 }
+
+std::string quoted(std::string_view text) { return printable_excerpt(text); }
 
 void fail(const std::filesystem::path& path, const std::string& message) {
   throw Error(fmt::format("profile {}: {}", path.string(), message));

@@ -2,11 +2,15 @@
 // Helpers shared by the profile readers: reading a file as numbered lines, parsing numbers,
 // and uniform error messages "profile <file>:<line>: ...".
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include "railcontact/text_file.hpp"
+#include "railcontact/geometry.hpp"
 
 namespace railcontact::geometry {
 
@@ -15,7 +19,9 @@ struct NumberedLine {
   std::string text;        // without the line terminator (\n, \r\n)
 };
 
-// All lines of a text file. Throws Error("profile <file>: cannot open ...") if unreadable.
+// All lines of a text file (read_text_file: a regular file of at most kMaxProfileFileBytes).
+// Throws Error(io) "cannot read the profile <file>: ..." if it cannot be read.
+constexpr std::uintmax_t kMaxProfileFileBytes = 16u << 20;  // 16 MiB
 std::vector<NumberedLine> read_lines(const std::filesystem::path& path);
 
 // Error message prefix and exceptions naming the file (and line).
@@ -34,5 +40,15 @@ std::optional<std::vector<double>> parse_numbers(std::string_view text);
 std::optional<double> parse_number(std::string_view text);
 
 std::string lower_case(std::string_view text);
+
+// File content for a message: escaped and shortened (printable_excerpt, railcontact/error.hpp).
+std::string quoted(std::string_view text);
+
+// The checks of validate (railcontact/geometry.hpp, ProfileLimits); a wrong extent adds
+// unit_hint, the reader's statement of the length unit it applied (e.g. "units.len.f = 1 at
+// line 37: the numbers are read as metres").
+void check_profile(const Profile& profile, std::string_view unit_hint);
+// "the numbers are read as millimetres" (1e-3), "... as metres" (1), "... in units of X m".
+std::string length_unit_hint(double length_unit_m);
 
 }  // namespace railcontact::geometry

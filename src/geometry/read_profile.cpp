@@ -36,16 +36,9 @@ Profile mirrored_z(Profile profile) {
 }
 
 void validate(const Profile& profile) {
-  const std::string name = profile.source.empty() ? std::string("(unnamed)") : profile.source;
-  require(profile.y_m.size() == profile.z_m.size(), [&] {
-    return fmt::format("profile {}: {} y values but {} z values", name, profile.y_m.size(), profile.z_m.size());
-  });
-  require(profile.size() >= 4,
-          [&] { return fmt::format("profile {}: {} points; at least 4 are needed", name, profile.size()); });
-  for (std::size_t i = 0; i < profile.size(); ++i) {
-    require(std::isfinite(profile.y_m[i]) && std::isfinite(profile.z_m[i]),
-            [&] { return fmt::format("profile {}: point {} is not finite", name, i + 1); });
-  }
+  geometry::check_profile(profile,
+                          "check the length unit: SIMPACK units.len.f is file units per metre (1000: millimetres), "
+                          "MiniProf and plain-text profiles are read as millimetres");
 }
 
 }  // namespace railcontact

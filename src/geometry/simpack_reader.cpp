@@ -29,7 +29,7 @@ double numeric_value(const std::filesystem::path& path, const std::map<std::stri
   const auto it = keys.find(key);
   if (it == keys.end()) return fallback;
   const auto value = geometry::parse_number(it->second.value);
-  if (!value) fail(path, it->second.line, fmt::format("'{}' must be a number, got '{}'", key, it->second.value));
+  if (!value) fail(path, it->second.line, fmt::format("'{}' must be a number, got '{}'", key, geometry::quoted(it->second.value)));
   return *value;
 }
 
@@ -37,7 +37,7 @@ bool flag_value(const std::filesystem::path& path, const std::map<std::string, K
                 const std::string& key) {
   const double value = numeric_value(path, keys, key, 0.0);
   if (value != 0.0 && value != 1.0) {
-    fail(path, keys.at(key).line, fmt::format("'{}' must be 0 or 1, got '{}'", key, keys.at(key).value));
+    fail(path, keys.at(key).line, fmt::format("'{}' must be 0 or 1, got '{}'", key, geometry::quoted(keys.at(key).value)));
   }
   return value == 1.0;
 }
@@ -68,7 +68,7 @@ Section read_point_line(const Path& path, const geometry::NumberedLine& line, st
   }
   const auto values = geometry::parse_numbers(text);
   if (!values || values->size() < 2 || values->size() > 3) {
-    fail(path, line.number, fmt::format("expected a point 'y z [weight]', got '{}'", text));
+    fail(path, line.number, fmt::format("expected a point 'y z [weight]', got '{}'", geometry::quoted(text)));
   }
   file.y.push_back((*values)[0]);
   file.z.push_back((*values)[1]);
@@ -99,7 +99,7 @@ Section read_section_line(const Path& path, const geometry::NumberedLine& line, 
   if (lower == "point.end") fail(path, line.number, "point.end without point.begin");
   const auto eq = text.find('=');
   if (eq == std::string_view::npos) {
-    fail(path, line.number, fmt::format("expected 'key = value' or a section keyword, got '{}'", text));
+    fail(path, line.number, fmt::format("expected 'key = value' or a section keyword, got '{}'", geometry::quoted(text)));
   }
   const std::string key = geometry::lower_case(geometry::trim(text.substr(0, eq)));
   KeyValue value{std::string(geometry::trim(text.substr(eq + 1))), line.number};
@@ -214,7 +214,9 @@ void apply_mirroring_and_inversion(const Path& path, const KeyValues& keys, std:
 void apply_length_unit(const Path& path, const KeyValues& keys, std::vector<double>& y, std::vector<double>& z) {
   const double per_metre = numeric_value(path, keys, "units.len.f", 1.0);
   if (!(per_metre > 0.0)) {
-    fail(path, keys.at("units.len.f").line, "'units.len.f' must be positive");
+    fail(path, keys.at("units.len.f").line,
+         fmt::format("'units.len.f' must be positive (file units per metre: 1000 for millimetres), got '{}'",
+                     geometry::quoted(keys.at("units.len.f").value)));
   }
   for (auto& v : y) v /= per_metre;
   for (auto& v : z) v /= per_metre;
@@ -230,6 +232,14 @@ void apply_processing_flags(const Path& path, const KeyValues& keys, std::vector
   apply_length_unit(path, keys, y, z);
 }
 
+// The length unit as applied, for the messages of the extent check.
+std::string unit_hint(const KeyValues& keys) {
+  const auto it = keys.find("units.len.f");
+  if (it == keys.end()) return "the file has no units.len.f: the numbers are read as metres (units.len.f = 1000: millimetres)";
+  return fmt::format("units.len.f = {} at line {} is file units per metre: 1000 for millimetres, 1 for metres",
+                     geometry::quoted(it->second.value), it->second.line);
+}
+
 }  // namespace
 
 Profile read_simpack_profile(const std::filesystem::path& path) {
@@ -242,6 +252,7 @@ Profile read_simpack_profile(const std::filesystem::path& path) {
     fail(path, fmt::format("{} points left after the bounds/point distance; at least 4 are needed", file.y.size()));
   profile.y_m = std::move(file.y);
   profile.z_m = std::move(file.z);
+  geometry::check_profile(profile, unit_hint(file.spline_keys));
   return profile;
 }
 

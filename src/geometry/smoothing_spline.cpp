@@ -41,6 +41,7 @@ struct SmoothProfile::Impl {
 namespace {
 
 constexpr int kDegree = 3;
+constexpr int kMaximumKnotIntervals = 200000;
 
 std::string name_of(const Profile& profile) {
   return profile.source.empty() ? std::string("(unnamed)") : profile.source;
@@ -75,8 +76,16 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
   require(n >= 4, [&] { return fmt::format("profile {}: fewer than 4 distinct points", name_of(profile)); });
   const double length = s.back();
 
-  // Clamped uniform knot vector on [0, length].
-  const int intervals = std::max(4, static_cast<int>(std::ceil(length / options.knot_spacing_m)));
+  // Clamped uniform knot vector on [0, length]. The number of knot intervals is computed in
+  // double and bounded before it becomes an int (memory grows with it: about 1 kB per interval).
+  const double wanted_intervals = std::ceil(length / options.knot_spacing_m);
+  require(wanted_intervals <= kMaximumKnotIntervals, [&] {
+    return fmt::format(
+        "profile {}: a curve {:.4g} mm long with knots every {:.4g} mm needs {:.4g} knot intervals; at most {} "
+        "(increase the knot spacing)",
+        name_of(profile), length * 1e3, options.knot_spacing_m * 1e3, wanted_intervals, kMaximumKnotIntervals);
+  });
+  const int intervals = std::max(4, static_cast<int>(wanted_intervals));
   const double h = length / intervals;
   const int n_ctrl = intervals + kDegree;
   Curve::KnotVectorType knots(intervals + 2 * kDegree + 1);

@@ -21,12 +21,13 @@ Profile read_text_profile(const std::filesystem::path& path, double length_unit_
     if (text.empty()) continue;
     const auto values = geometry::parse_numbers(text);
     if (!values || values->size() < 2) {
-      geometry::fail(path, line.number, fmt::format("expected two numbers 'y z', got '{}'", text));
+      geometry::fail(path, line.number, fmt::format("expected two numbers 'y z', got '{}'", geometry::quoted(text)));
     }
     profile.y_m.push_back((*values)[0] * length_unit_m);
     profile.z_m.push_back((*values)[1] * length_unit_m);
   }
   if (profile.size() < 4) geometry::fail(path, fmt::format("{} points; at least 4 are needed", profile.size()));
+  geometry::check_profile(profile, "a plain-text profile: " + geometry::length_unit_hint(length_unit_m));
   return profile;
 }
 

@@ -20,22 +20,35 @@ namespace geometry {
 namespace {
 
 // Parameter range around s_contact on which the curve runs against t (its tangent makes an
-// angle of less than about 87 degrees with -t), limited by the ends of the profile.
+// angle of less than about 87 degrees with -t), limited by the ends of the profile. Walks in at
+// most kMaximumSteps steps of 0.1 mm (longer ones on a longer profile), so it ends on any input.
 std::pair<double, double> monotone_range(const SmoothProfile& profile, double s_contact, double ty, double tz) {
-  const double step = 0.1e-3;
+  constexpr double kMaximumSteps = 100000;
+  const double s_begin = profile.s_begin_m(), s_end = profile.s_end_m();
+  require(std::isfinite(s_contact) && std::isfinite(s_begin) && std::isfinite(s_end) && s_begin <= s_contact &&
+              s_contact <= s_end,
+          [&] {
+            return fmt::format("undeformed distance: the contact parameter {} lies outside the profile {} [{}, {}]",
+                               s_contact, profile.source(), s_begin, s_end);
+          });
+  const double step = std::max(0.1e-3, (s_end - s_begin) / kMaximumSteps);
   const double min_projection = 0.05;
   const auto runs_against_t = [&](double s) {
     const auto p = profile.at(s);
     return (p.dy_ds * ty + p.dz_ds * tz) / std::hypot(p.dy_ds, p.dz_ds) < -min_projection;
   };
-  double lo = s_contact, hi = s_contact;
-  while (lo > profile.s_begin_m() && runs_against_t(std::max(lo - step, profile.s_begin_m()))) {
-    lo = std::max(lo - step, profile.s_begin_m());
-  }
-  while (hi < profile.s_end_m() && runs_against_t(std::min(hi + step, profile.s_end_m()))) {
-    hi = std::min(hi + step, profile.s_end_m());
-  }
-  return {lo, hi};
+  // Steps k * step from s_contact (not repeated additions, which stall where step is below the
+  // spacing of doubles): at most kMaximumSteps + 1 each way.
+  const auto walk = [&](double direction, double limit) {
+    double reached = s_contact;
+    for (double k = 1; k <= kMaximumSteps + 1 && reached != limit; ++k) {
+      const double s = direction < 0 ? std::max(s_contact - k * step, limit) : std::min(s_contact + k * step, limit);
+      if (!runs_against_t(s)) break;
+      reached = s;
+    }
+    return reached;
+  };
+  return {walk(-1.0, s_begin), walk(+1.0, s_end)};
 }
 
 [[noreturn]] void beyond_reach(const char* which, double x2) {

@@ -68,13 +68,24 @@ double axis_ratio_for_curvature_ratio(double ratio) {
   return 0.5 * (low + high);
 }
 
+// Hertz's solution is closed-form: with the inputs in their ranges every quantity is finite and
+// positive. A result that is not is a bug (kind internal), never returned.
+template <class Describe>
+void require_finite_result(double v1, double v2, double v3, double v4, Describe&& describe) {
+  for (const double v : {v1, v2, v3, v4})
+    if (!(std::isfinite(v) && v > 0.0))
+      throw Error(ErrorKind::internal,
+                  fmt::format("hertz: the solution for {} is not positive and finite ({:g}, {:g}, {:g}, {:g})",
+                              describe(), v1, v2, v3, v4));
+}
+
 }  // namespace
 
 HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal_force_N, const Material& material) {
   validate(material);
   require_positive_finite(A_per_m, "curvature A");
   require_positive_finite(B_per_m, "curvature B");
-  require_positive_finite(normal_force_N, "normal force");
+  validate_normal_force(normal_force_N, "hertz: the normal force F3");
   const double e_star_Pa = material.contact_modulus_Pa();
 
   // The major semi-axis lies along the axis of the smaller curvature.
@@ -95,6 +106,8 @@ HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal
   contact.b_m = A_per_m <= B_per_m ? minor_m : major_m;
   contact.max_pressure_Pa = 3.0 * normal_force_N / (2.0 * std::numbers::pi * major_m * minor_m);  // (4.41)
   contact.approach_m = contact.max_pressure_Pa / e_star_Pa * minor_m * ell.K;                     // (4.42)
+  require_finite_result(contact.a_m, contact.b_m, contact.max_pressure_Pa, contact.approach_m,
+                        [&] { return fmt::format("A = {:g} 1/m, B = {:g} 1/m", A_per_m, B_per_m); });
   return contact;
 }
 
@@ -102,7 +115,7 @@ HertzCurvatures hertz_curvatures_for_semi_axes(double a_m, double b_m, double no
   validate(material);
   require_positive_finite(a_m, "semi-axis a");
   require_positive_finite(b_m, "semi-axis b");
-  require_positive_finite(normal_force_N, "normal force");
+  validate_normal_force(normal_force_N, "hertz: the normal force F3");
   const double e_star_Pa = material.contact_modulus_Pa();
 
   const double major_m = std::max(a_m, b_m);
@@ -118,6 +131,8 @@ HertzCurvatures hertz_curvatures_for_semi_axes(double a_m, double b_m, double no
   HertzCurvatures curvatures;
   curvatures.A_per_m = a_m >= b_m ? small_curvature : large_curvature;
   curvatures.B_per_m = a_m >= b_m ? large_curvature : small_curvature;
+  require_finite_result(curvatures.A_per_m, curvatures.B_per_m, curvatures.A_per_m, curvatures.B_per_m,
+                        [&] { return fmt::format("a = {:g} m, b = {:g} m", a_m, b_m); });
   return curvatures;
 }
 

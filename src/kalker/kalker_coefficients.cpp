@@ -133,8 +133,8 @@ KalkerCoefficients blend(const KalkerCoefficients& asymptote, const KalkerCoeffi
 }  // namespace
 
 KalkerCoefficients kalker_coefficients(double a_over_b, double nu) {
-  require(std::isfinite(nu) && nu >= 0.0 && nu < 0.5,
-          [&] { return fmt::format("kalker: Poisson's ratio nu = {} must lie in [0, 0.5)", nu); });
+  require(std::isfinite(nu) && nu >= 0.0 && nu <= 0.5,
+          [&] { return fmt::format("kalker: Poisson's ratio nu = {:g} must lie in [0, 0.5]", nu); });
   require(std::isfinite(a_over_b) && a_over_b >= kMinAOverB && a_over_b <= kMaxAOverB, [&] {
     return fmt::format("kalker: semi-axis ratio a/b = {} must lie in [{}, {}]", a_over_b, kMinAOverB, kMaxAOverB);
   });

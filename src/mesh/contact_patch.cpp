@@ -102,7 +102,7 @@ ContactPatch coarsened(const ContactPatch& patch, int factor) {
 ContactPatch hertzian_patch(const ContactElements& ellipse, double a_m, double b_m, double normal_force_N,
                             const Material& material) {
   require(a_m > 0 && b_m > 0 && std::isfinite(a_m) && std::isfinite(b_m), "Hertzian patch: semi-axes must be positive");
-  require(normal_force_N > 0 && std::isfinite(normal_force_N), "Hertzian patch: the normal force must be positive");
+  validate_normal_force(normal_force_N, "Hertzian patch: the normal force F3");
   const Mesh& mesh = ellipse.mesh();
   std::vector<double> pressure(mesh.size(), 0.0);
   double force = 0.0;

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include "railcontact/error.hpp"
 
 namespace railcontact {
@@ -44,10 +46,23 @@ ContactElements::ContactElements(const Mesh& mesh, std::vector<std::uint8_t> in_
 }
 
 void validate(const Material& material) {
-  require(std::isfinite(material.youngs_modulus_Pa) && material.youngs_modulus_Pa > 0,
-          "material: Young's modulus must be positive and finite");
-  require(std::isfinite(material.poisson_ratio) && material.poisson_ratio >= 0.0 && material.poisson_ratio < 0.5,
-          "material: Poisson's ratio must lie in [0, 0.5)");
+  const double E = material.youngs_modulus_Pa;
+  require(std::isfinite(E) && E >= kMinimumYoungsModulus_Pa && E <= kMaximumYoungsModulus_Pa, [&] {
+    return fmt::format("material: Young's modulus E = {:g} Pa must lie in [{:g}, {:g}] Pa", E, kMinimumYoungsModulus_Pa,
+                       kMaximumYoungsModulus_Pa);
+  });
+  const double nu = material.poisson_ratio;
+  require(std::isfinite(nu) && nu >= 0.0 && nu <= 0.5,
+          [&] { return fmt::format("material: Poisson's ratio nu = {:g} must lie in [0, 0.5]", nu); });
+}
+
+void validate_normal_force(double normal_force_N, std::string_view what) {
+  if (normal_force_N >= kMinimumNormalForce_N && normal_force_N <= kMaximumNormalForce_N) return;
+  const char* problem = !(std::isfinite(normal_force_N) && normal_force_N > 0.0) ? "must be positive and finite"
+                        : normal_force_N < kMinimumNormalForce_N                  ? "is too small"
+                                                                                  : "is too large";
+  throw Error(fmt::format("{} {} ({:g} N; allowed [{:g}, {:g}] N)", what, problem, normal_force_N,
+                          kMinimumNormalForce_N, kMaximumNormalForce_N));
 }
 
 }  // namespace railcontact

@@ -51,9 +51,23 @@ void validate_problem(const Mesh& mesh, const std::vector<double>& h, double nor
     return fmt::format("normal contact: the undeformed distance of element {} is not finite",
                        static_cast<std::size_t>(bad - h.begin()));
   });
-  require(std::isfinite(normal_force_N) && normal_force_N > 0.0, [&] {
-    return fmt::format("normal contact: the normal force must be positive and finite (got {} N)", normal_force_N);
-  });
+  validate_normal_force(normal_force_N, "normal contact: the normal force F3");
+}
+
+// Every number of a returned solution is finite. The iteration works on finite data (checked
+// above), so a non-finite pressure or approach means the conjugate gradients broke down (an
+// overflow or a division by a vanishing curvature of the search): the solver did not produce a
+// solution, kind not_converged, never a result.
+void require_finite_solution(const NormalSolution& s, const std::vector<double>& pressure_Pa) {
+  const auto bad = std::find_if(pressure_Pa.begin(), pressure_Pa.end(), [](double p) { return !std::isfinite(p); });
+  if (bad == pressure_Pa.end() && std::isfinite(s.approach_m) && std::isfinite(s.residual))
+    return;
+  throw Error(ErrorKind::not_converged,
+              fmt::format("normal contact: the conjugate-gradient iteration broke down after {} iterations (a "
+                          "non-finite {}); no solution",
+                          s.iterations,
+                          bad != pressure_Pa.end() ? fmt::format("pressure at element {}", bad - pressure_Pa.begin())
+                                                   : std::string("approach or residual")));
 }
 
 bool on_border(const Mesh& mesh, std::size_t k) {
@@ -93,6 +107,10 @@ NormalSolution NormalContactSolver::solve(const std::vector<double>& h, double n
   detail::hertz_like_initial_pressure(plan_->A, z, pressure_sum, solution.pressure_Pa, plan_->work);
   const detail::ConstrainedCgReport report = plan_->cg.solve(
       plan_->A, z, pressure_sum, solution.pressure_Pa, plan_->options.tolerance, plan_->options.max_iterations);
+  solution.iterations = report.iterations;
+  solution.approach_m = report.approach_m + h_min;
+  solution.residual = report.residual;
+  require_finite_solution(solution, solution.pressure_Pa);
 
   double sum = 0.0;
   for (std::size_t k = 0; k < mesh.size(); ++k) {
@@ -106,10 +124,7 @@ NormalSolution NormalContactSolver::solve(const std::vector<double>& h, double n
   if (solution.elements_in_contact == 0)
     throw Error(ErrorKind::no_contact, "normal contact: no contact formed (no element carries pressure)");
   solution.normal_force_N = S * sum;
-  solution.approach_m = report.approach_m + h_min;
-  solution.iterations = report.iterations;
   solution.converged = report.converged;
-  solution.residual = report.residual;
   return solution;
 }
 

@@ -52,10 +52,26 @@ Eigen::MatrixXd force_rows(const ContactElements& elements) {
   return SD;
 }
 
-void require_valid_offset(double alpha) {
-  require(std::isfinite(alpha) && alpha > -1.0 && alpha <= 1.0, [&] {
-    return "adhesion solver: the collocation offset alpha must lie in (-1, 1] (got " + fmt::format("{}", alpha) + ")";
+void require_valid_offset(double alpha, const char* name) {
+  require(std::isfinite(alpha) && alpha >= kMinimumCollocationOffset && alpha <= 1.0, [&] {
+    return fmt::format("adhesion solver: the collocation offset {} = {:g} must lie in [{:g}, 1] (closer to -1 the "
+                       "steady-rolling operator is too ill-conditioned for the Krylov solver)",
+                       name, alpha, kMinimumCollocationOffset);
   });
+}
+
+// Nothing non-finite is returned. A Krylov solve that fails is reported as not converged before
+// this (its residual test catches NaN); a dense LU of R, singular only for alpha = -1 (refused),
+// or a Krylov solution passing its residual test cannot give non-finite K2 or tractions with
+// valid input: an invariant is broken, kind internal.
+void require_finite_solution(const AdhesionSolution& s, CreepageMatrixPart part) {
+  const bool K2_finite = part == CreepageMatrixPart::full ? s.creepage_matrix.allFinite()
+                                                          : s.creepage_matrix.topRows<2>().allFinite();
+  if (K2_finite && s.unit_tractions.allFinite()) return;
+  throw Error(ErrorKind::internal, fmt::format("adhesion solver: the creepage matrix K2 or the unit tractions are not "
+                                               "finite (K2_11 = {:g}, K2_22 = {:g}, K2_23 = {:g}); not returned (a bug: "
+                                               "please report it)",
+                                               s.creepage_matrix(0, 0), s.creepage_matrix(1, 1), s.creepage_matrix(1, 2)));
 }
 
 // Solves R(alpha) P = W for the given columns of W (the unit creepages), writing into P.
@@ -155,14 +171,19 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
   validate(material);
   validate(elements.mesh());
   require(elements.count() > 0, "adhesion solver: no elements in contact");
-  require_valid_offset(options.collocation_offset);
+  require_valid_offset(options.collocation_offset, "alpha");
   const double spin_alpha = options.spin_collocation_offset.value_or(options.collocation_offset);
-  require_valid_offset(spin_alpha);
+  require_valid_offset(spin_alpha, "alpha of the spin column");
   require(std::isfinite(tuning.half_laplacian_gamma) && tuning.half_laplacian_gamma > 0.0,
           "adhesion solver: the preconditioner's gamma must be positive and finite");
   if (options.solver == LinearSolver::krylov) {
-    require(options.tolerance > 0 && options.max_iterations > 0,
-            "adhesion solver: the Krylov tolerance and iteration limit must be positive");
+    require(std::isfinite(options.tolerance) && options.tolerance > 0 && options.tolerance <= 1e-2, [&] {
+      return fmt::format("adhesion solver: the Krylov tolerance = {:g} must lie in (0, 0.01]", options.tolerance);
+    });
+    require(options.max_iterations > 0, [&] {
+      return fmt::format("adhesion solver: the Krylov iteration limit max_iterations = {} must be positive",
+                         options.max_iterations);
+    });
   } else {
     // The dense matrix and its LU take 2 (2N)^2 doubles (9 GB at N = 12000) and O(N^3) time.
     require(elements.count() <= 12000, [&] {
@@ -177,6 +198,7 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
     require(spin_alpha == options.collocation_offset,
             "adhesion solver: the force rows of K2 need one collocation offset for all creepages");
     solve_force_rows(elements, material, options, tuning, solution);
+    require_finite_solution(solution, options.part);
     return solution;
   }
   solution.unit_tractions.resize(2 * n, 3);
@@ -187,6 +209,7 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
     solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {2}, options, tuning, solution);
   }
   solution.creepage_matrix = force_rows(elements) * solution.unit_tractions;
+  require_finite_solution(solution, options.part);
   return solution;
 }
 

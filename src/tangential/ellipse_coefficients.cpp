@@ -13,8 +13,8 @@ EllipseCoefficientResult ellipse_creepage_coefficients(double a_over_b, double n
                                                        const EllipseCoefficientOptions& options) {
   require(std::isfinite(a_over_b) && a_over_b >= 0.01 && a_over_b <= 100.0,
           [&] { return fmt::format("a/b must lie in [0.01, 100] (got {})", a_over_b); });
-  require(std::isfinite(nu) && nu >= 0.0 && nu < 0.5,
-          [&] { return fmt::format("Poisson's ratio must lie in [0, 0.5) (got {})", nu); });
+  require(std::isfinite(nu) && nu >= 0.0 && nu <= 0.5,
+          [&] { return fmt::format("Poisson's ratio nu = {:g} must lie in [0, 0.5]", nu); });
   require(options.target_elements >= 4, [&] {
     return fmt::format("the number of elements in contact must be at least 4 (got {})", options.target_elements);
   });

@@ -48,7 +48,7 @@ void evaluate(RollingSystem& system, const std::vector<double>& w, const std::ve
     }
     st.phi[e] = f1;
     st.phi[n + e] = f2;
-    st.residual = std::max(st.residual, std::hypot(f1, f2) / scale);
+    st.residual = max_or_nan(st.residual, std::hypot(f1, f2) / scale);  // a NaN element is not hidden
     st.merit += f1 * f1 + f2 * f2;
   }
 }
@@ -89,7 +89,12 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
   }
   evaluate(system, w, bound, c, max_bound, st);
   ExactState trial = st;
-  while (st.residual > options.tolerance) {
+  while (!(st.residual <= options.tolerance)) {  // a NaN residual is not convergence
+    if (!std::isfinite(st.residual))
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("exact rolling solver: the Newton iteration broke down after {} iterations (non-finite "
+                              "residual: the tractions overflowed or the traction bound mu p3 underflowed); no solution",
+                              solution.newton_iterations));
     if (solution.newton_iterations >= options.max_newton_iterations)
       throw Error(ErrorKind::not_converged,
                   fmt::format("exact rolling solver: Newton did not converge in {} iterations (residual {:.2e} > "
@@ -129,6 +134,7 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
   }
   solution.residual = st.residual;
   fill_rolling_solution(system, st.p, st.s, st.slip, solution);
+  require_finite_rolling_result("exact", solution);
   return solution;
 }
 

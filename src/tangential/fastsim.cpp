@@ -69,6 +69,7 @@ struct detail::FastSimLayout {
   AlignedVector<double> bound_Pa;             // bound pressure p3e (Eq 1 or its skewed form)
   std::vector<std::size_t> slot_element;      // element position in patch order; element_count for padding
   AlignedVector<double> lane_x2_m;            // per block and lane: the run's x2
+  double reach_m = 0.0;                       // largest |x1|, |x2| of an element edge (overflow check)
   // Patch order:
   TractionBound bound;
   std::vector<double> bound_pressure_Pa;
@@ -162,6 +163,34 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
   return {creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3};
 }
 
+// The march squares the tractions (Eq 8): they must stay far below sqrt(DBL_MAX) ~ 1.3e154 Pa, or
+// p1^2 + p2^2 overflows and the limiting turns the traction into 0 or NaN (L = 1e-300 m/Pa gave
+// zero forces). Along a run of length <= 2R (R the reach of the patch) the increments of Eq 2-3
+// add up to at most (|xi/L1| + |phi/L3| R) 2R and (|eta/L2| + |phi/L3| R) 2R, on top of a traction
+// already limited to mu p3e. Real tractions are below ~1e11 Pa; 1e150 only refuses inputs of
+// non-physical magnitude (kind invalid_input).
+void require_marchable(const MarchCoefficients& k, double reach_m, const Creepage& creepage,
+                       const Flexibility& flexibility) {
+  const double bound_Pa =
+      (std::fabs(k.xi_over_L1) + std::fabs(k.eta_over_L2) + 2.0 * std::fabs(k.phi_over_L3) * reach_m) * 2.0 * reach_m;
+  require(bound_Pa <= 1e150, [&] {
+    return fmt::format("fastsim: the creepages xi = {:g}, eta = {:g}, phi = {:g} 1/m over the flexibilities L1 = {:g}, "
+                       "L2 = {:g}, L3 = {:g} m/Pa give adhesion tractions up to {:g} Pa on this patch, beyond the "
+                       "1e150 Pa FastSim can march: the flexibilities are not physical",
+                       creepage.xi, creepage.eta, creepage.phi, flexibility.L1, flexibility.L2, flexibility.L3,
+                       bound_Pa);
+  });
+}
+
+// With marchable input every step of the march is finite: a non-finite force is a bug (internal).
+void require_finite_forces(const TangentialForces& f) {
+  if (std::isfinite(f.F1_N) && std::isfinite(f.F2_N) && std::isfinite(f.M3_Nm)) return;
+  throw Error(ErrorKind::internal,
+              fmt::format("fastsim: non-finite forces F1 = {:g}, F2 = {:g}, M3 = {:g} from checked input; not returned "
+                          "(a bug: please report it)",
+                          f.F1_N, f.F2_N, f.M3_Nm));
+}
+
 }  // namespace
 
 FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
@@ -211,6 +240,9 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
       layout->slot_element[s] = e;
     }
   }
+  for (std::size_t e = 0; e < layout->element_count; ++e)
+    layout->reach_m = std::max({layout->reach_m, std::fabs(patch.x1(e)) + 0.5 * patch.mesh().dx1_m,
+                                std::fabs(patch.x2(e)) + 0.5 * patch.mesh().dx2_m});
   layout_ = std::move(layout);
 }
 
@@ -221,17 +253,22 @@ const Eigen::Matrix3d& FastSim::adhesion_force_matrix() const { return layout_->
 
 TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
   const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
-  return creepage.phi != 0.0 ? march<true, false>(*layout_, k, mu, nullptr)
-                             : march<false, false>(*layout_, k, mu, nullptr);
+  require_marchable(k, layout_->reach_m, creepage, flexibility);
+  const TangentialForces forces = creepage.phi != 0.0 ? march<true, false>(*layout_, k, mu, nullptr)
+                                                      : march<false, false>(*layout_, k, mu, nullptr);
+  require_finite_forces(forces);
+  return forces;
 }
 
 FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
   const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
+  require_marchable(k, layout_->reach_m, creepage, flexibility);
   const std::size_t n = layout_->element_count;
   MarchRecord record{std::vector<double>(n + 1), std::vector<double>(n + 1), std::vector<std::uint8_t>(n + 1), 0};
   FastSimResult result;
   result.forces = creepage.phi != 0.0 ? march<true, true>(*layout_, k, mu, &record)
                                       : march<false, true>(*layout_, k, mu, &record);
+  require_finite_forces(result.forces);  // the tractions sum to the forces: finite with them
   record.p1_Pa.pop_back();  // drop the padding sink
   record.p2_Pa.pop_back();
   record.slip.pop_back();

@@ -51,7 +51,7 @@ void evaluate(RollingSystem& system, const std::vector<double>& w, const std::ve
   for (std::size_t e = 0; e < n; ++e) {
     st.F[e] += st.s[e] - w[e];
     st.F[n + e] += st.s[n + e] - w[n + e];
-    st.residual = std::max(st.residual, std::hypot(st.F[e], st.F[n + e]) / slip_scale);
+    st.residual = max_or_nan(st.residual, std::hypot(st.F[e], st.F[n + e]) / slip_scale);  // NaN is not hidden
   }
 }
 
@@ -85,7 +85,13 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
     const bool last = level + 1 == levels.size();
     const double target = last ? options.tolerance : 1e-3;
     evaluate(system, w, bound, eps, slip_scale, st);
-    while (st.residual > target) {
+    while (!(st.residual <= target)) {  // a NaN residual is not convergence
+      if (!std::isfinite(st.residual))
+        throw Error(ErrorKind::not_converged,
+                    fmt::format("regularised rolling solver: the Newton iteration broke down after {} iterations "
+                                "(epsilon {:.1e}: non-finite residual, the law's slope or the tractions left the range "
+                                "of double precision); no solution",
+                                solution.newton_iterations, eps));
       if (solution.newton_iterations >= options.max_newton_iterations)
         throw Error(ErrorKind::not_converged,
                     fmt::format("regularised rolling solver: Newton did not converge in {} iterations (epsilon "
@@ -128,6 +134,7 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
   for (std::size_t e = 0; e < n; ++e) slip[e] = std::hypot(st.s[e], st.s[n + e]) > 100.0 * options.regularisation;
   solution.residual = st.residual;
   fill_rolling_solution(system, st.p, st.s, slip, solution);
+  require_finite_rolling_result("regularised", solution);
   return solution;
 }
 

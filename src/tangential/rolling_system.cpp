@@ -1,5 +1,6 @@
 #include "tangential/rolling_system.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "elastic/krylov.hpp"
@@ -115,18 +116,58 @@ NewtonStepReport solve_newton_step(NewtonMatrix& J, const std::vector<double>& r
 
 namespace railcontact {
 
+void validate(const RollingOptions& o) {
+  require(std::isfinite(o.collocation_offset) && o.collocation_offset >= kMinimumCollocationOffset &&
+              o.collocation_offset <= 1.0,
+          [&] {
+            return fmt::format("rolling solver: the collocation offset alpha = {:g} must lie in [{:g}, 1] (closer to -1 "
+                               "the steady-rolling operator is too ill-conditioned for the Krylov solver)",
+                               o.collocation_offset, kMinimumCollocationOffset);
+          });
+  require(std::isfinite(o.tolerance) && o.tolerance > 0.0 && o.tolerance <= kMaximumRollingTolerance, [&] {
+    return fmt::format("rolling solver: tolerance = {:g} must lie in (0, {:g}] (relative to mu max p3)", o.tolerance,
+                       kMaximumRollingTolerance);
+  });
+  require(std::isfinite(o.krylov_tolerance) && o.krylov_tolerance > 0.0 && o.krylov_tolerance <= 0.5, [&] {
+    return fmt::format("rolling solver: krylov_tolerance = {:g} must lie in (0, 0.5]", o.krylov_tolerance);
+  });
+  require(o.max_newton_iterations > 0, [&] {
+    return fmt::format("rolling solver: max_newton_iterations = {} must be positive", o.max_newton_iterations);
+  });
+  require(o.max_krylov_iterations > 0, [&] {
+    return fmt::format("rolling solver: max_krylov_iterations = {} must be positive", o.max_krylov_iterations);
+  });
+  require(std::isfinite(o.regularisation) && o.regularisation >= kMinimumRegularisation &&
+              o.regularisation <= kMaximumRegularisation,
+          [&] {
+            return fmt::format("rolling solver: regularisation = {:g} must lie in [{:g}, {:g}] (a slip per unit rolling "
+                               "speed; the paper uses 1e-08)",
+                               o.regularisation, kMinimumRegularisation, kMaximumRegularisation);
+          });
+}
+
 void validate_rolling_input(const ContactPatch& patch, const Creepage& c, double mu, const RollingOptions& o) {
   require(patch.elements().count() > 0, "rolling solver: the patch has no element in contact");
-  require(std::isfinite(mu) && mu > 0.0,
-          [&] { return fmt::format("rolling solver: the friction coefficient must be positive (got {})", mu); });
-  require(std::isfinite(c.xi) && std::isfinite(c.eta) && std::isfinite(c.phi),
-          "rolling solver: creepages must be finite numbers");
-  require(std::isfinite(o.collocation_offset) && o.collocation_offset > -1.0 && o.collocation_offset <= 1.0,
-          "rolling solver: the collocation offset alpha must lie in (-1, 1]");
-  require(o.tolerance > 0 && o.krylov_tolerance > 0 && o.max_newton_iterations > 0 && o.max_krylov_iterations > 0,
-          "rolling solver: tolerances and iteration limits must be positive");
-  require(std::isfinite(o.regularisation) && o.regularisation > 0,
-          "rolling solver: the regularisation epsilon must be positive");
+  require(std::isfinite(mu) && mu > 0,
+          [&] { return fmt::format("rolling solver: the friction coefficient mu = {:g} must be positive and finite", mu); });
+  require(std::isfinite(c.xi) && std::isfinite(c.eta) && std::isfinite(c.phi), [&] {
+    return fmt::format("rolling solver: the creepages xi = {:g}, eta = {:g}, phi = {:g} 1/m must be finite", c.xi,
+                       c.eta, c.phi);
+  });
+  validate(o);
+}
+
+void require_finite_rolling_result(const char* solver, const RollingSolution& s) {
+  const auto finite = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (std::isfinite(s.forces.F1_N) && std::isfinite(s.forces.F2_N) && std::isfinite(s.forces.M3_Nm) &&
+      std::isfinite(s.residual) && finite(s.p1_Pa) && finite(s.p2_Pa) && finite(s.s1) && finite(s.s2))
+    return;
+  throw Error(ErrorKind::internal,
+              fmt::format("{} rolling solver: a converged solution holds non-finite numbers (F1 = {:g}, F2 = {:g}, M3 = "
+                          "{:g}, residual {:g}); not returned (a bug: please report it)",
+                          solver, s.forces.F1_N, s.forces.F2_N, s.forces.M3_Nm, s.residual));
 }
 
 void fill_rolling_solution(const RollingSystem& system, const std::vector<double>& p, const std::vector<double>& s,

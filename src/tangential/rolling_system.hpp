@@ -3,6 +3,7 @@
 // the steady-rolling operator R on the patch, the rigid slip, the forces, and the Newton
 // linear operator J = A R + B (2 x 2 blocks A_e, B_e per element) with its preconditioner.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -78,6 +79,15 @@ namespace railcontact {
 // Throws railcontact::Error on non-physical input (mu, creepage, options).
 void validate_rolling_input(const ContactPatch& patch, const Creepage& creepage, double mu,
                             const RollingOptions& options);
+
+// The larger of a and b, NaN if either is NaN (std::max(a, NaN) returns a: a residual taken with
+// it would hide a NaN element and report convergence).
+inline double max_or_nan(double a, double b) { return (b > a || std::isnan(b)) ? b : a; }
+
+// Throws Error(internal) naming the solver ("exact", "regularised") if a converged solution holds a
+// non-finite force, traction, slip or residual: its residual test covers every element (NaN
+// propagating), so with finite input this cannot happen without a bug.
+void require_finite_rolling_result(const char* solver, const RollingSolution& solution);
 
 // Fills tractions, slip, flags, forces and the adhesion fraction of a solution.
 void fill_rolling_solution(const RollingSystem& system, const std::vector<double>& p, const std::vector<double>& s,

@@ -21,12 +21,12 @@ constexpr double kMm = 1e-3;
 constexpr double kKnownApproachMargin = 1.15;
 
 void validate(const WheelRailPatchOptions& o) {
-  require(std::isfinite(o.vertical_load_N) && o.vertical_load_N > 0.0, [&] {
-    return fmt::format("wheel-rail patch: the vertical wheel load must be positive (got {} N)", o.vertical_load_N);
-  });
-  require(o.target_elements >= 10 && o.target_elements <= 200000, [&] {
-    return fmt::format("wheel-rail patch: the target number of elements in contact must lie in [10, 200000] (got {})",
-                       o.target_elements);
+  validate_normal_force(o.vertical_load_N, "wheel-rail patch: the vertical wheel load");
+  require(o.target_elements >= kMinimumWheelRailElements && o.target_elements <= kMaximumWheelRailElements, [&] {
+    return fmt::format(
+        "wheel-rail patch: the target number of elements in contact target_elements = {} must lie in [{}, {}] (with "
+        "fewer the elements are too coarse for the patch and for the profiles)",
+        o.target_elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
   });
   require(std::isfinite(o.element_count_tolerance) && o.element_count_tolerance > 0.0 &&
               o.element_count_tolerance < 1.0,
@@ -104,6 +104,38 @@ std::string load_shares(const std::vector<ContactRegion>& regions, std::size_t c
   return text;
 }
 
+// The potential contact area failed (h < margin × δ reaches beyond the profiles, or a normal line
+// of its mesh misses a profile). Either the patch itself does not fit on the profiles (the load is
+// too large for them) or only the mesh does not: its border of whole elements reaches beyond them
+// when the elements are large (few elements in contact). Which one: the same area with elements
+// 2, 4, 8, 16 times smaller (4 ... 256 times as many in contact, up to kMaximumWheelRailElements);
+// the first that fits gives the number of elements to ask for.
+Error potential_area_error(const WheelRailPair& pair, const WheelRailContactPoint& contact, double approach_m,
+                           const PotentialAreaOptions& failed, const Error& error, const std::string& where,
+                           const WheelRailPatchOptions& options) {
+  for (int factor = 2; factor <= 16; factor *= 2) {
+    const double count = static_cast<double>(options.target_elements) * factor * factor;
+    if (count > kMaximumWheelRailElements) break;
+    PotentialAreaOptions finer = failed;
+    finer.dx1_m = failed.dx1_m / factor;
+    finer.dx2_m = failed.dx2_m / factor;
+    try {
+      (void)potential_contact_area(pair, contact, approach_m, finer);
+    } catch (const Error&) {
+      continue;
+    }
+    return Error(error.kind(),
+                 fmt::format("wheel-rail patch at {}: elements of {:.3f} x {:.3f} mm (target_elements = {} elements in "
+                             "contact) are too large for these profiles at Fz = {:g} N: the potential contact area with "
+                             "its border of whole elements reaches beyond them ({}); use more elements (about {:g} fit)",
+                             where, failed.dx1_m / kMm, failed.dx2_m / kMm, options.target_elements,
+                             options.vertical_load_N, error.what(), count));
+  }
+  return Error(error.kind(), fmt::format("wheel-rail patch at {}: {} (the load Fz = {:g} N is too large for these "
+                                         "profiles: the patch does not fit on them)",
+                                         where, error.what(), options.vertical_load_N));
+}
+
 struct Solve {
   PotentialContactArea area;
   NormalSolution normal;
@@ -133,6 +165,9 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   // Frictionless equilibrium of the vertical forces (METHOD.md §9): F3 cos γ = Fz.
   r.normal_force_N = options.vertical_load_N / cos_gamma;
   const double F3 = r.normal_force_N;
+  validate_normal_force(F3, fmt::format("wheel-rail patch at {}: the normal force F3 = Fz / cos γ of Fz = {:g} N and "
+                                        "γ = {:.3f} rad",
+                                        where, options.vertical_load_N, r.contact_angle_rad));
 
   // First estimate: Hertz for the local curvatures. B <= 0 (laterally conformal or concave) has
   // no Hertzian contact; a small positive B then only seeds the mesh passes.
@@ -158,8 +193,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     try {
       s.area = potential_contact_area(pair, r.contact, approach_m, area_options);
     } catch (const Error& e) {
-      throw Error(e.kind(), fmt::format("wheel-rail patch at {}: {} (is the load Fz = {:g} N too large for these profiles?)",
-                                        where, e.what(), options.vertical_load_N));
+      throw potential_area_error(pair, r.contact, approach_m, area_options, e, where, options);
     }
     s.normal = solve_normal_contact(s.area.mesh, s.area.h_m, F3, options.material, options.normal);
     ++r.mesh_passes;

@@ -4,19 +4,21 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
 #include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
 #include "railcontact/wheel_rail.hpp"
 
 namespace railcontact {
 namespace {
 
 using json = nlohmann::json;
+
+// A set-up file is a few hundred bytes of JSON.
+constexpr std::uintmax_t kMaxSetupFileBytes = 1u << 20;  // 1 MiB
 
 std::filesystem::path data_directory() {
   if (const char* from_environment = std::getenv("RAILCONTACT_DATA")) return from_environment;
@@ -28,20 +30,21 @@ double number(const json& object, const char* key, const std::string& where) {
   const auto it = object.find(key);
   if (it == object.end()) throw Error(fmt::format("{}: missing key '{}'", where, key));
   if (!it->is_number() || !std::isfinite(it->get<double>()))
-    throw Error(fmt::format("{}: '{}' must be a finite number (got {})", where, key, it->dump()));
+    throw Error(fmt::format("{}: '{}' must be a finite number (got {})", where, key, printable_excerpt(it->dump())));
   return it->get<double>();
 }
 
 std::string text(const json& object, const char* key, const std::string& where) {
   const auto it = object.find(key);
   if (it == object.end()) throw Error(fmt::format("{}: missing key '{}'", where, key));
-  if (!it->is_string()) throw Error(fmt::format("{}: '{}' must be a string (got {})", where, key, it->dump()));
+  if (!it->is_string()) throw Error(fmt::format("{}: '{}' must be a string (got {})", where, key, printable_excerpt(it->dump())));
   return it->get<std::string>();
 }
 
 void refuse_unknown_keys(const json& object, const std::set<std::string>& known, const std::string& where) {
   for (const auto& item : object.items())
-    if (!known.contains(item.key())) throw Error(fmt::format("{}: unknown key '{}'", where, item.key()));
+    if (!known.contains(item.key()))
+      throw Error(fmt::format("{}: unknown key '{}'", where, printable_excerpt(item.key())));
 }
 
 }  // namespace
@@ -50,9 +53,7 @@ std::filesystem::path default_wheel_rail_setup_path() { return data_directory() 
 
 WheelRailSetup read_wheel_rail_setup(const std::filesystem::path& path) {
   const std::string where = "wheel-rail set-up " + path.string();
-  std::ifstream file(path);
-  if (!file) throw Error(ErrorKind::io, fmt::format("cannot read the {}", where));
-  const std::string content{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  const std::string content = read_text_file(path, "wheel-rail set-up", kMaxSetupFileBytes);
   json root;
   try {
     root = json::parse(content);
