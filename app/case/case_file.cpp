@@ -202,8 +202,8 @@ void read_material(Section material, Case& c) {
   const std::optional<double> E = material.optional_positive("E");
   const std::optional<double> G = material.optional_positive("G");
   const double nu = material.number("nu");
-  if (!(nu >= 0 && nu < 0.5))
-    throw Error(fmt::format("{}: [material] nu must lie in [0, 0.5) (got {})", material.location("nu"), nu));
+  if (!(nu >= 0 && nu <= 0.5))
+    throw Error(fmt::format("{}: [material] nu must lie in [0, 0.5] (got {})", material.location("nu"), nu));
   if (E.has_value() == G.has_value())
     throw Error(fmt::format("{}: [material] give either E or G (Pa)", material.location("nu")));
   c.material = E ? Material{*E, nu} : Material::from_shear_modulus(*G, nu);
@@ -312,8 +312,9 @@ void read_solver_list(Section& solvers, Case& c) {
 void read_solvers(Section solvers, Case& c) {
   read_solver_list(solvers, c);
   if (const std::optional<double> alpha = solvers.optional_number("alpha")) {
-    if (!(*alpha > -1 && *alpha <= 1))
-      throw Error(fmt::format("{}: [solvers] alpha must lie in (-1, 1]", solvers.location("alpha")));
+    if (!(*alpha >= kMinimumCollocationOffset && *alpha <= 1))
+      throw Error(fmt::format("{}: [solvers] alpha = {} must lie in [{}, 1]", solvers.location("alpha"), *alpha,
+                              kMinimumCollocationOffset));
     c.rolling.collocation_offset = *alpha;
   }
   if (const std::optional<double> eps = solvers.optional_positive("regularisation")) c.rolling.regularisation = *eps;

@@ -20,9 +20,6 @@
 namespace railcontact::study {
 namespace {
 
-// Kalker's nu = 0.5 rows are evaluated just below 0.5, where the half-space is still compressible.
-constexpr double kNuJustBelowHalf = 0.5 - 1e-9;
-double solver_nu(double nu) { return nu >= 0.5 ? kNuJustBelowHalf : nu; }
 
 struct Configuration {
   std::string name;
@@ -84,7 +81,7 @@ TableStatistics write_table(const std::filesystem::path& path, const Configurati
   for (const auto& row : rows) {
     ++k;
     const EllipseCoefficientResult r =
-        ellipse_creepage_coefficients(row.a_over_b, solver_nu(row.nu), configuration.options);
+        ellipse_creepage_coefficients(row.a_over_b, row.nu, configuration.options);
     const auto e = relative_errors(r.coefficients, row.c11, row.c22, row.c23);
     const std::array<double, 3> table{row.c11, row.c22, row.c23};
     fmt::print(csv, "{:.6g},{:.2f},{:.6f},{:.6f},{:.6f},{},{},{},{:.6f},{:.6f},{:.6f}\n", row.a_over_b, row.nu,

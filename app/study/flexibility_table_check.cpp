@@ -57,9 +57,12 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
                                               const FlexibilityTableCheckOptions& options, std::ostream* progress) {
   require(std::isfinite(options.mu) && options.mu > 0.0 && options.mu <= 2.0,
           [&] { return fmt::format("flextable check: mu must lie in (0, 2] (got {})", options.mu); });
-  require(options.target_elements == 0 || (options.target_elements >= 10 && options.target_elements <= 200000), [&] {
-    return fmt::format("flextable check: the elements must lie in [10, 200000] (got {})", options.target_elements);
-  });
+  require(options.target_elements == 0 || (options.target_elements >= kMinimumWheelRailElements &&
+                                           options.target_elements <= kMaximumWheelRailElements),
+          [&] {
+            return fmt::format("flextable check: --elements {} must lie in [{}, {}]", options.target_elements,
+                               kMinimumWheelRailElements, kMaximumWheelRailElements);
+          });
   table.check_profiles(pair);
   const std::vector<double> ys = options.y_m.empty() ? default_y(table) : options.y_m;
   const std::vector<double> loads = options.vertical_loads_N.empty() ? default_loads(table) : options.vertical_loads_N;

@@ -213,8 +213,10 @@ void write_summary(const std::filesystem::path& path, const PatchStudyOptions& o
 int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
   require(std::isfinite(options.vertical_load_N) && options.vertical_load_N > 0.0,
           [&] { return fmt::format("study patches: --load must be positive (got {} N)", options.vertical_load_N); });
-  require(options.elements >= 10 && options.elements <= 200000,
-          [&] { return fmt::format("study patches: --elements must lie in [10, 200000] (got {})", options.elements); });
+  require(options.elements >= kMinimumWheelRailElements && options.elements <= kMaximumWheelRailElements, [&] {
+    return fmt::format("study patches: --elements {} must lie in [{}, {}]", options.elements, kMinimumWheelRailElements,
+                       kMaximumWheelRailElements);
+  });
   const std::vector<double> ys = displacements(options);
   const std::filesystem::path wheel = options.wheel_profile.value_or(default_wheel_profile_path());
   const std::filesystem::path rail = options.rail_profile.value_or(default_rail_profile_path());

@@ -159,6 +159,12 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   validate_grid(load_grid_N, "vertical load", kMaxLoads);
   require(load_grid_N.front() > 0.0, "flexibility table: the vertical loads must be positive");
   validate(options.patch.material);
+  require(options.patch.target_elements >= kMinimumWheelRailElements &&
+              options.patch.target_elements <= kMaximumWheelRailElements,
+          [&] {
+            return fmt::format("flexibility table: the target elements in contact {} must lie in [{}, {}]",
+                               options.patch.target_elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
+          });
 
   FlexibilityTableMetadata metadata;
   metadata.wheel_profile = file_fingerprint(pair.wheel().source());

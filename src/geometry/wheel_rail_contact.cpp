@@ -91,7 +91,8 @@ WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const Tr
     require(flange_tip_y<taping_y_m_&& * flange_tip> taping_z_m_, [&] {
       return fmt::format(
           "wheel profile {}: the flange (largest z, z pointing down) must lie at y < {:.1f} mm; "
-          "mirror the profile (ProfileReadOptions::mirror_y / mirror_z)",
+          "mirror the profile (y -> -y or z -> -z; in a SIMPACK file: mirror.y = 1 or mirror.z = 1; in a "
+          "text profile: negate that column)",
           wheel.source, taping_y_m_ * 1e3);
     });
   }
@@ -101,7 +102,7 @@ WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const Tr
   require(s_top > rail_.s_begin_m() && s_top < rail_.s_end_m(), [&] {
     return fmt::format(
         "rail profile {}: the highest point lies at an end of the profile; z must point down "
-        "(ProfileReadOptions::mirror_z)",
+        "(mirror z: in a SIMPACK file mirror.z = 1; in a text profile negate the z column)",
         rail.source);
   });
   const auto top = rail_.at(s_top);
@@ -120,7 +121,7 @@ WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const Tr
     require(top.y_m > head_centre_y - 1e-3, [&] {
       return fmt::format(
           "rail profile {}: the top lies {:.1f} mm on the -y side of the head centre; the gauge side "
-          "must be at -y (ProfileReadOptions::mirror_y)",
+          "must be at -y (mirror y: in a SIMPACK file mirror.y = 1; in a text profile negate the y column)",
           rail.source, (head_centre_y - top.y_m) * 1e3);
     });
   }
