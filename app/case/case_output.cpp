@@ -160,16 +160,26 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
                  run.iterations, run.krylov_iterations);
 }
 
-void write_case_outputs(const CaseResult& r, const std::filesystem::path& dir, std::ostream& log) {
-  std::filesystem::create_directories(dir);
+void write_case_outputs(const CaseResult& r, const std::filesystem::path& directory, std::ostream& log) {
+  study::OutputDirectory output(directory, &log);
+  write_case_outputs(r, output, log);
+}
+
+void write_case_outputs(const CaseResult& r, study::OutputDirectory& output, std::ostream& log) {
+  const std::filesystem::path& dir = output.staging();
   auto open = [&](const std::string& name) {
     std::ofstream file(dir / name);
-    if (!file) throw Error(ErrorKind::io, "cannot write " + (dir / name).string());
+    if (!file) throw Error(ErrorKind::io, "cannot write " + (output.directory() / name).string());
     return file;
+  };
+  auto close = [&](std::ofstream& file, const std::string& name) {
+    file.close();
+    if (!file) throw Error(ErrorKind::io, "cannot write " + (output.directory() / name).string());
   };
   {
     std::ofstream json = open("result.json");
     json << case_result_json(r) << "\n";
+    close(json, "result.json");
   }
   const ContactPatch& patch = r.patch;
   {
@@ -177,17 +187,22 @@ void write_case_outputs(const CaseResult& r, const std::filesystem::path& dir, s
     csv << "x1_m,x2_m,p3_Pa\n";
     for (std::size_t e = 0; e < patch.elements().count(); ++e)
       fmt::print(csv, "{:.9e},{:.9e},{:.9e}\n", patch.x1(e), patch.x2(e), patch.pressure_Pa()[e]);
+    close(csv, "patch.csv");
     std::ofstream mesh = open("mesh.csv");
     fmt::print(mesh, "dx1_m,dx2_m,mu\n{:.9e},{:.9e},{}\n", patch.mesh().dx1_m, patch.mesh().dx2_m, r.input.mu);
+    close(mesh, "mesh.csv");
   }
   for (const SolverRun& run : r.runs) {
-    std::ofstream csv = open(fmt::format("tractions_{}.csv", solver_name(run.kind)));
+    const std::string name = fmt::format("tractions_{}.csv", solver_name(run.kind));
+    std::ofstream csv = open(name);
     csv << "x1_m,x2_m,p3_Pa,p1_Pa,p2_Pa,p_abs_Pa,slip\n";
     for (std::size_t e = 0; e < patch.elements().count(); ++e)
       fmt::print(csv, "{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{:.9e},{}\n", patch.x1(e), patch.x2(e), patch.pressure_Pa()[e],
                  run.p1_Pa[e], run.p2_Pa[e], std::hypot(run.p1_Pa[e], run.p2_Pa[e]), static_cast<int>(run.slip[e]));
+    close(csv, name);
   }
-  study::draw_figures("plot_tractions.py", dir, log);
+  study::draw_figures("plot_tractions.py", dir, log);  // on the staged files: the figures are committed with them
+  output.commit();
 }
 
 }  // namespace railcontact

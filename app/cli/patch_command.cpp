@@ -12,6 +12,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "study/figures.hpp"
+#include "study/output_directory.hpp"
 #include "study/patch_files.hpp"
 
 namespace railcontact::cli {
@@ -71,6 +72,9 @@ int run_patch(const PatchArguments& args) {
   const std::filesystem::path wheel = args.wheel ? std::filesystem::path(*args.wheel) : default_wheel_profile_path();
   const std::filesystem::path rail = args.rail ? std::filesystem::path(*args.rail) : default_rail_profile_path();
 
+  // --out: locked and staged before the work (docs/RELIABILITY.md "Outputs").
+  std::optional<study::OutputDirectory> output;
+  if (args.out) output.emplace(*args.out, &std::cerr);
   const auto start = std::chrono::steady_clock::now();
   const WheelRailPair pair = load_wheel_rail_pair(wheel, rail);
   WheelRailPatchOptions options;
@@ -84,14 +88,16 @@ int run_patch(const PatchArguments& args) {
   json["wheel_profile"] = wheel.string();
   json["rail_profile"] = rail.string();
   json["solve_time_s"] = time_s;
-  if (args.out) {
-    const std::filesystem::path dir(*args.out);
-    std::filesystem::create_directories(dir);
+  if (output) {
+    const std::filesystem::path& dir = output->staging();
     study::write_pressure_csv(dir / "pressure.csv", patch.patch);
     std::ofstream file(dir / "patch.json");
-    if (!(file << json.dump(2) << '\n')) throw Error(ErrorKind::io, "cannot write " + (dir / "patch.json").string());
+    if (!(file << json.dump(2) << '\n'))
+      throw Error(ErrorKind::io, "cannot write " + (output->directory() / "patch.json").string());
     file.close();
+    if (!file) throw Error(ErrorKind::io, "cannot write " + (output->directory() / "patch.json").string());
     study::draw_figures("plot_patch.py", dir, std::cerr);
+    output->commit();
   }
   if (args.json) {
     fmt::print("{}\n", json.dump(2));

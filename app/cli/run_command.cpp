@@ -3,6 +3,7 @@
 
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli/commands.hpp"
@@ -27,16 +28,20 @@ int run(const RunArguments& args) {
   CaseRunOptions options;
   if (!args.flextable.empty())
     options.flexibility_table = std::make_shared<const FlexibilityTable>(load_flexibility_table(args.flextable));
+  // The built-in case always writes its outputs (default railcontact-out/). The directory is locked
+  // (and its leftovers of an interrupted run removed) before the computation: a directory in use
+  // by another run is refused at once.
+  const std::string out = !args.out.empty() ? args.out : (built_in ? "railcontact-out" : "");
+  std::optional<study::OutputDirectory> output;
+  if (!out.empty()) output.emplace(out, &std::cerr);
   const CaseResult result = run_case(input, options, args.json ? nullptr : &std::cerr);
   if (args.json) {
     fmt::print("{}\n", case_result_json(result));
   } else {
     print_case_report(result, std::cout);
   }
-  // The built-in case always writes its outputs (default railcontact-out/).
-  const std::string out = !args.out.empty() ? args.out : (built_in ? "railcontact-out" : "");
-  if (!out.empty()) {
-    write_case_outputs(result, out, std::cerr);
+  if (output) {
+    write_case_outputs(result, *output, std::cerr);
     if (!args.json) fmt::print("\nWrote {}/ (result.json, tractions_*.csv, tractions.png)\n", out);
   }
   return 0;

@@ -4,6 +4,7 @@
 // 0.1 ... 1.0, normalised with f11, f22 of the patch's K2 (Eq 22-23); spin from conicity on the
 // wheel-rail patches, 0.1 1/m on the ellipses. Ellipses: c = sqrt(ab) = 6 mm, F3 = 98.1 kN.
 #include "study/bound_study.hpp"
+#include "study/output_directory.hpp"
 
 #include <algorithm>
 #include <array>
@@ -59,8 +60,8 @@ void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
   require(options.elements >= 200 && options.elements <= 30000,
           [&] { return fmt::format("study bound: --elements must lie in [200, 30000] (got {})", options.elements); });
   require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study bound: --y-step must lie in (0, 4.5e-3] m");
-  const auto& dir = options.output_directory;
-  std::filesystem::create_directories(dir);
+  OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  const std::filesystem::path& dir = output.staging();
   std::ofstream csv(dir / "bound_sweep.csv");
   if (!csv) throw Error(ErrorKind::io, "cannot write " + (dir / "bound_sweep.csv").string());
   csv << "patch,parameter,skew,worst_rel_error\n";
@@ -118,7 +119,11 @@ void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
   md << " |\n| **worst, wheel-rail**";
   for (double w : wheel_rail_worst) fmt::print(md, " | {:.2f} %", 100 * w);
   md << " |\n";
-  fmt::print(progress, "Wrote {}\n", dir.string());
+  md.close();
+  csv.close();
+  if (!md || !csv) throw Error(ErrorKind::io, "cannot write the outputs of study bound in " + dir.string());
+  output.commit();
+  fmt::print(progress, "Wrote {}\n", options.output_directory.string());
 }
 
 }  // namespace railcontact::study

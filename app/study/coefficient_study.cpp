@@ -16,6 +16,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 #include "study/figures.hpp"
+#include "study/output_directory.hpp"
 
 namespace railcontact::study {
 namespace {
@@ -183,8 +184,8 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   require(options.elements >= 50 && options.elements <= 200000, [&] {
     return fmt::format("study coefficients: --elements must lie in [50, 200000] (got {})", options.elements);
   });
-  std::filesystem::create_directories(options.output_directory);
-  const auto& dir = options.output_directory;
+  OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  const std::filesystem::path& dir = output.staging();
   const auto start = std::chrono::steady_clock::now();
 
   const Configuration ours = railcontact_configuration(options.elements, false);
@@ -216,8 +217,10 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print(md, "\nStudy run time: {:.1f} s.\n", total);
   md.close();
+  if (!md) throw Error(ErrorKind::io, "cannot write " + (dir / "summary.md").string());
   if (options.figures) draw_figures("plot_coefficient_study.py", dir, progress);
-  fmt::print(progress, "Wrote {}\n", dir.string());
+  output.commit();
+  fmt::print(progress, "Wrote {}\n", options.output_directory.string());
 }
 
 }  // namespace railcontact::study

@@ -18,6 +18,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 #include "study/figures.hpp"
+#include "study/output_directory.hpp"
 
 namespace railcontact::study {
 namespace {
@@ -195,12 +196,15 @@ void write_summary(const HertzStudyOptions& options, Tallies& tallies, Clock::ti
 
 }  // namespace
 
-void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
-  require(options.elements >= 100 && options.elements <= 50000,
-          [&] { return fmt::format("study hertz: --elements must lie in [100, 50000] (got {})", options.elements); });
-  require(options.points >= 2 && options.points <= 100, "study hertz: --points must lie in [2, 100]");
-  std::filesystem::create_directories(options.output_directory);
-  const auto& dir = options.output_directory;
+void run_hertz_study(const HertzStudyOptions& requested, std::ostream& progress) {
+  require(requested.elements >= 100 && requested.elements <= 50000, [&] {
+    return fmt::format("study hertz: --elements must lie in [100, 50000] (got {})", requested.elements);
+  });
+  require(requested.points >= 2 && requested.points <= 100, "study hertz: --points must lie in [2, 100]");
+  OutputDirectory output(requested.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  HertzStudyOptions options = requested;
+  options.output_directory = output.staging();
+  const std::filesystem::path& dir = options.output_directory;
   std::ofstream csv(dir / "creep_curves.csv");
   if (!csv) throw Error(ErrorKind::io, "cannot write " + (dir / "creep_curves.csv").string());
   csv << "a_over_b,family,creepage_normalised,xi,eta,phi,solver,F1,F2,M3,F_over_muF3,adhesion_fraction,time_s\n";
@@ -211,7 +215,8 @@ void run_hertz_study(const HertzStudyOptions& options, std::ostream& progress) {
   csv.close();
   write_summary(options, tallies, start);
   if (options.figures) draw_figures("plot_hertz_study.py", dir, progress);
-  fmt::print(progress, "Wrote {}\n", dir.string());
+  output.commit();
+  fmt::print(progress, "Wrote {}\n", requested.output_directory.string());
 }
 
 }  // namespace railcontact::study

@@ -23,6 +23,7 @@
 #include "railcontact/kalker.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "study/figures.hpp"
+#include "study/output_directory.hpp"
 
 namespace railcontact::study {
 namespace {
@@ -395,10 +396,12 @@ void write_summary(const PaperStudyOptions& options, const SummaryInputs& inputs
 
 }  // namespace
 
-void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
-  check_options(options);
-  const auto& dir = options.output_directory;
-  std::filesystem::create_directories(dir);
+void run_paper_study(const PaperStudyOptions& requested, std::ostream& progress) {
+  check_options(requested);
+  OutputDirectory output(requested.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  PaperStudyOptions options = requested;
+  options.output_directory = output.staging();
+  const std::filesystem::path& dir = options.output_directory;
   SummaryInputs summary;
   summary.study_start = Clock::now();
   const WheelRailPair pair = default_wheel_rail_pair();
@@ -417,7 +420,8 @@ void run_paper_study(const PaperStudyOptions& options, std::ostream& progress) {
 
   write_summary(options, summary);
   if (options.figures) draw_figures("plot_paper_study.py", dir, progress);
-  fmt::print(progress, "Wrote {}\n", dir.string());
+  output.commit();
+  fmt::print(progress, "Wrote {}\n", requested.output_directory.string());
 }
 
 }  // namespace railcontact::study

@@ -16,6 +16,7 @@ void write_pressure_csv(const std::filesystem::path& path, const ContactPatch& p
   csv << "x1_m,x2_m,pressure_Pa\n";
   for (std::size_t e = 0; e < patch.elements().count(); ++e)
     fmt::print(csv, "{:.9e},{:.9e},{:.9e}\n", patch.x1(e), patch.x2(e), patch.pressure_Pa()[e]);
+  csv.close();  // a full disk shows here
   if (!csv) throw Error(ErrorKind::io, "cannot write " + path.string());
 }
 

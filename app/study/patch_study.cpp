@@ -16,6 +16,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "study/figures.hpp"
+#include "study/output_directory.hpp"
 #include "study/patch_files.hpp"
 
 namespace railcontact::study {
@@ -221,8 +222,8 @@ int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
   const std::filesystem::path wheel = options.wheel_profile.value_or(default_wheel_profile_path());
   const std::filesystem::path rail = options.rail_profile.value_or(default_rail_profile_path());
   const WheelRailPair pair = load_wheel_rail_pair(wheel, rail);
-  const auto& dir = options.output_directory;
-  std::filesystem::create_directories(dir);
+  OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  const std::filesystem::path& dir = output.staging();
   const auto start = std::chrono::steady_clock::now();
 
   std::vector<Row> rows;
@@ -244,7 +245,8 @@ int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_summary(dir / "summary.md", options, rows, wheel.filename().string(), rail.filename().string(), total);
   if (options.figures) draw_figures("plot_patch_study.py", dir, progress);
-  fmt::print(progress, "Wrote {}\n", dir.string());
+  output.commit();
+  fmt::print(progress, "Wrote {}\n", options.output_directory.string());
   return single;
 }
 
