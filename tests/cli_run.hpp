@@ -19,12 +19,13 @@ struct CommandResult {
   std::string err;  // stderr
 };
 
-inline CommandResult run_cli(const std::string& arguments) {
+// Runs `railcontact ARGUMENTS`, after `shell_prefix` (e.g. limits: "ulimit -v N; exec timeout S ").
+inline CommandResult run_cli(const std::string& arguments, const std::string& shell_prefix = "") {
   // One file per call: ctest runs the tests in parallel processes.
   std::string err_file = ::testing::TempDir() + "railcontact_cli_stderr_XXXXXX";
   const int fd = mkstemp(err_file.data());
   if (fd >= 0) close(fd);
-  const std::string command = std::string(RAILCONTACT_CLI) + " " + arguments + " 2>" + err_file;
+  const std::string command = shell_prefix + std::string(RAILCONTACT_CLI) + " " + arguments + " 2>" + err_file;
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;

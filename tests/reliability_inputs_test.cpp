@@ -94,29 +94,10 @@ void expect_contains(const std::string& message, const std::vector<std::string>&
   for (const auto& part : parts) EXPECT_NE(message.find(part), std::string::npos) << message << "\nmissing: " << part;
 }
 
-std::string file_text_of(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 // The CLI under a time and memory limit: a reader that hangs or reads an endless device fails
 // the test in seconds instead of blocking the suite or exhausting the machine's memory.
 CommandResult run_cli_bounded(const std::string& arguments) {
-  std::string err_file = ::testing::TempDir() + "railcontact_reliability_stderr_XXXXXX";
-  const int fd = mkstemp(err_file.data());
-  if (fd >= 0) close(fd);
-  const std::string command = "ulimit -v 8000000; exec timeout 120 " + std::string(RAILCONTACT_CLI) + " " + arguments +
-                              " 2>" + err_file;
-  CommandResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer{};
-  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) result.out += buffer.data();
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  result.err = file_text_of(err_file);
-  std::remove(err_file.c_str());
-  return result;
+  return test::run_cli(arguments, "ulimit -v 8000000; exec timeout 120 ");
 }
 
 std::string file_text(const fs::path& path) {
