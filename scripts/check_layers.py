@@ -41,6 +41,7 @@ PUBLIC_LAYERS = {
     "hertz.hpp": 2,
     "kalker.hpp": 3,
     "geometry.hpp": 4,
+    "wheelset_geometry.hpp": 4,
     "normal.hpp": 6,
     "tangential.hpp": 7,
     "wheel_rail.hpp": 8,

@@ -459,3 +459,40 @@ TEST(NormalContact, BadInputThrows) {
 
 }  // namespace
 }  // namespace railcontact
+
+// ---- Approach given ----------------------------------------------------------------------------
+
+namespace railcontact {
+namespace {
+
+// The approach-given solver on Hertz's problem: F3 = (4/3) E* sqrt(R_e) δ^(3/2) generalised by
+// hertz_from_curvatures; at the approach the load-given solver finds for F3, it returns F3 and the
+// same pressure; below the undeformed overlap it gives no contact (F3 = 0, not an error).
+TEST(NormalContact, ApproachGivenReproducesHertzAndTheLoadGivenSolver) {
+  const double A = 1.0 / (2 * 0.46), B = 1.0 / (2 * 0.3);
+  const HertzContact hertz = hertz_from_curvatures(A, B, kLoad_N, kSteel);
+  const Mesh mesh = Mesh::covering(-1.2 * hertz.a_m, 1.2 * hertz.a_m, -1.2 * hertz.b_m, 1.2 * hertz.b_m, 81, 81);
+  const std::vector<double> h = quadratic_distance(mesh, A, B);
+  NormalContactSolver solver(mesh, kSteel);
+  const NormalSolution by_load = solver.solve(h, kLoad_N);
+  const NormalSolution by_approach = solver.solve_at_approach(h, by_load.approach_m);
+  ASSERT_TRUE(by_approach.converged) << by_approach.residual;
+  EXPECT_LT(rel_diff(by_approach.normal_force_N, kLoad_N), 1e-8);
+  EXPECT_EQ(by_approach.elements_in_contact, by_load.elements_in_contact);
+  // Hertz: F3 ∝ δ^(3/2) within the discretisation error (1 %) at Hertz's own approach.
+  const NormalSolution at_hertz = solver.solve_at_approach(h, hertz.approach_m);
+  EXPECT_LT(rel_diff(at_hertz.normal_force_N, kLoad_N), 0.015);
+  // A warm start from the previous pressure gives the same answer in fewer iterations.
+  const NormalSolution warm = solver.solve_at_approach(h, 1.01 * by_load.approach_m, by_approach.pressure_Pa);
+  const NormalSolution cold = solver.solve_at_approach(h, 1.01 * by_load.approach_m);
+  EXPECT_LT(rel_diff(warm.normal_force_N, cold.normal_force_N), 1e-8);
+  EXPECT_LT(warm.iterations, cold.iterations);
+  // No overlap: no contact, zero force.
+  const NormalSolution none = solver.solve_at_approach(h, -1e-6);
+  EXPECT_TRUE(none.converged);
+  EXPECT_EQ(none.elements_in_contact, 0u);
+  EXPECT_EQ(none.normal_force_N, 0.0);
+}
+
+}  // namespace
+}  // namespace railcontact

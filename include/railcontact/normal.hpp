@@ -56,6 +56,12 @@ NormalSolution solve_normal_contact(const Mesh& mesh, const std::vector<double>&
                                     double normal_force_N, const Material& material,
                                     const NormalOptions& options = {});
 
+// The normal problem with the approach delta prescribed (see NormalContactSolver::solve_at_approach).
+// Throws as solve_normal_contact, except that no contact is a valid answer (F3 = 0).
+NormalSolution solve_normal_contact_at_approach(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
+                                                double approach_m, const Material& material,
+                                                const NormalOptions& options = {});
+
 // The same solver as a reusable plan: the influence operator (kernel table, FFT plans) and the
 // iteration workspace are built once for a mesh and material and reused by every solve()
 // (e.g. along a wheel-rail contact sweep on a fixed mesh). Not thread-safe: one per thread.
@@ -70,6 +76,12 @@ class NormalContactSolver {
 
   [[nodiscard]] const Mesh& mesh() const;
   [[nodiscard]] NormalSolution solve(const std::vector<double>& undeformed_distance_m, double normal_force_N);
+  // The approach delta prescribed instead of the load (a position-driven contact, e.g. a wheel at
+  // a given position with h measured from it: delta = 0): F3 = sum S p3 follows. No element in
+  // contact is a valid answer here (F3 = 0, no overlap). initial_pressure_Pa (mesh size, >= 0;
+  // e.g. the previous solution of a time step on the same mesh) starts the iteration when given.
+  [[nodiscard]] NormalSolution solve_at_approach(const std::vector<double>& undeformed_distance_m, double approach_m,
+                                                 const std::vector<double>& initial_pressure_Pa = {});
 
  private:
   struct Plan;

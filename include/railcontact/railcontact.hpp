@@ -24,3 +24,4 @@
 #include "railcontact/text_file.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_geometry.hpp"

@@ -13,6 +13,7 @@
 #include "railcontact/geometry.hpp"
 #include "railcontact/hertz.hpp"
 #include "railcontact/normal.hpp"
+#include "railcontact/wheelset_geometry.hpp"
 
 // Spin creepage of a wheel rolling forward on its rail, from the conicity of the contact
 // (paper Eq 24, |φ| = 2 sin γ / d) with its sign (docs/WHEEL_RAIL.md §3).
@@ -27,8 +28,6 @@
 //   right wheel φ = +2 sin γ / d,   left wheel φ = −2 sin γ / d.
 
 namespace railcontact {
-
-enum class WheelSide { right, left };
 
 // Unit contact normal into the wheel, in the track frame, for contact angle γ (rad; positive
 // when the normal leans towards the track centre, docs/GEOMETRY.md §3).

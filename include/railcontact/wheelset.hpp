@@ -19,8 +19,6 @@
 
 namespace railcontact {
 
-using Vector3 = std::array<double, 3>;
-
 // The wheelset's orientation and velocities (SI units; angles in rad, rates in rad/s).
 struct WheelsetMotion {
   double forward_speed_m_per_s = 0.0;   // V: speed of the wheelset centre along +x, > 0 (the rolling speed)
@@ -40,10 +38,6 @@ struct WheelsetMotion {
 // Ω = V (1 − ξ0) / r0. Throws Error unless V > 0, r0 > 0 and all values finite.
 double wheel_angular_velocity_for_rolling(double forward_speed_m_per_s, double nominal_rolling_radius_m,
                                           double extra_longitudinal_creepage = 0.0);
-
-// The axle's direction in the track frame: Rz(yaw) Rx(roll) (0, 1, 0). With yaw ψ > 0 (about +z)
-// the axle's left end moves backwards: (−sin ψ cos φ, cos ψ cos φ, sin φ) for roll φ.
-Vector3 axle_direction(double roll_rad, double yaw_rad);
 
 // The wheelset's angular velocity in the track frame: yaw rate about z, roll rate about the
 // yawed x axis, and the wheels' rotation about the axle.

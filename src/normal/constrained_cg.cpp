@@ -18,6 +18,19 @@ ConstrainedConjugateGradient::ConstrainedConjugateGradient(const Mesh& mesh)
 ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, std::span<const double> h,
                                                         double pressure_sum, std::span<double> p, double tolerance,
                                                         int max_iterations) {
+  return iterate(A, h, pressure_sum, std::nullopt, p, tolerance, max_iterations);
+}
+
+ConstrainedCgReport ConstrainedConjugateGradient::solve_at_approach(InfluenceOperator& A, std::span<const double> h,
+                                                                    double approach_m, std::span<double> p,
+                                                                    double tolerance, int max_iterations) {
+  return iterate(A, h, 0.0, approach_m, p, tolerance, max_iterations);
+}
+
+ConstrainedCgReport ConstrainedConjugateGradient::iterate(InfluenceOperator& A, std::span<const double> h,
+                                                          double pressure_sum, std::optional<double> fixed_approach,
+                                                          std::span<double> p, double tolerance, int max_iterations) {
+  const bool load_given = !fixed_approach.has_value();
   const std::size_t n = p.size();
   // Pressure per unit penetration for elements entering the set: a quarter of the pressure that
   // closes the gap of one element alone, 1 / A33(0, 0). Elements enter in groups, and a group
@@ -43,7 +56,8 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, st
         contact_sum += h[i] + u_[i];
       }
     }
-    const double delta = contact_sum / static_cast<double>(contact_count);
+    // With the approach given, delta is fixed and the contact set may be empty (no overlap).
+    const double delta = load_given ? contact_sum / static_cast<double>(contact_count) : *fixed_approach;
     // Gap residual r = g = h - delta + A p (PK step 2) and the complementarity
     // violation: |g| where p > 0, max(0, -g) where p = 0.
     double violation = 0.0, u_max = 0.0;
@@ -57,7 +71,7 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, st
         violation = std::max(violation, -r);
       }
     }
-    report.residual = u_max > 0.0 ? violation / u_max : violation;
+    report.residual = u_max > 0.0 ? violation / u_max : (violation > 0.0 ? 1.0 : 0.0);
     report.approach_m = delta;
     report.iterations = iterations;
     if (set_stable && report.residual <= tolerance) {
@@ -77,12 +91,28 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, st
     }
     ++iterations;
 
+    if (contact_count == 0) {
+      // Approach given and nothing in contact: the overlap enters (or, without overlap, the
+      // empty set is the solution and is accepted at the next check).
+      bool entered = false;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (r_[i] < 0.0) {
+          p[i] = -entry_step * r_[i];
+          entered = true;
+        }
+      }
+      if (entered) A.apply_on_grid(p, u_);
+      u_fresh = true;
+      set_stable = !entered;
+      continue;
+    }
+
     // Preconditioned residual z = M r, projected on sum z = 0 (the load is kept by the step);
     // G = r.z > 0 as M is positive definite on Ic.
     preconditioner_.apply(in_contact_, contact_count, r_, z_);
     double z_sum = 0.0;
     for (std::size_t i = 0; i < n; ++i) z_sum += z_[i];  // z = 0 outside Ic
-    const double z_mean = z_sum / static_cast<double>(contact_count);
+    const double z_mean = load_given && contact_count > 0 ? z_sum / static_cast<double>(contact_count) : 0.0;
     double G = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       if (in_contact_[i] != 0) {
@@ -99,7 +129,7 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, st
     A.apply_on_grid(t_, q_);
     double q_sum = 0.0;
     for (std::size_t i = 0; i < n; ++i) q_sum += in_contact_[i] != 0 ? q_[i] : 0.0;
-    const double q_mean = q_sum / static_cast<double>(contact_count);
+    const double q_mean = load_given && contact_count > 0 ? q_sum / static_cast<double>(contact_count) : 0.0;
     double numerator = 0.0, denominator = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       if (in_contact_[i] != 0) {
@@ -128,6 +158,18 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, st
         changed = true;
       }
       p_sum += p[i];
+    }
+    if (!load_given) {
+      // Approach given: no load constraint to restore (an empty set is a valid state).
+      if (changed) {
+        A.apply_on_grid(p, u_);
+        u_fresh = true;
+      } else {
+        for (std::size_t i = 0; i < n; ++i) u_[i] -= tau * q_[i];
+        u_fresh = false;
+      }
+      set_stable = !changed;
+      continue;
     }
     if (!(p_sum > 0.0)) {
       // Cannot happen with a positive step (sum t = 0 on Ic, clamping only adds); restart from the

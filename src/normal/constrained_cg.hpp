@@ -19,6 +19,7 @@
 // recomputed after a set change and before convergence is accepted.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -42,8 +43,16 @@ class ConstrainedConjugateGradient {
   // the prescribed sum of p (F3 / S, Pa); p: initial guess (>= 0, not all zero) in, solution out.
   ConstrainedCgReport solve(InfluenceOperator& A, std::span<const double> h, double pressure_sum, std::span<double> p,
                             double tolerance, int max_iterations);
+  // The same problem with the approach delta prescribed instead of the load (PK's displacement-
+  // driven variant): minimise 1/2 p.A p + (h - delta).p subject to p >= 0, i.e. the steps above
+  // without the means over Ic and without the load scaling. p: initial guess (>= 0, may be zero).
+  ConstrainedCgReport solve_at_approach(InfluenceOperator& A, std::span<const double> h, double approach_m,
+                                        std::span<double> p, double tolerance, int max_iterations);
 
  private:
+  ConstrainedCgReport iterate(InfluenceOperator& A, std::span<const double> h, double pressure_sum,
+                              std::optional<double> fixed_approach, std::span<double> p, double tolerance,
+                              int max_iterations);
   ContactLaplacianPreconditioner preconditioner_;
   std::vector<double> u_;  // A p
   std::vector<double> r_;  // h + A p - delta

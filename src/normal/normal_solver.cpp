@@ -128,6 +128,53 @@ NormalSolution NormalContactSolver::solve(const std::vector<double>& h, double n
   return solution;
 }
 
+NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>& h, double approach_m,
+                                                      const std::vector<double>& initial_pressure_Pa) {
+  const Mesh& mesh = plan_->mesh;
+  validate_problem(mesh, h, kMinimumNormalForce_N);
+  require(std::isfinite(approach_m) && std::abs(approach_m) < 1.0, [&] {
+    return fmt::format("normal contact: the approach {} m must be finite and below 1 m in size", approach_m);
+  });
+  require(initial_pressure_Pa.empty() || initial_pressure_Pa.size() == mesh.size(), [&] {
+    return fmt::format("normal contact: {} initial pressures given for a mesh of {} elements",
+                       initial_pressure_Pa.size(), mesh.size());
+  });
+  NormalSolution solution;
+  solution.pressure_Pa.assign(mesh.size(), 0.0);
+  for (std::size_t k = 0; k < initial_pressure_Pa.size(); ++k) {
+    const double p = initial_pressure_Pa[k];
+    require(std::isfinite(p) && p >= 0.0, "normal contact: an initial pressure is negative or not finite");
+    // Only where the bodies overlap: elsewhere the old pressure would have to leave the set first.
+    solution.pressure_Pa[k] = h[k] < approach_m ? p : 0.0;
+  }
+  const detail::ConstrainedCgReport report = plan_->cg.solve_at_approach(
+      plan_->A, h, approach_m, solution.pressure_Pa, plan_->options.tolerance, plan_->options.max_iterations);
+  solution.iterations = report.iterations;
+  solution.approach_m = approach_m;
+  solution.residual = report.residual;
+  require_finite_solution(solution, solution.pressure_Pa);
+  double sum = 0.0;
+  for (std::size_t k = 0; k < mesh.size(); ++k) {
+    const double p = solution.pressure_Pa[k];
+    if (p > 0.0) {
+      sum += p;
+      ++solution.elements_in_contact;
+      if (on_border(mesh, k)) solution.touches_border = true;
+    }
+  }
+  solution.normal_force_N = mesh.element_area_m2() * sum;
+  solution.converged = report.converged;
+  return solution;
+}
+
+NormalSolution solve_normal_contact_at_approach(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
+                                                double approach_m, const Material& material,
+                                                const NormalOptions& options) {
+  validate_problem(mesh, undeformed_distance_m, kMinimumNormalForce_N);
+  NormalContactSolver solver(mesh, material, options);
+  return solver.solve_at_approach(undeformed_distance_m, approach_m);
+}
+
 NormalSolution solve_normal_contact(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
                                     double normal_force_N, const Material& material, const NormalOptions& options) {
   validate_problem(mesh, undeformed_distance_m, normal_force_N);  // before building the operator

@@ -66,12 +66,6 @@ double wheel_angular_velocity_for_rolling(double forward_speed_m_per_s, double n
   return forward_speed_m_per_s * (1.0 - extra_longitudinal_creepage) / nominal_rolling_radius_m;
 }
 
-Vector3 axle_direction(double roll_rad, double yaw_rad) {
-  // Rx(roll) (0, 1, 0) = (0, cos φ, sin φ), then Rz(yaw).
-  const double cr = std::cos(roll_rad), sr = std::sin(roll_rad), cy = std::cos(yaw_rad), sy = std::sin(yaw_rad);
-  return {-sy * cr, cy * cr, sr};
-}
-
 Vector3 wheelset_angular_velocity(const WheelsetMotion& m) {
   const Vector3 axle = axle_direction(m.roll_rad, m.yaw_rad);
   const double cy = std::cos(m.yaw_rad), sy = std::sin(m.yaw_rad);  // the yawed x axis (cos ψ, sin ψ, 0)

@@ -1,0 +1,189 @@
+#pragma once
+// Stage: geometry, the wheelset level (docs/WHEELSET.md §1–4). Both wheels of a wheelset on their
+// rails in 3-D: the wheelset's position (lateral and vertical displacement, roll, yaw), the
+// contact search by the contact locus of each wheel (a true surface of revolution), the
+// interpenetration regions that become contact patches, each patch's smooth reference point and
+// contact angle, and the exact undeformed distance on a mesh in the patch's tangent plane.
+//
+// Frames (docs/GEOMETRY.md §1–3):
+// - Track frame: x along the track in the direction of travel, y lateral to the LEFT, z UP. Origin
+//   on the track centreline at the height of the rail profiles' origins (z_p = 0).
+// - Wheelset frame: the wheelset centre at (0, y, H0 + z), its axle along Rz(yaw) Rx(roll) e_y
+//   (H0: nominal_axle_height_m()).
+// - Each wheel and rail profile is given in its own side's profile frame: y_p away from the track
+//   centre (flange / gauge face at −y_p), z_p down (geometry.hpp). The right side is seen from the
+//   track frame as y = −(offset + y_p), the left side as its mirror image y = +(offset + y_p): one
+//   profile file serves both sides.
+// - Contact frame of a patch: X1 = x (the rail's direction: creepages are relative to the rail);
+//   X3 the rail's normal into the wheel at the reference point, leaning towards the track centre
+//   by the contact angle γ: X3 = (0, ±sin γ, cos γ) (+ right wheel, − left wheel);
+//   X2 = X3 × X1 = (0, cos γ, ∓sin γ) points to the LEFT (+y) on both wheels.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/geometry.hpp"
+
+namespace railcontact {
+
+using Vector3 = std::array<double, 3>;
+
+enum class WheelSide { right, left };
+// "right" / "left"
+const char* side_name(WheelSide side);
+
+// The wheelset's position on the track (SI units, angles in rad).
+struct WheelsetPosition {
+  double lateral_displacement_m = 0.0;   // y of the wheelset centre (+ to the left)
+  double vertical_displacement_m = 0.0;  // z of the wheelset centre above its nominal height H0 (+ up)
+  double roll_rad = 0.0;                 // about x (positive: the left wheel rises)
+  double yaw_rad = 0.0;                  // about z (positive: the axle's left end moves backwards)
+};
+// Throws Error (invalid_input) naming the field unless every value is finite, |roll| <= 0.1 rad
+// and |yaw| <= 0.1 rad (a wheelset beyond these is off its track) and |y|, |z| <= 0.1 m.
+void validate(const WheelsetPosition& position);
+
+// The axle's direction in the track frame: Rz(yaw) Rx(roll) (0, 1, 0) =
+// (−sin ψ cos φ, cos ψ cos φ, sin φ) for roll φ and yaw ψ.
+Vector3 axle_direction(double roll_rad, double yaw_rad);
+
+// The four profiles of a wheelset on its track, each in its own side's profile frame.
+struct WheelsetProfiles {
+  Profile right_wheel, left_wheel;
+  Profile right_rail, left_rail;
+};
+
+// Options of the contact search (docs/WHEELSET.md §2–3).
+struct ContactSearchOptions {
+  // Spacing of the contact-locus samples along the wheel profile (arc length).
+  double locus_step_m = 0.1e-3;
+  // Interpenetration regions closer than this along the rail profile are one patch (docs/WHEELSET.md §3) ...
+  double merge_distance_m = 2.0e-3;
+  // ... unless their contact angles differ by more than this.
+  double merge_angle_rad = 0.35;
+};
+void validate(const ContactSearchOptions& options);
+
+// One sample of a wheel's contact locus: the point of the wheel's surface, at one position along
+// its profile, whose normal is perpendicular to the track (the only points that can touch a rail,
+// which is straight along x), and the rail below it.
+struct ContactLocusSample {
+  double wheel_profile_y_m = 0.0;  // the sample's position on the wheel profile (profile frame)
+  double rolling_radius_m = 0.0;   // the wheel's radius there
+  Vector3 point_track_m{};         // the locus point on the wheel, track frame
+  double rail_profile_y_m = 0.0;   // the rail profile point at the locus point's lateral position
+  double vertical_gap_m = 0.0;     // locus z − rail z (negative: interpenetration)
+  double contact_angle_rad = 0.0;  // of the rail's normal there (positive: leaning to the track centre)
+};
+
+// An interpenetration region of one wheel: where the undeformed wheel at the given position
+// overlaps its rail. It becomes one contact patch. Its reference point and contact angle are
+// averages over the region weighted by the interpenetration (docs/WHEELSET.md §4), so they move
+// continuously with the wheelset's position; a region that appears starts with zero weight.
+struct InterpenetrationRegion {
+  WheelSide side = WheelSide::right;
+  // The reference point on the rail surface, track frame, and on the rail profile (profile frame).
+  Vector3 reference_point_track_m{};
+  double rail_profile_y_m = 0.0;
+  double wheel_profile_y_m = 0.0;   // weighted average position on the wheel profile
+  double contact_angle_rad = 0.0;   // weighted average rail normal angle
+  double rolling_radius_m = 0.0;    // weighted average wheel radius
+  // The contact frame at the reference point (track frame, see the top of this header).
+  Vector3 x1_axis{1.0, 0.0, 0.0};
+  Vector3 x2_axis{};
+  Vector3 x3_axis{};
+  // Extent and depth of the overlap: lateral range on the rail profile, largest normal
+  // interpenetration, and its integral over the rail profile (m²: the weight of the averages).
+  double rail_profile_y_min_m = 0.0, rail_profile_y_max_m = 0.0;
+  double max_interpenetration_m = 0.0;
+  double interpenetration_area_m2 = 0.0;
+  // Bounding box of the overlap in the tangent plane (x1, x2 from the reference point), an
+  // estimate from the locus (the wheel rising as x1² cos γ / 2r away from each locus point).
+  double x1_min_m = 0.0, x1_max_m = 0.0, x2_min_m = 0.0, x2_max_m = 0.0;
+  // Locus samples of the region [first_sample, last_sample] in WheelContactSearch::locus.
+  std::size_t first_sample = 0, last_sample = 0;
+};
+
+// The contact search of one wheel at one position.
+struct WheelContactSearch {
+  WheelSide side = WheelSide::right;
+  std::vector<ContactLocusSample> locus;        // along the wheel profile, from its −y_p end
+  std::vector<InterpenetrationRegion> regions;  // ordered along the rail profile (−y_p first: gauge side)
+  // The smallest vertical gap over the locus (negative: overlap) and where it is: the point of
+  // first touch if the wheel were lowered vertically.
+  double min_vertical_gap_m = 0.0;
+  std::size_t min_gap_sample = 0;
+};
+
+// A mesh in a patch's tangent plane and the undeformed distance on it.
+struct TangentPlaneArea {
+  Mesh mesh;
+  std::vector<double> h_m;  // mesh.index() order; negative where the undeformed bodies overlap
+  int growth_steps = 0;
+};
+
+// Both wheel–rail pairs of a wheelset on the track. Immutable after construction, thread-safe.
+class WheelsetTrack {
+ public:
+  // Throws Error (naming the profile) when a profile is not a plausible, correctly oriented wheel or
+  // rail profile (see WheelRailPair) or the track parameters are invalid.
+  WheelsetTrack(const WheelsetProfiles& profiles, const TrackWheelsetParameters& parameters = {},
+                const SmoothingOptions& smoothing = {});
+  // The same wheel and rail profile on both sides.
+  WheelsetTrack(const Profile& wheel, const Profile& rail, const TrackWheelsetParameters& parameters = {},
+                const SmoothingOptions& smoothing = {});
+
+  [[nodiscard]] const TrackWheelsetParameters& parameters() const { return parameters_; }
+  // The side's wheel–rail pair (its profiles, taping line, gauge point; zero-yaw 2-D geometry).
+  [[nodiscard]] const WheelRailPair& pair(WheelSide side) const { return side == WheelSide::right ? right_ : left_; }
+  // Height of the wheelset centre above the track frame's origin at which, at zero lateral
+  // displacement, roll and yaw, the first wheel touches its rail.
+  [[nodiscard]] double nominal_axle_height_m() const { return nominal_axle_height_m_; }
+  // Lateral position (track y) of the wheel's and the rail's profile origins.
+  [[nodiscard]] double wheel_profile_origin_y_m(WheelSide side) const;
+  [[nodiscard]] double rail_profile_origin_y_m(WheelSide side) const;
+  // The steepest point of the wheel's flange (largest slope angle of the profile between the
+  // flange tip and the taping line), on the wheel profile: a contact beyond it, towards the flange
+  // tip, is the wheel climbing over the rail (an error of the contact search).
+  [[nodiscard]] double flange_steepest_point_y_m(WheelSide side) const {
+    return side == WheelSide::right ? flange_steepest_y_m_[0] : flange_steepest_y_m_[1];
+  }
+  [[nodiscard]] double flange_steepest_angle_rad(WheelSide side) const {
+    return side == WheelSide::right ? flange_steepest_angle_rad_[0] : flange_steepest_angle_rad_[1];
+  }
+  // The vertical displacement at which the wheel of `side` first touches its rail, at the lateral
+  // displacement, roll and yaw of `position` (its vertical displacement is ignored).
+  [[nodiscard]] double touching_vertical_displacement_m(WheelSide side, const WheelsetPosition& position) const;
+
+  // Contact locus and interpenetration regions of one wheel. Throws Error (no_contact) when the
+  // wheel and rail do not overlap laterally, or the locus does not exist near the contact (a yaw
+  // too large for the flange), or (invalid_input) an overlap reaches the end of a profile (the
+  // flange climbing over the rail, the wheel off the rail head).
+  [[nodiscard]] WheelContactSearch contact_search(WheelSide side, const WheelsetPosition& position,
+                                                  const ContactSearchOptions& options = {}) const;
+
+  // The exact undeformed distance at tangent-plane point (x1, x2) of a region: the distance along
+  // the region's X3 from the rail surface to the wheel surface (a surface of revolution, yawed and
+  // rolled) on the line through O + x1 X1 + x2 X2 (negative: overlap at this position).
+  [[nodiscard]] double undeformed_distance_m(const WheelsetPosition& position, const InterpenetrationRegion& region,
+                                             double x1_m, double x2_m) const;
+  [[nodiscard]] std::vector<double> undeformed_distance_m(const WheelsetPosition& position,
+                                                          const InterpenetrationRegion& region,
+                                                          const Mesh& mesh) const;
+  // A mesh of square elements of the given size around the region's overlap (h < 0) with a border
+  // of border_elements, grown until the overlap stays off the border; the mesh is aligned with the
+  // reference point (element centres at integer multiples of the size from it).
+  [[nodiscard]] TangentPlaneArea potential_contact_area(const WheelsetPosition& position,
+                                                        const InterpenetrationRegion& region, double element_size_m,
+                                                        int border_elements = 2) const;
+
+ private:
+  WheelRailPair right_, left_;
+  TrackWheelsetParameters parameters_;
+  double nominal_axle_height_m_ = 0.0;
+  double flange_steepest_y_m_[2] = {0.0, 0.0};
+  double flange_steepest_angle_rad_[2] = {0.0, 0.0};
+};
+
+}  // namespace railcontact

@@ -1,0 +1,69 @@
+#pragma once
+// One wheel of a wheelset over its rail at one position, in the track frame (docs/WHEELSET.md
+// §1–4): the placement of the two profiles, the wheel's contact locus, the reference point of an
+// interpenetration region and the exact undeformed distance along a region's normal.
+//
+// Placement (σ = −1 for the right side, +1 for the left):
+//   rail profile point (y_p, z_p)  ->  track (σ (R0 + y_p), −z_p),   R0 = gauge/2 − y_gauge point;
+//   wheel profile point (y_w, z_w) ->  axial coordinate s = σ (W0 + y_w) along the axle from the
+//                                      wheelset centre, radius r = r0 + z_w − z_w(taping line),
+//                                      W0 = flange-back distance / 2 − y_w(flange back).
+#include <cstddef>
+#include <vector>
+
+#include "railcontact/wheelset_geometry.hpp"
+
+namespace railcontact::geometry {
+
+inline double side_sign(WheelSide side) { return side == WheelSide::right ? -1.0 : 1.0; }
+inline double wheel_origin_offset_m(const TrackWheelsetParameters& p) {
+  return 0.5 * p.flange_back_distance_m - p.flange_back_y_m;
+}
+inline double rail_origin_offset_m(const WheelRailPair& pair, const TrackWheelsetParameters& p) {
+  return 0.5 * p.track_gauge_m - pair.rail_gauge_point_y_m();
+}
+
+inline double dot(const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vector3 cross(const Vector3& a, const Vector3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+
+class WheelOnRail {
+ public:
+  WheelOnRail(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position);
+
+  // The locus sample at wheel profile parameter s (arc length); false when the wheel's normal
+  // cannot be perpendicular to the track there, or there is no rail below the locus point.
+  bool locus_sample(double wheel_parameter_m, ContactLocusSample& sample) const;
+
+  // The region of the locus samples first..last (all overlapping ends included): weighted
+  // averages, frame and tangent-plane bounding box.
+  [[nodiscard]] InterpenetrationRegion region(const std::vector<ContactLocusSample>& locus, std::size_t first,
+                                              std::size_t last) const;
+
+  // Rail surface on the normal line through tangent-plane coordinate x2 of a region: its
+  // coordinate t along X3 from the reference point. rail_parameter: guess in, root out.
+  [[nodiscard]] double rail_normal_m(const InterpenetrationRegion& region, double x2_m, double& rail_parameter) const;
+  // Wheel surface on the normal line through (x1, x2): t along X3. t and wheel_parameter: guesses
+  // in, roots out. Throws Error when the line misses the wheel.
+  double wheel_normal_m(const InterpenetrationRegion& region, double x1_m, double x2_m, double& t_m,
+                        double& wheel_parameter) const;
+
+  [[nodiscard]] const SmoothProfile& wheel() const { return *wheel_; }
+  [[nodiscard]] const SmoothProfile& rail() const { return *rail_; }
+  [[nodiscard]] double sign() const { return sign_; }
+
+ private:
+  const SmoothProfile* wheel_;
+  const SmoothProfile* rail_;
+  WheelSide side_;
+  double sign_;
+  double wheel_offset_m_, rail_offset_m_;
+  double nominal_radius_m_, taping_z_m_;
+  Vector3 centre_{};  // wheelset centre, track frame
+  Vector3 axle_{};    // unit axle direction
+  Vector3 down_{};    // unit vector perpendicular to the axle, as close to −z as possible
+  Vector3 ahead_{};   // axle × down: perpendicular to both, close to −x
+};
+
+}  // namespace railcontact::geometry

@@ -1,0 +1,120 @@
+// The undeformed distance of a wheelset contact on a mesh in its tangent plane, and the potential
+// contact area around the overlap (docs/WHEELSET.md §4).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "geometry/wheelset_frames.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset_geometry.hpp"
+
+namespace railcontact {
+
+namespace {
+
+constexpr int kMaximumGrowthSteps = 8;
+
+// Starting guesses for the rail and wheel parameters on the normal line through x2: the reference
+// point's parameters moved by x2 along the profiles (X2 runs towards −y_p on the right side and
+// +y_p on the left, the profiles' parameters grow with y_p).
+struct Guesses {
+  double rail_parameter, wheel_parameter;
+};
+Guesses guesses(const geometry::WheelOnRail& w, const InterpenetrationRegion& region, double x2_m) {
+  const double along = w.sign() * x2_m;
+  return {w.rail().parameter_at(region.rail_profile_y_m) + along,
+          w.wheel().parameter_at(region.wheel_profile_y_m) + along};
+}
+
+}  // namespace
+
+double WheelsetTrack::undeformed_distance_m(const WheelsetPosition& position, const InterpenetrationRegion& region,
+                                            double x1_m, double x2_m) const {
+  validate(position);
+  require(std::isfinite(x1_m) && std::isfinite(x2_m), "undeformed distance: x1 and x2 must be finite");
+  const geometry::WheelOnRail w(*this, region.side, position);
+  Guesses g = guesses(w, region, x2_m);
+  const double rail = w.rail_normal_m(region, x2_m, g.rail_parameter);
+  double t = rail;
+  return w.wheel_normal_m(region, x1_m, x2_m, t, g.wheel_parameter) - rail;
+}
+
+std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition& position,
+                                                         const InterpenetrationRegion& region,
+                                                         const Mesh& mesh) const {
+  validate(position);
+  validate(mesh);
+  const geometry::WheelOnRail w(*this, region.side, position);
+  std::vector<double> h(mesh.size());
+  // Strip by strip; the rail (straight along x) is met at the same t for every x1 of a strip, and
+  // each wheel root starts from its neighbour's. The middle of the strip first, then outwards.
+  Guesses g = guesses(w, region, mesh.x2(0));
+  for (int i2 = 0; i2 < mesh.n2; ++i2) {
+    const double x2 = mesh.x2(i2);
+    const double rail = w.rail_normal_m(region, x2, g.rail_parameter);
+    const int middle = std::clamp(static_cast<int>(std::lround(-mesh.x1_first_m / mesh.dx1_m)), 0, mesh.n1 - 1);
+    double t_middle = rail, u_middle = g.wheel_parameter;
+    w.wheel_normal_m(region, mesh.x1(middle), x2, t_middle, u_middle);
+    g.wheel_parameter = u_middle;
+    for (int direction : {+1, -1}) {
+      double t = t_middle, u = u_middle;
+      for (int i1 = middle; i1 >= 0 && i1 < mesh.n1; i1 += direction) {
+        h[mesh.index(i1, i2)] = w.wheel_normal_m(region, mesh.x1(i1), x2, t, u) - rail;
+      }
+    }
+  }
+  return h;
+}
+
+TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& position,
+                                                       const InterpenetrationRegion& region, double element_size_m,
+                                                       int border_elements) const {
+  require(std::isfinite(element_size_m) && element_size_m >= 1e-6 && element_size_m <= 0.01, [&] {
+    return fmt::format("potential contact area: the element size {:g} mm must lie in [0.001, 10] mm",
+                       element_size_m * 1e3);
+  });
+  require(border_elements >= 1 && border_elements <= 100,
+          "potential contact area: the border must be 1 to 100 elements wide");
+  // Element centres at integer multiples of the size from the reference point.
+  const double d = element_size_m;
+  int lo1 = static_cast<int>(std::floor(region.x1_min_m / d)) - border_elements;
+  int hi1 = static_cast<int>(std::ceil(region.x1_max_m / d)) + border_elements;
+  int lo2 = static_cast<int>(std::floor(region.x2_min_m / d)) - border_elements;
+  int hi2 = static_cast<int>(std::ceil(region.x2_max_m / d)) + border_elements;
+  for (int step = 0;; ++step) {
+    Mesh mesh;
+    mesh.n1 = hi1 - lo1 + 1;
+    mesh.n2 = hi2 - lo2 + 1;
+    mesh.dx1_m = d;
+    mesh.dx2_m = d;
+    mesh.x1_first_m = lo1 * d;
+    mesh.x2_first_m = lo2 * d;
+    validate(mesh);
+    std::vector<double> h = undeformed_distance_m(position, region, mesh);
+    bool low1 = false, high1 = false, low2 = false, high2 = false;
+    for (int i2 = 0; i2 < mesh.n2; ++i2) {
+      for (int i1 = 0; i1 < mesh.n1; ++i1) {
+        if (!(h[mesh.index(i1, i2)] < 0.0)) continue;
+        low1 = low1 || i1 < border_elements;
+        high1 = high1 || i1 >= mesh.n1 - border_elements;
+        low2 = low2 || i2 < border_elements;
+        high2 = high2 || i2 >= mesh.n2 - border_elements;
+      }
+    }
+    if (!(low1 || high1 || low2 || high2)) return TangentPlaneArea{mesh, std::move(h), step};
+    require(step < kMaximumGrowthSteps, [&] {
+      return fmt::format(
+          "potential contact area of the {} wheel: the overlap still reaches the border of a {} x {} mesh after {} "
+          "enlargements",
+          side_name(region.side), mesh.n1, mesh.n2, step);
+    });
+    const int grow1 = std::max(border_elements, mesh.n1 / 4), grow2 = std::max(border_elements, mesh.n2 / 4);
+    if (low1) lo1 -= grow1;
+    if (high1) hi1 += grow1;
+    if (low2) lo2 -= grow2;
+    if (high2) hi2 += grow2;
+  }
+}
+
+}  // namespace railcontact

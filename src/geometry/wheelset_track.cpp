@@ -1,0 +1,254 @@
+// Both wheels of a wheelset on their rails in 3-D: placement of the profiles, the contact locus of
+// a yawed and rolled wheel, and its interpenetration regions with their smooth reference points
+// (docs/WHEELSET.md §1–4).
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "geometry/wheelset_frames.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset_geometry.hpp"
+
+namespace railcontact {
+
+namespace {
+
+constexpr double kMm = 1e-3;
+// Largest roll, yaw and displacements a wheelset on its track can have (validate(WheelsetPosition)).
+constexpr double kMaximumAngle_rad = 0.1;
+constexpr double kMaximumDisplacement_m = 0.1;
+// A contact on the flange beyond its steepest point where the slope has fallen by this much: the
+// flange climbing over the rail.
+constexpr double kFlangeRoundingAngle_rad = 5.0 * M_PI / 180.0;
+
+// The contact locus of a wheel from one end of its profile to the other, and a flag per sample:
+// false where the sample has no locus point or no rail below it (geometry::WheelOnRail::locus_sample).
+void sample_locus(const geometry::WheelOnRail& w, double step_m, std::vector<ContactLocusSample>& locus,
+                  std::vector<std::uint8_t>& valid) {
+  const double s0 = w.wheel().s_begin_m(), s1 = w.wheel().s_end_m();
+  const auto count = static_cast<std::size_t>(std::ceil((s1 - s0) / step_m));
+  locus.clear();
+  valid.clear();
+  locus.reserve(count + 1);
+  valid.reserve(count + 1);
+  for (std::size_t k = 0; k <= count; ++k) {
+    const double s = s0 + (s1 - s0) * static_cast<double>(k) / static_cast<double>(count);
+    ContactLocusSample sample;
+    const bool ok = w.locus_sample(s, sample);
+    locus.push_back(sample);
+    valid.push_back(ok ? 1 : 0);
+  }
+}
+
+}  // namespace
+
+const char* side_name(WheelSide side) { return side == WheelSide::right ? "right" : "left"; }
+
+void validate(const WheelsetPosition& p) {
+  const auto check = [](double value, double limit, const char* name, const char* unit, double scale) {
+    require(std::isfinite(value) && std::abs(value) <= limit, [&] {
+      return fmt::format("wheelset position: {} = {:g} {} must be finite and at most {:g} {} in size", name,
+                         value * scale, unit, limit * scale, unit);
+    });
+  };
+  check(p.lateral_displacement_m, kMaximumDisplacement_m, "the lateral displacement y", "mm", 1e3);
+  check(p.vertical_displacement_m, kMaximumDisplacement_m, "the vertical displacement z", "mm", 1e3);
+  check(p.roll_rad, kMaximumAngle_rad, "the roll angle", "mrad", 1e3);
+  check(p.yaw_rad, kMaximumAngle_rad, "the yaw angle", "mrad", 1e3);
+}
+
+void validate(const ContactSearchOptions& o) {
+  require(std::isfinite(o.locus_step_m) && o.locus_step_m >= 1e-6 && o.locus_step_m <= 1e-3, [&] {
+    return fmt::format("contact search: the locus step {:g} mm must lie in [0.001, 1] mm", o.locus_step_m / kMm);
+  });
+  require(std::isfinite(o.merge_distance_m) && o.merge_distance_m >= 0.0 && o.merge_distance_m <= 0.05, [&] {
+    return fmt::format("contact search: the merge distance {:g} mm must lie in [0, 50] mm", o.merge_distance_m / kMm);
+  });
+  require(std::isfinite(o.merge_angle_rad) && o.merge_angle_rad >= 0.0 && o.merge_angle_rad <= 1.5, [&] {
+    return fmt::format("contact search: the merge angle {:g} rad must lie in [0, 1.5] rad", o.merge_angle_rad);
+  });
+}
+
+Vector3 axle_direction(double roll_rad, double yaw_rad) {
+  // Rx(roll) (0, 1, 0) = (0, cos φ, sin φ), then Rz(yaw).
+  const double cr = std::cos(roll_rad), sr = std::sin(roll_rad), cy = std::cos(yaw_rad), sy = std::sin(yaw_rad);
+  return {-sy * cr, cy * cr, sr};
+}
+
+WheelsetTrack::WheelsetTrack(const Profile& wheel, const Profile& rail, const TrackWheelsetParameters& parameters,
+                             const SmoothingOptions& smoothing)
+    : WheelsetTrack(WheelsetProfiles{wheel, wheel, rail, rail}, parameters, smoothing) {}
+
+WheelsetTrack::WheelsetTrack(const WheelsetProfiles& profiles, const TrackWheelsetParameters& parameters,
+                             const SmoothingOptions& smoothing)
+    : right_(profiles.right_wheel, profiles.right_rail, parameters, smoothing),
+      left_(profiles.left_wheel, profiles.left_rail, parameters, smoothing),
+      parameters_(parameters) {
+  // H0: lower the wheelset (zero displacement, roll and yaw) from H = 0 until the first wheel touches.
+  nominal_axle_height_m_ = 0.0;
+  double height = -std::numeric_limits<double>::infinity();
+  std::vector<ContactLocusSample> locus;
+  std::vector<std::uint8_t> valid;
+  for (WheelSide side : {WheelSide::right, WheelSide::left}) {
+    sample_locus(geometry::WheelOnRail(*this, side, WheelsetPosition{}), ContactSearchOptions{}.locus_step_m, locus,
+                 valid);
+    for (std::size_t k = 0; k < locus.size(); ++k)
+      if (valid[k]) height = std::max(height, -locus[k].vertical_gap_m);
+  }
+  require(std::isfinite(height), "wheelset: the wheel and rail profiles do not overlap laterally at y = 0");
+  nominal_axle_height_m_ = height;
+
+  for (WheelSide side : {WheelSide::right, WheelSide::left}) {
+    const SmoothProfile& wheel = pair(side).wheel();
+    const double taping = pair(side).taping_line_y_m();
+    const int k = side == WheelSide::right ? 0 : 1;
+    flange_steepest_angle_rad_[k] = -1.0;
+    const int samples = 4000;
+    for (int i = 0; i <= samples; ++i) {
+      const ProfileCurvePoint p = wheel.at(wheel.s_begin_m() + (wheel.s_end_m() - wheel.s_begin_m()) * i / samples);
+      if (p.y_m >= taping) break;
+      const double angle = std::atan2(-p.dz_ds, p.dy_ds);  // the slope angle, positive on the flange flank
+      if (angle > flange_steepest_angle_rad_[k]) {
+        flange_steepest_angle_rad_[k] = angle;
+        flange_steepest_y_m_[k] = p.y_m;
+      }
+    }
+  }
+}
+
+double WheelsetTrack::touching_vertical_displacement_m(WheelSide side, const WheelsetPosition& position) const {
+  WheelsetPosition at_nominal = position;
+  at_nominal.vertical_displacement_m = 0.0;
+  validate(at_nominal);
+  std::vector<ContactLocusSample> locus;
+  std::vector<std::uint8_t> valid;
+  sample_locus(geometry::WheelOnRail(*this, side, at_nominal), ContactSearchOptions{}.locus_step_m, locus, valid);
+  double gap = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < locus.size(); ++k)
+    if (valid[k]) gap = std::min(gap, locus[k].vertical_gap_m);
+  if (!std::isfinite(gap)) {
+    throw Error(ErrorKind::no_contact,
+                fmt::format("contact search, {} wheel at y = {:.3f} mm: the wheel and rail profiles do not overlap "
+                            "laterally",
+                            side_name(side), position.lateral_displacement_m / kMm));
+  }
+  return -gap;
+}
+
+double WheelsetTrack::wheel_profile_origin_y_m(WheelSide side) const {
+  return geometry::side_sign(side) * geometry::wheel_origin_offset_m(parameters_);
+}
+
+double WheelsetTrack::rail_profile_origin_y_m(WheelSide side) const {
+  return geometry::side_sign(side) * geometry::rail_origin_offset_m(pair(side), parameters_);
+}
+
+WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetPosition& position,
+                                                 const ContactSearchOptions& options) const {
+  validate(position);
+  validate(options);
+  const geometry::WheelOnRail w(*this, side, position);
+  WheelContactSearch search;
+  search.side = side;
+  std::vector<std::uint8_t> valid;
+  sample_locus(w, options.locus_step_m, search.locus, valid);
+  const std::size_t n = search.locus.size();
+  std::size_t valid_count = 0;
+  search.min_vertical_gap_m = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!valid[k]) continue;
+    ++valid_count;
+    if (search.locus[k].vertical_gap_m < search.min_vertical_gap_m) {
+      search.min_vertical_gap_m = search.locus[k].vertical_gap_m;
+      search.min_gap_sample = k;
+    }
+  }
+  const std::string where =
+      fmt::format("{} wheel at y = {:.3f} mm, z = {:.3f} mm, roll = {:.2f} mrad, yaw = {:.2f} mrad", side_name(side),
+                  position.lateral_displacement_m / kMm, position.vertical_displacement_m / kMm,
+                  position.roll_rad * 1e3, position.yaw_rad * 1e3);
+  if (valid_count < 3) {
+    throw Error(ErrorKind::no_contact,
+                fmt::format("contact search, {}: the wheel and rail profiles do not overlap laterally", where));
+  }
+
+  // Runs of overlapping samples (vertical gap < 0).
+  struct Run {
+    std::size_t first, last;
+  };
+  std::vector<Run> runs;
+  for (std::size_t k = 0; k < n;) {
+    if (!(valid[k] && search.locus[k].vertical_gap_m < 0.0)) {
+      ++k;
+      continue;
+    }
+    std::size_t last = k;
+    while (last + 1 < n && valid[last + 1] && search.locus[last + 1].vertical_gap_m < 0.0) ++last;
+    // An overlap must be bounded by separated samples of the locus on both sides.
+    const bool open_before = k == 0 || !valid[k - 1];
+    const bool open_after = last + 1 == n || !valid[last + 1];
+    if (open_before || open_after) {
+      const bool at_profile_end = (open_before && k == 0) || (open_after && last + 1 == n);
+      const ContactLocusSample& edge = search.locus[open_before ? k : last];
+      if (at_profile_end) {
+        throw Error(ErrorKind::invalid_input,
+                    fmt::format("contact search, {}: the overlap of wheel and rail reaches the end of the wheel "
+                                "profile at y_p = {:.2f} mm (the flange climbing over the rail, or the wheel "
+                                "beyond the rail head)",
+                                where, edge.wheel_profile_y_m / kMm));
+      }
+      throw Error(ErrorKind::no_contact,
+                  fmt::format("contact search, {}: the overlap of wheel and rail near the wheel profile's y_p = "
+                              "{:.2f} mm reaches a part of the wheel without a contact locus or without rail "
+                              "below it (a yaw too large for the flange, or the end of the rail profile)",
+                              where, edge.wheel_profile_y_m / kMm));
+    }
+    runs.push_back({k, last});
+    k = last + 1;
+  }
+
+  // Merge neighbouring runs that are close along the rail and similar in contact angle
+  // (docs/WHEELSET.md §3).
+  std::vector<Run> merged;
+  for (const Run& r : runs) {
+    if (!merged.empty()) {
+      const ContactLocusSample& a = search.locus[merged.back().last];
+      const ContactLocusSample& b = search.locus[r.first];
+      if (std::abs(b.rail_profile_y_m - a.rail_profile_y_m) < options.merge_distance_m &&
+          std::abs(b.contact_angle_rad - a.contact_angle_rad) < options.merge_angle_rad) {
+        merged.back().last = r.last;
+        continue;
+      }
+    }
+    merged.push_back(r);
+  }
+
+  for (const Run& r : merged) {
+    search.regions.push_back(w.region(search.locus, r.first, r.last));
+    const InterpenetrationRegion& region = search.regions.back();
+    // Beyond the flange's steepest part, where the flange rounds off towards its tip (its slope
+    // 5 degrees below the steepest), the wheel is climbing over the rail.
+    const ProfileCurvePoint at_reference = w.wheel().at(w.wheel().parameter_at(region.wheel_profile_y_m));
+    const double wheel_slope_rad = std::atan2(-at_reference.dz_ds, at_reference.dy_ds);
+    if (region.wheel_profile_y_m < flange_steepest_point_y_m(side) &&
+        wheel_slope_rad < flange_steepest_angle_rad(side) - kFlangeRoundingAngle_rad) {
+      throw Error(ErrorKind::invalid_input,
+                  fmt::format("contact search, {}: the flange is climbing over the rail: the contact lies at the "
+                              "wheel profile's y_p = {:.2f} mm, beyond the flange's steepest point ({:.2f} mm, "
+                              "{:.1f} degrees), towards its tip, where its slope has fallen to {:.1f} degrees",
+                              where, region.wheel_profile_y_m / kMm, flange_steepest_point_y_m(side) / kMm,
+                              flange_steepest_angle_rad(side) * 180.0 / M_PI, wheel_slope_rad * 180.0 / M_PI));
+    }
+  }
+  std::sort(search.regions.begin(), search.regions.end(),
+            [](const InterpenetrationRegion& a, const InterpenetrationRegion& b) {
+              return a.rail_profile_y_m < b.rail_profile_y_m;
+            });
+  return search;
+}
+
+}  // namespace railcontact

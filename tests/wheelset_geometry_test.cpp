@@ -1,0 +1,179 @@
+// The wheelset's 3-D contact geometry (docs/WHEELSET.md §1–4) on S1002 / UIC60 1:40: agreement
+// with the zero-yaw wheel–rail pair, mirror symmetry of the two wheels, the classic contact-point
+// lead of a yawed wheel, smooth reference points, separate tread and flange regions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "railcontact/error.hpp"
+#include "railcontact/geometry.hpp"
+#include "railcontact/wheelset_geometry.hpp"
+
+namespace railcontact {
+namespace {
+
+constexpr double kMm = 1e-3;
+const std::filesystem::path kProfiles = std::filesystem::path(RAILCONTACT_DATA_DIR) / "profiles";
+
+const WheelsetTrack& s1002_uic60() {
+  static const WheelsetTrack track(read_profile(kProfiles / "MBench_S1002_v3.prw"),
+                                   read_profile(kProfiles / "MBench_UIC60_v3.prr"));
+  return track;
+}
+
+WheelsetPosition at(double y_m, double z_m = 0.0, double roll = 0.0, double yaw = 0.0) {
+  WheelsetPosition p;
+  p.lateral_displacement_m = y_m;
+  p.vertical_displacement_m = z_m;
+  p.roll_rad = roll;
+  p.yaw_rad = yaw;
+  return p;
+}
+
+// The position with the right wheel lowered by `overlap` below its first touch.
+WheelsetPosition pressed(double y_m, double overlap_m, double roll = 0.0, double yaw = 0.0) {
+  WheelsetPosition p = at(y_m, 0.0, roll, yaw);
+  p.vertical_displacement_m = s1002_uic60().touching_vertical_displacement_m(WheelSide::right, p) - overlap_m;
+  return p;
+}
+
+// Without yaw and roll, the lowest point of the vertical gap is the first touch of the 2-D pair.
+TEST(WheelsetGeometry, FirstTouchAgreesWithTheZeroYawPair) {
+  const WheelsetTrack& track = s1002_uic60();
+  for (double y : {-3e-3, -1e-3, 0.0, 2e-3, 4e-3}) {
+    const WheelContactSearch s = track.contact_search(WheelSide::right, at(y, 0.0));
+    const WheelRailContactPoint c = track.pair(WheelSide::right).contact_point(y);
+    EXPECT_NEAR(s.locus[s.min_gap_sample].rail_profile_y_m, c.y_rail_m, 0.15 * kMm) << "y = " << y;
+    // The wheelset's height above the pair's first touch: the gap at the first touch is the
+    // difference of the lowering of the wheel.
+    EXPECT_NEAR(s.min_vertical_gap_m - s.min_vertical_gap_m, 0.0, 1e-12);
+  }
+  // At y = 0 the right wheel touches at z = 0 (H0 is defined by it, symmetric profiles).
+  EXPECT_NEAR(track.contact_search(WheelSide::right, at(0.0, 0.0)).min_vertical_gap_m, 0.0, 1e-9);
+}
+
+// The exact undeformed distance on the mesh agrees with the 2-D pair's at zero yaw, where the
+// wheel is lowered by the same overlap (both measure along the same normal when the contact
+// angles agree: compare at the pair's first touch with the region's own angle).
+TEST(WheelsetGeometry, UndeformedDistanceIsConsistentAlongTheNormal) {
+  const WheelsetTrack& track = s1002_uic60();
+  const WheelsetPosition p = pressed(1e-3, 0.08e-3);
+  const WheelContactSearch s = track.contact_search(WheelSide::right, p);
+  ASSERT_EQ(s.regions.size(), 1u);
+  const InterpenetrationRegion& r = s.regions.front();
+  // h < 0 at the reference point (overlap) and rises along x1 like x1² cos γ / 2r.
+  const double h0 = track.undeformed_distance_m(p, r, 0.0, 0.0);
+  EXPECT_LT(h0, 0.0);
+  EXPECT_GT(h0, -0.08e-3);
+  const double x1 = 4e-3;
+  const double rise = track.undeformed_distance_m(p, r, x1, 0.0) - h0;
+  EXPECT_NEAR(rise, x1 * x1 * std::cos(r.contact_angle_rad) / (2 * r.rolling_radius_m), 0.02 * rise);
+  // Even in x1 without yaw.
+  EXPECT_NEAR(track.undeformed_distance_m(p, r, -x1, 0.5e-3), track.undeformed_distance_m(p, r, x1, 0.5e-3), 1e-12);
+  // The mesh evaluation equals the pointwise one.
+  const TangentPlaneArea area = track.potential_contact_area(p, r, 0.5e-3);
+  const int i1 = area.mesh.n1 / 3, i2 = area.mesh.n2 / 2;
+  EXPECT_NEAR(area.h_m[area.mesh.index(i1, i2)],
+              track.undeformed_distance_m(p, r, area.mesh.x1(i1), area.mesh.x2(i2)), 1e-12);
+  // The overlap lies inside the mesh, off its border.
+  int overlap = 0;
+  for (double h : area.h_m) overlap += h < 0.0 ? 1 : 0;
+  EXPECT_GT(overlap, 50);
+}
+
+// The left wheel at (y, roll, yaw) is the mirror image of the right wheel at (−y, −roll, −yaw).
+TEST(WheelsetGeometry, LeftWheelIsTheMirroredRightWheel) {
+  const WheelsetTrack& track = s1002_uic60();
+  for (const WheelsetPosition& p :
+       {pressed(2e-3, 0.05e-3), pressed(-5e-3, 0.05e-3, 0.0, 4e-3), pressed(7.5e-3, 0.05e-3, 1e-3, -6e-3)}) {
+    const WheelsetPosition mirrored = at(-p.lateral_displacement_m, p.vertical_displacement_m, -p.roll_rad, -p.yaw_rad);
+    const WheelContactSearch left = track.contact_search(WheelSide::left, p);
+    const WheelContactSearch right = track.contact_search(WheelSide::right, mirrored);
+    ASSERT_EQ(left.regions.size(), right.regions.size());
+    for (std::size_t k = 0; k < left.regions.size(); ++k) {
+      const InterpenetrationRegion& l = left.regions[k];
+      const InterpenetrationRegion& r = right.regions[k];
+      EXPECT_NEAR(l.reference_point_track_m[0], r.reference_point_track_m[0], 1e-9);
+      EXPECT_NEAR(l.reference_point_track_m[1], -r.reference_point_track_m[1], 1e-9);
+      EXPECT_NEAR(l.reference_point_track_m[2], r.reference_point_track_m[2], 1e-9);
+      EXPECT_NEAR(l.contact_angle_rad, r.contact_angle_rad, 1e-9);
+      EXPECT_NEAR(l.x3_axis[1], -r.x3_axis[1], 1e-12);
+      EXPECT_NEAR(l.x2_axis[1], r.x2_axis[1], 1e-12);  // X2 points +y on both wheels
+      EXPECT_NEAR(track.undeformed_distance_m(p, l, 1e-3, 0.7e-3),
+                  track.undeformed_distance_m(mirrored, r, 1e-3, -0.7e-3), 1e-10);
+    }
+  }
+}
+
+// Two-point contact: at y = −5 mm the tread and the flange root touch 10 mm apart, their gaps 0.007 mm
+// apart with a hump of 0.04 mm between them: pressed by 0.03 mm, two regions;
+// at −7 mm the flange alone, steep; with yaw ψ its point leads or lags by the classic
+// −r tan γ sin ψ on the right wheel (docs/WHEELSET.md §2).
+TEST(WheelsetGeometry, FlangeContactIsASeparateRegionThatLeadsWithYaw) {
+  const WheelsetTrack& track = s1002_uic60();
+  const WheelContactSearch two = track.contact_search(WheelSide::right, pressed(-5e-3, 0.03e-3));
+  ASSERT_EQ(two.regions.size(), 2u);
+  const InterpenetrationRegion& root = two.regions.front();  // gauge side first (−y_p)
+  const InterpenetrationRegion& tread = two.regions.back();
+  EXPECT_GT(root.contact_angle_rad, tread.contact_angle_rad + 0.1);
+  EXPECT_GT(tread.rail_profile_y_m - root.rail_profile_y_m, 8e-3);
+
+  const WheelContactSearch s = track.contact_search(WheelSide::right, pressed(-7e-3, 0.1e-3));
+  ASSERT_EQ(s.regions.size(), 1u);
+  EXPECT_GT(s.regions.front().contact_angle_rad, 1.0);
+
+  const double yaw = 5e-3;
+  const WheelContactSearch yawed = track.contact_search(WheelSide::right, pressed(-7e-3, 0.1e-3, 0.0, yaw));
+  ASSERT_EQ(yawed.regions.size(), 1u);
+  const InterpenetrationRegion& f = yawed.regions.front();
+  // The wheel's own section at the contact moves by s a_x = s (−sin ψ) with the yawed axle (s: its
+  // axial coordinate, −(W0 + y_w) on the right wheel, W0 = 0.75 m); the contact lags it by r tan γ sin ψ.
+  const double axial = -(0.75 + f.wheel_profile_y_m);
+  const double lead = -f.rolling_radius_m * std::tan(f.contact_angle_rad) * std::sin(yaw);
+  EXPECT_NEAR(f.reference_point_track_m[0] - axial * -std::sin(yaw), lead, 0.03 * std::abs(lead));
+  EXPECT_LT(lead, -5e-3);  // several millimetres
+}
+
+// The reference point and contact angle move continuously through the S1002 / UIC60 contact jump
+// near y = −0.21 mm (where the point of first touch jumps).
+TEST(WheelsetGeometry, ReferencePointIsContinuousThroughTheContactJump) {
+  const WheelsetTrack& track = s1002_uic60();
+  double previous_y = 0.0, previous_angle = 0.0;
+  double largest_step_y = 0.0, largest_step_angle = 0.0;
+  for (int k = 0; k <= 60; ++k) {
+    const double y = (0.1 - 0.01 * k) * kMm;  // 0.1 ... -0.5 mm
+    const WheelContactSearch s = track.contact_search(WheelSide::right, pressed(y, 0.08e-3));
+    ASSERT_EQ(s.regions.size(), 1u) << "y = " << y;
+    const InterpenetrationRegion& r = s.regions.front();
+    if (k > 0) {
+      largest_step_y = std::max(largest_step_y, std::abs(r.reference_point_track_m[1] - previous_y));
+      largest_step_angle = std::max(largest_step_angle, std::abs(r.contact_angle_rad - previous_angle));
+    }
+    previous_y = r.reference_point_track_m[1];
+    previous_angle = r.contact_angle_rad;
+  }
+  EXPECT_LT(largest_step_y, 0.1e-3);     // steps of 0.01 mm in y: no jump of millimetres
+  EXPECT_LT(largest_step_angle, 1e-3);   // the first-touch angle jumps by 0.037 rad here
+}
+
+TEST(WheelsetGeometry, RefusesBadPositions) {
+  const WheelsetTrack& track = s1002_uic60();
+  EXPECT_THROW((void)track.contact_search(WheelSide::right, at(std::nan(""))), Error);
+  EXPECT_THROW((void)track.contact_search(WheelSide::right, at(0.0, 0.0, 0.0, 0.2)), Error);
+  // The flange climbing over the rail (y = −30 mm: the contact beyond the flange's steepest point).
+  try {
+    (void)track.contact_search(WheelSide::right, pressed(-0.03, 0.1e-3));
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("climbing"), std::string::npos) << e.what();
+  }
+  // Far off the track: the overlap reaches the end of the wheel profile.
+  EXPECT_THROW((void)track.contact_search(WheelSide::right, pressed(0.09, 1e-3)), Error);
+}
+
+}  // namespace
+}  // namespace railcontact
