@@ -32,5 +32,6 @@ void add_study_command(CLI::App& app, Action& action);
 void add_run_command(CLI::App& app, Action& action);
 void add_patch_command(CLI::App& app, Action& action);
 void add_flextable_command(CLI::App& app, Action& action);
+void add_wheelset_command(CLI::App& app, Action& action);
 
 }  // namespace railcontact::cli

@@ -13,6 +13,8 @@
 // with ω the wheelset's angular velocity and V the rolling (forward) speed. A wheel rolling
 // forward without slip at radius r0 turns with ω = (0, V/r0, 0).
 #include <array>
+#include <cstdint>
+#include <limits>
 
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/wheel_rail.hpp"
@@ -61,5 +63,140 @@ ContactFrame contact_frame(const Vector3& point_from_wheelset_centre_m, double c
 // (invalid_input) unless V > 0 and every input is finite, and unless the frame's axes are unit
 // and orthogonal to 1e-9.
 Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& contact);
+
+}  // namespace railcontact
+
+// The wheelset evaluated as a whole (docs/WHEELSET.md §5–7): the state of a multibody time step in,
+// every contact patch of both wheels and the forces on each wheel out.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "railcontact/tangential.hpp"
+#include "railcontact/wheelset_geometry.hpp"
+
+namespace railcontact {
+
+// The wheelset's velocities (SI units, rad/s): the rates of WheelsetPosition's coordinates, the
+// forward speed and the wheels' rotation.
+struct WheelsetVelocity {
+  double forward_speed_m_per_s = 20.0;  // V > 0, also the rolling speed of the creepages
+  double lateral_velocity_m_per_s = 0.0;
+  double vertical_velocity_m_per_s = 0.0;
+  double roll_rate_rad_per_s = 0.0;
+  double yaw_rate_rad_per_s = 0.0;
+  // About the axle, positive rolling forward; NaN: pure rolling at the nominal radius r0 with
+  // extra_longitudinal_creepage (wheel_angular_velocity_for_rolling).
+  double wheel_angular_velocity_rad_per_s = std::numeric_limits<double>::quiet_NaN();
+  double extra_longitudinal_creepage = 0.0;  // ξ0 of the shortcut (< 0 traction, > 0 braking)
+};
+
+struct WheelsetState {
+  WheelsetPosition position;
+  WheelsetVelocity velocity;
+};
+
+enum class TangentialSolver { nh_fastsim, fastsim, exact, exact_regularised };
+// "nh-fastsim", "fastsim", "exact", "exact-regularised"
+const char* solver_name(TangentialSolver solver);
+// Throws Error (invalid_input) naming the allowed names.
+TangentialSolver parse_tangential_solver(const std::string& name);
+
+// The normal problem of each wheel: by position (the state's vertical displacement and roll give
+// the overlap) or by load (each wheel's vertical force is met by solving its height: the state's
+// vertical displacement is ignored; with balance_roll the wheelset's height and roll are solved
+// together so that one rigid axle meets both loads).
+struct WheelLoads {
+  double right_N = 98100.0;
+  double left_N = 98100.0;
+  bool balance_roll = false;
+};
+
+struct WheelsetOptions {
+  Material material{2.1e11, 0.3};
+  double friction_coefficient = 0.3;
+  // Square elements of the potential contact areas (0.2 mm: the accuracy targets' mesh).
+  double element_size_m = 0.2e-3;
+  // The solvers to run on every patch; the first one's forces are the patch's `forces`.
+  std::vector<TangentialSolver> solvers{TangentialSolver::nh_fastsim};
+  NhFastSimOptions nh_fastsim{};
+  RollingOptions rolling{};
+  NormalOptions normal{};
+  ContactSearchOptions search{};
+  // By load (default, 98.1 kN per wheel) or, when empty, by position.
+  std::optional<WheelLoads> loads = WheelLoads{};
+  // The vertical force balance includes the tangential forces' vertical components (the total
+  // contact force carries the load); false: the normal forces alone (frictionless balance).
+  bool tangential_forces_in_vertical_balance = true;
+  // Relative tolerance of the load balance.
+  double load_tolerance = 1e-6;
+  // A wheel without contact (lifted) gives no patches and zero forces instead of an error.
+  bool allow_wheel_lift = false;
+  // Keep each patch's pressure and tractions (for maps and figures).
+  bool keep_tractions = false;
+};
+void validate(const WheelsetOptions& options);
+
+// One solver's result on a patch.
+struct PatchSolverResult {
+  TangentialSolver solver = TangentialSolver::nh_fastsim;
+  TangentialForces forces;  // on the wheel, contact frame; M3 about the centre of pressure
+  Vector3 force_track_N{};  // F1 X1 + F2 X2 + F3 X3 on the wheel, track frame
+  std::vector<double> p1_Pa, p2_Pa;  // per contact element (keep_tractions)
+  std::vector<std::uint8_t> slip;
+  double adhesion_fraction = 0.0;
+};
+
+struct WheelsetPatch {
+  WheelSide side = WheelSide::right;
+  InterpenetrationRegion region;   // reference point, contact angle, frame, overlap
+  Creepage creepage;               // at the reference point (kinematic)
+  double normal_force_N = 0.0;     // F3
+  double area_m2 = 0.0;
+  double max_pressure_Pa = 0.0;
+  std::size_t elements_in_contact = 0;
+  double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;  // from the reference point
+  std::vector<PatchSolverResult> solvers;  // in the order of WheelsetOptions::solvers
+  // The patch (keep_tractions), its origin at the centre of pressure. A left wheel's patch is
+  // stored as solved, mirrored into a right wheel's frame (x2 -> −x2; the tractions p2 of
+  // PatchSolverResult are given in the patch's own frame, with their sign restored).
+  ContactPatch patch;
+  [[nodiscard]] const TangentialForces& forces() const { return solvers.front().forces; }
+};
+
+struct WheelResult {
+  WheelSide side = WheelSide::right;
+  std::vector<WheelsetPatch> patches;  // along the rail profile, gauge side first
+  Vector3 force_track_N{};             // sum over the patches (first solver)
+  double vertical_displacement_m = 0.0;  // the height at which the wheel was solved
+  int load_iterations = 0;
+};
+
+struct WheelsetResult {
+  WheelsetState state;                // as solved (by load: the vertical displacement and roll found)
+  std::array<WheelResult, 2> wheels;  // right, left
+  Vector3 force_track_N{};            // on the wheelset, sum of both wheels
+};
+
+// A wheelset on its track, evaluated state after state. Keeps the options and the track; not
+// thread-safe (one per thread); copies are independent.
+class Wheelset {
+ public:
+  Wheelset(WheelsetTrack track, WheelsetOptions options = {});
+  [[nodiscard]] const WheelsetTrack& track() const { return track_; }
+  [[nodiscard]] const WheelsetOptions& options() const { return options_; }
+  // Throws Error: invalid_input for a bad state or options and for the contact search's refusals
+  // (docs/WHEELSET.md §3), no_contact when a wheel has none (unless allow_wheel_lift),
+  // not_converged when a solver or the load balance fails. Nothing non-finite is returned.
+  [[nodiscard]] WheelsetResult evaluate(const WheelsetState& state);
+
+ private:
+  WheelsetTrack track_;
+  WheelsetOptions options_;
+};
+
+// The default wheelset: S1002 on UIC60 1:40 (the shipped set-up), both sides.
+WheelsetTrack default_wheelset_track();
 
 }  // namespace railcontact

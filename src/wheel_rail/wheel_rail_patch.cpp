@@ -11,6 +11,7 @@
 #include <string>
 
 #include "railcontact/error.hpp"
+#include "wheel_rail/cropped_patch.hpp"
 
 namespace railcontact {
 
@@ -50,49 +51,13 @@ ElementSizes element_sizes(double element_area_m2, double extent_x1_m, double ex
   return {std::sqrt(element_area_m2 * dx1_over_dx2), std::sqrt(element_area_m2 / dx1_over_dx2)};
 }
 
-// Index bounding box of a region: elements lo1..hi1 along X1, lo2..hi2 along X2 (inclusive).
-struct IndexBox {
-  int lo1, hi1, lo2, hi2;
-};
-IndexBox bounding_box(const Mesh& mesh, const ContactRegion& region) {
-  IndexBox box{mesh.n1, -1, mesh.n2, -1};
-  for (std::size_t k : region.elements) {
-    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
-    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
-    box.lo1 = std::min(box.lo1, i1);
-    box.hi1 = std::max(box.hi1, i1);
-    box.lo2 = std::min(box.lo2, i2);
-    box.hi2 = std::max(box.hi2, i2);
-  }
-  return box;
-}
-
 // Extents of a region along X1 and X2, edge to edge.
 struct Extents {
   double x1_m, x2_m;
 };
 Extents extents(const Mesh& mesh, const ContactRegion& region) {
-  const IndexBox box = bounding_box(mesh, region);
+  const detail::IndexBox box = detail::bounding_box(mesh, region.elements);
   return {(box.hi1 - box.lo1 + 1) * mesh.dx1_m, (box.hi2 - box.lo2 + 1) * mesh.dx2_m};
-}
-
-// The patch on the mesh cropped to its bounding box (as the elliptical patches of contact_patch.hpp):
-// the tangential solvers' FFTs then cover the patch only, not the potential area.
-ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa, const ContactRegion& region,
-                           const Material& material) {
-  const IndexBox box = bounding_box(mesh, region);
-  Mesh crop = mesh;
-  crop.n1 = box.hi1 - box.lo1 + 1;
-  crop.n2 = box.hi2 - box.lo2 + 1;
-  crop.x1_first_m = mesh.x1(box.lo1);
-  crop.x2_first_m = mesh.x2(box.lo2);
-  std::vector<double> p(crop.size(), 0.0);
-  for (std::size_t k : region.elements) {
-    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
-    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
-    p[crop.index(i1 - box.lo1, i2 - box.lo2)] = pressure_Pa[k];
-  }
-  return ContactPatch(crop, p, material);
 }
 
 // "67.5 % of the load at x2 = +0.3 mm, 32.5 % at x2 = +10.6 mm"
@@ -251,7 +216,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   }
   double max_pressure = 0.0;
   for (std::size_t k : main.elements) max_pressure = std::max(max_pressure, s.normal.pressure_Pa[k]);
-  r.patch = cropped_patch(mesh, s.normal.pressure_Pa, main, options.material);
+  r.patch = detail::cropped_patch(mesh, s.normal.pressure_Pa, main.elements, options.material);
   r.dropped_load_fraction = 1.0 - main.load_fraction;
   r.pressure_centre_x1_m = main.x1_centre_m;
   r.pressure_centre_x2_m = main.x2_centre_m;

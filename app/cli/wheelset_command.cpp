@@ -1,0 +1,162 @@
+// `railcontact wheelset`: both wheels of a wheelset on the track, every contact patch, the forces
+// on each wheel (docs/WHEELSET.md §5–7).
+#include <fmt/core.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/commands.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset.hpp"
+
+namespace railcontact::cli {
+namespace {
+
+struct WheelsetArguments {
+  double y_mm = 0.0;
+  double yaw_mrad = 0.0;
+  double roll_mrad = 0.0;
+  double speed_m_per_s = 20.0;
+  double extra_creepage = 0.0;
+  double lateral_velocity_m_per_s = 0.0;
+  double yaw_rate_rad_per_s = 0.0;
+  double load_kN = 98.1;
+  double mu = 0.3;
+  double element_size_mm = 0.2;
+  std::vector<std::string> solvers;
+  bool json = false;
+};
+
+nlohmann::json vector_json(const Vector3& v) { return nlohmann::json::array({v[0], v[1], v[2]}); }
+
+nlohmann::json patch_json(const WheelsetPatch& p) {
+  nlohmann::json j = {
+      {"reference_point_track_m", vector_json(p.region.reference_point_track_m)},
+      {"rail_profile_y_m", p.region.rail_profile_y_m},
+      {"wheel_profile_y_m", p.region.wheel_profile_y_m},
+      {"contact_angle_rad", p.region.contact_angle_rad},
+      {"rolling_radius_m", p.region.rolling_radius_m},
+      {"x1_axis_track", vector_json(p.region.x1_axis)},
+      {"x2_axis_track", vector_json(p.region.x2_axis)},
+      {"x3_axis_track", vector_json(p.region.x3_axis)},
+      {"max_interpenetration_m", p.region.max_interpenetration_m},
+      {"area_m2", p.area_m2},
+      {"max_pressure_Pa", p.max_pressure_Pa},
+      {"elements_in_contact", p.elements_in_contact},
+      {"normal_force_N", p.normal_force_N},
+      {"creepage", {{"xi", p.creepage.xi}, {"eta", p.creepage.eta}, {"phi_per_m", p.creepage.phi}}},
+      {"pressure_centre_from_reference_m", {p.pressure_centre_x1_m, p.pressure_centre_x2_m}},
+  };
+  for (const PatchSolverResult& s : p.solvers) {
+    j[solver_name(s.solver)] = {{"F1_N", s.forces.F1_N},
+                                {"F2_N", s.forces.F2_N},
+                                {"M3_Nm", s.forces.M3_Nm},
+                                {"force_track_N", vector_json(s.force_track_N)}};
+  }
+  return j;
+}
+
+int run_wheelset(const WheelsetArguments& a) {
+  WheelsetOptions options;
+  options.friction_coefficient = a.mu;
+  options.element_size_m = a.element_size_mm * 1e-3;
+  options.solvers.clear();
+  for (const std::string& name : a.solvers.empty() ? std::vector<std::string>{"nh-fastsim"} : a.solvers)
+    options.solvers.push_back(parse_tangential_solver(name));
+  require(std::isfinite(a.load_kN) && a.load_kN > 0.0,
+          [&] { return fmt::format("--load {:g} kN must be positive", a.load_kN); });
+  options.loads = WheelLoads{a.load_kN * 1e3, a.load_kN * 1e3, false};
+  Wheelset wheelset(default_wheelset_track(), options);
+
+  WheelsetState state;
+  state.position.lateral_displacement_m = a.y_mm * 1e-3;
+  state.position.yaw_rad = a.yaw_mrad * 1e-3;
+  state.position.roll_rad = a.roll_mrad * 1e-3;
+  state.velocity.forward_speed_m_per_s = a.speed_m_per_s;
+  state.velocity.extra_longitudinal_creepage = a.extra_creepage;
+  state.velocity.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
+  state.velocity.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
+  const WheelsetResult r = wheelset.evaluate(state);
+
+  if (a.json) {
+    nlohmann::json wheels = nlohmann::json::array();
+    for (const WheelResult& w : r.wheels) {
+      nlohmann::json patches = nlohmann::json::array();
+      for (const WheelsetPatch& p : w.patches) patches.push_back(patch_json(p));
+      wheels.push_back({{"side", side_name(w.side)},
+                        {"vertical_displacement_m", w.vertical_displacement_m},
+                        {"patches", patches},
+                        {"force_track_N", vector_json(w.force_track_N)}});
+    }
+    const nlohmann::json out = {
+        {"state",
+         {{"lateral_displacement_m", r.state.position.lateral_displacement_m},
+          {"vertical_displacement_m", r.state.position.vertical_displacement_m},
+          {"roll_rad", r.state.position.roll_rad},
+          {"yaw_rad", r.state.position.yaw_rad},
+          {"forward_speed_m_per_s", r.state.velocity.forward_speed_m_per_s}}},
+        {"friction_coefficient", a.mu},
+        {"element_size_m", options.element_size_m},
+        {"wheel_load_N", a.load_kN * 1e3},
+        {"solver", solver_name(options.solvers.front())},
+        {"wheels", wheels},
+        {"force_track_N", vector_json(r.force_track_N)},
+    };
+    fmt::print("{}\n", out.dump(2));
+    return 0;
+  }
+  fmt::print("Wheelset S1002 / UIC60 1:40, y = {:g} mm, yaw = {:g} mrad, roll = {:g} mrad, V = {:g} m/s, "
+             "{:g} kN per wheel, mu = {:g}, elements {:g} mm, forces of {}\n",
+             a.y_mm, a.yaw_mrad, a.roll_mrad, a.speed_m_per_s, a.load_kN, a.mu, a.element_size_mm,
+             solver_name(options.solvers.front()));
+  fmt::print("Forces on the wheels in the track frame (x forward, y left, z up), N; patch forces in the contact "
+             "frame.\n\n");
+  for (const WheelResult& w : r.wheels) {
+    fmt::print("{} wheel: {} patch{}, Fx = {:.0f}, Fy = {:.0f}, Fz = {:.0f} N\n", side_name(w.side),
+               w.patches.size(), w.patches.size() == 1 ? "" : "es", w.force_track_N[0], w.force_track_N[1],
+               w.force_track_N[2]);
+    for (const WheelsetPatch& p : w.patches) {
+      fmt::print("  at y = {:.2f} mm (rail y_p = {:.2f} mm), angle {:.4f} rad, r = {:.2f} mm: F3 = {:.0f} N, "
+                 "{} elements, p max {:.0f} MPa\n",
+                 p.region.reference_point_track_m[1] * 1e3, p.region.rail_profile_y_m * 1e3,
+                 p.region.contact_angle_rad, p.region.rolling_radius_m * 1e3, p.normal_force_N, p.elements_in_contact,
+                 p.max_pressure_Pa * 1e-6);
+      fmt::print("    creepages xi = {:.4e}, eta = {:.4e}, phi = {:.4f} 1/m\n", p.creepage.xi, p.creepage.eta,
+                 p.creepage.phi);
+      for (const PatchSolverResult& s : p.solvers)
+        fmt::print("    {:<18} F1 = {:.0f} N, F2 = {:.0f} N, M3 = {:.2f} N m\n", solver_name(s.solver),
+                   s.forces.F1_N, s.forces.F2_N, s.forces.M3_Nm);
+    }
+  }
+  fmt::print("\nwheelset: Fx = {:.0f}, Fy = {:.0f}, Fz = {:.0f} N\n", r.force_track_N[0], r.force_track_N[1],
+             r.force_track_N[2]);
+  return 0;
+}
+
+}  // namespace
+
+void add_wheelset_command(CLI::App& app, Action& action) {
+  auto args = std::make_shared<WheelsetArguments>();
+  CLI::App* sub = app.add_subcommand(
+      "wheelset",
+      "Both wheels of a wheelset on the track (S1002 / UIC60 1:40, 1435 mm gauge): every contact patch and the "
+      "forces on each wheel, the vertical position solved for the wheel load (docs/WHEELSET.md)");
+  sub->add_option("--y", args->y_mm, "lateral displacement of the wheelset (mm, + to the left)");
+  sub->add_option("--yaw", args->yaw_mrad, "yaw angle (mrad, + the axle's left end backwards)");
+  sub->add_option("--roll", args->roll_mrad, "roll angle (mrad, + the left wheel up)");
+  sub->add_option("--speed", args->speed_m_per_s, "forward speed (m/s)");
+  sub->add_option("--extra-creepage", args->extra_creepage,
+                  "extra longitudinal creepage of a driven wheelset (< 0 traction, > 0 braking)");
+  sub->add_option("--lateral-velocity", args->lateral_velocity_m_per_s, "lateral velocity (m/s)");
+  sub->add_option("--yaw-rate", args->yaw_rate_rad_per_s, "yaw rate (rad/s)");
+  sub->add_option("--load", args->load_kN, "vertical load per wheel (kN)");
+  sub->add_option("--mu", args->mu, "friction coefficient");
+  sub->add_option("--element-size", args->element_size_mm, "element size of the contact meshes (mm)");
+  sub->add_option("--solver", args->solvers, "tangential solver(s): nh-fastsim, fastsim, exact, exact-regularised");
+  sub->add_flag("--json", args->json, "print one JSON object");
+  sub->callback([&action, args] { action = [args] { return run_wheelset(*args); }; });
+}
+
+}  // namespace railcontact::cli

@@ -1,0 +1,23 @@
+#pragma once
+// A contact patch cut out of a potential-contact-area mesh: the bounding box of its elements in
+// contact, so that the tangential solvers' FFTs cover the patch only (docs/WHEEL_RAIL.md §2).
+#include <cstddef>
+#include <vector>
+
+#include "railcontact/contact_patch.hpp"
+
+namespace railcontact::detail {
+
+// Index bounding box of a set of mesh elements: lo1..hi1 along X1, lo2..hi2 along X2 (inclusive).
+struct IndexBox {
+  int lo1, hi1, lo2, hi2;
+};
+IndexBox bounding_box(const Mesh& mesh, const std::vector<std::size_t>& elements);
+
+// The patch of the given elements (mesh indices) with their pressures, on the mesh cropped to
+// their bounding box (same element size and positions). ContactPatch moves its origin to the
+// centre of pressure. Throws Error when no element carries pressure.
+ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa,
+                           const std::vector<std::size_t>& elements, const Material& material);
+
+}  // namespace railcontact::detail

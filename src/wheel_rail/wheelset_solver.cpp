@@ -1,0 +1,443 @@
+// The wheelset evaluated as a whole (docs/WHEELSET.md §5–7): per wheel, the contact search, one
+// normal problem per patch (by position, or by load through the wheel's height), the kinematic
+// creepages at each patch's reference point, the tangential solvers, and the forces in the track
+// frame.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset.hpp"
+#include "wheel_rail/cropped_patch.hpp"
+
+namespace railcontact {
+
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr int kMaximumLoadIterations = 40;
+constexpr int kMaximumBalanceIterations = 12;
+// The tangential forces' vertical components settle only to the discretisation level of the
+// tangential solution: an element entering the patch as the wheel's height changes by 0.04 µm moves
+// them by 65 N in flange contact at 0.5 mm elements (0.07 % of the load). This fraction of the load.
+constexpr double kTangentialBalanceTolerance = 1e-3;
+// nH-FastSim's K2 needs a patch of some extent: below this many elements in contact, and below
+// kFallbackElementsForK2 when the adhesion solve fails, the equivalent ellipse's flexibilities serve.
+constexpr std::size_t kMinimumElementsForK2 = 20;
+constexpr std::size_t kFallbackElementsForK2 = 200;
+
+double dot3(const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+Vector3 combine(const InterpenetrationRegion& r, double F1, double F2, double F3) {
+  Vector3 f{};
+  for (int i = 0; i < 3; ++i) f[static_cast<std::size_t>(i)] = F1 * r.x1_axis[i] + F2 * r.x2_axis[i] + F3 * r.x3_axis[i];
+  return f;
+}
+
+// One patch's normal problem at a position.
+struct NormalPatch {
+  InterpenetrationRegion region;
+  TangentPlaneArea area;
+  NormalSolution normal;
+};
+
+std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
+                                      const WheelsetOptions& options) {
+  const WheelContactSearch search = track.contact_search(side, position, options.search);
+  std::vector<NormalPatch> patches;
+  for (const InterpenetrationRegion& region : search.regions) {
+    NormalPatch p;
+    p.region = region;
+    p.area = track.potential_contact_area(position, region, options.element_size_m);
+    NormalContactSolver solver(p.area.mesh, options.material, options.normal);
+    // h is measured at this position (negative where the bodies overlap): the approach is zero.
+    p.normal = solver.solve_at_approach(p.area.h_m, 0.0);
+    if (!p.normal.converged) {
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("wheelset: the normal problem of the {} wheel's patch at y_p = {:.2f} mm did not "
+                              "converge in {} iterations (residual {:.2g})",
+                              side_name(side), region.rail_profile_y_m / kMm, p.normal.iterations,
+                              p.normal.residual));
+    }
+    patches.push_back(std::move(p));
+  }
+  return patches;
+}
+
+// Tangential solve of one patch with one solver (creepages at the patch's own origin, the centre
+// of pressure).
+PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& patch, const Creepage& creepage,
+                                   const WheelsetOptions& options, double a_m, double b_m) {
+  PatchSolverResult r;
+  r.solver = solver;
+  const double mu = options.friction_coefficient;
+  switch (solver) {
+    case TangentialSolver::nh_fastsim: {
+      // A patch that has just appeared may have too few elements for K2 (its spin coupling
+      // vanishes on a single strip): FastSim with the equivalent ellipse's flexibilities (Eq 9) and
+      // nH-FastSim's traction bound then gives its small forces (docs/WHEELSET.md §5).
+      std::optional<NhFastSim> nh;
+      if (patch.elements().count() >= kMinimumElementsForK2) {
+        try {
+          nh.emplace(patch, options.nh_fastsim);
+        } catch (const Error&) {
+          if (patch.elements().count() >= kFallbackElementsForK2) throw;
+        }
+      }
+      FastSimResult f = nh ? nh->solve(creepage, mu)
+                           : FastSim(patch, options.nh_fastsim.bound)
+                                 .solve(creepage, fastsim_flexibility(a_m, b_m, patch.material()), mu);
+      r.forces = f.forces;
+      if (options.keep_tractions) {
+        r.p1_Pa = std::move(f.p1_Pa);
+        r.p2_Pa = std::move(f.p2_Pa);
+        r.slip = std::move(f.slip);
+      }
+      break;
+    }
+    case TangentialSolver::fastsim: {
+      const FastSim classical(patch, TractionBound::parabolic());
+      FastSimResult f = classical.solve(creepage, fastsim_flexibility(a_m, b_m, patch.material()), mu);
+      r.forces = f.forces;
+      if (options.keep_tractions) {
+        r.p1_Pa = std::move(f.p1_Pa);
+        r.p2_Pa = std::move(f.p2_Pa);
+        r.slip = std::move(f.slip);
+      }
+      break;
+    }
+    case TangentialSolver::exact:
+    case TangentialSolver::exact_regularised: {
+      RollingSolution s = solver == TangentialSolver::exact
+                              ? solve_rolling_exact(patch, creepage, mu, options.rolling)
+                              : solve_rolling_regularised(patch, creepage, mu, options.rolling);
+      r.forces = s.forces;
+      r.adhesion_fraction = s.adhesion_fraction;
+      if (options.keep_tractions) {
+        r.p1_Pa = std::move(s.p1_Pa);
+        r.p2_Pa = std::move(s.p2_Pa);
+        r.slip = std::move(s.slip);
+      }
+      break;
+    }
+  }
+  return r;
+}
+
+WheelsetMotion motion_of(const WheelsetState& state, double nominal_radius_m) {
+  const WheelsetVelocity& v = state.velocity;
+  WheelsetMotion m;
+  m.forward_speed_m_per_s = v.forward_speed_m_per_s;
+  m.lateral_velocity_m_per_s = v.lateral_velocity_m_per_s;
+  m.vertical_velocity_m_per_s = v.vertical_velocity_m_per_s;
+  m.roll_rad = state.position.roll_rad;
+  m.yaw_rad = state.position.yaw_rad;
+  m.roll_rate_rad_per_s = v.roll_rate_rad_per_s;
+  m.yaw_rate_rad_per_s = v.yaw_rate_rad_per_s;
+  m.wheel_angular_velocity_rad_per_s =
+      std::isnan(v.wheel_angular_velocity_rad_per_s)
+          ? wheel_angular_velocity_for_rolling(v.forward_speed_m_per_s, nominal_radius_m, v.extra_longitudinal_creepage)
+          : v.wheel_angular_velocity_rad_per_s;
+  return m;
+}
+
+// The patches of a wheel with their creepages and tangential solutions.
+WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const WheelsetState& state,
+                         std::vector<NormalPatch>& normal, const WheelsetOptions& options) {
+  WheelResult wheel;
+  wheel.side = side;
+  wheel.vertical_displacement_m = state.position.vertical_displacement_m;
+  const WheelsetMotion motion = motion_of(state, track.parameters().nominal_rolling_radius_m);
+  const Vector3 centre{0.0, state.position.lateral_displacement_m,
+                       track.nominal_axle_height_m() + state.position.vertical_displacement_m};
+  for (NormalPatch& n : normal) {
+    WheelsetPatch patch;
+    patch.side = side;
+    patch.region = n.region;
+    ContactFrame frame;
+    for (std::size_t i = 0; i < 3; ++i) frame.point_from_wheelset_centre_m[i] = n.region.reference_point_track_m[i] - centre[i];
+    frame.x1 = n.region.x1_axis;
+    frame.x2 = n.region.x2_axis;
+    frame.x3 = n.region.x3_axis;
+    patch.creepage = kinematic_creepage(motion, frame);
+    patch.normal_force_N = n.normal.normal_force_N;
+    patch.elements_in_contact = n.normal.elements_in_contact;
+    const Mesh& mesh = n.area.mesh;
+    patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
+    std::vector<std::size_t> elements;
+    for (std::size_t k = 0; k < mesh.size(); ++k) {
+      const double p = n.normal.pressure_Pa[k];
+      if (p > 0.0) elements.push_back(k);
+      patch.max_pressure_Pa = std::max(patch.max_pressure_Pa, p);
+    }
+    if (elements.empty()) {
+      // A patch that has just appeared: overlap, but no element in contact yet. Zero forces.
+      for (TangentialSolver s : options.solvers) {
+        PatchSolverResult r;
+        r.solver = s;
+        patch.solvers.push_back(r);
+      }
+      wheel.patches.push_back(std::move(patch));
+      continue;
+    }
+    // The left wheel's patches are solved as the mirror image of a right wheel's (x2 -> −x2, so
+    // η, φ, F2, M3 change sign): both wheels then see the same discretisation, and the left wheel
+    // is the mirrored right wheel to rounding (nH-FastSim's coarse blocks and FastSim's strips are
+    // laid out from one side of the patch).
+    const bool mirror = side == WheelSide::left;
+    const double s2 = mirror ? -1.0 : 1.0;
+    Mesh solve_mesh = mesh;
+    std::vector<double> solve_pressure = n.normal.pressure_Pa;
+    std::vector<std::size_t> solve_elements = elements;
+    if (mirror) {
+      solve_mesh.x2_first_m = -mesh.x2(mesh.n2 - 1);
+      for (int i2 = 0; i2 < mesh.n2; ++i2)
+        for (int i1 = 0; i1 < mesh.n1; ++i1)
+          solve_pressure[solve_mesh.index(i1, mesh.n2 - 1 - i2)] = n.normal.pressure_Pa[mesh.index(i1, i2)];
+      solve_elements.clear();
+      for (std::size_t k = 0; k < solve_mesh.size(); ++k)
+        if (solve_pressure[k] > 0.0) solve_elements.push_back(k);
+    }
+    ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
+    // The patch's origin moved to the centre of pressure (x1c, x2c from the reference point):
+    // the rigid slip (ξ − φ x2, η + φ x1) gives the creepages there.
+    patch.pressure_centre_x1_m = -contact.x1_shift_m();
+    patch.pressure_centre_x2_m = -s2 * contact.x2_shift_m();
+    const Creepage c{patch.creepage.xi, s2 * patch.creepage.eta, s2 * patch.creepage.phi};  // in the solve frame
+    const double x2c = s2 * patch.pressure_centre_x2_m;
+    const Creepage at_centre{c.xi - c.phi * x2c, c.eta + c.phi * patch.pressure_centre_x1_m, c.phi};
+    // Semi-axes of the equivalent ellipse for classical FastSim: the extents' ratio, the area kept.
+    const detail::IndexBox box = detail::bounding_box(mesh, elements);
+    const double extent1 = (box.hi1 - box.lo1 + 1) * mesh.dx1_m, extent2 = (box.hi2 - box.lo2 + 1) * mesh.dx2_m;
+    const double scale = std::sqrt(patch.area_m2 / (M_PI * 0.25 * extent1 * extent2));
+    for (TangentialSolver s : options.solvers) {
+      PatchSolverResult r = solve_tangential(s, contact, at_centre, options, 0.5 * extent1 * scale, 0.5 * extent2 * scale);
+      r.forces.F2_N *= s2;
+      r.forces.M3_Nm *= s2;
+      for (double& p2 : r.p2_Pa) p2 *= s2;
+      r.force_track_N = combine(n.region, r.forces.F1_N, r.forces.F2_N, patch.normal_force_N);
+      patch.solvers.push_back(std::move(r));
+    }
+    if (options.keep_tractions) patch.patch = std::move(contact);
+    wheel.patches.push_back(std::move(patch));
+  }
+  for (const WheelsetPatch& p : wheel.patches)
+    for (std::size_t i = 0; i < 3; ++i) wheel.force_track_N[i] += p.solvers.front().force_track_N[i];
+  // A patch without elements carries only its (zero) normal force: nothing to add.
+  return wheel;
+}
+
+double normal_vertical_force(const std::vector<NormalPatch>& patches) {
+  double f = 0.0;
+  for (const NormalPatch& p : patches) f += p.normal.normal_force_N * p.region.x3_axis[2];
+  return f;
+}
+
+double tangential_vertical_force(const WheelResult& wheel) {
+  double f = 0.0;
+  for (const WheelsetPatch& p : wheel.patches) {
+    const TangentialForces& t = p.solvers.front().forces;
+    f += t.F1_N * p.region.x1_axis[2] + t.F2_N * p.region.x2_axis[2];
+  }
+  return f;
+}
+
+// The wheel's height at which its normal forces carry `target_N` vertically: Newton-like steps on
+// the overlap δ below first touch, F ∝ δ^(3/2) (Hertz) first, then secant steps.
+double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition position, double target_N,
+                    const WheelsetOptions& options, double overlap_guess_m, std::vector<NormalPatch>& patches,
+                    int& iterations) {
+  const double touching = track.touching_vertical_displacement_m(side, position);
+  double delta = overlap_guess_m;
+  double previous_delta = 0.0, previous_force = 0.0;
+  for (iterations = 1; iterations <= kMaximumLoadIterations; ++iterations) {
+    position.vertical_displacement_m = touching - delta;
+    patches = solve_normal(track, side, position, options);
+    const double force = normal_vertical_force(patches);
+    if (std::abs(force - target_N) <= options.load_tolerance * target_N) return position.vertical_displacement_m;
+    double next;
+    if (!(force > 0.0)) {
+      next = 2.0 * delta;
+    } else if (iterations <= 2 || previous_force <= 0.0 || force == previous_force) {
+      next = delta * std::pow(target_N / force, 2.0 / 3.0);
+    } else {
+      next = delta + (target_N - force) * (delta - previous_delta) / (force - previous_force);
+      if (!(next > 0.0)) next = delta * std::pow(target_N / force, 2.0 / 3.0);
+    }
+    previous_delta = delta;
+    previous_force = force;
+    delta = std::clamp(next, 0.25 * delta, 4.0 * delta);
+    require(delta < 0.01, [&] {
+      return fmt::format("wheelset: the {} wheel would need an overlap of more than 10 mm to carry {:g} N",
+                         side_name(side), target_N);
+    });
+  }
+  throw Error(ErrorKind::not_converged,
+              fmt::format("wheelset: the vertical load {:g} N of the {} wheel was not met in {} iterations",
+                          target_N, side_name(side), kMaximumLoadIterations));
+}
+
+void require_finite(const WheelsetResult& r) {
+  bool ok = true;
+  for (const WheelResult& w : r.wheels) {
+    for (double f : w.force_track_N) ok = ok && std::isfinite(f);
+    for (const WheelsetPatch& p : w.patches) {
+      ok = ok && std::isfinite(p.normal_force_N) && std::isfinite(p.creepage.xi) && std::isfinite(p.creepage.eta) &&
+           std::isfinite(p.creepage.phi);
+      for (const PatchSolverResult& s : p.solvers)
+        ok = ok && std::isfinite(s.forces.F1_N) && std::isfinite(s.forces.F2_N) && std::isfinite(s.forces.M3_Nm);
+    }
+  }
+  if (!ok) throw Error(ErrorKind::internal, "wheelset: a result is not finite (a solver invariant broken)");
+}
+
+}  // namespace
+
+const char* solver_name(TangentialSolver solver) {
+  switch (solver) {
+    case TangentialSolver::nh_fastsim: return "nh-fastsim";
+    case TangentialSolver::fastsim: return "fastsim";
+    case TangentialSolver::exact: return "exact";
+    case TangentialSolver::exact_regularised: return "exact-regularised";
+  }
+  return "?";
+}
+
+TangentialSolver parse_tangential_solver(const std::string& name) {
+  for (TangentialSolver s : {TangentialSolver::nh_fastsim, TangentialSolver::fastsim, TangentialSolver::exact,
+                             TangentialSolver::exact_regularised})
+    if (name == solver_name(s)) return s;
+  throw Error(fmt::format("unknown solver '{}' (solvers: nh-fastsim, fastsim, exact, exact-regularised)", name));
+}
+
+void validate(const WheelsetOptions& o) {
+  validate(o.material);
+  require(std::isfinite(o.friction_coefficient) && o.friction_coefficient > 0.0 && o.friction_coefficient <= 2.0,
+          [&] {
+            return fmt::format("wheelset: the friction coefficient {} must lie in (0, 2]", o.friction_coefficient);
+          });
+  require(std::isfinite(o.element_size_m) && o.element_size_m >= 0.02e-3 && o.element_size_m <= 5e-3, [&] {
+    return fmt::format("wheelset: the element size {:g} mm must lie in [0.02, 5] mm", o.element_size_m / kMm);
+  });
+  require(!o.solvers.empty(), "wheelset: at least one tangential solver is needed");
+  validate(o.rolling);
+  validate(o.search);
+  if (o.loads) {
+    validate_normal_force(o.loads->right_N, "wheelset: the right wheel's vertical load");
+    validate_normal_force(o.loads->left_N, "wheelset: the left wheel's vertical load");
+  }
+  require(std::isfinite(o.load_tolerance) && o.load_tolerance >= 1e-12 && o.load_tolerance <= 1e-2,
+          "wheelset: the load tolerance must lie in [1e-12, 1e-2]");
+}
+
+Wheelset::Wheelset(WheelsetTrack track, WheelsetOptions options) : track_(std::move(track)), options_(std::move(options)) {
+  validate(options_);
+}
+
+WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
+  validate(input.position);
+  const WheelsetVelocity& v = input.velocity;
+  require(std::isfinite(v.forward_speed_m_per_s) && v.forward_speed_m_per_s > 0.0, [&] {
+    return fmt::format("wheelset: the forward speed V = {:g} m/s must be positive (the creepages are velocities "
+                       "divided by it; a wheelset at rest has no steady rolling contact)",
+                       v.forward_speed_m_per_s);
+  });
+  for (double value : {v.lateral_velocity_m_per_s, v.vertical_velocity_m_per_s, v.roll_rate_rad_per_s,
+                       v.yaw_rate_rad_per_s, v.extra_longitudinal_creepage}) {
+    require(std::isfinite(value), "wheelset: every velocity must be finite");
+  }
+  require(!std::isinf(v.wheel_angular_velocity_rad_per_s), "wheelset: the wheel angular velocity must be finite");
+
+  WheelsetResult result;
+  result.state = input;
+  const std::array<WheelSide, 2> sides{WheelSide::right, WheelSide::left};
+  std::array<std::vector<NormalPatch>, 2> normal;
+  std::array<int, 2> iterations{0, 0};
+
+  if (!options_.loads) {
+    for (std::size_t k = 0; k < 2; ++k) {
+      normal[k] = solve_normal(track_, sides[k], input.position, options_);
+      result.wheels[k] = finish_wheel(track_, sides[k], result.state, normal[k], options_);
+    }
+  } else {
+    // By load: each wheel's height (or, balancing roll, the axle's height and roll) so that the
+    // vertical force of its patches equals its load; optionally with the tangential forces'
+    // vertical components, from the previous pass.
+    const std::array<double, 2> loads{options_.loads->right_N, options_.loads->left_N};
+    std::array<double, 2> tangential_vertical{0.0, 0.0};
+    std::array<double, 2> previous_tangential{0.0, 0.0}, previous_residual{0.0, 0.0};
+    std::array<double, 2> heights{0.0, 0.0};
+    std::array<double, 2> overlap{0.08e-3, 0.08e-3};
+    WheelsetState state = input;
+    for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
+      for (std::size_t k = 0; k < 2; ++k) {
+        heights[k] = solve_height(track_, sides[k], state.position, loads[k] - tangential_vertical[k], options_,
+                                  overlap[k], normal[k], iterations[k]);
+        overlap[k] = track_.touching_vertical_displacement_m(sides[k], state.position) - heights[k];
+      }
+      bool settled = true;
+      if (options_.loads->balance_roll) {
+        // One rigid axle: the wheels' heights must agree; the left wheel rises by roll × its lever.
+        const double lever = 2.0 * track_.wheel_profile_origin_y_m(WheelSide::left);
+        const double mismatch = heights[1] - heights[0];
+        state.position.roll_rad += mismatch / lever;
+        settled = std::abs(mismatch) < 1e-9;
+      }
+      state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
+      std::array<double, 2> new_tangential{0.0, 0.0};
+      for (std::size_t k = 0; k < 2; ++k) {
+        WheelsetState wheel_state = state;
+        wheel_state.position.vertical_displacement_m = heights[k];
+        result.wheels[k] = finish_wheel(track_, sides[k], wheel_state, normal[k], options_);
+        result.wheels[k].load_iterations = iterations[k];
+        if (options_.tangential_forces_in_vertical_balance)
+          new_tangential[k] = tangential_vertical_force(result.wheels[k]);
+        settled = settled && std::abs(new_tangential[k] - tangential_vertical[k]) <=
+                                 std::max(options_.load_tolerance, kTangentialBalanceTolerance) * loads[k];
+      }
+      if (settled) break;
+      // The tangential part T is a fixed point T = g(T) with g'(T) near −1 in flange contact (F2
+      // saturated, γ steep): secant steps on g(T) − T instead of plain substitution.
+      for (std::size_t k = 0; k < 2; ++k) {
+        const double residual = new_tangential[k] - tangential_vertical[k];
+        double next = new_tangential[k];
+        if (pass > 0 && residual != previous_residual[k]) {
+          next = tangential_vertical[k] -
+                 residual * (tangential_vertical[k] - previous_tangential[k]) / (residual - previous_residual[k]);
+        }
+        previous_tangential[k] = tangential_vertical[k];
+        previous_residual[k] = residual;
+        tangential_vertical[k] = next;
+      }
+      require(pass + 1 < kMaximumBalanceIterations, [&] {
+        return fmt::format("wheelset: the vertical balance of the wheels did not settle in {} passes",
+                           kMaximumBalanceIterations);
+      });
+    }
+    result.state = state;
+  }
+
+  for (std::size_t k = 0; k < 2; ++k) {
+    if (result.wheels[k].patches.empty() && !options_.allow_wheel_lift) {
+      throw Error(ErrorKind::no_contact,
+                  fmt::format("wheelset: the {} wheel does not touch its rail at y = {:.3f} mm, z = {:.3f} mm "
+                              "(lifted; allow_wheel_lift accepts this with zero forces)",
+                              side_name(sides[k]), input.position.lateral_displacement_m / kMm,
+                              input.position.vertical_displacement_m / kMm));
+    }
+    for (std::size_t i = 0; i < 3; ++i) result.force_track_N[i] += result.wheels[k].force_track_N[i];
+  }
+  require_finite(result);
+  return result;
+}
+
+WheelsetTrack default_wheelset_track() {
+  const WheelRailSetup setup = read_wheel_rail_setup(default_wheel_rail_setup_path());
+  return WheelsetTrack(read_profile(setup.wheel_profile), read_profile(setup.rail_profile), setup.track);
+}
+
+}  // namespace railcontact

@@ -1,0 +1,160 @@
+// The wheelset evaluated as a whole (docs/WHEELSET.md §5–7) on S1002 / UIC60 1:40: mirror symmetry
+// of the two wheels, the load balance, a patch that appears starts from zero force, bad states,
+// and the `railcontact wheelset` command's JSON.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_run.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset.hpp"
+
+namespace railcontact {
+namespace {
+
+// Coarse elements keep the tests fast; the checks are exact relations, not mesh-converged values.
+WheelsetOptions coarse(std::vector<TangentialSolver> solvers = {TangentialSolver::nh_fastsim}) {
+  WheelsetOptions o;
+  o.element_size_m = 0.5e-3;
+  o.solvers = std::move(solvers);
+  return o;
+}
+
+const WheelsetTrack& track() {
+  static const WheelsetTrack t = default_wheelset_track();
+  return t;
+}
+
+WheelsetState state_at(double y_m, double yaw_rad = 0.0) {
+  WheelsetState s;
+  s.position.lateral_displacement_m = y_m;
+  s.position.yaw_rad = yaw_rad;
+  return s;
+}
+
+// Forces with the wheelset at (y, ψ) are the mirror images of those at (−y, −ψ): the right wheel's
+// are the left wheel's mirrored (F1, F3 kept; F2, M3, η, φ, Fy reversed), to rounding.
+TEST(Wheelset, WheelsAtMinusYAreTheMirrorImageOfWheelsAtY) {
+  Wheelset wheelset(track(), coarse({TangentialSolver::nh_fastsim, TangentialSolver::exact}));
+  for (const auto& [y, yaw] : {std::pair{3e-3, 0.0}, std::pair{-6.8e-3, 2e-3}}) {
+    const WheelsetResult a = wheelset.evaluate(state_at(y, yaw));
+    const WheelsetResult b = wheelset.evaluate(state_at(-y, -yaw));
+    for (std::size_t k = 0; k < 2; ++k) {
+      const WheelResult& w = a.wheels[k];
+      const WheelResult& m = b.wheels[1 - k];
+      ASSERT_EQ(w.patches.size(), m.patches.size());
+      const double scale = w.force_track_N[2];
+      EXPECT_NEAR(w.force_track_N[0], m.force_track_N[0], 1e-8 * scale);
+      EXPECT_NEAR(w.force_track_N[1], -m.force_track_N[1], 1e-8 * scale);
+      EXPECT_NEAR(w.force_track_N[2], m.force_track_N[2], 1e-8 * scale);
+      for (std::size_t p = 0; p < w.patches.size(); ++p) {
+        const WheelsetPatch& P = w.patches[p];
+        const WheelsetPatch& Q = m.patches[p];
+        EXPECT_NEAR(P.creepage.xi, Q.creepage.xi, 1e-12);
+        EXPECT_NEAR(P.creepage.eta, -Q.creepage.eta, 1e-12);
+        EXPECT_NEAR(P.creepage.phi, -Q.creepage.phi, 1e-10);
+        for (std::size_t s = 0; s < P.solvers.size(); ++s) {
+          EXPECT_NEAR(P.solvers[s].forces.F1_N, Q.solvers[s].forces.F1_N, 1e-8 * scale);
+          EXPECT_NEAR(P.solvers[s].forces.F2_N, -Q.solvers[s].forces.F2_N, 1e-8 * scale);
+          EXPECT_NEAR(P.solvers[s].forces.M3_Nm, -Q.solvers[s].forces.M3_Nm, 1e-8 * scale);
+        }
+      }
+    }
+  }
+}
+
+// By load: each wheel's total vertical force (normal and tangential) equals its load; forward
+// rolling on the tread gives a braking-free wheelset (ΣFx small against μ Fz) at y = 0.
+TEST(Wheelset, MeetsTheWheelLoads) {
+  WheelsetOptions o = coarse();
+  o.loads = WheelLoads{80e3, 110e3, false};
+  Wheelset wheelset(track(), o);
+  const WheelsetResult r = wheelset.evaluate(state_at(1e-3));
+  // Within the settling tolerance of the tangential forces' vertical part (1e-3 of the load).
+  EXPECT_NEAR(r.wheels[0].force_track_N[2], 80e3, 80e3 * 1e-3);
+  EXPECT_NEAR(r.wheels[1].force_track_N[2], 110e3, 110e3 * 1e-3);
+  // Balancing roll: one rigid axle carries both loads; the more loaded wheel sits lower.
+  o.loads->balance_roll = true;
+  Wheelset balanced(track(), o);
+  const WheelsetResult b = balanced.evaluate(state_at(0.0));
+  EXPECT_NEAR(b.wheels[0].force_track_N[2], 80e3, 80e3 * 1e-3);
+  EXPECT_NEAR(b.wheels[1].force_track_N[2], 110e3, 110e3 * 1e-3);
+  EXPECT_NEAR(b.wheels[0].vertical_displacement_m, b.wheels[1].vertical_displacement_m, 1e-8);
+  EXPECT_LT(b.state.position.roll_rad, 0.0);  // the left wheel (more load) lower
+}
+
+// By position: a patch that has just appeared (overlap of a few micrometres) carries a small,
+// finite force, which grows continuously as the wheel is lowered.
+TEST(Wheelset, APatchThatAppearsStartsFromZeroForce) {
+  WheelsetOptions o = coarse();
+  o.loads.reset();
+  o.allow_wheel_lift = true;
+  Wheelset wheelset(track(), o);
+  WheelsetState s = state_at(0.0);
+  const double touching = track().touching_vertical_displacement_m(WheelSide::right, s.position);
+  double previous = 0.0;
+  for (double overlap : {0.05e-6, 0.5e-6, 2e-6, 5e-6}) {
+    s.position.vertical_displacement_m = touching - overlap;
+    const WheelsetResult r = wheelset.evaluate(s);
+    ASSERT_EQ(r.wheels[0].patches.size(), 1u);
+    const double f = r.wheels[0].force_track_N[2];
+    EXPECT_TRUE(std::isfinite(f));
+    EXPECT_GE(f, previous);
+    EXPECT_LT(f, 2e3);  // F ~ δ^(3/2): about 1 kN at 5 µm
+    previous = f;
+  }
+  // Lifted: no patch, zero forces (allowed here), and an error of kind no_contact otherwise.
+  s.position.vertical_displacement_m = touching + 1e-4;
+  const WheelsetResult lifted = wheelset.evaluate(s);
+  EXPECT_TRUE(lifted.wheels[0].patches.empty());
+  EXPECT_EQ(lifted.force_track_N[2], 0.0);
+  o.allow_wheel_lift = false;
+  Wheelset strict(track(), o);
+  try {
+    (void)strict.evaluate(s);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::no_contact) << e.what();
+  }
+}
+
+TEST(Wheelset, RefusesNonPhysicalStates) {
+  Wheelset wheelset(track(), coarse());
+  WheelsetState s = state_at(0.0);
+  s.velocity.forward_speed_m_per_s = 0.0;
+  EXPECT_THROW((void)wheelset.evaluate(s), Error);
+  s = state_at(std::nan(""));
+  EXPECT_THROW((void)wheelset.evaluate(s), Error);
+  WheelsetOptions bad = coarse();
+  bad.friction_coefficient = -0.1;
+  EXPECT_THROW(Wheelset(track(), bad), Error);
+}
+
+using test::CommandResult;
+using test::expect_one_error_line;
+using test::run_cli;
+
+TEST(WheelsetCli, PrintsOneJsonObjectWithEveryPatch) {
+  const CommandResult r = run_cli("wheelset --y -6.8 --element-size 0.5 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["wheels"].size(), 2u);
+  EXPECT_EQ(j["wheels"][0]["side"], "right");
+  EXPECT_EQ(j["wheels"][1]["side"], "left");
+  const auto& flange = j["wheels"][0]["patches"][0];
+  EXPECT_GT(flange["contact_angle_rad"].get<double>(), 0.9);
+  EXPECT_GT(flange["normal_force_N"].get<double>(), 98.1e3);
+  EXPECT_EQ(flange["reference_point_track_m"].size(), 3u);
+  EXPECT_TRUE(flange["nh-fastsim"].contains("F1_N"));
+  EXPECT_NEAR(j["wheels"][0]["force_track_N"][2].get<double>(), 98.1e3, 98.1);  // the settling tolerance, 1e-3
+  const CommandResult bad = run_cli("wheelset --speed 0");
+  EXPECT_EQ(bad.exit_code, 2);
+  expect_one_error_line(bad, "forward speed");
+}
+
+}  // namespace
+}  // namespace railcontact
