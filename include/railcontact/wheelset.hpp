@@ -69,6 +69,7 @@ Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& co
 // The wheelset evaluated as a whole (docs/WHEELSET.md §5–7): the state of a multibody time step in,
 // every contact patch of both wheels and the forces on each wheel out.
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -156,6 +157,7 @@ struct WheelsetPatch {
   double area_m2 = 0.0;
   double max_pressure_Pa = 0.0;
   std::size_t elements_in_contact = 0;
+  int normal_iterations = 0;       // of the final normal solve (conjugate gradients)
   double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;  // from the reference point
   std::vector<PatchSolverResult> solvers;  // in the order of WheelsetOptions::solvers
   // The patch (keep_tractions), its origin at the centre of pressure. A left wheel's patch is
@@ -179,11 +181,23 @@ struct WheelsetResult {
   Vector3 force_track_N{};            // on the wheelset, sum of both wheels
 };
 
-// A wheelset on its track, evaluated state after state. Keeps the options and the track; not
-// thread-safe (one per thread); copies are independent.
+namespace detail {
+struct WheelsetWarmStart;
+}
+
+// A wheelset on its track, evaluated state after state. Keeps the options, the track, the normal
+// solvers' plans (FFT plans and influence tables, per mesh size) and the last pressures of its
+// patches, which start the next evaluation's normal solves (a warm start: a time step close to
+// the previous one is cheaper; docs/WHEELSET.md §8). Not thread-safe: one per thread; copies are
+// independent (a copy starts cold).
 class Wheelset {
  public:
   Wheelset(WheelsetTrack track, WheelsetOptions options = {});
+  ~Wheelset();
+  Wheelset(const Wheelset& other);
+  Wheelset& operator=(const Wheelset& other);
+  Wheelset(Wheelset&&) noexcept;
+  Wheelset& operator=(Wheelset&&) noexcept;
   [[nodiscard]] const WheelsetTrack& track() const { return track_; }
   [[nodiscard]] const WheelsetOptions& options() const { return options_; }
   // Throws Error: invalid_input for a bad state or options and for the contact search's refusals
@@ -194,6 +208,7 @@ class Wheelset {
  private:
   WheelsetTrack track_;
   WheelsetOptions options_;
+  std::unique_ptr<detail::WheelsetWarmStart> warm_;
 };
 
 // The default wheelset: S1002 on UIC60 1:40 (the shipped set-up), both sides.

@@ -58,9 +58,15 @@ std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition&
     w.wheel_normal_m(region, mesh.x1(middle), x2, t_middle, u_middle);
     g.wheel_parameter = u_middle;
     for (int direction : {+1, -1}) {
-      double t = t_middle, u = u_middle;
-      for (int i1 = middle; i1 >= 0 && i1 < mesh.n1; i1 += direction) {
-        h[mesh.index(i1, i2)] = w.wheel_normal_m(region, mesh.x1(i1), x2, t, u) - rail;
+      // Start each root from the line through the two previous ones (second-order accurate).
+      double t = t_middle, u = u_middle, t_before = t_middle, u_before = u_middle;
+      for (int i1 = middle, step = 0; i1 >= 0 && i1 < mesh.n1; i1 += direction, ++step) {
+        double t_guess = step >= 2 ? 2.0 * t - t_before : t, u_guess = step >= 2 ? 2.0 * u - u_before : u;
+        t_before = t;
+        u_before = u;
+        h[mesh.index(i1, i2)] = w.wheel_normal_m(region, mesh.x1(i1), x2, t_guess, u_guess) - rail;
+        t = t_guess;
+        u = u_guess;
       }
     }
   }

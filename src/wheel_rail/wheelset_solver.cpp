@@ -5,7 +5,9 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,7 +22,9 @@ namespace {
 
 constexpr double kMm = 1e-3;
 constexpr int kMaximumLoadIterations = 40;
-constexpr int kMaximumBalanceIterations = 12;
+constexpr int kMaximumBalanceIterations = 16;
+// Both wheels' heights agree to this when the roll is balanced (one rigid axle).
+constexpr double kHeightTolerance_m = 1e-8;
 // The tangential forces' vertical components settle only to the discretisation level of the
 // tangential solution: an element entering the patch as the wheel's height changes by 0.04 µm moves
 // them by 65 N in flange contact at 0.5 mm elements (0.07 % of the load). This fraction of the load.
@@ -45,17 +49,94 @@ struct NormalPatch {
   NormalSolution normal;
 };
 
+}  // namespace
+
+namespace detail {
+
+// The warm start of a Wheelset (docs/WHEELSET.md §8): normal-solver plans per mesh size, and each
+// wheel's last patches (their meshes and pressures) to start the next solves from.
+struct WheelsetWarmStart {
+  static constexpr std::size_t kMaximumPlans = 12;
+  struct Plan {
+    int n1, n2;
+    std::uint64_t last_use;
+    NormalContactSolver solver;
+  };
+  struct Previous {
+    double rail_profile_y_m;
+    Mesh mesh;
+    std::vector<double> pressure_Pa;
+  };
+  std::vector<Plan> plans;
+  std::array<std::vector<Previous>, 2> previous;  // right, left
+  std::uint64_t clock = 0;
+
+  NormalContactSolver& plan(const Mesh& mesh, const WheelsetOptions& options) {
+    ++clock;
+    for (Plan& p : plans) {
+      if (p.n1 == mesh.n1 && p.n2 == mesh.n2) {
+        p.last_use = clock;
+        return p.solver;
+      }
+    }
+    if (plans.size() >= kMaximumPlans) {
+      plans.erase(std::min_element(plans.begin(), plans.end(),
+                                   [](const Plan& a, const Plan& b) { return a.last_use < b.last_use; }));
+    }
+    plans.push_back(Plan{mesh.n1, mesh.n2, clock, NormalContactSolver(mesh, options.material, options.normal)});
+    return plans.back().solver;
+  }
+
+  // The previous pressure of the nearest earlier patch of this wheel (within 2 mm along the rail),
+  // moved onto the new mesh element by element (both meshes have their element centres at integer
+  // multiples of the element size from their reference points); empty when there is none.
+  std::vector<double> initial_pressure(WheelSide side, double rail_profile_y_m, const Mesh& mesh) const {
+    const auto& list = previous[side == WheelSide::right ? 0 : 1];
+    const Previous* best = nullptr;
+    for (const Previous& p : list) {
+      if (std::abs(p.rail_profile_y_m - rail_profile_y_m) < 2e-3 &&
+          (!best || std::abs(p.rail_profile_y_m - rail_profile_y_m) < std::abs(best->rail_profile_y_m - rail_profile_y_m)))
+        best = &p;
+    }
+    if (!best || best->mesh.dx1_m != mesh.dx1_m) return {};
+    const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - best->mesh.x1_first_m) / mesh.dx1_m));
+    const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - best->mesh.x2_first_m) / mesh.dx2_m));
+    std::vector<double> p(mesh.size(), 0.0);
+    for (int i2 = 0; i2 < mesh.n2; ++i2) {
+      const int j2 = i2 + shift2;
+      if (j2 < 0 || j2 >= best->mesh.n2) continue;
+      for (int i1 = 0; i1 < mesh.n1; ++i1) {
+        const int j1 = i1 + shift1;
+        if (j1 >= 0 && j1 < best->mesh.n1) p[mesh.index(i1, i2)] = best->pressure_Pa[best->mesh.index(j1, j2)];
+      }
+    }
+    return p;
+  }
+
+  void remember(WheelSide side, const std::vector<NormalPatch>& patches) {
+    auto& list = previous[side == WheelSide::right ? 0 : 1];
+    list.clear();
+    for (const NormalPatch& p : patches)
+      list.push_back(Previous{p.region.rail_profile_y_m, p.area.mesh, p.normal.pressure_Pa});
+  }
+};
+
+}  // namespace detail
+
+namespace {
+
 std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
-                                      const WheelsetOptions& options) {
+                                      const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
   const WheelContactSearch search = track.contact_search(side, position, options.search);
   std::vector<NormalPatch> patches;
   for (const InterpenetrationRegion& region : search.regions) {
     NormalPatch p;
     p.region = region;
     p.area = track.potential_contact_area(position, region, options.element_size_m);
-    NormalContactSolver solver(p.area.mesh, options.material, options.normal);
+    NormalContactSolver& solver = warm.plan(p.area.mesh, options);
     // h is measured at this position (negative where the bodies overlap): the approach is zero.
-    p.normal = solver.solve_at_approach(p.area.h_m, 0.0);
+    p.normal = solver.solve_at_approach(p.area.h_m, 0.0,
+                                        warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh));
     if (!p.normal.converged) {
       throw Error(ErrorKind::not_converged,
                   fmt::format("wheelset: the normal problem of the {} wheel's patch at y_p = {:.2f} mm did not "
@@ -65,6 +146,7 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     }
     patches.push_back(std::move(p));
   }
+  warm.remember(side, patches);
   return patches;
 }
 
@@ -166,6 +248,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     patch.creepage = kinematic_creepage(motion, frame);
     patch.normal_force_N = n.normal.normal_force_N;
     patch.elements_in_contact = n.normal.elements_in_contact;
+    patch.normal_iterations = n.normal.iterations;
     const Mesh& mesh = n.area.mesh;
     patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
     std::vector<std::size_t> elements;
@@ -250,13 +333,13 @@ double tangential_vertical_force(const WheelResult& wheel) {
 // the overlap δ below first touch, F ∝ δ^(3/2) (Hertz) first, then secant steps.
 double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition position, double target_N,
                     const WheelsetOptions& options, double overlap_guess_m, std::vector<NormalPatch>& patches,
-                    int& iterations) {
+                    int& iterations, detail::WheelsetWarmStart& warm) {
   const double touching = track.touching_vertical_displacement_m(side, position);
   double delta = overlap_guess_m;
   double previous_delta = 0.0, previous_force = 0.0;
   for (iterations = 1; iterations <= kMaximumLoadIterations; ++iterations) {
     position.vertical_displacement_m = touching - delta;
-    patches = solve_normal(track, side, position, options);
+    patches = solve_normal(track, side, position, options, warm);
     const double force = normal_vertical_force(patches);
     if (std::abs(force - target_N) <= options.load_tolerance * target_N) return position.vertical_displacement_m;
     double next;
@@ -334,9 +417,23 @@ void validate(const WheelsetOptions& o) {
           "wheelset: the load tolerance must lie in [1e-12, 1e-2]");
 }
 
-Wheelset::Wheelset(WheelsetTrack track, WheelsetOptions options) : track_(std::move(track)), options_(std::move(options)) {
+Wheelset::Wheelset(WheelsetTrack track, WheelsetOptions options)
+    : track_(std::move(track)), options_(std::move(options)), warm_(std::make_unique<detail::WheelsetWarmStart>()) {
   validate(options_);
 }
+Wheelset::~Wheelset() = default;
+Wheelset::Wheelset(const Wheelset& other)
+    : track_(other.track_), options_(other.options_), warm_(std::make_unique<detail::WheelsetWarmStart>()) {}
+Wheelset& Wheelset::operator=(const Wheelset& other) {
+  if (this != &other) {
+    track_ = other.track_;
+    options_ = other.options_;
+    warm_ = std::make_unique<detail::WheelsetWarmStart>();
+  }
+  return *this;
+}
+Wheelset::Wheelset(Wheelset&&) noexcept = default;
+Wheelset& Wheelset::operator=(Wheelset&&) noexcept = default;
 
 WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
   validate(input.position);
@@ -360,7 +457,7 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
 
   if (!options_.loads) {
     for (std::size_t k = 0; k < 2; ++k) {
-      normal[k] = solve_normal(track_, sides[k], input.position, options_);
+      normal[k] = solve_normal(track_, sides[k], input.position, options_, *warm_);
       result.wheels[k] = finish_wheel(track_, sides[k], result.state, normal[k], options_);
     }
   } else {
@@ -370,22 +467,29 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
     const std::array<double, 2> loads{options_.loads->right_N, options_.loads->left_N};
     std::array<double, 2> tangential_vertical{0.0, 0.0};
     std::array<double, 2> previous_tangential{0.0, 0.0}, previous_residual{0.0, 0.0};
+    double previous_roll = 0.0, previous_mismatch = 0.0;
     std::array<double, 2> heights{0.0, 0.0};
     std::array<double, 2> overlap{0.08e-3, 0.08e-3};
     WheelsetState state = input;
     for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
       for (std::size_t k = 0; k < 2; ++k) {
         heights[k] = solve_height(track_, sides[k], state.position, loads[k] - tangential_vertical[k], options_,
-                                  overlap[k], normal[k], iterations[k]);
+                                  overlap[k], normal[k], iterations[k], *warm_);
         overlap[k] = track_.touching_vertical_displacement_m(sides[k], state.position) - heights[k];
       }
       bool settled = true;
       if (options_.loads->balance_roll) {
-        // One rigid axle: the wheels' heights must agree; the left wheel rises by roll × its lever.
-        const double lever = 2.0 * track_.wheel_profile_origin_y_m(WheelSide::left);
+        // One rigid axle: the wheels' heights must agree. The first step turns the axle about its
+        // centre (the left wheel rises by roll × its lever); then secant steps, since in flange
+        // contact each wheel's own height also moves with the roll.
         const double mismatch = heights[1] - heights[0];
-        state.position.roll_rad += mismatch / lever;
-        settled = std::abs(mismatch) < 1e-9;
+        const double roll = state.position.roll_rad;
+        double next = roll + mismatch / (2.0 * track_.wheel_profile_origin_y_m(WheelSide::left));
+        if (pass > 0 && mismatch != previous_mismatch) next = roll - mismatch * (roll - previous_roll) / (mismatch - previous_mismatch);
+        previous_roll = roll;
+        previous_mismatch = mismatch;
+        settled = std::abs(mismatch) < kHeightTolerance_m;
+        if (!settled) state.position.roll_rad = next;
       }
       state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
       std::array<double, 2> new_tangential{0.0, 0.0};

@@ -1,0 +1,99 @@
+// Wheelset evaluation timing (docs/WHEELSET.md §8): S1002 on UIC60 1:40, both wheels, 0.2 mm
+// elements, 98.1 kN per wheel, V = 20 m/s.
+//   BM_WheelsetTimeStep        by position, a time step: the wheelset moves 1 µm laterally per
+//                              evaluation (warm start: plans and pressures of the previous step)
+//   BM_WheelsetCold            by position, a fresh Wheelset per evaluation (plans built, no warm start)
+//   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance)
+//   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
+// The argument is y in micrometres; contact search, normal problem and the tangential solver are
+// all included.
+#include <benchmark/benchmark.h>
+
+#include "railcontact/wheelset.hpp"
+
+namespace {
+
+using namespace railcontact;
+
+const WheelsetTrack& track() {
+  static const WheelsetTrack t = default_wheelset_track();
+  return t;
+}
+
+// A state at y where both wheels touch: the wheelset's height and roll from the heights at which
+// each wheel alone carries 98.1 kN (the left wheel rises by roll × 0.75 m).
+WheelsetState loaded_state(double y_m) {
+  Wheelset by_load(track(), WheelsetOptions{});
+  WheelsetState s;
+  s.position.lateral_displacement_m = y_m;
+  const WheelsetResult r = by_load.evaluate(s);
+  const double right = r.wheels[0].vertical_displacement_m, left = r.wheels[1].vertical_displacement_m;
+  s.position.vertical_displacement_m = 0.5 * (right + left);
+  s.position.roll_rad = (left - right) / (2.0 * track().wheel_profile_origin_y_m(WheelSide::left));
+  return s;
+}
+
+WheelsetOptions by_position(TangentialSolver solver = TangentialSolver::nh_fastsim) {
+  WheelsetOptions o;
+  o.loads.reset();
+  o.solvers = {solver};
+  return o;
+}
+
+void report(benchmark::State& state, const WheelsetResult& r) {
+  std::size_t patches = 0, elements = 0;
+  for (const WheelResult& w : r.wheels) {
+    patches += w.patches.size();
+    for (const WheelsetPatch& p : w.patches) elements += p.elements_in_contact;
+  }
+  state.counters["patches"] = static_cast<double>(patches);
+  state.counters["contact_elements"] = static_cast<double>(elements);
+}
+
+void time_step(benchmark::State& state, TangentialSolver solver) {
+  WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
+  Wheelset wheelset(track(), by_position(solver));
+  WheelsetResult r = wheelset.evaluate(s);
+  for (auto _ : state) {
+    s.position.lateral_displacement_m += 1e-6;
+    r = wheelset.evaluate(s);
+    benchmark::DoNotOptimize(r.force_track_N);
+  }
+  report(state, r);
+}
+
+void BM_WheelsetTimeStep(benchmark::State& state) { time_step(state, TangentialSolver::nh_fastsim); }
+void BM_WheelsetStepExact(benchmark::State& state) { time_step(state, TangentialSolver::exact); }
+
+void BM_WheelsetCold(benchmark::State& state) {
+  const WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
+  const Wheelset prototype(track(), by_position());
+  WheelsetResult r;
+  for (auto _ : state) {
+    Wheelset wheelset(prototype);  // a copy starts cold
+    r = wheelset.evaluate(s);
+    benchmark::DoNotOptimize(r.force_track_N);
+  }
+  report(state, r);
+}
+
+void BM_WheelsetByLoad(benchmark::State& state) {
+  WheelsetState s;
+  s.position.lateral_displacement_m = static_cast<double>(state.range(0)) * 1e-6;
+  Wheelset wheelset(track(), WheelsetOptions{});
+  WheelsetResult r;
+  for (auto _ : state) {
+    r = wheelset.evaluate(s);
+    benchmark::DoNotOptimize(r.force_track_N);
+  }
+  report(state, r);
+}
+
+BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
