@@ -1,8 +1,11 @@
 // `railcontact wheelset`: both wheels of a wheelset on the track, every contact patch, the forces
 // on each wheel (docs/WHEELSET.md §5–7).
 #include <fmt/core.h>
+#include <fmt/ostream.h>
 
 #include <cmath>
+#include <iostream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -10,6 +13,8 @@
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset.hpp"
+#include "study/output_directory.hpp"
+#include "study/wheelset_sweep.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -27,6 +32,8 @@ struct WheelsetArguments {
   double element_size_mm = 0.2;
   std::vector<std::string> solvers;
   bool json = false;
+  std::string sweep_y;  // FROM:TO:STEP in mm
+  std::string out = "railcontact-out/wheelset";
 };
 
 nlohmann::json vector_json(const Vector3& v) { return nlohmann::json::array({v[0], v[1], v[2]}); }
@@ -78,6 +85,29 @@ int run_wheelset(const WheelsetArguments& a) {
   state.velocity.extra_longitudinal_creepage = a.extra_creepage;
   state.velocity.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
   state.velocity.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
+  if (!a.sweep_y.empty()) {
+    // FROM:TO:STEP in mm.
+    study::WheelsetSweep sweep;
+    std::istringstream in(a.sweep_y);
+    char c1 = 0, c2 = 0;
+    double from = 0, to = 0, step = 0;
+    in >> from >> c1 >> to >> c2 >> step;
+    require(in && c1 == ':' && c2 == ':' && in.peek() == std::char_traits<char>::eof() && std::isfinite(from) &&
+                std::isfinite(to) && std::isfinite(step) && step > 0.0,
+            [&] {
+              return fmt::format("--sweep-y '{}' must be FROM:TO:STEP in mm with a positive step, e.g. 0:-7:0.1",
+                                 a.sweep_y);
+            });
+    sweep.y_from_m = from * 1e-3;
+    sweep.y_to_m = to * 1e-3;
+    sweep.y_step_m = step * 1e-3;
+    study::OutputDirectory out(a.out, &std::cerr);
+    fmt::print(std::cerr, "wheelset sweep: y = {:g} ... {:g} mm in steps of {:g} mm\n", from, to, step);
+    const int count = study::run_wheelset_sweep(wheelset, state, sweep, out, std::cerr);
+    out.commit();
+    fmt::print("Wrote {} evaluations to {}/wheelset_sweep.csv (figures: wheelset_sweep.png)\n", count, a.out);
+    return 0;
+  }
   const WheelsetResult r = wheelset.evaluate(state);
 
   if (a.json) {
@@ -156,6 +186,9 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--element-size", args->element_size_mm, "element size of the contact meshes (mm)");
   sub->add_option("--solver", args->solvers, "tangential solver(s): nh-fastsim, fastsim, exact, exact-regularised");
   sub->add_flag("--json", args->json, "print one JSON object");
+  sub->add_option("--sweep-y", args->sweep_y,
+                  "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
+  sub->add_option("--out", args->out, "output directory of a sweep");
   sub->callback([&action, args] { action = [args] { return run_wheelset(*args); }; });
 }
 
