@@ -77,6 +77,13 @@ TEST(CApi, VersionAndStatusStrings) {
   EXPECT_STREQ(rc_status_string(42), "unknown status");
 }
 
+// One version everywhere: the CLI prints the C API's.
+TEST(CApi, CliPrintsTheVersion) {
+  const test::CommandResult r = test::run_cli("--version");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, std::string("railcontact ") + rc_version_string() + "\n");
+}
+
 // Every method gives exactly the C++ API's numbers on the same patch.
 TEST(CApi, EllipseEqualsTheCppApiForEveryMethod) {
   const ContactPatch patch = cpp_ellipse(kA, kB, kF3, kElements);
