@@ -5,7 +5,7 @@ JOBS ?= 2
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev libfftw3-dev libcli11-dev \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev \
   libboost-math-dev \
-  python3-matplotlib python3-numpy
+  python3-matplotlib python3-numpy python3-dev python3-pybind11 python3-pytest gfortran
 
 .PHONY: all deps configure build run test test-sanitize bench clean
 
@@ -40,7 +40,8 @@ SANITIZE_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sani
 test-sanitize: deps
 	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAILCONTACT_NATIVE=OFF \
 	  -DRAILCONTACT_BUILD_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS="$(SANITIZE_FLAGS)" \
-	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"
+	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+	  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" -DRAILCONTACT_BUILD_PYTHON=OFF
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) --timeout 900

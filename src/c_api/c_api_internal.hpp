@@ -1,0 +1,153 @@
+#pragma once
+// The C API's internals (include/railcontact/railcontact.h, docs/C_API.md): the handles, the
+// single-patch solver behind rc_solver, and the guard that turns every C++ exception into a status.
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/flexibility_table.hpp"
+#include "railcontact/railcontact.h"
+#include "railcontact/tangential.hpp"
+
+namespace railcontact::c_api {
+
+// An error of the C layer itself with a status no ErrorKind has (buffer too small, cancelled).
+struct StatusError {
+  rc_status status;
+  std::string message;
+};
+
+rc_status status_of(ErrorKind kind);
+
+// Keeps the message of the last failed call of a handle. Never throws.
+class LastError {
+ public:
+  void set(const char* message) noexcept {
+    try {
+      message_ = message;
+    } catch (...) {
+      message_.clear();  // out of memory for the message itself: an empty message
+    }
+  }
+  [[nodiscard]] const std::string& message() const { return message_; }
+
+ private:
+  std::string message_;
+};
+
+// Runs f, returning RC_OK, or the status of the exception it throws with its message kept in
+// `error`. Nothing escapes.
+template <class F>
+rc_status guarded(LastError* error, F&& f) noexcept {
+  const auto fail = [&](rc_status status, const char* message) noexcept {
+    if (error != nullptr) error->set(message);
+    return status;
+  };
+  try {
+    f();
+    return RC_OK;
+  } catch (const Error& e) {
+    return fail(status_of(e.kind()), e.what());
+  } catch (const StatusError& e) {
+    return fail(e.status, e.message.c_str());
+  } catch (const std::bad_alloc&) {
+    return fail(RC_OUT_OF_MEMORY, "out of memory (reduce the number of elements)");
+  } catch (const std::exception& e) {
+    try {
+      const std::string message = std::string("internal error: ") + e.what();
+      return fail(RC_INTERNAL, message.c_str());
+    } catch (...) {
+      return fail(RC_INTERNAL, "internal error");
+    }
+  } catch (...) {
+    return fail(RC_INTERNAL, "internal error: an unknown exception");
+  }
+}
+
+// Copies a message into a caller's buffer (rc_*_last_error).
+rc_status copy_message(const std::string& message, char* buffer, std::size_t size, std::size_t* length) noexcept;
+
+// Checks rc_settings field by field (messages name the field, its value and its range).
+void validate_settings(const rc_settings& settings);
+
+// A contact patch prepared for one method: immutable once built, so one may serve several threads
+// (FastSim, NhFastSim and the exact solvers only read it).
+struct PreparedPatch {
+  ContactPatch patch;
+  rc_normal_result normal{};
+  double a_m = 0.0, b_m = 0.0;  // the ellipse of Eq 9 for classical FastSim (or the equivalent one)
+  std::optional<NhFastSim> nh_fastsim;
+  std::optional<FastSim> fastsim;
+  Flexibility fastsim_flexibility;
+};
+
+// What identifies a prepared patch: the rc_patch's values (and h of a grid) under the settings
+// that enter the preparation.
+struct PatchKey {
+  rc_patch patch{};
+  std::vector<double> h_m;
+  bool operator==(const PatchKey& other) const;
+};
+
+// One evaluation's results: forces and the tractions per contact element (patch order).
+struct Evaluation {
+  rc_forces forces{};
+  std::vector<double> p1_Pa, p2_Pa;
+  std::vector<std::uint8_t> slip;
+};
+
+// The solver behind rc_solver (and each worker of a batch).
+class SinglePatchSolver {
+ public:
+  SinglePatchSolver();
+
+  [[nodiscard]] const rc_settings& settings() const { return settings_; }
+  void set_settings(const rc_settings& settings);
+
+  // Prepares the patch unless it equals the one prepared.
+  void set_patch(const rc_patch& patch);
+  void set_prepared(std::shared_ptr<const PreparedPatch> prepared, std::optional<PatchKey> key);
+  [[nodiscard]] const std::shared_ptr<const PreparedPatch>& prepared() const { return prepared_; }
+  [[nodiscard]] const PreparedPatch& require_patch() const;
+  // The prepared patch when it is that of `patch` (else null).
+  [[nodiscard]] std::shared_ptr<const PreparedPatch> prepared_for(const rc_patch& patch) const;
+
+  // Forces (and the fields, kept for tractions()).
+  rc_forces solve(const rc_creepage& creepage);
+  // Forces and the Jacobian (row-major) by central differences.
+  rc_forces jacobian(const rc_creepage& creepage, double jacobian[9]);
+
+  [[nodiscard]] const Evaluation& last() const;
+
+  // Prepares a patch for the given settings (no state).
+  static std::shared_ptr<const PreparedPatch> prepare(const rc_settings& settings, const rc_patch& patch);
+  static std::shared_ptr<const PreparedPatch> prepare_wheel_rail(const rc_settings& settings,
+                                                                 const FlexibilityTableFastSim& table, double y_m,
+                                                                 double vertical_load_N);
+  static PatchKey key_of(const rc_patch& patch);
+
+ private:
+  Evaluation evaluate(const rc_creepage& creepage) const;
+
+  rc_settings settings_{};
+  std::shared_ptr<const PreparedPatch> prepared_;
+  std::optional<PatchKey> key_;  // empty for a wheel-rail patch
+  std::optional<Evaluation> last_;
+};
+
+}  // namespace railcontact::c_api
+
+struct rc_solver {
+  railcontact::c_api::SinglePatchSolver solver;
+  mutable railcontact::c_api::LastError error;  // set by const calls too
+};
+
+struct rc_flextable {
+  std::optional<railcontact::FlexibilityTableFastSim> table;  // the table with its profile pair
+  mutable railcontact::c_api::LastError error;  // set by const calls too
+};

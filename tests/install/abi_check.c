@@ -1,0 +1,51 @@
+/* ABI check of railcontact/railcontact.h (ctest c_api.abi_c, c_api.abi_cxx): compiled with
+   gcc -std=c11 -Wall -Wextra -pedantic -Werror and as C++ with g++. The layouts below are the ABI
+   of RC_ABI_VERSION 1: a change that breaks one of them must raise RAILCONTACT_ABI_VERSION in
+   CMakeLists.txt (and these numbers). x86-64 / AArch64 (LP64) layouts. */
+#include <stddef.h>
+
+#include "railcontact/railcontact.h"
+
+#ifdef __cplusplus
+#define RC_STATIC_ASSERT static_assert
+#else
+#define RC_STATIC_ASSERT _Static_assert
+#endif
+
+RC_STATIC_ASSERT(RC_ABI_VERSION == 1, "the layouts below are those of ABI version 1");
+RC_STATIC_ASSERT(sizeof(rc_status) == sizeof(int), "enumerations are int-sized");
+RC_STATIC_ASSERT(sizeof(rc_method) == sizeof(int), "enumerations are int-sized");
+RC_STATIC_ASSERT(RC_OK == 0 && RC_INVALID_INPUT == 1 && RC_INTERNAL == 6 && RC_CANCELLED == 9, "status values");
+RC_STATIC_ASSERT(RC_METHOD_EXACT_REGULARISED == 3 && RC_MESH_ELEMENT_SIZE == 2 && RC_GEOMETRY_GRID == 2,
+                 "enumeration values");
+RC_STATIC_ASSERT(sizeof(rc_settings) == 12 * 8 + 6 * 4, "rc_settings: 12 doubles, 6 ints");
+RC_STATIC_ASSERT(offsetof(rc_settings, method) == 96, "rc_settings.method");
+RC_STATIC_ASSERT(offsetof(rc_settings, normal_max_iterations) == 116, "rc_settings.normal_max_iterations");
+RC_STATIC_ASSERT(sizeof(rc_patch) == 7 * 8 + sizeof(void*) + 4 * 4, "rc_patch");
+RC_STATIC_ASSERT(offsetof(rc_patch, grid_h_m) == 56 && offsetof(rc_patch, kind) == 64, "rc_patch fields");
+RC_STATIC_ASSERT(sizeof(rc_creepage) == 3 * 8, "rc_creepage");
+RC_STATIC_ASSERT(sizeof(rc_forces) == 4 * 8, "rc_forces");
+RC_STATIC_ASSERT(sizeof(rc_normal_result) == 12 * 8 + 4 * 4, "rc_normal_result");
+RC_STATIC_ASSERT(offsetof(rc_normal_result, n1) == 96, "rc_normal_result.n1");
+RC_STATIC_ASSERT(sizeof(rc_flextable_values) == 10 * 8, "rc_flextable_values");
+RC_STATIC_ASSERT(sizeof(rc_flextable_info) == 6 * 8 + 4 * 4, "rc_flextable_info");
+
+/* Every function with its exact type. */
+static void check_signatures(void) {
+  const char* (*status_string)(int) = rc_status_string;
+  rc_status (*solve)(rc_solver*, const rc_creepage*, rc_forces*) = rc_solver_solve;
+  rc_status (*batch)(rc_solver*, size_t, const rc_patch*, size_t, const rc_creepage*, int, rc_forces*,
+                     rc_normal_result*, double*, int*) = rc_batch_creep_forces;
+  rc_status (*build)(rc_flextable*, const char*, const double*, size_t, const double*, size_t, int, double, double,
+                     rc_progress_callback, void*) = rc_flextable_build;
+  (void)status_string;
+  (void)solve;
+  (void)batch;
+  (void)build;
+}
+
+int rc_abi_check_main(void);
+int rc_abi_check_main(void) {
+  check_signatures();
+  return 0;
+}
