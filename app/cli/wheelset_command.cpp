@@ -32,6 +32,7 @@ struct WheelsetArguments {
   double element_size_mm = 0.2;
   std::vector<std::string> solvers;
   bool json = false;
+  int flexibility_coarsening = 0;
   std::string sweep_y;  // FROM:TO:STEP in mm
   std::string out = "railcontact-out/wheelset";
 };
@@ -69,6 +70,11 @@ int run_wheelset(const WheelsetArguments& a) {
   WheelsetOptions options;
   options.friction_coefficient = a.mu;
   options.element_size_m = a.element_size_mm * 1e-3;
+  require(a.flexibility_coarsening >= 0 && a.flexibility_coarsening <= kMaximumCoarsening, [&] {
+    return fmt::format("--flexibility-coarsening {} must lie in [0, {}] (0: automatic)", a.flexibility_coarsening,
+                       kMaximumCoarsening);
+  });
+  options.nh_fastsim.flexibility_coarsening = a.flexibility_coarsening;
   options.solvers.clear();
   for (const std::string& name : a.solvers.empty() ? std::vector<std::string>{"nh-fastsim"} : a.solvers)
     options.solvers.push_back(parse_tangential_solver(name));
@@ -186,6 +192,8 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--element-size", args->element_size_mm, "element size of the contact meshes (mm)");
   sub->add_option("--solver", args->solvers, "tangential solver(s): nh-fastsim, fastsim, exact, exact-regularised");
   sub->add_flag("--json", args->json, "print one JSON object");
+  sub->add_option("--flexibility-coarsening", args->flexibility_coarsening,
+                  "nH-FastSim: K2 on the patch coarsened by this factor (0: automatic, 1: the patch itself)");
   sub->add_option("--sweep-y", args->sweep_y,
                   "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
   sub->add_option("--out", args->out, "output directory of a sweep");

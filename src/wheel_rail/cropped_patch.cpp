@@ -2,6 +2,7 @@
 #include "wheel_rail/cropped_patch.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace railcontact::detail {
 
@@ -31,6 +32,29 @@ ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure
     const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
     const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
     p[crop.index(i1 - box.lo1, i2 - box.lo2)] = pressure_Pa[k];
+  }
+  return ContactPatch(crop, p, material);
+}
+
+ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa,
+                                 const std::vector<std::size_t>& elements, const Material& material, int block) {
+  const IndexBox box = bounding_box(mesh, elements);
+  // Global element indices: centres at k dx from the reference point.
+  const auto global1 = [&](int i1) { return static_cast<long>(std::lround(mesh.x1(i1) / mesh.dx1_m)); };
+  const auto global2 = [&](int i2) { return static_cast<long>(std::lround(mesh.x2(i2) / mesh.dx2_m)); };
+  const auto floor_to = [&](long k) { return k >= 0 ? k - k % block : k - ((k % block) + block) % block; };
+  const long first1 = floor_to(global1(box.lo1)), first2 = floor_to(global2(box.lo2));
+  const long last1 = global1(box.hi1), last2 = global2(box.hi2);
+  Mesh crop = mesh;
+  crop.n1 = static_cast<int>((last1 - first1) / block + 1) * block;
+  crop.n2 = static_cast<int>((last2 - first2) / block + 1) * block;
+  crop.x1_first_m = static_cast<double>(first1) * mesh.dx1_m;
+  crop.x2_first_m = static_cast<double>(first2) * mesh.dx2_m;
+  std::vector<double> p(crop.size(), 0.0);
+  for (std::size_t k : elements) {
+    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
+    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+    p[crop.index(static_cast<int>(global1(i1) - first1), static_cast<int>(global2(i2) - first2))] = pressure_Pa[k];
   }
   return ContactPatch(crop, p, material);
 }
