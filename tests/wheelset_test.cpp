@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -154,6 +156,58 @@ TEST(WheelsetCli, PrintsOneJsonObjectWithEveryPatch) {
   const CommandResult bad = run_cli("wheelset --speed 0");
   EXPECT_EQ(bad.exit_code, 2);
   expect_one_error_line(bad, "forward speed");
+}
+
+}  // namespace
+}  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+using test::CommandResult;
+using test::expect_one_error_line;
+using test::run_cli;
+
+// Every example wheelset case runs (coarse elements), each wheel carries its load, and the driven
+// wheelset's longitudinal forces point forwards on both wheels.
+TEST(WheelsetCli, RunsTheExampleCases) {
+  const std::string examples = std::string(RAILCONTACT_SOURCE_DIR) + "/examples/";
+  for (const char* name : {"wheelset_tread", "wheelset_flange", "wheelset_yaw", "wheelset_traction"}) {
+    const CommandResult r = run_cli("wheelset " + examples + name + ".toml --element-size 0.5 --solver nh-fastsim --json");
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j["wheels"].size(), 2u) << name;
+    for (const auto& w : j["wheels"]) EXPECT_GE(w["patches"].size(), 1u) << name;
+    if (std::string(name) == "wheelset_traction") {
+      EXPECT_NEAR(j["wheels"][0]["force_track_N"][2].get<double>(), 90e3, 90.0);
+      EXPECT_NEAR(j["wheels"][1]["force_track_N"][2].get<double>(), 106e3, 106.0);
+      EXPECT_GT(j["wheels"][0]["force_track_N"][0].get<double>(), 0.3 * 0.35 * 90e3);
+      EXPECT_GT(j["wheels"][1]["force_track_N"][0].get<double>(), 0.3 * 0.35 * 106e3);
+    }
+    if (std::string(name) == "wheelset_flange") {
+      EXPECT_GT(j["wheels"][0]["patches"][0]["contact_angle_rad"].get<double>(), 1.0);
+    }
+  }
+}
+
+TEST(WheelsetCli, RefusesBadCaseFiles) {
+  const test::ScratchDirectory dir("railcontact_wheelset_case");
+  const auto write = [&](const std::string& name, const std::string& text) {
+    const std::filesystem::path p = dir.path() / name;
+    std::ofstream(p) << text;
+    return p.string();
+  };
+  const CommandResult unknown = run_cli("wheelset " + write("unknown.toml", "[position]\ny_mm = 1\nyaw_deg = 2\n"));
+  EXPECT_EQ(unknown.exit_code, 2);
+  expect_one_error_line(unknown, "unknown key 'yaw_deg' in [position]");
+  const CommandResult both = run_cli("wheelset " + write("both.toml", "[position]\nz_mm = -0.1\n[load]\nright_wheel_N = 1e5\n"));
+  EXPECT_EQ(both.exit_code, 2);
+  expect_one_error_line(both, "z_mm is solved from [load]");
+  const CommandResult solver = run_cli("wheelset " + write("solver.toml", "[solvers]\nrun = [\"kalker\"]\n"));
+  EXPECT_EQ(solver.exit_code, 2);
+  expect_one_error_line(solver, "unknown solver 'kalker'");
+  const CommandResult missing = run_cli("wheelset " + (dir.path() / "none.toml").string());
+  EXPECT_EQ(missing.exit_code, 3);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
+#include "case/wheelset_case.hpp"
 #include "railcontact/wheelset.hpp"
 #include "study/output_directory.hpp"
 #include "study/wheelset_sweep.hpp"
@@ -20,6 +21,7 @@ namespace railcontact::cli {
 namespace {
 
 struct WheelsetArguments {
+  std::string case_file;
   double y_mm = 0.0;
   double yaw_mrad = 0.0;
   double roll_mrad = 0.0;
@@ -66,31 +68,52 @@ nlohmann::json patch_json(const WheelsetPatch& p) {
   return j;
 }
 
-int run_wheelset(const WheelsetArguments& a) {
-  WheelsetOptions options;
-  options.friction_coefficient = a.mu;
-  options.element_size_m = a.element_size_mm * 1e-3;
-  require(a.flexibility_coarsening >= 0 && a.flexibility_coarsening <= kMaximumCoarsening, [&] {
-    return fmt::format("--flexibility-coarsening {} must lie in [0, {}] (0: automatic)", a.flexibility_coarsening,
-                       kMaximumCoarsening);
-  });
-  options.nh_fastsim.flexibility_coarsening = a.flexibility_coarsening;
-  options.solvers.clear();
-  for (const std::string& name : a.solvers.empty() ? std::vector<std::string>{"nh-fastsim"} : a.solvers)
-    options.solvers.push_back(parse_tangential_solver(name));
-  require(std::isfinite(a.load_kN) && a.load_kN > 0.0,
-          [&] { return fmt::format("--load {:g} kN must be positive", a.load_kN); });
-  options.loads = WheelLoads{a.load_kN * 1e3, a.load_kN * 1e3, false};
-  Wheelset wheelset(default_wheelset_track(), options);
+// The run's case: the file's, or the defaults; command-line options given explicitly override it.
+WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
+  WheelsetCase c;
+  if (!a.case_file.empty()) {
+    c = read_wheelset_case(a.case_file);
+  } else {
+    c.options.solvers = {TangentialSolver::nh_fastsim};
+  }
+  const auto given = [&](const char* option) { return sub.count(option) > 0; };
+  WheelsetPosition& p = c.state.position;
+  WheelsetVelocity& v = c.state.velocity;
+  if (given("--y")) p.lateral_displacement_m = a.y_mm * 1e-3;
+  if (given("--yaw")) p.yaw_rad = a.yaw_mrad * 1e-3;
+  if (given("--roll")) p.roll_rad = a.roll_mrad * 1e-3;
+  if (given("--speed")) v.forward_speed_m_per_s = a.speed_m_per_s;
+  if (given("--extra-creepage")) v.extra_longitudinal_creepage = a.extra_creepage;
+  if (given("--lateral-velocity")) v.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
+  if (given("--yaw-rate")) v.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
+  if (given("--mu")) c.options.friction_coefficient = a.mu;
+  if (given("--element-size")) c.options.element_size_m = a.element_size_mm * 1e-3;
+  if (given("--load")) {
+    require(std::isfinite(a.load_kN) && a.load_kN > 0.0,
+            [&] { return fmt::format("--load {:g} kN must be positive", a.load_kN); });
+    c.options.loads = WheelLoads{a.load_kN * 1e3, a.load_kN * 1e3, false};
+  }
+  if (given("--flexibility-coarsening")) {
+    require(a.flexibility_coarsening >= 0 && a.flexibility_coarsening <= kMaximumCoarsening, [&] {
+      return fmt::format("--flexibility-coarsening {} must lie in [0, {}] (0: automatic)", a.flexibility_coarsening,
+                         kMaximumCoarsening);
+    });
+    c.options.nh_fastsim.flexibility_coarsening = a.flexibility_coarsening;
+  }
+  if (!a.solvers.empty()) {
+    c.options.solvers.clear();
+    for (const std::string& name : a.solvers) c.options.solvers.push_back(parse_tangential_solver(name));
+  }
+  return c;
+}
 
-  WheelsetState state;
-  state.position.lateral_displacement_m = a.y_mm * 1e-3;
-  state.position.yaw_rad = a.yaw_mrad * 1e-3;
-  state.position.roll_rad = a.roll_mrad * 1e-3;
-  state.velocity.forward_speed_m_per_s = a.speed_m_per_s;
-  state.velocity.extra_longitudinal_creepage = a.extra_creepage;
-  state.velocity.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
-  state.velocity.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
+int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
+  const WheelsetCase c = wheelset_case(a, sub);
+  const WheelsetOptions& options = c.options;
+  Wheelset wheelset(wheelset_track(c), options);
+  const WheelsetState& state = c.state;
+  const double load_kN = options.loads ? options.loads->right_N * 1e-3 : 0.0;
+
   if (!a.sweep_y.empty()) {
     // FROM:TO:STEP in mm.
     study::WheelsetSweep sweep;
@@ -133,9 +156,10 @@ int run_wheelset(const WheelsetArguments& a) {
           {"roll_rad", r.state.position.roll_rad},
           {"yaw_rad", r.state.position.yaw_rad},
           {"forward_speed_m_per_s", r.state.velocity.forward_speed_m_per_s}}},
-        {"friction_coefficient", a.mu},
+        {"case", c.source},
+        {"friction_coefficient", options.friction_coefficient},
         {"element_size_m", options.element_size_m},
-        {"wheel_load_N", a.load_kN * 1e3},
+        {"by_load", options.loads.has_value()},
         {"solver", solver_name(options.solvers.front())},
         {"wheels", wheels},
         {"force_track_N", vector_json(r.force_track_N)},
@@ -143,10 +167,14 @@ int run_wheelset(const WheelsetArguments& a) {
     fmt::print("{}\n", out.dump(2));
     return 0;
   }
-  fmt::print("Wheelset S1002 / UIC60 1:40, y = {:g} mm, yaw = {:g} mrad, roll = {:g} mrad, V = {:g} m/s, "
-             "{:g} kN per wheel, mu = {:g}, elements {:g} mm, forces of {}\n",
-             a.y_mm, a.yaw_mrad, a.roll_mrad, a.speed_m_per_s, a.load_kN, a.mu, a.element_size_mm,
-             solver_name(options.solvers.front()));
+  fmt::print("Wheelset {}, y = {:g} mm, yaw = {:g} mrad, roll = {:g} mrad, V = {:g} m/s, {}, mu = {:g}, "
+             "elements {:g} mm, forces of {}\n",
+             c.source.empty() ? "S1002 / UIC60 1:40" : c.source, r.state.position.lateral_displacement_m * 1e3,
+             r.state.position.yaw_rad * 1e3, r.state.position.roll_rad * 1e3, state.velocity.forward_speed_m_per_s,
+             options.loads ? fmt::format("{:g} / {:g} kN on the right / left wheel", load_kN,
+                                         options.loads->left_N * 1e-3)
+                           : fmt::format("by position, z = {:g} mm", state.position.vertical_displacement_m * 1e3),
+             options.friction_coefficient, options.element_size_m * 1e3, solver_name(options.solvers.front()));
   fmt::print("Forces on the wheels in the track frame (x forward, y left, z up), N; patch forces in the contact "
              "frame.\n\n");
   for (const WheelResult& w : r.wheels) {
@@ -179,6 +207,7 @@ void add_wheelset_command(CLI::App& app, Action& action) {
       "wheelset",
       "Both wheels of a wheelset on the track (S1002 / UIC60 1:40, 1435 mm gauge): every contact patch and the "
       "forces on each wheel, the vertical position solved for the wheel load (docs/WHEELSET.md)");
+  sub->add_option("case", args->case_file, "wheelset case file (TOML, docs/CASE_FILES.md); default: S1002/UIC60");
   sub->add_option("--y", args->y_mm, "lateral displacement of the wheelset (mm, + to the left)");
   sub->add_option("--yaw", args->yaw_mrad, "yaw angle (mrad, + the axle's left end backwards)");
   sub->add_option("--roll", args->roll_mrad, "roll angle (mrad, + the left wheel up)");
@@ -197,7 +226,7 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--sweep-y", args->sweep_y,
                   "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
   sub->add_option("--out", args->out, "output directory of a sweep");
-  sub->callback([&action, args] { action = [args] { return run_wheelset(*args); }; });
+  sub->callback([&action, args, sub] { action = [args, sub] { return run_wheelset(*args, *sub); }; });
 }
 
 }  // namespace railcontact::cli
