@@ -177,3 +177,47 @@ TEST(WheelsetGeometry, RefusesBadPositions) {
 
 }  // namespace
 }  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+// A conical wheel (cone angle γ0) on a rail with a circular head: the contact stays where the
+// rail's slope is tan γ0 (it does not move on the rail), so the contact angle is γ0 and the contact
+// moves on the wheel by the wheelset's displacement y. The wheel moving towards its flange (the
+// left wheel for y > 0) rolls on a larger radius: Δr = r_left − r_right = 2 y tan γ0, the classic
+// rolling-radius difference of a coned wheelset.
+TEST(WheelsetGeometry, ConicalWheelOnARoundRailGivesTheClassicRollingRadiusDifference) {
+  const double gamma0 = 0.05, R = 0.05;
+  Profile wheel, rail;
+  wheel.kind = ProfileKind::wheel;
+  rail.kind = ProfileKind::rail;
+  wheel.source = "cone";
+  rail.source = "round rail";
+  for (int k = 0; k <= 140; ++k) {  // y from -70 to +70 mm, radius growing towards -y (the flange side)
+    const double y = (-70.0 + k) * 1e-3;
+    wheel.y_m.push_back(y);
+    wheel.z_m.push_back(-std::tan(gamma0) * y + (y < -40e-3 ? 0.5 * (y + 40e-3) * (y + 40e-3) / 0.01 : 0.0));
+  }
+  for (int k = 0; k <= 72; ++k) {  // the head: y from -36 to +36 mm
+    const double y = (-36.0 + k) * 1e-3;
+    rail.y_m.push_back(y);
+    rail.z_m.push_back(R - std::sqrt(R * R - y * y));
+  }
+  const WheelsetTrack track(wheel, rail);
+  const auto radius_at = [&](WheelSide side, double y) {
+    WheelsetPosition p;
+    p.lateral_displacement_m = y;
+    p.vertical_displacement_m = track.touching_vertical_displacement_m(side, p) - 1e-6;
+    const WheelContactSearch s = track.contact_search(side, p);
+    EXPECT_EQ(s.regions.size(), 1u);
+    EXPECT_NEAR(s.regions.front().contact_angle_rad, gamma0, 2e-3);
+    return s.regions.front().rolling_radius_m;
+  };
+  for (double y : {-4e-3, -1e-3, 2e-3, 5e-3}) {
+    const double dr = radius_at(WheelSide::left, y) - radius_at(WheelSide::right, y);
+    EXPECT_NEAR(dr, 2.0 * std::tan(gamma0) * y, 0.002 * std::abs(2.0 * std::tan(gamma0) * y)) << "y = " << y;
+  }
+}
+
+}  // namespace
+}  // namespace railcontact

@@ -212,3 +212,48 @@ TEST(WheelsetCli, RefusesBadCaseFiles) {
 
 }  // namespace
 }  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+// Creepages from the wheelset's motion against their closed forms at each patch's reference point
+// (r: its rolling radius, γ: its contact angle, y_c: its lateral position, r0 = 0.46 m):
+//   yaw ψ at pure rolling:    η = −(r / r0) sin ψ cos γ, up to the lead of the contact (its angle
+//                             θ ≈ tan γ tan ψ about the axle adds (r / r0) sin θ X2_z: below 2 ψ tan² γ)
+//   lateral velocity v:       η = v cos γ / V
+//   yaw rate ω:               ξ = ξ(0) − ω y_c / V
+TEST(Wheelset, KinematicCreepagesHaveTheirClosedForms) {
+  WheelsetOptions o = coarse();
+  Wheelset wheelset(track(), o);
+  const double r0 = track().parameters().nominal_rolling_radius_m, V = 20.0;
+  const WheelsetResult base = wheelset.evaluate(state_at(1e-3));
+
+  const double psi = 4e-3;
+  const WheelsetResult yawed = wheelset.evaluate(state_at(1e-3, psi));
+  for (const WheelResult& w : yawed.wheels) {
+    const WheelsetPatch& p = w.patches.front();
+    const double gamma = p.region.contact_angle_rad;
+    EXPECT_NEAR(p.creepage.eta, -(p.region.rolling_radius_m / r0) * std::sin(psi) * std::cos(gamma),
+                2.0 * psi * std::tan(gamma) * std::tan(gamma) + 1e-9);
+  }
+  WheelsetState lateral = state_at(1e-3);
+  lateral.velocity.lateral_velocity_m_per_s = 0.05;
+  const WheelsetResult moving = wheelset.evaluate(lateral);
+  for (const WheelResult& w : moving.wheels) {
+    const WheelsetPatch& p = w.patches.front();
+    EXPECT_NEAR(p.creepage.eta, 0.05 * std::cos(p.region.contact_angle_rad) / V, 1e-9);
+  }
+  WheelsetState turning = state_at(1e-3);
+  turning.velocity.yaw_rate_rad_per_s = 0.02;
+  const WheelsetResult turned = wheelset.evaluate(turning);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const WheelsetPatch& p = turned.wheels[k].patches.front();
+    const WheelsetPatch& q = base.wheels[k].patches.front();
+    // 1e-7: by load, the wheel's height (and so its reference point) moves slightly with the
+    // creep forces that the yaw rate changes.
+    EXPECT_NEAR(p.creepage.xi - q.creepage.xi, -0.02 * (p.region.reference_point_track_m[1] - 1e-3) / V, 1e-7);
+  }
+}
+
+}  // namespace
+}  // namespace railcontact
