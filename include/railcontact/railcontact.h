@@ -497,8 +497,8 @@ RC_API rc_status rc_wheelset_patches(const rc_wheelset* wheelset, int side, size
    rc_wheelset_evaluate with warm_start = 0, bit for bit, whatever the threads. Outputs:
    results (count entries, required); patches (may be null when patches_per_wheel is 0): state k,
    wheel w, patch j at patches[(2 k + w) patches_per_wheel + j]; statuses (count entries, may be
-   null). A state with more patches on a wheel than patches_per_wheel has RC_BUFFER_TOO_SMALL
-   (its results entry is filled: patch_count gives the size needed). Returns RC_OK when every
+   null). With patches given, a state with more patches on a wheel than patches_per_wheel has
+   RC_BUFFER_TOO_SMALL (its results entry is filled: patch_count gives the size needed). Returns RC_OK when every
    state succeeded, else the status of the first failed state, whose message ("state K: ...")
    is the wheelset's last error. This wheelset's warm start and last result are unchanged. */
 RC_API rc_status rc_wheelset_batch_evaluate(rc_wheelset* wheelset, size_t count, const rc_wheelset_state* states,
