@@ -11,7 +11,7 @@
  *  - it returns an rc_status (RC_OK = 0); the three queries rc_status_string, rc_version_string
  *    and rc_abi_version cannot fail and return their value;
  *  - on failure the handle keeps a one-line message (rc_solver_last_error,
- *    rc_flextable_last_error) and the outputs are unspecified;
+ *    rc_flextable_last_error, rc_wheelset_last_error) and the outputs are unspecified;
  *  - no C++ exception crosses it; out of memory is RC_OUT_OF_MEMORY;
  *  - NaN and infinite inputs are refused (RC_INVALID_INPUT), as are null pointers where a value
  *    is required;
@@ -19,10 +19,10 @@
  *  - a handle may be used by one thread at a time; different handles may be used on different
  *    threads at the same time. A flexibility table may be read by several solvers at once.
  *
- * Handles: rc_solver (a contact patch with its prepared solver, the settings, the last results)
- * and rc_flextable (a flexibility table with its profile pair). Later versions add other
- * handles (e.g. rc_wheelset) in the same style: rc_<handle>_create / _destroy / _last_error and
- * rc_<handle>_<verb>.
+ * Handles: rc_solver (a contact patch with its prepared solver, the settings, the last results),
+ * rc_flextable (a flexibility table with its profile pair) and rc_wheelset (both wheels of a
+ * wheelset on their rails, docs/WHEELSET.md). Each in the same style: rc_<handle>_create /
+ * _destroy / _last_error and rc_<handle>_<verb>.
  */
 #ifndef RAILCONTACT_H
 #define RAILCONTACT_H
@@ -209,6 +209,15 @@ RC_API rc_status rc_solver_set_ellipse(rc_solver* solver, double a_m, double b_m
 RC_API rc_status rc_solver_set_hertz(rc_solver* solver, double A_per_m, double B_per_m, double normal_force_N);
 RC_API rc_status rc_solver_set_grid(rc_solver* solver, int n1, int n2, double dx1_m, double dx2_m, const double* h_m,
                                     double normal_force_N);
+/* The contact patch with the normal problem solved for a given approach (penetration) delta =
+   approach_m (m) instead of a given normal force: patch->normal_force_N is ignored and F3
+   follows (rc_solver_normal_result). HERTZ: Hertz's ellipse and F3 for the curvatures at delta
+   (delta > 0). ELLIPSE: the semi-axes a, b are kept and F3 is the ellipse's Hertzian load at
+   delta (delta > 0). GRID: the normal solver with the approach prescribed: h - delta + u >= 0
+   (h measured at the bodies' position, negative where they overlap; delta = 0 is the
+   position-driven problem); RC_NO_CONTACT when no element comes into contact. The F3 found must
+   lie in [1, 1e7] N. Then as rc_solver_set_patch (the method's preparation). */
+RC_API rc_status rc_solver_set_patch_at_approach(rc_solver* solver, const rc_patch* patch, double approach_m);
 /* The normal results of the patch. */
 RC_API rc_status rc_solver_normal_result(const rc_solver* solver, rc_normal_result* result);
 
@@ -304,6 +313,197 @@ RC_API rc_status rc_flextable_lookup(const rc_flextable* table, double y_m, doub
    same patch. The solver's material must be the table's. The table must outlive the call only. */
 RC_API rc_status rc_solver_set_patch_flextable(rc_solver* solver, const rc_flextable* table, double y_m,
                                                double vertical_load_N);
+
+
+/* ---- Wheelset (docs/WHEELSET.md) ------------------------------------------------------------ */
+
+/* Both wheels of a wheelset on their rails in 3-D: a multibody state in (position and velocity),
+   every contact patch of both wheels and the forces on each wheel out.
+   - Track frame: x along the track in the direction of travel, y lateral to the LEFT, z UP; the
+     origin on the track centreline at the height of the rail profiles' origins.
+   - Contact frame of a patch: X1 = x (the rail's direction), X3 the rail's normal into the wheel
+     at the reference point, leaning towards the track centre by the contact angle gamma,
+     X2 = X3 x X1 (pointing to the left on both wheels). Forces and moments are those on the
+     wheel; creepages as in rc_creepage (kinematic, at the patch's reference point).
+   - Wheels are indexed by rc_wheel_side: 0 right, 1 left.
+   - Profile files: any format of the library (SIMPACK .prw/.prr, MiniProf .ban/.whl, two-column
+     text in mm), each in its own side's profile frame (docs/GEOMETRY.md); one file serves both
+     sides. */
+
+typedef struct rc_wheelset rc_wheelset;
+
+typedef enum rc_wheel_side {
+  RC_WHEEL_RIGHT = 0,
+  RC_WHEEL_LEFT = 1
+} rc_wheel_side;
+
+/* The track and wheelset dimensions (m), as in the wheel-rail set-up files. */
+typedef struct rc_track_parameters {
+  double track_gauge_m;                  /* between the gauge faces; default 1.435 */
+  double gauge_measuring_depth_m;        /* ... measured this far below the top of the rails; 0.014 */
+  double flange_back_distance_m;         /* between the wheels' flange backs; 1.360 */
+  double flange_back_y_m;                /* the flange back in the wheel profile frame; -0.070 */
+  double taping_line_from_flange_back_m; /* lateral distance flange back -> taping line; 0.070 */
+  double nominal_rolling_radius_m;       /* wheel radius at the taping line (r0); 0.46 */
+} rc_track_parameters;
+
+RC_API rc_status rc_track_parameters_default(rc_track_parameters* track);
+
+/* How each wheel's normal problem is set. */
+typedef enum rc_wheelset_normal {
+  RC_WHEELSET_BY_LOAD = 0,    /* each wheel's height is solved so that its vertical force meets
+                                 its load (the state's z is ignored) */
+  RC_WHEELSET_BY_POSITION = 1 /* the state's z and roll give the overlap; the forces follow */
+} rc_wheelset_normal;
+
+/* The options of a wheelset (defaults from rc_wheelset_options_default). */
+typedef struct rc_wheelset_options {
+  double youngs_modulus_Pa;    /* E of wheels and rails (Pa); default 2.1e11 */
+  double poisson_ratio;        /* nu (-); default 0.3 */
+  double friction_coefficient; /* mu (-), (0, 2]; default 0.3 */
+  double element_size_m;       /* square elements of the potential contact areas (m),
+                                  [0.02e-3, 5e-3]; default 0.2e-3 */
+  double right_load_N;         /* BY_LOAD: the right wheel's vertical load (N), [1, 1e7]; 98100 */
+  double left_load_N;          /* BY_LOAD: the left wheel's (N); 98100 */
+  int normal_mode;             /* rc_wheelset_normal; default RC_WHEELSET_BY_LOAD */
+  int balance_roll;            /* BY_LOAD: 1 solves the axle's height and roll together (one rigid
+                                  axle carries both loads); 0 (default) each wheel's height on its
+                                  own at the state's roll */
+  int tangential_in_balance;   /* BY_LOAD: 1 (default) the vertical balance includes the tangential
+                                  forces' vertical components; 0 the normal forces only */
+  int allow_wheel_lift;        /* 1: a wheel without contact has no patches and zero forces;
+                                  0 (default): RC_NO_CONTACT */
+  int warm_start;              /* 1 (default): an evaluation starts from the previous one's
+                                  pressures and reuses its plans (docs/WHEELSET.md §8; faster for a
+                                  time step, the numbers depend on the previous state to the normal
+                                  solver's tolerance); 0: every evaluation from a cold start (its
+                                  numbers depend on the state only, as in the batch) */
+  int solver_count;            /* 1 .. 4: the tangential solvers run on every patch */
+  int solvers[4];              /* rc_method values, distinct; the first one's forces make the
+                                  wheels' totals */
+} rc_wheelset_options;
+
+RC_API rc_status rc_wheelset_options_default(rc_wheelset_options* options);
+
+/* How the wheels turn about their axle. */
+typedef enum rc_wheel_rotation {
+  RC_ROTATION_ROLLING = 0, /* pure rolling at the nominal radius r0 with the extra longitudinal
+                              creepage xi0: Omega = V (1 - xi0) / r0 */
+  RC_ROTATION_GIVEN = 1    /* wheel_angular_velocity_rad_per_s */
+} rc_wheel_rotation;
+
+/* A wheelset's state: its position and velocity on the track (SI units, rad, rad/s). */
+typedef struct rc_wheelset_state {
+  double y_m;                  /* lateral displacement of the centre (m), + to the left; |y| <= 0.1 */
+  double z_m;                  /* BY_POSITION: vertical displacement of the centre above its
+                                  nominal height (m), + up; |z| <= 0.1; ignored BY_LOAD */
+  double roll_rad;             /* about x, + the left wheel rises; |roll| <= 0.1 (balance_roll:
+                                  the first guess) */
+  double yaw_rad;              /* about z, + the axle's left end moves backwards; |yaw| <= 0.1 */
+  double forward_speed_m_per_s;    /* V > 0, the rolling speed of the creepages; default 20 */
+  double lateral_velocity_m_per_s; /* dy/dt (m/s) */
+  double vertical_velocity_m_per_s;/* dz/dt (m/s) */
+  double roll_rate_rad_per_s;
+  double yaw_rate_rad_per_s;
+  double wheel_angular_velocity_rad_per_s; /* RC_ROTATION_GIVEN: about the axle, + rolling forward */
+  double extra_longitudinal_creepage;      /* RC_ROTATION_ROLLING: xi0 (-), < 0 traction, > 0 braking */
+  int rotation;                /* rc_wheel_rotation; default RC_ROTATION_ROLLING */
+  int reserved;                /* set to 0 */
+} rc_wheelset_state;
+
+/* Zero position and velocities, V = 20 m/s, pure rolling. */
+RC_API rc_status rc_wheelset_state_default(rc_wheelset_state* state);
+
+/* One contact patch of a wheel. */
+typedef struct rc_wheelset_patch {
+  double reference_point_track_m[3]; /* the patch's reference point on the rail surface, track
+                                        frame (m): the overlap-weighted average (docs/WHEELSET.md §4) */
+  double x2_axis[3];                 /* the contact frame's X2 and X3 in the track frame (unit);
+                                        X1 = (1, 0, 0) */
+  double x3_axis[3];
+  double contact_angle_rad;          /* gamma, + leaning towards the track centre */
+  double rolling_radius_m;           /* the wheel's radius at the patch (m) */
+  double max_interpenetration_m;     /* largest overlap of the undeformed bodies (m) */
+  rc_creepage creepage;              /* kinematic creepages at the reference point, contact frame */
+  double normal_force_N;             /* F3 (N) */
+  double area_m2;                    /* elements in contact x element area (m^2) */
+  double max_pressure_Pa;            /* largest p3 (Pa) */
+  double pressure_centre_x1_m;       /* the centre of pressure from the reference point, */
+  double pressure_centre_x2_m;       /* along X1 and X2 (m) */
+  rc_forces forces[4];               /* per solver of the options, in their order (unused: 0):
+                                        F1, F2 (N), M3 about the centre of pressure (N m), contact
+                                        frame, and the adhesion fraction */
+  double force_track_N[4][3];        /* F1 X1 + F2 X2 + F3 X3 per solver, track frame (N) */
+  int side;                          /* rc_wheel_side */
+  int elements_in_contact;
+  int normal_iterations;             /* of the final normal solve */
+  int solver_count;                  /* entries of forces and force_track_N in use */
+} rc_wheelset_patch;
+
+/* The totals of one evaluation (forces of the options' first solver). */
+typedef struct rc_wheelset_result {
+  double force_track_N[3];              /* on the wheelset: both wheels, track frame (N) */
+  double wheel_force_track_N[2][3];     /* on each wheel [rc_wheel_side], track frame (N) */
+  double wheel_vertical_displacement_m[2]; /* the height at which each wheel was solved (m) */
+  double vertical_displacement_m;       /* the state as solved: z of the centre (m); BY_LOAD the
+                                           mean of the wheels' heights found */
+  double roll_rad;                      /* the state as solved: roll (balance_roll: found) */
+  int patch_count[2];                   /* patches of each wheel [rc_wheel_side] */
+  int load_iterations[2];               /* BY_LOAD: height iterations of each wheel */
+} rc_wheelset_result;
+
+/* A new wheelset with rc_wheelset_options_default and no track (set one before evaluating).
+   *wheelset is null on failure. */
+RC_API rc_status rc_wheelset_create(rc_wheelset** wheelset);
+RC_API rc_status rc_wheelset_destroy(rc_wheelset* wheelset);
+RC_API rc_status rc_wheelset_last_error(const rc_wheelset* wheelset, char* buffer, size_t size, size_t* length);
+
+/* The track: the shipped S1002 / UIC60 1:40 set-up (profiles and dimensions). */
+RC_API rc_status rc_wheelset_set_default_track(rc_wheelset* wheelset);
+/* The track: one wheel and one rail profile file for both sides, and the dimensions (null: the
+   defaults of rc_track_parameters_default). RC_IO for a file that cannot be read. */
+RC_API rc_status rc_wheelset_set_track(rc_wheelset* wheelset, const char* wheel_profile_path,
+                                       const char* rail_profile_path, const rc_track_parameters* track);
+/* The track with a profile file per wheel and rail. */
+RC_API rc_status rc_wheelset_set_track_profiles(rc_wheelset* wheelset, const char* right_wheel_path,
+                                                const char* left_wheel_path, const char* right_rail_path,
+                                                const char* left_rail_path, const rc_track_parameters* track);
+/* The track's dimensions and the nominal axle height H0 (m; may be null): the height of the
+   wheelset centre at which, with y, roll and yaw zero, the first wheel touches its rail. */
+RC_API rc_status rc_wheelset_get_track(const rc_wheelset* wheelset, rc_track_parameters* track,
+                                       double* nominal_axle_height_m);
+
+/* Checks and takes all options (a failed call keeps the previous ones). Discards the warm start. */
+RC_API rc_status rc_wheelset_set_options(rc_wheelset* wheelset, const rc_wheelset_options* options);
+RC_API rc_status rc_wheelset_get_options(const rc_wheelset* wheelset, rc_wheelset_options* options);
+
+/* Evaluates a state: the contact search, each patch's normal problem (by load or by position),
+   the creepages and the tangential solvers. result (may be null) receives the totals; the
+   patches are queried with rc_wheelset_patch_count and rc_wheelset_patches. */
+RC_API rc_status rc_wheelset_evaluate(rc_wheelset* wheelset, const rc_wheelset_state* state,
+                                      rc_wheelset_result* result);
+/* The last evaluation's totals and solved state. */
+RC_API rc_status rc_wheelset_result_get(const rc_wheelset* wheelset, rc_wheelset_result* result);
+/* The number of patches of a wheel (side: rc_wheel_side) in the last evaluation. */
+RC_API rc_status rc_wheelset_patch_count(const rc_wheelset* wheelset, int side, size_t* count);
+/* Copies the patches of a wheel, along the rail profile (gauge side first), into the caller's
+   buffer of `size` entries; RC_BUFFER_TOO_SMALL when size < rc_wheelset_patch_count. */
+RC_API rc_status rc_wheelset_patches(const rc_wheelset* wheelset, int side, size_t size,
+                                     rc_wheelset_patch* patches);
+
+/* Many states at once on `threads` threads (1 = the calling thread only; 0 = the machine's
+   hardware threads), one wheelset per thread with this wheelset's track and options. Each state
+   is evaluated from a cold start: the results equal those of the serial loop of
+   rc_wheelset_evaluate with warm_start = 0, bit for bit, whatever the threads. Outputs:
+   results (count entries, required); patches (may be null when patches_per_wheel is 0): state k,
+   wheel w, patch j at patches[(2 k + w) patches_per_wheel + j]; statuses (count entries, may be
+   null). With patches given, a state with more patches on a wheel than patches_per_wheel has
+   RC_BUFFER_TOO_SMALL (its results entry is filled: patch_count gives the size needed). Returns RC_OK when every
+   state succeeded, else the status of the first failed state, whose message ("state K: ...")
+   is the wheelset's last error. This wheelset's warm start and last result are unchanged. */
+RC_API rc_status rc_wheelset_batch_evaluate(rc_wheelset* wheelset, size_t count, const rc_wheelset_state* states,
+                                            int threads, rc_wheelset_result* results, size_t patches_per_wheel,
+                                            rc_wheelset_patch* patches, int* statuses);
 
 #ifdef __cplusplus
 }

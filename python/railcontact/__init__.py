@@ -32,7 +32,8 @@ METHODS = {"nh-fastsim": 0, "fastsim": 1, "exact": 2, "exact-regularised": 3}
 _GEOMETRIES = {"ellipse": 0, "hertz": 1}
 
 __all__ = ["Solver", "Result", "NormalResult", "Tractions", "FlexibilityTable", "FlexibilityTableValues",
-           "creep_forces", "METHODS", "abi_version", "RailcontactError", "InvalidInputError", "NoContactError",
+           "creep_forces", "METHODS", "Wheelset", "WheelsetResult", "WheelResult", "WheelsetPatch", "SolverForces",
+           "WHEELSET_STATE_COLUMNS", "abi_version", "RailcontactError", "InvalidInputError", "NoContactError",
            "SeveralPatchesError", "NotConvergedError", "RailcontactIOError", "InternalError", "CancelledError"]
 
 
@@ -171,27 +172,40 @@ class Solver:
     def method(self) -> str:
         return {v: k for k, v in METHODS.items()}[self._core.settings()["method"]]
 
-    def set_ellipse(self, a: float, b: float, normal_force: float) -> NormalResult:
+    def set_ellipse(self, a: float, b: float, normal_force: Optional[float] = None, *,
+                    approach: Optional[float] = None) -> NormalResult:
         """Elliptical patch with semi-axes a (along X1) and b (m), Hertzian pressure under the
-        normal force F3 (N). Prepares the method (nh-fastsim: K2, the costly part)."""
+        normal force F3 (N), or, with approach= instead (m, > 0), under the load whose Hertzian
+        approach that is. Prepares the method (nh-fastsim: K2, the costly part)."""
         self._patch = None
-        self._core.set_ellipse(float(a), float(b), float(normal_force))
-        self._patch = (np.array([[a, b, normal_force]], dtype=float), _GEOMETRIES["ellipse"])
+        force, approach = _normal_input(normal_force, approach)
+        self._core.set_ellipse(float(a), float(b), force, approach)
+        if approach is None:  # batch(patches=None) takes this patch (not one set by its approach)
+            self._patch = (np.array([[a, b, normal_force]], dtype=float), _GEOMETRIES["ellipse"])
         return self.normal
 
-    def set_hertz(self, A: float, B: float, normal_force: float) -> NormalResult:
-        """Hertz's patch for the undeformed distance h = A x1^2 + B x2^2 (A, B in 1/m) under F3 (N)."""
+    def set_hertz(self, A: float, B: float, normal_force: Optional[float] = None, *,
+                  approach: Optional[float] = None) -> NormalResult:
+        """Hertz's patch for the undeformed distance h = A x1^2 + B x2^2 (A, B in 1/m) under F3 (N),
+        or at the approach (penetration) approach= (m, > 0), F3 following."""
         self._patch = None
-        self._core.set_hertz(float(A), float(B), float(normal_force))
-        self._patch = (np.array([[A, B, normal_force]], dtype=float), _GEOMETRIES["hertz"])
+        force, approach = _normal_input(normal_force, approach)
+        self._core.set_hertz(float(A), float(B), force, approach)
+        if approach is None:  # batch(patches=None) takes this patch (not one set by its approach)
+            self._patch = (np.array([[A, B, normal_force]], dtype=float), _GEOMETRIES["hertz"])
         return self.normal
 
-    def set_grid(self, h, dx1: float, dx2: float, normal_force: float) -> NormalResult:
+    def set_grid(self, h, dx1: float, dx2: float, normal_force: Optional[float] = None, *,
+                 approach: Optional[float] = None) -> NormalResult:
         """Non-Hertzian patch: the undeformed distance h (m) on a regular grid, a 2-D array of shape
         (n2, n1) (row i2 along X2, column i1 along X1; h > 0 separated), element sizes dx1, dx2 (m),
-        normal force F3 (N). The normal problem is solved; it must give one patch."""
+        normal force F3 (N); or approach= (m) instead of the force: h - approach + u >= 0 is solved
+        with the approach prescribed (h measured at the bodies' position, negative where they
+        overlap: approach=0 is the position-driven problem) and F3 follows (NoContactError when no
+        element touches). The normal problem must give one patch."""
         self._patch = None
-        self._core.set_grid(np.ascontiguousarray(h, dtype=float), float(dx1), float(dx2), float(normal_force))
+        force, approach = _normal_input(normal_force, approach)
+        self._core.set_grid(np.ascontiguousarray(h, dtype=float), float(dx1), float(dx2), force, approach)
         return self.normal
 
     def set_flextable_patch(self, table: "FlexibilityTable", y: float, vertical_load: float) -> NormalResult:
@@ -236,7 +250,8 @@ class Solver:
             c = c.reshape(1, 3)
         if patches is None:
             if self._patch is None:
-                raise InvalidInputError("batch without patches= uses the patch of set_ellipse or set_hertz; none set")
+                raise InvalidInputError("batch without patches= uses the patch of set_ellipse or set_hertz given "
+                                        "its normal force; none set")
             p, kind = self._patch
         else:
             if geometry not in _GEOMETRIES:
@@ -248,6 +263,14 @@ class Solver:
         if status != 0 and errors == "raise":
             _raise(status, message)
         return (forces, J) if jacobian else forces
+
+
+def _normal_input(normal_force, approach):
+    if (normal_force is None) == (approach is None):
+        raise InvalidInputError("give either normal_force (N) or approach (m)")
+    if approach is None:
+        return float(normal_force), None
+    return 0.0, float(approach)
 
 
 def _raise(status, message):
@@ -304,3 +327,216 @@ def creep_forces(a: float, b: float, normal_force: float, xi: float = 0.0, eta: 
     solver = Solver(method, **settings)
     solver.set_ellipse(a, b, normal_force)
     return solver.solve(xi, eta, phi, tractions=tractions)
+
+
+# ---- Wheelset (docs/WHEELSET.md, docs/PYTHON.md "Wheelset") ------------------------------------
+
+#: The columns of a state row of Wheelset.batch, in this order (SI units; see Wheelset.evaluate).
+WHEELSET_STATE_COLUMNS = ("y", "z", "roll", "yaw", "speed", "lateral_velocity", "vertical_velocity", "roll_rate",
+                          "yaw_rate", "wheel_angular_velocity", "extra_creepage")
+_STATE_DEFAULTS = (0.0, 0.0, 0.0, 0.0, 20.0, 0.0, 0.0, 0.0, 0.0, float("nan"), 0.0)
+_TRACK_KEYWORDS = {"gauge": "track_gauge_m", "measuring_depth": "gauge_measuring_depth_m",
+                   "flange_back_distance": "flange_back_distance_m", "flange_back_y": "flange_back_y_m",
+                   "taping_line_distance": "taping_line_from_flange_back_m", "nominal_radius": "nominal_rolling_radius_m"}
+
+
+@dataclass(frozen=True)
+class SolverForces:
+    """One tangential solver's forces on a patch (on the wheel)."""
+    F1_N: float                #: longitudinal force, contact frame (N)
+    F2_N: float                #: lateral force, contact frame (N)
+    M3_Nm: float               #: spin moment about X3 through the centre of pressure (N m)
+    adhesion_fraction: float   #: elements in adhesion / elements in contact
+    force_track_N: np.ndarray  #: F1 X1 + F2 X2 + F3 X3 in the track frame (N), shape (3,)
+
+
+@dataclass(frozen=True)
+class WheelsetPatch:
+    """One contact patch of a wheel (docs/WHEELSET.md §4-7). Track frame: x along the track, y to
+    the left, z up. Contact frame: X1 = x, X3 the rail's normal into the wheel, X2 = X3 x X1."""
+    side: str                          #: "right" or "left"
+    reference_point_track_m: np.ndarray  #: the reference point on the rail surface, track frame (m), (3,)
+    x2_axis: np.ndarray                #: the contact frame's X2 in the track frame, (3,)
+    x3_axis: np.ndarray                #: the contact frame's X3 (the normal into the wheel), (3,)
+    contact_angle_rad: float           #: gamma, + leaning towards the track centre (rad)
+    rolling_radius_m: float            #: the wheel's radius at the patch (m)
+    max_interpenetration_m: float      #: largest overlap of the undeformed bodies (m)
+    xi: float                          #: longitudinal creepage at the reference point (-)
+    eta: float                         #: lateral creepage (-)
+    phi_per_m: float                   #: spin creepage (1/m)
+    normal_force_N: float              #: F3 (N)
+    area_m2: float                     #: contact area (m^2)
+    max_pressure_Pa: float             #: largest p3 (Pa)
+    pressure_centre_x1_m: float        #: centre of pressure from the reference point along X1 (m)
+    pressure_centre_x2_m: float        #: ... along X2 (m)
+    elements_in_contact: int
+    normal_iterations: int             #: of the final normal solve
+    F1_N: float                        #: the first solver's F1, contact frame (N)
+    F2_N: float                        #: the first solver's F2 (N)
+    M3_Nm: float                       #: the first solver's M3 about the centre of pressure (N m)
+    adhesion_fraction: float           #: the first solver's
+    force_track_N: np.ndarray          #: the first solver's force on the wheel, track frame (N), (3,)
+    solvers: dict                      #: solver name -> SolverForces, every solver of the wheelset
+
+
+@dataclass(frozen=True)
+class WheelResult:
+    """One wheel's patches (along the rail profile, gauge side first) and total force."""
+    side: str                   #: "right" or "left"
+    patches: list               #: of WheelsetPatch
+    force_track_N: np.ndarray   #: sum over the patches (first solver), track frame (N), (3,)
+    vertical_displacement_m: float  #: the height at which the wheel was solved (m)
+    load_iterations: int        #: by load: height iterations
+
+
+@dataclass(frozen=True)
+class WheelsetResult:
+    """One evaluation of a wheelset: both wheels (right, left) and the totals."""
+    wheels: list                #: [right WheelResult, left WheelResult]
+    force_track_N: np.ndarray   #: on the wheelset, both wheels, track frame (N), (3,)
+    vertical_displacement_m: float  #: the state as solved: z of the centre (m; by load: found)
+    roll_rad: float             #: the state as solved: roll (rad; balance_roll: found)
+
+    @property
+    def right(self) -> WheelResult:
+        return self.wheels[0]
+
+    @property
+    def left(self) -> WheelResult:
+        return self.wheels[1]
+
+
+def _wheelset_result(d, solver_names):
+    wheels = []
+    for w in d["wheels"]:
+        patches = []
+        for p in w["patches"]:
+            solvers = {name: SolverForces(*forces) for name, forces in zip(solver_names, p.pop("solvers"))}
+            first = solvers[solver_names[0]]
+            patches.append(WheelsetPatch(**p, F1_N=first.F1_N, F2_N=first.F2_N, M3_Nm=first.M3_Nm,
+                                         adhesion_fraction=first.adhesion_fraction,
+                                         force_track_N=first.force_track_N, solvers=solvers))
+        wheels.append(WheelResult(w["side"], patches, w["force_track_N"], w["vertical_displacement_m"],
+                                  w["load_iterations"]))
+    return WheelsetResult(wheels, d["force_track_N"], d["vertical_displacement_m"], d["roll_rad"])
+
+
+class Wheelset:
+    """Both wheels of a wheelset on their rails in 3-D (the C API's rc_wheelset; docs/WHEELSET.md).
+
+    Profiles: none for the shipped S1002 / UIC60 1:40 set-up; wheel= and rail= (paths, one for both
+    sides); or right_wheel=, left_wheel=, right_rail=, left_rail=. With profiles, the track's
+    dimensions (m): gauge [1.435], measuring_depth [0.014], flange_back_distance [1.360],
+    flange_back_y [-0.070], taping_line_distance [0.070] (flange back -> taping line),
+    nominal_radius [0.46].
+    Options (SI units): mu [0.3]; youngs_modulus [2.1e11 Pa]; poisson_ratio [0.3]; element_size
+    [0.2e-3 m]; solvers [("nh-fastsim",)] run on every patch, the first makes the totals;
+    loads [(98100, 98100) N, right and left]: by load, each wheel's height is solved to carry its
+    load; loads=None: by position (the state's z and roll give the overlap); balance_roll [False];
+    tangential_in_balance [True]; allow_wheel_lift [False] (else NoContactError for a lifted
+    wheel); warm_start [True] (each evaluation starts from the previous one's pressures; False:
+    every evaluation from a cold start, as in batch()).
+    A Wheelset is used by one thread at a time; evaluations release the GIL.
+    """
+
+    def __init__(self, wheel=None, rail=None, *, right_wheel=None, left_wheel=None, right_rail=None,
+                 left_rail=None, gauge=None, measuring_depth=None, flange_back_distance=None, flange_back_y=None,
+                 taping_line_distance=None, nominal_radius=None, mu: float = 0.3, youngs_modulus: float = 2.1e11,
+                 poisson_ratio: float = 0.3, element_size: float = 0.2e-3, solvers=("nh-fastsim",),
+                 loads=(98100.0, 98100.0), balance_roll: bool = False, tangential_in_balance: bool = True,
+                 allow_wheel_lift: bool = False, warm_start: bool = True):
+        self._core = _core.Wheelset()
+        if isinstance(solvers, str):
+            solvers = (solvers,)
+        self._solvers = tuple(solvers)
+        for name in self._solvers:
+            if name not in METHODS:
+                raise InvalidInputError(f"unknown solver {name!r}; one of {', '.join(METHODS)}")
+        options = {"friction_coefficient": mu, "youngs_modulus_Pa": youngs_modulus, "poisson_ratio": poisson_ratio,
+                   "element_size_m": element_size, "solvers": [METHODS[n] for n in self._solvers],
+                   "normal_mode": 1 if loads is None else 0, "balance_roll": int(bool(balance_roll)),
+                   "tangential_in_balance": int(bool(tangential_in_balance)),
+                   "allow_wheel_lift": int(bool(allow_wheel_lift)), "warm_start": int(bool(warm_start))}
+        if loads is not None:
+            right, left = np.broadcast_to(np.asarray(loads, dtype=float), (2,))
+            options["right_load_N"], options["left_load_N"] = float(right), float(left)
+        self._core.set_options(options)
+        given = {"gauge": gauge, "measuring_depth": measuring_depth, "flange_back_distance": flange_back_distance,
+                 "flange_back_y": flange_back_y, "taping_line_distance": taping_line_distance,
+                 "nominal_radius": nominal_radius}
+        dimensions = {_TRACK_KEYWORDS[key]: float(value) for key, value in given.items() if value is not None}
+        two, four = (wheel, rail), (right_wheel, left_wheel, right_rail, left_rail)
+        if all(p is None for p in two + four):
+            if dimensions:
+                raise InvalidInputError("track dimensions need profile files (wheel=, rail=); the default set-up "
+                                        "has its own")
+            self._core.set_default_track()
+        elif all(p is not None for p in two) and all(p is None for p in four):
+            self._core.set_track([str(wheel), str(rail)], dimensions)
+        elif all(p is not None for p in four) and all(p is None for p in two):
+            self._core.set_track([str(p) for p in four], dimensions)
+        else:
+            raise InvalidInputError("give wheel= and rail=, or right_wheel=, left_wheel=, right_rail= and "
+                                    "left_rail=, or no profiles (the default S1002/UIC60 set-up)")
+
+    @property
+    def track(self) -> dict:
+        """The track's dimensions (m) and the nominal axle height H0 (m): the height of the wheelset
+        centre at which, with y, roll and yaw zero, the first wheel touches its rail."""
+        return self._core.track()
+
+    @property
+    def options(self) -> dict:
+        """The options as the C API's rc_wheelset_options fields."""
+        return self._core.options()
+
+    @property
+    def solvers(self) -> tuple:
+        return self._solvers
+
+    def evaluate(self, y: float = 0.0, z: float = 0.0, roll: float = 0.0, yaw: float = 0.0, *, speed: float = 20.0,
+                 lateral_velocity: float = 0.0, vertical_velocity: float = 0.0, roll_rate: float = 0.0,
+                 yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
+                 extra_creepage: float = 0.0) -> WheelsetResult:
+        """Evaluates one state of the wheelset.
+
+        Position: y lateral displacement of the centre (m, + to the left), z vertical displacement
+        above the nominal height (m, + up; by position only), roll (rad, + the left wheel rises),
+        yaw (rad, + the axle's left end moves backwards). Velocity: speed V (m/s, > 0),
+        lateral_velocity, vertical_velocity (m/s), roll_rate, yaw_rate (rad/s),
+        wheel_angular_velocity (rad/s about the axle, + rolling forward; None: pure rolling at the
+        nominal radius with extra_creepage xi0, < 0 traction, > 0 braking).
+        Returns a WheelsetResult (wheels[0] right, wheels[1] left, each with its patches).
+        """
+        row = [y, z, roll, yaw, speed, lateral_velocity, vertical_velocity, roll_rate, yaw_rate,
+               float("nan") if wheel_angular_velocity is None else wheel_angular_velocity, extra_creepage]
+        names = WHEELSET_STATE_COLUMNS
+        values = [_finite(names[k], v) if k != 9 or wheel_angular_velocity is not None else float(v)
+                  for k, v in enumerate(row)]
+        return _wheelset_result(self._core.evaluate(np.array(values, dtype=float)), self._solvers)
+
+    def batch(self, states, *, threads: int = 0, errors: str = "raise") -> list:
+        """Many states at once on `threads` threads (0: all hardware threads), one wheelset per
+        thread, each state from a cold start: the numbers equal those of a loop of evaluate() with
+        warm_start=False, whatever the threads.
+
+        states: array (N, k), k <= 11, columns in the order of WHEELSET_STATE_COLUMNS (y, z, roll,
+        yaw, speed, lateral_velocity, vertical_velocity, roll_rate, yaw_rate,
+        wheel_angular_velocity, extra_creepage); missing columns take evaluate()'s defaults; NaN
+        wheel_angular_velocity means pure rolling.
+        Returns a list of N WheelsetResult; errors="raise" raises the first failed state's error,
+        errors="none" gives None for failed states instead.
+        """
+        s = np.asarray(states, dtype=float)
+        if s.ndim == 1:
+            s = s.reshape(1, -1)
+        if s.ndim != 2 or not 1 <= s.shape[1] <= len(WHEELSET_STATE_COLUMNS):
+            raise InvalidInputError(f"states must be an array of shape (N, k), 1 <= k <= 11 (got {s.shape})")
+        if errors not in ("raise", "none"):
+            raise InvalidInputError(f"errors must be 'raise' or 'none' (got {errors!r})")
+        full = np.tile(np.array(_STATE_DEFAULTS), (s.shape[0], 1))
+        full[:, :s.shape[1]] = s
+        results, statuses, (status, message) = self._core.batch(np.ascontiguousarray(full), int(threads))
+        if status != 0 and errors == "raise":
+            _raise(status, message)
+        return [None if r is None else _wheelset_result(r, self._solvers) for r in results]

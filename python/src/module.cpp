@@ -1,11 +1,13 @@
 // railcontact._core: the Python extension of the package railcontact (docs/PYTHON.md), a thin
 // pybind11 layer over the C API (railcontact/railcontact.h). The package's Python code
 // (python/railcontact/__init__.py) builds the result classes and holds the docstrings. Every solve
-// releases the GIL; a failed call raises the exception class of its status (railcontact._errors).
+// and every wheelset evaluation releases the GIL; a failed call raises the exception class of its
+// status (railcontact._errors).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <optional>
@@ -120,32 +122,34 @@ class Solver {
     check(rc_solver_set_settings(handle_, &s));
   }
 
-  void set_patch(const rc_patch& patch) {
+  // approach: none for the patch's normal force, else the approach prescribed (m).
+  void set_patch(const rc_patch& patch, std::optional<double> approach) {
     rc_status status;
     {
       py::gil_scoped_release release;
-      status = rc_solver_set_patch(handle_, &patch);
+      status = approach ? rc_solver_set_patch_at_approach(handle_, &patch, *approach)
+                        : rc_solver_set_patch(handle_, &patch);
     }
     check(status);
   }
 
-  void set_ellipse(double a, double b, double F3) {
+  void set_ellipse(double a, double b, double F3, std::optional<double> approach) {
     rc_patch p{};
     p.kind = RC_GEOMETRY_ELLIPSE;
     p.a_m = a;
     p.b_m = b;
     p.normal_force_N = F3;
-    set_patch(p);
+    set_patch(p, approach);
   }
-  void set_hertz(double A, double B, double F3) {
+  void set_hertz(double A, double B, double F3, std::optional<double> approach) {
     rc_patch p{};
     p.kind = RC_GEOMETRY_HERTZ;
     p.A_per_m = A;
     p.B_per_m = B;
     p.normal_force_N = F3;
-    set_patch(p);
+    set_patch(p, approach);
   }
-  void set_grid(const DoubleArray& h, double dx1, double dx2, double F3) {
+  void set_grid(const DoubleArray& h, double dx1, double dx2, double F3, std::optional<double> approach) {
     if (h.ndim() != 2) raise(RC_INVALID_INPUT, "h must be a 2-D array of shape (n2, n1): rows along X2, columns along X1");
     rc_patch p{};
     p.kind = RC_GEOMETRY_GRID;
@@ -155,7 +159,7 @@ class Solver {
     p.grid_dx2_m = dx2;
     p.grid_h_m = h.data();
     p.normal_force_N = F3;
-    set_patch(p);
+    set_patch(p, approach);
   }
   void set_flextable_patch(const FlexTable& table, double y, double Fz);
 
@@ -382,6 +386,260 @@ void Solver::set_flextable_patch(const FlexTable& table, double y, double Fz) {
   check(status);
 }
 
+py::array_t<double> vector3(const double v[3]) {
+  py::array_t<double> a(3);
+  std::memcpy(a.mutable_data(), v, 3 * sizeof(double));
+  return a;
+}
+
+py::dict wheelset_patch_dict(const rc_wheelset_patch& p) {
+  py::dict d;
+  d["side"] = p.side == RC_WHEEL_RIGHT ? "right" : "left";
+  d["reference_point_track_m"] = vector3(p.reference_point_track_m);
+  d["x2_axis"] = vector3(p.x2_axis);
+  d["x3_axis"] = vector3(p.x3_axis);
+  d["contact_angle_rad"] = p.contact_angle_rad;
+  d["rolling_radius_m"] = p.rolling_radius_m;
+  d["max_interpenetration_m"] = p.max_interpenetration_m;
+  d["xi"] = p.creepage.xi;
+  d["eta"] = p.creepage.eta;
+  d["phi_per_m"] = p.creepage.phi_per_m;
+  d["normal_force_N"] = p.normal_force_N;
+  d["area_m2"] = p.area_m2;
+  d["max_pressure_Pa"] = p.max_pressure_Pa;
+  d["pressure_centre_x1_m"] = p.pressure_centre_x1_m;
+  d["pressure_centre_x2_m"] = p.pressure_centre_x2_m;
+  d["elements_in_contact"] = p.elements_in_contact;
+  d["normal_iterations"] = p.normal_iterations;
+  py::list solvers;
+  for (int k = 0; k < p.solver_count; ++k)
+    solvers.append(py::make_tuple(p.forces[k].F1_N, p.forces[k].F2_N, p.forces[k].M3_Nm, p.forces[k].adhesion_fraction,
+                                  vector3(p.force_track_N[k])));
+  d["solvers"] = solvers;
+  return d;
+}
+
+py::dict wheelset_result_dict(const rc_wheelset_result& r, const rc_wheelset_patch* patches, std::size_t per_wheel) {
+  py::dict d;
+  d["force_track_N"] = vector3(r.force_track_N);
+  d["vertical_displacement_m"] = r.vertical_displacement_m;
+  d["roll_rad"] = r.roll_rad;
+  py::list wheels;
+  for (int w = 0; w < 2; ++w) {
+    py::dict wheel;
+    wheel["side"] = w == RC_WHEEL_RIGHT ? "right" : "left";
+    wheel["force_track_N"] = vector3(r.wheel_force_track_N[w]);
+    wheel["vertical_displacement_m"] = r.wheel_vertical_displacement_m[w];
+    wheel["load_iterations"] = r.load_iterations[w];
+    py::list ps;
+    for (int j = 0; j < r.patch_count[w]; ++j)
+      ps.append(wheelset_patch_dict(patches[static_cast<std::size_t>(w) * per_wheel + static_cast<std::size_t>(j)]));
+    wheel["patches"] = ps;
+    wheels.append(wheel);
+  }
+  d["wheels"] = wheels;
+  return d;
+}
+
+// A state from a row y, z, roll, yaw, V, vy, vz, roll rate, yaw rate, Omega (NaN: pure rolling),
+// xi0 (docs/PYTHON.md "Wheelset").
+constexpr int kStateColumns = 11;
+rc_wheelset_state wheelset_state(const double* row) {
+  rc_wheelset_state s;
+  rc_wheelset_state_default(&s);
+  s.y_m = row[0];
+  s.z_m = row[1];
+  s.roll_rad = row[2];
+  s.yaw_rad = row[3];
+  s.forward_speed_m_per_s = row[4];
+  s.lateral_velocity_m_per_s = row[5];
+  s.vertical_velocity_m_per_s = row[6];
+  s.roll_rate_rad_per_s = row[7];
+  s.yaw_rate_rad_per_s = row[8];
+  s.rotation = std::isnan(row[9]) ? RC_ROTATION_ROLLING : RC_ROTATION_GIVEN;
+  s.wheel_angular_velocity_rad_per_s = std::isnan(row[9]) ? 0.0 : row[9];
+  s.extra_longitudinal_creepage = row[10];
+  return s;
+}
+
+rc_track_parameters track_parameters(const py::dict& d) {
+  rc_track_parameters t;
+  rc_track_parameters_default(&t);
+  for (const auto& item : d) {
+    const std::string key = py::str(item.first);
+    const double value = item.second.cast<double>();
+    if (key == "track_gauge_m") t.track_gauge_m = value;
+    else if (key == "gauge_measuring_depth_m") t.gauge_measuring_depth_m = value;
+    else if (key == "flange_back_distance_m") t.flange_back_distance_m = value;
+    else if (key == "flange_back_y_m") t.flange_back_y_m = value;
+    else if (key == "taping_line_from_flange_back_m") t.taping_line_from_flange_back_m = value;
+    else if (key == "nominal_rolling_radius_m") t.nominal_rolling_radius_m = value;
+    else raise(RC_INVALID_INPUT, "unknown track parameter '" + key + "'");
+  }
+  return t;
+}
+
+class WheelsetHandle {
+ public:
+  WheelsetHandle() {
+    if (rc_wheelset_create(&handle_) != RC_OK) throw std::bad_alloc();
+  }
+  ~WheelsetHandle() { rc_wheelset_destroy(handle_); }
+  WheelsetHandle(const WheelsetHandle&) = delete;
+  WheelsetHandle& operator=(const WheelsetHandle&) = delete;
+
+  void check(rc_status status) const {
+    if (status != RC_OK) raise(status, last_error(handle_, rc_wheelset_last_error));
+  }
+
+  void set_default_track() {
+    rc_status status;
+    {
+      py::gil_scoped_release release;
+      status = rc_wheelset_set_default_track(handle_);
+    }
+    check(status);
+  }
+
+  // paths: 2 (wheel, rail) or 4 (right wheel, left wheel, right rail, left rail).
+  void set_track(const std::vector<std::string>& paths, const py::dict& dimensions) {
+    const rc_track_parameters t = track_parameters(dimensions);
+    if (paths.size() != 2 && paths.size() != 4) raise(RC_INVALID_INPUT, "2 or 4 profile paths are needed");
+    rc_status status;
+    {
+      py::gil_scoped_release release;
+      status = paths.size() == 2 ? rc_wheelset_set_track(handle_, paths[0].c_str(), paths[1].c_str(), &t)
+                                 : rc_wheelset_set_track_profiles(handle_, paths[0].c_str(), paths[1].c_str(),
+                                                                  paths[2].c_str(), paths[3].c_str(), &t);
+    }
+    check(status);
+  }
+
+  py::dict track() const {
+    rc_track_parameters t{};
+    double height = 0.0;
+    check(rc_wheelset_get_track(handle_, &t, &height));
+    py::dict d;
+    d["track_gauge_m"] = t.track_gauge_m;
+    d["gauge_measuring_depth_m"] = t.gauge_measuring_depth_m;
+    d["flange_back_distance_m"] = t.flange_back_distance_m;
+    d["flange_back_y_m"] = t.flange_back_y_m;
+    d["taping_line_from_flange_back_m"] = t.taping_line_from_flange_back_m;
+    d["nominal_rolling_radius_m"] = t.nominal_rolling_radius_m;
+    d["nominal_axle_height_m"] = height;
+    return d;
+  }
+
+  py::dict options() const {
+    rc_wheelset_options o;
+    rc_wheelset_get_options(handle_, &o);
+    py::dict d;
+#define RC_FIELD(name) d[#name] = o.name
+    RC_FIELD(youngs_modulus_Pa); RC_FIELD(poisson_ratio); RC_FIELD(friction_coefficient); RC_FIELD(element_size_m);
+    RC_FIELD(right_load_N); RC_FIELD(left_load_N); RC_FIELD(normal_mode); RC_FIELD(balance_roll);
+    RC_FIELD(tangential_in_balance); RC_FIELD(allow_wheel_lift); RC_FIELD(warm_start);
+#undef RC_FIELD
+    py::list solvers;
+    for (int k = 0; k < o.solver_count; ++k) solvers.append(o.solvers[k]);
+    d["solvers"] = solvers;
+    return d;
+  }
+
+  void set_options(const py::dict& d) {
+    rc_wheelset_options o;
+    rc_wheelset_get_options(handle_, &o);
+    for (const auto& item : d) {
+      const std::string key = py::str(item.first);
+      const py::handle value = item.second;
+#define RC_DOUBLE(name) if (key == #name) { o.name = value.cast<double>(); continue; }
+#define RC_INT(name) if (key == #name) { o.name = value.cast<int>(); continue; }
+      RC_DOUBLE(youngs_modulus_Pa) RC_DOUBLE(poisson_ratio) RC_DOUBLE(friction_coefficient) RC_DOUBLE(element_size_m)
+      RC_DOUBLE(right_load_N) RC_DOUBLE(left_load_N) RC_INT(normal_mode) RC_INT(balance_roll)
+      RC_INT(tangential_in_balance) RC_INT(allow_wheel_lift) RC_INT(warm_start)
+#undef RC_DOUBLE
+#undef RC_INT
+      if (key == "solvers") {
+        const auto solvers = value.cast<std::vector<int>>();
+        if (solvers.empty() || solvers.size() > 4) raise(RC_INVALID_INPUT, "solvers: 1 to 4 tangential solvers");
+        o.solver_count = static_cast<int>(solvers.size());
+        for (std::size_t k = 0; k < solvers.size(); ++k) o.solvers[k] = solvers[k];
+        continue;
+      }
+      raise(RC_INVALID_INPUT, "unknown wheelset option '" + key + "'");
+    }
+    check(rc_wheelset_set_options(handle_, &o));
+  }
+
+  py::dict evaluate(const DoubleArray& row) {
+    if (row.ndim() != 1 || row.shape(0) != kStateColumns)
+      raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
+    const rc_wheelset_state s = wheelset_state(row.data());
+    rc_wheelset_result r{};
+    rc_status status;
+    {
+      py::gil_scoped_release release;
+      status = rc_wheelset_evaluate(handle_, &s, &r);
+    }
+    check(status);
+    std::vector<rc_wheelset_patch> patches;
+    std::size_t per_wheel = 0;
+    for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
+    patches.resize(2 * per_wheel);
+    for (int w = 0; w < 2; ++w)
+      check(rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel));
+    return wheelset_result_dict(r, patches.data(), per_wheel);
+  }
+
+  // states (N, 11). Returns a list of result dicts (None for a failed state), the statuses, and
+  // the first failure (status, message).
+  py::tuple batch(const DoubleArray& states, int threads) {
+    if (states.ndim() != 2 || states.shape(1) != kStateColumns)
+      raise(RC_INVALID_INPUT, "states must be an array of shape (N, 11)");
+    const std::size_t count = static_cast<std::size_t>(states.shape(0));
+    std::vector<rc_wheelset_state> cs(count);
+    for (std::size_t k = 0; k < count; ++k) cs[k] = wheelset_state(states.data() + kStateColumns * k);
+    std::vector<rc_wheelset_result> results(count);
+    std::vector<int> statuses(count, RC_OK);
+    std::size_t per_wheel = 4;
+    std::vector<rc_wheelset_patch> patches;
+    rc_status status = RC_OK;
+    for (int attempt = 0; attempt < 2; ++attempt) {
+      patches.assign(2 * count * per_wheel, rc_wheelset_patch{});
+      {
+        py::gil_scoped_release release;
+        status = count == 0 ? RC_OK
+                            : rc_wheelset_batch_evaluate(handle_, count, cs.data(), threads, results.data(), per_wheel,
+                                                         patches.data(), statuses.data());
+      }
+      std::size_t needed = 0;
+      for (std::size_t k = 0; k < count; ++k)
+        if (statuses[k] == RC_BUFFER_TOO_SMALL)
+          needed = std::max({needed, static_cast<std::size_t>(results[k].patch_count[0]),
+                             static_cast<std::size_t>(results[k].patch_count[1])});
+      if (needed == 0) break;
+      per_wheel = needed;  // again with room for every patch
+    }
+    std::string message;
+    if (status != RC_OK) {
+      message = last_error(handle_, rc_wheelset_last_error);
+      bool any_state_failed = false;
+      for (std::size_t k = 0; k < count; ++k) any_state_failed = any_state_failed || statuses[k] != RC_OK;
+      if (!any_state_failed) raise(status, message);
+    }
+    py::list out;
+    for (std::size_t k = 0; k < count; ++k) {
+      if (statuses[k] != RC_OK)
+        out.append(py::none());
+      else
+        out.append(wheelset_result_dict(results[k], patches.data() + 2 * k * per_wheel, per_wheel));
+    }
+    return py::make_tuple(out, statuses, py::make_tuple(static_cast<int>(status), message));
+  }
+
+ private:
+  rc_wheelset* handle_ = nullptr;
+};
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -403,6 +661,16 @@ PYBIND11_MODULE(_core, m) {
       .def("jacobian", &Solver::jacobian)
       .def("tractions", &Solver::tractions)
       .def("batch", &Solver::batch);
+
+  py::class_<WheelsetHandle>(m, "Wheelset")
+      .def(py::init<>())
+      .def("set_default_track", &WheelsetHandle::set_default_track)
+      .def("set_track", &WheelsetHandle::set_track)
+      .def("track", &WheelsetHandle::track)
+      .def("options", &WheelsetHandle::options)
+      .def("set_options", &WheelsetHandle::set_options)
+      .def("evaluate", &WheelsetHandle::evaluate)
+      .def("batch", &WheelsetHandle::batch);
 
   py::class_<FlexTable>(m, "FlexTable")
       .def(py::init<>())

@@ -172,6 +172,14 @@ rc_status rc_solver_set_patch(rc_solver* solver, const rc_patch* patch) {
   });
 }
 
+rc_status rc_solver_set_patch_at_approach(rc_solver* solver, const rc_patch* patch, double approach_m) {
+  if (solver == nullptr) return RC_INVALID_INPUT;
+  return guarded(&solver->error, [&] {
+    require_pointer(patch, "rc_solver_set_patch_at_approach: patch");
+    solver->solver.set_patch_at_approach(*patch, approach_m);
+  });
+}
+
 rc_status rc_solver_set_ellipse(rc_solver* solver, double a_m, double b_m, double normal_force_N) {
   rc_patch patch{};
   patch.kind = RC_GEOMETRY_ELLIPSE;

@@ -13,6 +13,7 @@
 #include "railcontact/flexibility_table.hpp"
 #include "railcontact/railcontact.h"
 #include "railcontact/tangential.hpp"
+#include "railcontact/wheelset.hpp"
 
 namespace railcontact::c_api {
 
@@ -91,6 +92,8 @@ struct PreparedPatch {
 struct PatchKey {
   rc_patch patch{};
   std::vector<double> h_m;
+  bool by_approach = false;  // a grid with the approach prescribed (patch.normal_force_N unused)
+  double approach_m = 0.0;
   bool operator==(const PatchKey& other) const;
 };
 
@@ -111,6 +114,8 @@ class SinglePatchSolver {
 
   // Prepares the patch unless it equals the one prepared.
   void set_patch(const rc_patch& patch);
+  // The same with the approach prescribed instead of the normal force (rc_solver_set_patch_at_approach).
+  void set_patch_at_approach(const rc_patch& patch, double approach_m);
   void set_prepared(std::shared_ptr<const PreparedPatch> prepared, std::optional<PatchKey> key);
   [[nodiscard]] const std::shared_ptr<const PreparedPatch>& prepared() const { return prepared_; }
   [[nodiscard]] const PreparedPatch& require_patch() const;
@@ -125,7 +130,9 @@ class SinglePatchSolver {
   [[nodiscard]] const Evaluation& last() const;
 
   // Prepares a patch for the given settings (no state).
-  static std::shared_ptr<const PreparedPatch> prepare(const rc_settings& settings, const rc_patch& patch);
+  // approach_m: null for the patch's normal force, else the grid's prescribed approach.
+  static std::shared_ptr<const PreparedPatch> prepare(const rc_settings& settings, const rc_patch& patch,
+                                                      const double* approach_m = nullptr);
   static std::shared_ptr<const PreparedPatch> prepare_wheel_rail(const rc_settings& settings,
                                                                  const FlexibilityTableFastSim& table, double y_m,
                                                                  double vertical_load_N);
@@ -145,6 +152,15 @@ class SinglePatchSolver {
 struct rc_solver {
   railcontact::c_api::SinglePatchSolver solver;
   mutable railcontact::c_api::LastError error;  // set by const calls too
+};
+
+// The wheelset behind rc_wheelset (src/c_api/wheelset.cpp).
+struct rc_wheelset {
+  std::optional<railcontact::Wheelset> wheelset;  // the track and the options; empty without a track
+  rc_wheelset_options options{};
+  std::optional<railcontact::WheelsetResult> last;
+  mutable railcontact::c_api::LastError error;  // set by const calls too
+  rc_wheelset();
 };
 
 struct rc_flextable {

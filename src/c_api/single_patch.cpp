@@ -203,7 +203,7 @@ void validate_settings(const rc_settings& s) {
 }
 
 bool PatchKey::operator==(const PatchKey& o) const {
-  return patch.kind == o.patch.kind && patch.normal_force_N == o.patch.normal_force_N && patch.a_m == o.patch.a_m &&
+  return by_approach == o.by_approach && approach_m == o.approach_m && patch.kind == o.patch.kind && patch.normal_force_N == o.patch.normal_force_N && patch.a_m == o.patch.a_m &&
          patch.b_m == o.patch.b_m && patch.A_per_m == o.patch.A_per_m && patch.B_per_m == o.patch.B_per_m &&
          patch.grid_dx1_m == o.patch.grid_dx1_m && patch.grid_dx2_m == o.patch.grid_dx2_m &&
          patch.grid_n1 == o.patch.grid_n1 && patch.grid_n2 == o.patch.grid_n2 && h_m == o.h_m;
@@ -239,7 +239,8 @@ void SinglePatchSolver::set_settings(const rc_settings& s) {
   }
 }
 
-std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare(const rc_settings& s, const rc_patch& patch) {
+std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare(const rc_settings& s, const rc_patch& patch,
+                                                                const double* approach_m) {
   validate_patch(patch);
   const Material material = material_of(s);
   auto p = std::make_shared<PreparedPatch>();
@@ -259,7 +260,18 @@ std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare(const rc_setting
     NormalOptions options;
     options.tolerance = s.normal_tolerance;
     options.max_iterations = s.normal_max_iterations;
-    NormalSolution normal = solve_normal_contact(mesh, h, patch.normal_force_N, material, options);
+    NormalSolution normal = approach_m != nullptr
+                                ? solve_normal_contact_at_approach(mesh, h, *approach_m, material, options)
+                                : solve_normal_contact(mesh, h, patch.normal_force_N, material, options);
+    if (approach_m != nullptr) {
+      if (normal.elements_in_contact == 0)
+        throw Error(ErrorKind::no_contact,
+                    fmt::format("rc_patch grid at approach {} m: no element comes into contact (h - approach > 0 "
+                                "everywhere)",
+                                *approach_m));
+      validate_normal_force(normal.normal_force_N,
+                            fmt::format("rc_patch grid at approach {} m: the normal force found", *approach_m));
+    }
     if (!normal.converged)
       throw Error(ErrorKind::not_converged,
                   fmt::format("rc_patch grid: the normal solver did not converge in {} iterations (residual {:.3g}, "
@@ -340,6 +352,46 @@ void SinglePatchSolver::set_patch(const rc_patch& patch) {
   key_.reset();
   last_.reset();
   prepared_ = prepare(settings_, patch);
+  key_ = std::move(key);
+}
+
+void SinglePatchSolver::set_patch_at_approach(const rc_patch& given, double approach_m) {
+  rc_patch patch = given;
+  patch.normal_force_N = 0.0;  // ignored: F3 follows from the approach
+  validate_patch(patch);
+  require(std::isfinite(approach_m), [&] { return fmt::format("approach_m = {} m is not finite", approach_m); });
+  if (patch.kind != RC_GEOMETRY_GRID) {
+    // Hertz: for fixed curvatures the approach grows as F3^(2/3); for fixed semi-axes a, b it is
+    // proportional to F3. The load at the approach follows from one reference solution.
+    require(approach_m > 0.0, [&] {
+      return fmt::format("approach_m = {} m must be positive for an ellipse or a Hertz patch", approach_m);
+    });
+    const Material material = material_of(settings_);
+    validate(material);
+    constexpr double reference_N = 1e5;
+    double force = 0.0;
+    if (patch.kind == RC_GEOMETRY_HERTZ) {
+      const double reference =
+          hertz_from_curvatures(patch.A_per_m, patch.B_per_m, reference_N, material).approach_m;
+      force = reference_N * std::pow(approach_m / reference, 1.5);
+    } else {
+      const HertzCurvatures c = hertz_curvatures_for_semi_axes(patch.a_m, patch.b_m, reference_N, material);
+      const double reference = hertz_from_curvatures(c.A_per_m, c.B_per_m, reference_N, material).approach_m;
+      force = reference_N * approach_m / reference;
+    }
+    validate_normal_force(force, fmt::format("rc_patch at approach {} m: the normal force found", approach_m));
+    patch.normal_force_N = force;
+    set_patch(patch);
+    return;
+  }
+  PatchKey key = key_of(patch);
+  key.by_approach = true;
+  key.approach_m = approach_m;
+  if (prepared_ && key_ && *key_ == key) return;
+  prepared_.reset();
+  key_.reset();
+  last_.reset();
+  prepared_ = prepare(settings_, patch, &approach_m);
   key_ = std::move(key);
 }
 

@@ -29,6 +29,19 @@ RC_STATIC_ASSERT(sizeof(rc_normal_result) == 12 * 8 + 4 * 4, "rc_normal_result")
 RC_STATIC_ASSERT(offsetof(rc_normal_result, n1) == 96, "rc_normal_result.n1");
 RC_STATIC_ASSERT(sizeof(rc_flextable_values) == 10 * 8, "rc_flextable_values");
 RC_STATIC_ASSERT(sizeof(rc_flextable_info) == 6 * 8 + 4 * 4, "rc_flextable_info");
+RC_STATIC_ASSERT(RC_WHEEL_LEFT == 1 && RC_WHEELSET_BY_POSITION == 1 && RC_ROTATION_GIVEN == 1,
+                 "wheelset enumeration values");
+RC_STATIC_ASSERT(sizeof(rc_track_parameters) == 6 * 8, "rc_track_parameters");
+RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 10 * 4, "rc_wheelset_options: 6 doubles, 10 ints");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_options, normal_mode) == 48 && offsetof(rc_wheelset_options, solvers) == 72,
+                 "rc_wheelset_options fields");
+RC_STATIC_ASSERT(sizeof(rc_wheelset_state) == 11 * 8 + 2 * 4, "rc_wheelset_state: 11 doubles, 2 ints");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_state, rotation) == 88, "rc_wheelset_state.rotation");
+RC_STATIC_ASSERT(sizeof(rc_wheelset_patch) == 48 * 8 + 4 * 4, "rc_wheelset_patch: 48 doubles, 4 ints");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_patch, forces) == 20 * 8 && offsetof(rc_wheelset_patch, side) == 384,
+                 "rc_wheelset_patch fields");
+RC_STATIC_ASSERT(sizeof(rc_wheelset_result) == 13 * 8 + 4 * 4, "rc_wheelset_result: 13 doubles, 4 ints");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_result, patch_count) == 104, "rc_wheelset_result.patch_count");
 
 /* Every function with its exact type. */
 static void check_signatures(void) {
@@ -38,6 +51,15 @@ static void check_signatures(void) {
                      rc_normal_result*, double*, int*) = rc_batch_creep_forces;
   rc_status (*build)(rc_flextable*, const char*, const double*, size_t, const double*, size_t, int, double, double,
                      rc_progress_callback, void*) = rc_flextable_build;
+  rc_status (*approach)(rc_solver*, const rc_patch*, double) = rc_solver_set_patch_at_approach;
+  rc_status (*evaluate)(rc_wheelset*, const rc_wheelset_state*, rc_wheelset_result*) = rc_wheelset_evaluate;
+  rc_status (*patches)(const rc_wheelset*, int, size_t, rc_wheelset_patch*) = rc_wheelset_patches;
+  rc_status (*wheelset_batch)(rc_wheelset*, size_t, const rc_wheelset_state*, int, rc_wheelset_result*, size_t,
+                              rc_wheelset_patch*, int*) = rc_wheelset_batch_evaluate;
+  (void)approach;
+  (void)evaluate;
+  (void)patches;
+  (void)wheelset_batch;
   (void)status_string;
   (void)solve;
   (void)batch;

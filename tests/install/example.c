@@ -1,7 +1,8 @@
 /* A minimal C program against the installed railcontact (ctest install.package; docs/C_API.md):
  *   gcc -std=c11 example.c $(pkg-config --cflags --libs railcontact)
  * Creep forces of nH-FastSim on a Hertzian ellipse, checked against Kalker's linear theory and
- * saturation; a bad input and its message. */
+ * saturation; a bad input and its message; the default S1002/UIC60 wheelset at y = 0 carries its
+ * wheel loads. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -33,6 +34,7 @@ int main(void) {
   /* a circle: a = b = 5 mm, F3 = 80 kN */
   if ((status = rc_solver_set_ellipse(solver, 5e-3, 5e-3, 80e3)) != RC_OK) return fail(solver, "patch", status);
 
+  char message_buffer[512];
   rc_forces small, large;
   const rc_creepage c_small = {1e-5, 0.0, 0.0}, c_large = {0.05, 0.0, 0.0};
   if ((status = rc_solver_solve(solver, &c_small, &small)) != RC_OK) return fail(solver, "solve", status);
@@ -42,6 +44,29 @@ int main(void) {
   printf("railcontact %s: F1(xi = 1e-5) = %.2f N (Kalker %.2f N), F1(xi = 0.05) = %.1f N (-mu F3 = %.1f N)\n",
          rc_version_string(), small.F1_N, linear, large.F1_N, -0.3 * 80e3);
   if (fabs(small.F1_N / linear - 1) > 0.05 || fabs(large.F1_N / (-0.3 * 80e3) - 1) > 0.01) return 1;
+
+  /* The default wheelset by load (98.1 kN per wheel), coarse elements. */
+  rc_wheelset* wheelset = NULL;
+  if (rc_wheelset_create(&wheelset) != RC_OK) return 1;
+  rc_wheelset_options options;
+  rc_wheelset_options_default(&options);
+  options.element_size_m = 0.5e-3;
+  rc_wheelset_state state;
+  rc_wheelset_state_default(&state);
+  rc_wheelset_result result;
+  status = rc_wheelset_set_default_track(wheelset);
+  if (status == RC_OK) status = rc_wheelset_set_options(wheelset, &options);
+  if (status == RC_OK) status = rc_wheelset_evaluate(wheelset, &state, &result);
+  if (status != RC_OK) {
+    rc_wheelset_last_error(wheelset, message_buffer, sizeof message_buffer, NULL);
+    fprintf(stderr, "wheelset: %s: %s\n", rc_status_string(status), message_buffer);
+    rc_wheelset_destroy(wheelset);
+    return 1;
+  }
+  printf("wheelset at y = 0: Fz = %.0f N (right), %.0f N (left), %d + %d patches\n", result.wheel_force_track_N[0][2],
+         result.wheel_force_track_N[1][2], result.patch_count[0], result.patch_count[1]);
+  rc_wheelset_destroy(wheelset);
+  if (fabs(result.wheel_force_track_N[0][2] / 98.1e3 - 1) > 2e-3 || result.patch_count[0] < 1) return 1;
 
   const rc_creepage bad = {NAN, 0.0, 0.0};
   status = rc_solver_solve(solver, &bad, &small);

@@ -1,0 +1,187 @@
+"""Tests of railcontact.Wheelset (docs/PYTHON.md "Wheelset"), run by ctest python.pytest: the same
+numbers as the C API called through ctypes, the mirror symmetry of the two wheels, the batch
+against the loop, the exceptions; and the single patch with the approach given. Coarse elements
+(0.5 mm) keep them fast.
+"""
+import ctypes
+import math
+import os
+import threading
+
+import numpy as np
+import pytest
+
+import railcontact
+
+COARSE = 0.5e-3
+
+
+@pytest.fixture(scope="module")
+def wheelset():
+    return railcontact.Wheelset(element_size=COARSE, warm_start=False)
+
+
+def test_default_wheelset_carries_the_loads(wheelset):
+    r = wheelset.evaluate(y=3e-3, yaw=1e-3)
+    assert len(r.wheels) == 2 and r.right.side == "right" and r.left.side == "left"
+    for wheel in r.wheels:
+        assert wheel.force_track_N.shape == (3,)
+        assert wheel.force_track_N[2] == pytest.approx(98.1e3, rel=1e-3)
+        assert len(wheel.patches) >= 1
+        p = wheel.patches[0]
+        assert p.side == wheel.side
+        assert p.reference_point_track_m.shape == (3,)
+        assert p.normal_force_N > 0 and p.area_m2 > 0 and p.max_pressure_Pa > 0
+        assert p.F1_N == p.solvers["nh-fastsim"].F1_N
+        assert np.array_equal(p.force_track_N, p.solvers["nh-fastsim"].force_track_N)
+        assert math.isfinite(p.xi) and math.isfinite(p.phi_per_m)
+    assert np.allclose(r.force_track_N, r.right.force_track_N + r.left.force_track_N, rtol=0, atol=1e-6)
+    assert wheelset.track["nominal_axle_height_m"] > 0.4
+
+
+class _Options(ctypes.Structure):
+    _fields_ = ([(n, ctypes.c_double) for n in ("E", "nu", "mu", "element", "right", "left")]
+                + [(n, ctypes.c_int) for n in ("mode", "balance", "tangential", "lift", "warm", "count")]
+                + [("solvers", ctypes.c_int * 4)])
+
+
+class _State(ctypes.Structure):
+    _fields_ = ([(n, ctypes.c_double) for n in ("y", "z", "roll", "yaw", "V", "vy", "vz", "roll_rate",
+                                                  "yaw_rate", "omega", "xi0")]
+                + [("rotation", ctypes.c_int), ("reserved", ctypes.c_int)])
+
+
+class _Result(ctypes.Structure):
+    _fields_ = [("force", ctypes.c_double * 3), ("wheel_force", (ctypes.c_double * 3) * 2),
+                ("wheel_z", ctypes.c_double * 2), ("z", ctypes.c_double), ("roll", ctypes.c_double),
+                ("patch_count", ctypes.c_int * 2), ("load_iterations", ctypes.c_int * 2)]
+
+
+def test_same_numbers_as_the_c_api():
+    """The shared library's rc_wheelset, called through ctypes, against the module."""
+    lib = ctypes.CDLL(os.environ["RAILCONTACT_LIBRARY"])
+    handle = ctypes.c_void_p()
+    assert lib.rc_wheelset_create(ctypes.byref(handle)) == 0
+    lib.rc_wheelset_set_default_track.argtypes = [ctypes.c_void_p]
+    assert lib.rc_wheelset_set_default_track(handle) == 0
+    options = _Options()
+    lib.rc_wheelset_options_default(ctypes.byref(options))
+    options.element = COARSE
+    options.mu = 0.25
+    lib.rc_wheelset_set_options.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Options)]
+    assert lib.rc_wheelset_set_options(handle, ctypes.byref(options)) == 0
+    state = _State()
+    lib.rc_wheelset_state_default(ctypes.byref(state))
+    state.y, state.yaw, state.vy = -4e-3, 2e-3, 0.05
+    result = _Result()
+    lib.rc_wheelset_evaluate.argtypes = [ctypes.c_void_p, ctypes.POINTER(_State), ctypes.POINTER(_Result)]
+    assert lib.rc_wheelset_evaluate(handle, ctypes.byref(state), ctypes.byref(result)) == 0
+    lib.rc_wheelset_destroy.argtypes = [ctypes.c_void_p]
+    lib.rc_wheelset_destroy(handle)
+
+    r = railcontact.Wheelset(element_size=COARSE, mu=0.25).evaluate(y=-4e-3, yaw=2e-3, lateral_velocity=0.05)
+    assert list(r.force_track_N) == list(result.force)
+    for w in range(2):
+        assert list(r.wheels[w].force_track_N) == list(result.wheel_force[w])
+        assert len(r.wheels[w].patches) == result.patch_count[w]
+    assert r.vertical_displacement_m == result.z
+
+
+def test_mirror_symmetry(wheelset):
+    """Forces at y are the mirror image of those at -y: per wheel, Fx and Fz equal, Fy opposite."""
+    for y in (2.5e-3, -6.5e-3):
+        a = wheelset.evaluate(y=y, yaw=1e-3, lateral_velocity=0.01)
+        b = wheelset.evaluate(y=-y, yaw=-1e-3, lateral_velocity=-0.01)
+        for w in range(2):
+            f, m = a.wheels[w].force_track_N, b.wheels[1 - w].force_track_N
+            scale = f[2]
+            assert f[0] == pytest.approx(m[0], abs=1e-8 * scale)
+            assert f[1] == pytest.approx(-m[1], abs=1e-8 * scale)
+            assert f[2] == pytest.approx(m[2], abs=1e-8 * scale)
+            assert len(a.wheels[w].patches) == len(b.wheels[1 - w].patches)
+
+
+def test_batch_equals_the_loop_and_threads(wheelset):
+    states = np.array([[y, 0.0, 0.0, 0.5e-3] for y in (-6e-3, -2e-3, 0.0, 4e-3)])
+    loop = [wheelset.evaluate(*row) for row in states]
+    batch = wheelset.batch(states, threads=2)
+    assert len(batch) == len(loop)
+    for a, b in zip(batch, loop):
+        assert np.array_equal(a.force_track_N, b.force_track_N)
+        for w in range(2):
+            assert len(a.wheels[w].patches) == len(b.wheels[w].patches)
+            for p, q in zip(a.wheels[w].patches, b.wheels[w].patches):
+                assert (p.F1_N, p.F2_N, p.M3_Nm, p.normal_force_N) == (q.F1_N, q.F2_N, q.M3_Nm, q.normal_force_N)
+                assert np.array_equal(p.reference_point_track_m, q.reference_point_track_m)
+    # A failing state: raised, or None with errors="none".
+    bad = states[:2].copy()
+    bad[0, 0] = np.nan
+    with pytest.raises(railcontact.InvalidInputError, match="state 0: rc_wheelset_state.y_m = nan"):
+        wheelset.batch(bad, threads=1)
+    out = wheelset.batch(bad, threads=1, errors="none")
+    assert out[0] is None
+    assert np.array_equal(out[1].force_track_N, loop[1].force_track_N)
+
+
+def test_two_wheelsets_on_two_threads_equal_serial():
+    ys = (-3e-3, 1e-3)
+    serial = [railcontact.Wheelset(element_size=COARSE).evaluate(y=y).force_track_N for y in ys]
+    out = [None, None]
+
+    def run(k):
+        out[k] = railcontact.Wheelset(element_size=COARSE).evaluate(y=ys[k]).force_track_N
+
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for a, b in zip(out, serial):
+        assert np.array_equal(a, b)
+
+
+def test_exceptions(wheelset):
+    with pytest.raises(railcontact.InvalidInputError, match="y = nan"):
+        wheelset.evaluate(y=float("nan"))
+    with pytest.raises(ValueError, match="forward_speed_m_per_s = 0 m/s must be positive"):
+        wheelset.evaluate(speed=0.0)
+    with pytest.raises(railcontact.RailcontactIOError, match="no-such-wheel.prw") as e:
+        railcontact.Wheelset(wheel="/tmp/no-such-wheel.prw", rail="/tmp/no-such-rail.prr")
+    assert isinstance(e.value, OSError)
+    with pytest.raises(railcontact.InvalidInputError, match="unknown solver"):
+        railcontact.Wheelset(solvers=("fastest",))
+    with pytest.raises(railcontact.InvalidInputError, match="friction_coefficient"):
+        railcontact.Wheelset(mu=float("inf"))
+    with pytest.raises(railcontact.InvalidInputError, match="give wheel= and rail="):
+        railcontact.Wheelset(wheel="w.prw")
+    with pytest.raises(railcontact.InvalidInputError, match="need profile files"):
+        railcontact.Wheelset(gauge=1.5)
+    # By position, lifted well above the rails: no contact (allowed with allow_wheel_lift).
+    lifted = railcontact.Wheelset(element_size=COARSE, loads=None)
+    with pytest.raises(railcontact.NoContactError, match="does not touch"):
+        lifted.evaluate(z=1e-3)
+    free = railcontact.Wheelset(element_size=COARSE, loads=None, allow_wheel_lift=True)
+    r = free.evaluate(z=1e-3)
+    assert r.wheels[0].patches == [] and r.force_track_N[2] == 0.0
+    with pytest.raises(railcontact.InvalidInputError, match="shape"):
+        wheelset.batch(np.zeros((2, 12)))
+
+
+def test_single_patch_at_an_approach():
+    solver = railcontact.Solver(elements=600)
+    by_force = solver.set_hertz(0.6, 1.4, 8e4)
+    by_approach = solver.set_hertz(0.6, 1.4, approach=by_force.approach_m)
+    assert by_approach.normal_force_N == pytest.approx(8e4, rel=1e-9)
+    with pytest.raises(railcontact.InvalidInputError, match="given its normal force"):
+        solver.batch([[1e-3, 0, 0]])  # batch(patches=None) needs a patch given by its force
+    n1, n2, dx = 40, 30, 0.5e-3
+    x1 = (np.arange(n1) - 0.5 * (n1 - 1)) * dx
+    x2 = (np.arange(n2) - 0.5 * (n2 - 1)) * dx
+    h = 0.6 * x1[None, :] ** 2 + 1.4 * x2[:, None] ** 2 - 40e-6
+    normal = solver.set_grid(h, dx, dx, approach=0.0)
+    assert normal.normal_force_N > 1e3
+    assert solver.set_grid(h, dx, dx, normal.normal_force_N).approach_m == pytest.approx(0.0, abs=1e-9)
+    with pytest.raises(railcontact.NoContactError):
+        solver.set_grid(h, dx, dx, approach=-1e-3)
+    with pytest.raises(railcontact.InvalidInputError, match="either normal_force"):
+        solver.set_hertz(0.6, 1.4)

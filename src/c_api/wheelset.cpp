@@ -1,0 +1,501 @@
+// The C API's wheelset (include/railcontact/railcontact.h, docs/C_API.md "Wheelset"): rc_wheelset
+// over railcontact::Wheelset (docs/WHEELSET.md). Every field of the C structs is checked (finite,
+// enumerations known) before the library's own checks; the batch runs one Wheelset per thread,
+// each state from a cold start, so that its numbers do not depend on the threads.
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "c_api/c_api_internal.hpp"
+#include "railcontact/geometry.hpp"
+#include "railcontact/wheel_rail.hpp"
+
+using railcontact::Error;
+using railcontact::ErrorKind;
+using railcontact::require;
+using railcontact::c_api::guarded;
+using railcontact::c_api::LastError;
+using railcontact::c_api::StatusError;
+
+namespace {
+
+namespace rc = railcontact;
+
+void require_pointer(const void* pointer, const char* what) {
+  if (pointer == nullptr) throw Error(fmt::format("{} is null", what));
+}
+
+void require_finite(double value, const char* structure, const char* field, const char* unit) {
+  require(std::isfinite(value), [&] { return fmt::format("{}.{} = {}{} is not finite", structure, field, value, unit); });
+}
+
+void require_flag(int value, const char* field) {
+  require(value == 0 || value == 1,
+          [&] { return fmt::format("rc_wheelset_options.{} = {} must be 0 or 1", field, value); });
+}
+
+rc::TangentialSolver solver_of(int method) {
+  switch (method) {
+    case RC_METHOD_NH_FASTSIM: return rc::TangentialSolver::nh_fastsim;
+    case RC_METHOD_FASTSIM: return rc::TangentialSolver::fastsim;
+    case RC_METHOD_EXACT: return rc::TangentialSolver::exact;
+    case RC_METHOD_EXACT_REGULARISED: return rc::TangentialSolver::exact_regularised;
+    default: break;
+  }
+  throw Error(fmt::format("rc_wheelset_options.solvers: {} is not an rc_method (0 nh-fastsim, 1 fastsim, 2 exact, "
+                          "3 exact-regularised)",
+                          method));
+}
+
+rc::WheelsetOptions options_of(const rc_wheelset_options& o) {
+  const char* s = "rc_wheelset_options";
+  require_finite(o.youngs_modulus_Pa, s, "youngs_modulus_Pa", " Pa");
+  require_finite(o.poisson_ratio, s, "poisson_ratio", "");
+  require_finite(o.friction_coefficient, s, "friction_coefficient", "");
+  require_finite(o.element_size_m, s, "element_size_m", " m");
+  require_finite(o.right_load_N, s, "right_load_N", " N");
+  require_finite(o.left_load_N, s, "left_load_N", " N");
+  require(o.normal_mode == RC_WHEELSET_BY_LOAD || o.normal_mode == RC_WHEELSET_BY_POSITION, [&] {
+    return fmt::format("rc_wheelset_options.normal_mode = {} is not an rc_wheelset_normal (0 by load, 1 by position)",
+                       o.normal_mode);
+  });
+  require_flag(o.balance_roll, "balance_roll");
+  require_flag(o.tangential_in_balance, "tangential_in_balance");
+  require_flag(o.allow_wheel_lift, "allow_wheel_lift");
+  require_flag(o.warm_start, "warm_start");
+  require(o.solver_count >= 1 && o.solver_count <= 4, [&] {
+    return fmt::format("rc_wheelset_options.solver_count = {} must lie in [1, 4]", o.solver_count);
+  });
+  rc::WheelsetOptions options;
+  options.material = rc::Material{o.youngs_modulus_Pa, o.poisson_ratio};
+  options.friction_coefficient = o.friction_coefficient;
+  options.element_size_m = o.element_size_m;
+  options.solvers.clear();
+  for (int k = 0; k < o.solver_count; ++k) {
+    const rc::TangentialSolver solver = solver_of(o.solvers[k]);
+    require(std::find(options.solvers.begin(), options.solvers.end(), solver) == options.solvers.end(), [&] {
+      return fmt::format("rc_wheelset_options.solvers: {} is given twice", rc::solver_name(solver));
+    });
+    options.solvers.push_back(solver);
+  }
+  if (o.normal_mode == RC_WHEELSET_BY_LOAD)
+    options.loads = rc::WheelLoads{o.right_load_N, o.left_load_N, o.balance_roll != 0};
+  else
+    options.loads.reset();
+  options.tangential_forces_in_vertical_balance = o.tangential_in_balance != 0;
+  options.allow_wheel_lift = o.allow_wheel_lift != 0;
+  rc::validate(options);
+  return options;
+}
+
+rc::WheelsetState state_of(const rc_wheelset_state& c) {
+  const char* s = "rc_wheelset_state";
+  require_finite(c.y_m, s, "y_m", " m");
+  require_finite(c.z_m, s, "z_m", " m");
+  require_finite(c.roll_rad, s, "roll_rad", " rad");
+  require_finite(c.yaw_rad, s, "yaw_rad", " rad");
+  require_finite(c.forward_speed_m_per_s, s, "forward_speed_m_per_s", " m/s");
+  require_finite(c.lateral_velocity_m_per_s, s, "lateral_velocity_m_per_s", " m/s");
+  require_finite(c.vertical_velocity_m_per_s, s, "vertical_velocity_m_per_s", " m/s");
+  require_finite(c.roll_rate_rad_per_s, s, "roll_rate_rad_per_s", " rad/s");
+  require_finite(c.yaw_rate_rad_per_s, s, "yaw_rate_rad_per_s", " rad/s");
+  require_finite(c.wheel_angular_velocity_rad_per_s, s, "wheel_angular_velocity_rad_per_s", " rad/s");
+  require_finite(c.extra_longitudinal_creepage, s, "extra_longitudinal_creepage", "");
+  require(c.rotation == RC_ROTATION_ROLLING || c.rotation == RC_ROTATION_GIVEN, [&] {
+    return fmt::format("rc_wheelset_state.rotation = {} is not an rc_wheel_rotation (0 rolling, 1 given)", c.rotation);
+  });
+  require(c.forward_speed_m_per_s > 0.0, [&] {
+    return fmt::format("rc_wheelset_state.forward_speed_m_per_s = {} m/s must be positive (the creepages are "
+                       "velocities divided by the forward speed)",
+                       c.forward_speed_m_per_s);
+  });
+  rc::WheelsetState state;
+  state.position.lateral_displacement_m = c.y_m;
+  state.position.vertical_displacement_m = c.z_m;
+  state.position.roll_rad = c.roll_rad;
+  state.position.yaw_rad = c.yaw_rad;
+  rc::WheelsetVelocity& v = state.velocity;
+  v.forward_speed_m_per_s = c.forward_speed_m_per_s;
+  v.lateral_velocity_m_per_s = c.lateral_velocity_m_per_s;
+  v.vertical_velocity_m_per_s = c.vertical_velocity_m_per_s;
+  v.roll_rate_rad_per_s = c.roll_rate_rad_per_s;
+  v.yaw_rate_rad_per_s = c.yaw_rate_rad_per_s;
+  v.extra_longitudinal_creepage = c.extra_longitudinal_creepage;
+  if (c.rotation == RC_ROTATION_GIVEN) {
+    v.wheel_angular_velocity_rad_per_s = c.wheel_angular_velocity_rad_per_s;
+    v.extra_longitudinal_creepage = 0.0;
+  }  // else NaN: pure rolling with the extra creepage (WheelsetVelocity)
+  return state;
+}
+
+rc::TrackWheelsetParameters track_of(const rc_track_parameters* t) {
+  rc::TrackWheelsetParameters p;
+  if (t == nullptr) return p;
+  const char* s = "rc_track_parameters";
+  require_finite(t->track_gauge_m, s, "track_gauge_m", " m");
+  require_finite(t->gauge_measuring_depth_m, s, "gauge_measuring_depth_m", " m");
+  require_finite(t->flange_back_distance_m, s, "flange_back_distance_m", " m");
+  require_finite(t->flange_back_y_m, s, "flange_back_y_m", " m");
+  require_finite(t->taping_line_from_flange_back_m, s, "taping_line_from_flange_back_m", " m");
+  require_finite(t->nominal_rolling_radius_m, s, "nominal_rolling_radius_m", " m");
+  p.track_gauge_m = t->track_gauge_m;
+  p.gauge_measuring_depth_m = t->gauge_measuring_depth_m;
+  p.flange_back_distance_m = t->flange_back_distance_m;
+  p.flange_back_y_m = t->flange_back_y_m;
+  p.taping_line_from_flange_back_m = t->taping_line_from_flange_back_m;
+  p.nominal_rolling_radius_m = t->nominal_rolling_radius_m;
+  rc::validate(p);
+  return p;
+}
+
+void copy3(const rc::Vector3& v, double out[3]) {
+  out[0] = v[0];
+  out[1] = v[1];
+  out[2] = v[2];
+}
+
+rc_wheelset_patch patch_of(const rc::WheelsetPatch& p) {
+  rc_wheelset_patch c{};
+  copy3(p.region.reference_point_track_m, c.reference_point_track_m);
+  copy3(p.region.x2_axis, c.x2_axis);
+  copy3(p.region.x3_axis, c.x3_axis);
+  c.contact_angle_rad = p.region.contact_angle_rad;
+  c.rolling_radius_m = p.region.rolling_radius_m;
+  c.max_interpenetration_m = p.region.max_interpenetration_m;
+  c.creepage = rc_creepage{p.creepage.xi, p.creepage.eta, p.creepage.phi};
+  c.normal_force_N = p.normal_force_N;
+  c.area_m2 = p.area_m2;
+  c.max_pressure_Pa = p.max_pressure_Pa;
+  c.pressure_centre_x1_m = p.pressure_centre_x1_m;
+  c.pressure_centre_x2_m = p.pressure_centre_x2_m;
+  const std::size_t n = std::min<std::size_t>(p.solvers.size(), 4);
+  for (std::size_t k = 0; k < n; ++k) {
+    const rc::PatchSolverResult& s = p.solvers[k];
+    c.forces[k] = rc_forces{s.forces.F1_N, s.forces.F2_N, s.forces.M3_Nm, s.adhesion_fraction};
+    copy3(s.force_track_N, c.force_track_N[k]);
+  }
+  c.side = p.side == rc::WheelSide::right ? RC_WHEEL_RIGHT : RC_WHEEL_LEFT;
+  c.elements_in_contact = static_cast<int>(p.elements_in_contact);
+  c.normal_iterations = p.normal_iterations;
+  c.solver_count = static_cast<int>(n);
+  return c;
+}
+
+rc_wheelset_result result_of(const rc::WheelsetResult& r) {
+  rc_wheelset_result c{};
+  copy3(r.force_track_N, c.force_track_N);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const rc::WheelResult& w = r.wheels[k];
+    copy3(w.force_track_N, c.wheel_force_track_N[k]);
+    c.wheel_vertical_displacement_m[k] = w.vertical_displacement_m;
+    c.patch_count[k] = static_cast<int>(w.patches.size());
+    c.load_iterations[k] = w.load_iterations;
+  }
+  c.vertical_displacement_m = r.state.position.vertical_displacement_m;
+  c.roll_rad = r.state.position.roll_rad;
+  return c;
+}
+
+std::size_t side_index(int side) {
+  require(side == RC_WHEEL_RIGHT || side == RC_WHEEL_LEFT,
+          [&] { return fmt::format("side = {} is not an rc_wheel_side (0 right, 1 left)", side); });
+  return static_cast<std::size_t>(side);
+}
+
+rc::Wheelset& require_wheelset(rc_wheelset* w) {
+  if (!w->wheelset)
+    throw Error("the wheelset has no track (rc_wheelset_set_default_track, rc_wheelset_set_track or "
+                "rc_wheelset_set_track_profiles first)");
+  return *w->wheelset;
+}
+
+const rc::WheelsetResult& require_result(const rc_wheelset* w) {
+  if (!w->last) throw Error("no state has been evaluated on this wheelset yet (rc_wheelset_evaluate first)");
+  return *w->last;
+}
+
+rc::Profile profile(const char* path, const char* what) {
+  require_pointer(path, what);
+  return rc::read_profile(path);
+}
+
+void set_track(rc_wheelset* w, rc::WheelsetTrack track) {
+  w->last.reset();
+  w->wheelset.reset();
+  w->wheelset.emplace(std::move(track), options_of(w->options));
+}
+
+// Batch: a contiguous range of states on one worker.
+struct BatchJob {
+  const rc::Wheelset* prototype = nullptr;
+  const rc_wheelset_state* states = nullptr;
+  rc_wheelset_result* results = nullptr;
+  std::size_t patches_per_wheel = 0;
+  rc_wheelset_patch* patches = nullptr;
+  std::vector<rc_status>* statuses = nullptr;
+  std::vector<std::string>* messages = nullptr;
+};
+
+void run_batch_range(const BatchJob& job, std::size_t begin, std::size_t end) noexcept {
+  LastError error;
+  std::optional<rc::Wheelset> worker;
+  const rc_status made = guarded(&error, [&] { worker.emplace(*job.prototype); });
+  for (std::size_t k = begin; k < end; ++k) {
+    rc_status status = made;
+    if (status == RC_OK) {
+      status = guarded(&error, [&] {
+        const rc::WheelsetState state = state_of(job.states[k]);
+        if (k != begin) *worker = *job.prototype;  // a cold start for every state (a copy starts cold)
+        const rc::WheelsetResult r = worker->evaluate(state);
+        job.results[k] = result_of(r);
+        std::size_t too_many = 0;
+        for (std::size_t w = 0; w < 2; ++w) {
+          const std::vector<rc::WheelsetPatch>& ps = r.wheels[w].patches;
+          if (ps.size() > job.patches_per_wheel) too_many = std::max(too_many, ps.size());
+          if (job.patches == nullptr) continue;
+          rc_wheelset_patch* out = job.patches + (2 * k + w) * job.patches_per_wheel;
+          for (std::size_t j = 0; j < std::min(ps.size(), job.patches_per_wheel); ++j) out[j] = patch_of(ps[j]);
+        }
+        if (too_many > 0 && job.patches != nullptr)
+          throw StatusError{RC_BUFFER_TOO_SMALL,
+                            fmt::format("rc_wheelset_batch_evaluate: a wheel has {} patches; patches_per_wheel = {}",
+                                        too_many, job.patches_per_wheel)};
+      });
+    }
+    (*job.statuses)[k] = status;
+    if (status != RC_OK) {
+      try {
+        (*job.messages)[k] = error.message();
+      } catch (...) {
+      }
+    }
+  }
+}
+
+}  // namespace
+
+rc_wheelset::rc_wheelset() { rc_wheelset_options_default(&options); }
+
+extern "C" {
+
+rc_status rc_track_parameters_default(rc_track_parameters* t) {
+  if (t == nullptr) return RC_INVALID_INPUT;
+  const rc::TrackWheelsetParameters p;
+  t->track_gauge_m = p.track_gauge_m;
+  t->gauge_measuring_depth_m = p.gauge_measuring_depth_m;
+  t->flange_back_distance_m = p.flange_back_distance_m;
+  t->flange_back_y_m = p.flange_back_y_m;
+  t->taping_line_from_flange_back_m = p.taping_line_from_flange_back_m;
+  t->nominal_rolling_radius_m = p.nominal_rolling_radius_m;
+  return RC_OK;
+}
+
+rc_status rc_wheelset_options_default(rc_wheelset_options* o) {
+  if (o == nullptr) return RC_INVALID_INPUT;
+  const rc::WheelsetOptions d;
+  *o = rc_wheelset_options{};
+  o->youngs_modulus_Pa = d.material.youngs_modulus_Pa;
+  o->poisson_ratio = d.material.poisson_ratio;
+  o->friction_coefficient = d.friction_coefficient;
+  o->element_size_m = d.element_size_m;
+  o->right_load_N = d.loads ? d.loads->right_N : 98100.0;
+  o->left_load_N = d.loads ? d.loads->left_N : 98100.0;
+  o->normal_mode = d.loads ? RC_WHEELSET_BY_LOAD : RC_WHEELSET_BY_POSITION;
+  o->balance_roll = d.loads && d.loads->balance_roll ? 1 : 0;
+  o->tangential_in_balance = d.tangential_forces_in_vertical_balance ? 1 : 0;
+  o->allow_wheel_lift = d.allow_wheel_lift ? 1 : 0;
+  o->warm_start = 1;
+  o->solver_count = 1;
+  o->solvers[0] = RC_METHOD_NH_FASTSIM;
+  return RC_OK;
+}
+
+rc_status rc_wheelset_state_default(rc_wheelset_state* s) {
+  if (s == nullptr) return RC_INVALID_INPUT;
+  *s = rc_wheelset_state{};
+  s->forward_speed_m_per_s = rc::WheelsetVelocity{}.forward_speed_m_per_s;
+  s->rotation = RC_ROTATION_ROLLING;
+  return RC_OK;
+}
+
+rc_status rc_wheelset_create(rc_wheelset** wheelset) {
+  if (wheelset == nullptr) return RC_INVALID_INPUT;
+  *wheelset = nullptr;
+  try {
+    *wheelset = new rc_wheelset();
+    return RC_OK;
+  } catch (const std::bad_alloc&) {
+    return RC_OUT_OF_MEMORY;
+  } catch (...) {
+    return RC_INTERNAL;
+  }
+}
+
+rc_status rc_wheelset_destroy(rc_wheelset* wheelset) {
+  delete wheelset;
+  return RC_OK;
+}
+
+rc_status rc_wheelset_last_error(const rc_wheelset* wheelset, char* buffer, size_t size, size_t* length) {
+  if (wheelset == nullptr) return RC_INVALID_INPUT;
+  return railcontact::c_api::copy_message(wheelset->error.message(), buffer, size, length);
+}
+
+rc_status rc_wheelset_set_default_track(rc_wheelset* w) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] { set_track(w, rc::default_wheelset_track()); });
+}
+
+rc_status rc_wheelset_set_track(rc_wheelset* w, const char* wheel_profile_path, const char* rail_profile_path,
+                                const rc_track_parameters* track) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    const rc::TrackWheelsetParameters parameters = track_of(track);
+    const rc::Profile wheel = profile(wheel_profile_path, "rc_wheelset_set_track: wheel_profile_path");
+    const rc::Profile rail = profile(rail_profile_path, "rc_wheelset_set_track: rail_profile_path");
+    set_track(w, rc::WheelsetTrack(wheel, rail, parameters));
+  });
+}
+
+rc_status rc_wheelset_set_track_profiles(rc_wheelset* w, const char* right_wheel_path, const char* left_wheel_path,
+                                         const char* right_rail_path, const char* left_rail_path,
+                                         const rc_track_parameters* track) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    const rc::TrackWheelsetParameters parameters = track_of(track);
+    rc::WheelsetProfiles profiles;
+    profiles.right_wheel = profile(right_wheel_path, "rc_wheelset_set_track_profiles: right_wheel_path");
+    profiles.left_wheel = profile(left_wheel_path, "rc_wheelset_set_track_profiles: left_wheel_path");
+    profiles.right_rail = profile(right_rail_path, "rc_wheelset_set_track_profiles: right_rail_path");
+    profiles.left_rail = profile(left_rail_path, "rc_wheelset_set_track_profiles: left_rail_path");
+    set_track(w, rc::WheelsetTrack(profiles, parameters));
+  });
+}
+
+rc_status rc_wheelset_get_track(const rc_wheelset* w, rc_track_parameters* track, double* nominal_axle_height_m) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    if (!w->wheelset)
+      throw Error("the wheelset has no track (rc_wheelset_set_default_track, rc_wheelset_set_track or "
+                  "rc_wheelset_set_track_profiles first)");
+    const rc::WheelsetTrack& t = w->wheelset->track();
+    if (track != nullptr) {
+      const rc::TrackWheelsetParameters& p = t.parameters();
+      track->track_gauge_m = p.track_gauge_m;
+      track->gauge_measuring_depth_m = p.gauge_measuring_depth_m;
+      track->flange_back_distance_m = p.flange_back_distance_m;
+      track->flange_back_y_m = p.flange_back_y_m;
+      track->taping_line_from_flange_back_m = p.taping_line_from_flange_back_m;
+      track->nominal_rolling_radius_m = p.nominal_rolling_radius_m;
+    }
+    if (nominal_axle_height_m != nullptr) *nominal_axle_height_m = t.nominal_axle_height_m();
+  });
+}
+
+rc_status rc_wheelset_set_options(rc_wheelset* w, const rc_wheelset_options* options) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(options, "rc_wheelset_set_options: options");
+    rc::WheelsetOptions checked = options_of(*options);
+    if (w->wheelset) {
+      rc::Wheelset rebuilt(w->wheelset->track(), std::move(checked));
+      w->wheelset.reset();
+      w->wheelset.emplace(std::move(rebuilt));
+    }
+    w->options = *options;
+    w->last.reset();
+  });
+}
+
+rc_status rc_wheelset_get_options(const rc_wheelset* w, rc_wheelset_options* options) {
+  if (w == nullptr || options == nullptr) return RC_INVALID_INPUT;
+  *options = w->options;
+  return RC_OK;
+}
+
+rc_status rc_wheelset_evaluate(rc_wheelset* w, const rc_wheelset_state* state, rc_wheelset_result* result) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(state, "rc_wheelset_evaluate: state");
+    const rc::WheelsetState s = state_of(*state);
+    rc::Wheelset& wheelset = require_wheelset(w);
+    w->last.reset();
+    if (w->options.warm_start == 0) wheelset = rc::Wheelset(wheelset);  // a copy starts cold
+    w->last = wheelset.evaluate(s);
+    if (result != nullptr) *result = result_of(*w->last);
+  });
+}
+
+rc_status rc_wheelset_result_get(const rc_wheelset* w, rc_wheelset_result* result) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(result, "rc_wheelset_result_get: result");
+    *result = result_of(require_result(w));
+  });
+}
+
+rc_status rc_wheelset_patch_count(const rc_wheelset* w, int side, size_t* count) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(count, "rc_wheelset_patch_count: count");
+    const std::size_t k = side_index(side);
+    *count = require_result(w).wheels[k].patches.size();
+  });
+}
+
+rc_status rc_wheelset_patches(const rc_wheelset* w, int side, size_t size, rc_wheelset_patch* patches) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    const std::size_t k = side_index(side);
+    const std::vector<rc::WheelsetPatch>& ps = require_result(w).wheels[k].patches;
+    if (size < ps.size())
+      throw StatusError{RC_BUFFER_TOO_SMALL,
+                        fmt::format("rc_wheelset_patches: the buffer holds {} patches; the {} wheel has {} "
+                                    "(rc_wheelset_patch_count)",
+                                    size, k == 0 ? "right" : "left", ps.size())};
+    if (!ps.empty()) require_pointer(patches, "rc_wheelset_patches: patches");
+    for (std::size_t j = 0; j < ps.size(); ++j) patches[j] = patch_of(ps[j]);
+  });
+}
+
+rc_status rc_wheelset_batch_evaluate(rc_wheelset* w, size_t count, const rc_wheelset_state* states, int threads,
+                                     rc_wheelset_result* results, size_t patches_per_wheel, rc_wheelset_patch* patches,
+                                     int* statuses) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  rc_status first_failure = RC_OK;
+  const rc_status status = guarded(&w->error, [&] {
+    if (count == 0) return;
+    require_pointer(states, "rc_wheelset_batch_evaluate: states");
+    require_pointer(results, "rc_wheelset_batch_evaluate: results");
+    if (patches_per_wheel > 0) require_pointer(patches, "rc_wheelset_batch_evaluate: patches");
+    if (threads < 0) throw Error(fmt::format("rc_wheelset_batch_evaluate: threads = {} must be >= 0", threads));
+    const rc::Wheelset& prototype = require_wheelset(w);
+    std::size_t workers =
+        threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : static_cast<std::size_t>(threads);
+    workers = std::min({workers, count, std::size_t{1024}});
+    std::vector<rc_status> state_status(count, RC_OK);
+    std::vector<std::string> messages(count);
+    const BatchJob job{&prototype, states, results, patches_per_wheel, patches_per_wheel > 0 ? patches : nullptr,
+                       &state_status, &messages};
+    const std::size_t chunk = (count + workers - 1) / workers;
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < workers && t * chunk < count; ++t)
+      pool.emplace_back(run_batch_range, std::cref(job), t * chunk, std::min(count, (t + 1) * chunk));
+    run_batch_range(job, 0, std::min(count, chunk));
+    for (std::thread& t : pool) t.join();
+    for (std::size_t k = 0; k < count; ++k) {
+      if (statuses != nullptr) statuses[k] = state_status[k];
+      if (state_status[k] != RC_OK && first_failure == RC_OK) {
+        first_failure = state_status[k];
+        w->error.set(fmt::format("state {}: {}", k, messages[k]).c_str());
+      }
+    }
+  });
+  return status != RC_OK ? status : first_failure;
+}
+
+}  // extern "C"

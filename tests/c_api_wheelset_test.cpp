@@ -1,0 +1,501 @@
+// The C API's wheelset (include/railcontact/railcontact.h, docs/C_API.md "Wheelset"): exactly the
+// numbers of the C++ Wheelset, the mirror symmetry of the two wheels, the batch and two handles on
+// two threads equal to the serial loop, statuses and messages for bad input; and the single-patch
+// normal problem with the approach given (rc_solver_set_patch_at_approach).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "railcontact/hertz.hpp"
+#include "railcontact/normal.hpp"
+#include "railcontact/railcontact.h"
+#include "railcontact/wheel_rail.hpp"
+#include "railcontact/wheelset.hpp"
+
+namespace railcontact {
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A wheelset handle on the default S1002 / UIC60 track, coarse elements (0.5 mm) for speed.
+struct CWheelset {
+  rc_wheelset* h = nullptr;
+  explicit CWheelset(bool by_load = true, int warm_start = 1, std::vector<int> solvers = {RC_METHOD_NH_FASTSIM}) {
+    EXPECT_EQ(rc_wheelset_create(&h), RC_OK);
+    EXPECT_EQ(rc_wheelset_set_default_track(h), RC_OK) << error();
+    rc_wheelset_options o;
+    rc_wheelset_options_default(&o);
+    o.element_size_m = 0.5e-3;
+    o.normal_mode = by_load ? RC_WHEELSET_BY_LOAD : RC_WHEELSET_BY_POSITION;
+    o.allow_wheel_lift = by_load ? 0 : 1;
+    o.warm_start = warm_start;
+    o.solver_count = static_cast<int>(solvers.size());
+    for (std::size_t k = 0; k < solvers.size(); ++k) o.solvers[k] = solvers[k];
+    EXPECT_EQ(rc_wheelset_set_options(h, &o), RC_OK) << error();
+  }
+  ~CWheelset() { rc_wheelset_destroy(h); }
+  CWheelset(const CWheelset&) = delete;
+  CWheelset& operator=(const CWheelset&) = delete;
+  std::string error() const {
+    std::size_t length = 0;
+    rc_wheelset_last_error(h, nullptr, 0, &length);
+    std::string message(length + 1, '\0');
+    rc_wheelset_last_error(h, message.data(), message.size(), nullptr);
+    message.resize(length);
+    return message;
+  }
+  std::vector<rc_wheelset_patch> patches(int side) const {
+    std::size_t n = 0;
+    EXPECT_EQ(rc_wheelset_patch_count(h, side, &n), RC_OK);
+    std::vector<rc_wheelset_patch> p(n);
+    EXPECT_EQ(rc_wheelset_patches(h, side, n, p.data()), RC_OK);
+    return p;
+  }
+};
+
+// The C++ options the handle above stands for.
+WheelsetOptions coarse(bool by_load, std::vector<TangentialSolver> solvers = {TangentialSolver::nh_fastsim}) {
+  WheelsetOptions o;
+  o.element_size_m = 0.5e-3;
+  o.solvers = std::move(solvers);
+  if (!by_load) {
+    o.loads.reset();
+    o.allow_wheel_lift = true;
+  }
+  return o;
+}
+
+rc_wheelset_state c_state(double y_m, double yaw_rad = 0.0, double z_m = 0.0) {
+  rc_wheelset_state s;
+  rc_wheelset_state_default(&s);
+  s.y_m = y_m;
+  s.yaw_rad = yaw_rad;
+  s.z_m = z_m;
+  s.lateral_velocity_m_per_s = 0.01;
+  s.yaw_rate_rad_per_s = 0.02;
+  return s;
+}
+
+WheelsetState cpp_state(const rc_wheelset_state& c) {
+  WheelsetState s;
+  s.position = WheelsetPosition{c.y_m, c.z_m, c.roll_rad, c.yaw_rad};
+  s.velocity.forward_speed_m_per_s = c.forward_speed_m_per_s;
+  s.velocity.lateral_velocity_m_per_s = c.lateral_velocity_m_per_s;
+  s.velocity.yaw_rate_rad_per_s = c.yaw_rate_rad_per_s;
+  s.velocity.extra_longitudinal_creepage = c.extra_longitudinal_creepage;
+  return s;
+}
+
+const WheelsetTrack& track() {
+  static const WheelsetTrack t = default_wheelset_track();
+  return t;
+}
+
+void expect_same(const rc_wheelset_result& a, const rc_wheelset_result& b) {
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_EQ(a.force_track_N[i], b.force_track_N[i]);
+    for (int w = 0; w < 2; ++w) EXPECT_EQ(a.wheel_force_track_N[w][i], b.wheel_force_track_N[w][i]);
+  }
+  for (int w = 0; w < 2; ++w) {
+    EXPECT_EQ(a.wheel_vertical_displacement_m[w], b.wheel_vertical_displacement_m[w]);
+    EXPECT_EQ(a.patch_count[w], b.patch_count[w]);
+    EXPECT_EQ(a.load_iterations[w], b.load_iterations[w]);
+  }
+  EXPECT_EQ(a.vertical_displacement_m, b.vertical_displacement_m);
+  EXPECT_EQ(a.roll_rad, b.roll_rad);
+}
+
+void expect_same(const rc_wheelset_patch& a, const rc_wheelset_patch& b) {
+  EXPECT_EQ(a.side, b.side);
+  EXPECT_EQ(a.normal_force_N, b.normal_force_N);
+  EXPECT_EQ(a.contact_angle_rad, b.contact_angle_rad);
+  EXPECT_EQ(a.creepage.xi, b.creepage.xi);
+  EXPECT_EQ(a.creepage.phi_per_m, b.creepage.phi_per_m);
+  EXPECT_EQ(a.elements_in_contact, b.elements_in_contact);
+  for (int s = 0; s < 4; ++s) {
+    EXPECT_EQ(a.forces[s].F1_N, b.forces[s].F1_N);
+    EXPECT_EQ(a.forces[s].F2_N, b.forces[s].F2_N);
+    EXPECT_EQ(a.forces[s].M3_Nm, b.forces[s].M3_Nm);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(a.force_track_N[s][i], b.force_track_N[s][i]);
+  }
+}
+
+// The C API is a thin layer: the same numbers as railcontact::Wheelset, field by field, over a
+// sequence of states (the warm start of both carried along), by load and by position.
+TEST(CApiWheelset, EqualsTheCppWheelset) {
+  for (const bool by_load : {true, false}) {
+    CWheelset c(by_load, 1, {RC_METHOD_NH_FASTSIM, RC_METHOD_FASTSIM});
+    Wheelset cpp(track(), coarse(by_load, {TangentialSolver::nh_fastsim, TangentialSolver::fastsim}));
+    double nominal = 0.0;
+    ASSERT_EQ(rc_wheelset_get_track(c.h, nullptr, &nominal), RC_OK);
+    EXPECT_EQ(nominal, track().nominal_axle_height_m());
+    for (const double y : {3e-3, 3.001e-3, -6.8e-3}) {
+      // By position: 50 µm below the first touch (the other wheel may be lifted).
+      const WheelsetPosition at{y, 0.0, 0.0, 1e-3};
+      const double touching = std::max(track().touching_vertical_displacement_m(WheelSide::right, at),
+                                       track().touching_vertical_displacement_m(WheelSide::left, at));
+      const rc_wheelset_state s = c_state(y, 1e-3, touching - 50e-6);
+      rc_wheelset_result r;
+      ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_OK) << c.error();
+      const WheelsetResult e = cpp.evaluate(cpp_state(s));
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(r.force_track_N[i], e.force_track_N[i]);
+      EXPECT_EQ(r.vertical_displacement_m, e.state.position.vertical_displacement_m);
+      EXPECT_EQ(r.roll_rad, e.state.position.roll_rad);
+      for (int w = 0; w < 2; ++w) {
+        const WheelResult& ew = e.wheels[w];
+        EXPECT_EQ(r.wheel_vertical_displacement_m[w], ew.vertical_displacement_m);
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(r.wheel_force_track_N[w][i], ew.force_track_N[i]);
+        const std::vector<rc_wheelset_patch> ps = c.patches(w);
+        ASSERT_EQ(ps.size(), ew.patches.size());
+        ASSERT_EQ(r.patch_count[w], static_cast<int>(ps.size()));
+        for (std::size_t j = 0; j < ps.size(); ++j) {
+          const rc_wheelset_patch& p = ps[j];
+          const WheelsetPatch& q = ew.patches[j];
+          EXPECT_EQ(p.side, w);
+          for (int i = 0; i < 3; ++i) {
+            EXPECT_EQ(p.reference_point_track_m[i], q.region.reference_point_track_m[i]);
+            EXPECT_EQ(p.x2_axis[i], q.region.x2_axis[i]);
+            EXPECT_EQ(p.x3_axis[i], q.region.x3_axis[i]);
+          }
+          EXPECT_EQ(p.contact_angle_rad, q.region.contact_angle_rad);
+          EXPECT_EQ(p.rolling_radius_m, q.region.rolling_radius_m);
+          EXPECT_EQ(p.creepage.xi, q.creepage.xi);
+          EXPECT_EQ(p.creepage.eta, q.creepage.eta);
+          EXPECT_EQ(p.creepage.phi_per_m, q.creepage.phi);
+          EXPECT_EQ(p.normal_force_N, q.normal_force_N);
+          EXPECT_EQ(p.area_m2, q.area_m2);
+          EXPECT_EQ(p.max_pressure_Pa, q.max_pressure_Pa);
+          EXPECT_EQ(p.elements_in_contact, static_cast<int>(q.elements_in_contact));
+          ASSERT_EQ(p.solver_count, 2);
+          for (int k = 0; k < 2; ++k) {
+            EXPECT_EQ(p.forces[k].F1_N, q.solvers[k].forces.F1_N);
+            EXPECT_EQ(p.forces[k].F2_N, q.solvers[k].forces.F2_N);
+            EXPECT_EQ(p.forces[k].M3_Nm, q.solvers[k].forces.M3_Nm);
+            for (int i = 0; i < 3; ++i) EXPECT_EQ(p.force_track_N[k][i], q.solvers[k].force_track_N[i]);
+          }
+          EXPECT_EQ(p.forces[2].F1_N, 0.0);  // unused entries
+        }
+      }
+      if (!by_load) EXPECT_GT(r.force_track_N[2], 0.0);
+    }
+  }
+}
+
+// The profile files of the shipped set-up, given one for both sides or one per wheel and rail
+// with the set-up's dimensions, make the same wheelset as the default track.
+TEST(CApiWheelset, ProfileFilesGiveTheDefaultTrack) {
+  CWheelset reference(true, 0);
+  rc_track_parameters dimensions;
+  ASSERT_EQ(rc_wheelset_get_track(reference.h, &dimensions, nullptr), RC_OK);
+  const std::string wheel = default_wheel_profile_path().string(), rail = default_rail_profile_path().string();
+  CWheelset two(true, 0), four(true, 0);
+  ASSERT_EQ(rc_wheelset_set_track(two.h, wheel.c_str(), rail.c_str(), &dimensions), RC_OK) << two.error();
+  ASSERT_EQ(rc_wheelset_set_track_profiles(four.h, wheel.c_str(), wheel.c_str(), rail.c_str(), rail.c_str(),
+                                           &dimensions),
+            RC_OK)
+      << four.error();
+  const rc_wheelset_state s = c_state(2e-3);
+  rc_wheelset_result a, b, c;
+  ASSERT_EQ(rc_wheelset_evaluate(reference.h, &s, &a), RC_OK) << reference.error();
+  ASSERT_EQ(rc_wheelset_evaluate(two.h, &s, &b), RC_OK) << two.error();
+  ASSERT_EQ(rc_wheelset_evaluate(four.h, &s, &c), RC_OK) << four.error();
+  expect_same(a, b);
+  expect_same(a, c);
+}
+
+// Forces with the wheelset at y are the mirror image of those at −y: wheel by wheel, Fx and Fz
+// equal, Fy opposite (the right wheel at y is the left wheel at −y).
+TEST(CApiWheelset, WheelsAtMinusYAreTheMirrorImageOfWheelsAtY) {
+  CWheelset c(true, 0);
+  for (const double y : {2.5e-3, -6.5e-3}) {
+    rc_wheelset_state s = c_state(y, 1e-3);
+    rc_wheelset_result a, b;
+    ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &a), RC_OK) << c.error();
+    s = c_state(-y, -1e-3);
+    s.lateral_velocity_m_per_s = -s.lateral_velocity_m_per_s;
+    s.yaw_rate_rad_per_s = -s.yaw_rate_rad_per_s;
+    ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &b), RC_OK) << c.error();
+    for (int w = 0; w < 2; ++w) {
+      const double* f = a.wheel_force_track_N[w];
+      const double* m = b.wheel_force_track_N[1 - w];
+      const double scale = f[2];
+      EXPECT_GT(scale, 9e4);
+      EXPECT_NEAR(f[0], m[0], 1e-8 * scale);
+      EXPECT_NEAR(f[1], -m[1], 1e-8 * scale);
+      EXPECT_NEAR(f[2], m[2], 1e-8 * scale);
+      EXPECT_EQ(a.patch_count[w], b.patch_count[1 - w]);
+    }
+    EXPECT_NEAR(a.force_track_N[1], -b.force_track_N[1], 1e-8 * a.force_track_N[2]);
+    EXPECT_NEAR(a.roll_rad, -b.roll_rad, 1e-12);
+  }
+}
+
+// The batch on three threads gives the numbers of the serial loop (cold evaluations) bit for bit,
+// its patches included; too small a patch buffer is that state's RC_BUFFER_TOO_SMALL.
+TEST(CApiWheelset, BatchOnThreadsEqualsTheSerialLoop) {
+  CWheelset c(true, 0);
+  std::vector<rc_wheelset_state> states;
+  for (const double y : {-7e-3, -3e-3, 0.0, 2e-3, 5e-3}) states.push_back(c_state(y, 0.5e-3));
+  const std::size_t n = states.size(), per_wheel = 3;
+  std::vector<rc_wheelset_result> serial(n);
+  std::vector<rc_wheelset_patch> serial_patches(2 * n * per_wheel);
+  for (std::size_t k = 0; k < n; ++k) {
+    ASSERT_EQ(rc_wheelset_evaluate(c.h, &states[k], &serial[k]), RC_OK) << c.error();
+    for (int w = 0; w < 2; ++w) {
+      const std::vector<rc_wheelset_patch> ps = c.patches(w);
+      ASSERT_LE(ps.size(), per_wheel);
+      std::copy(ps.begin(), ps.end(), serial_patches.begin() + static_cast<std::ptrdiff_t>((2 * k + w) * per_wheel));
+    }
+  }
+  rc_wheelset_result last;
+  ASSERT_EQ(rc_wheelset_result_get(c.h, &last), RC_OK);
+
+  std::vector<rc_wheelset_result> batch(n);
+  std::vector<rc_wheelset_patch> batch_patches(2 * n * per_wheel);
+  std::vector<int> statuses(n, -1);
+  ASSERT_EQ(rc_wheelset_batch_evaluate(c.h, n, states.data(), 3, batch.data(), per_wheel, batch_patches.data(),
+                                       statuses.data()),
+            RC_OK)
+      << c.error();
+  for (std::size_t k = 0; k < n; ++k) {
+    EXPECT_EQ(statuses[k], RC_OK);
+    expect_same(batch[k], serial[k]);
+    for (int w = 0; w < 2; ++w)
+      for (int j = 0; j < serial[k].patch_count[w]; ++j)
+        expect_same(batch_patches[(2 * k + w) * per_wheel + j], serial_patches[(2 * k + w) * per_wheel + j]);
+  }
+  // The handle's own last result is unchanged.
+  rc_wheelset_result after;
+  ASSERT_EQ(rc_wheelset_result_get(c.h, &after), RC_OK);
+  expect_same(after, last);
+
+  // A failing state (NaN y) does not stop the others; no patch room for a wheel with patches.
+  std::vector<rc_wheelset_state> two{states[2], states[3]};
+  two[0].y_m = kNaN;
+  std::vector<rc_wheelset_result> out(2);
+  std::vector<int> st(2, -1);
+  EXPECT_EQ(rc_wheelset_batch_evaluate(c.h, 2, two.data(), 2, out.data(), 0, nullptr, st.data()), RC_INVALID_INPUT);
+  EXPECT_EQ(st[0], RC_INVALID_INPUT);
+  EXPECT_EQ(st[1], RC_OK);
+  expect_same(out[1], serial[3]);
+  EXPECT_NE(c.error().find("state 0: rc_wheelset_state.y_m = nan"), std::string::npos) << c.error();
+  std::vector<rc_wheelset_patch> one(2);
+  EXPECT_EQ(rc_wheelset_batch_evaluate(c.h, 1, &states[0], 1, out.data(), 1, one.data(), st.data()),
+            serial[0].patch_count[0] > 1 || serial[0].patch_count[1] > 1 ? RC_BUFFER_TOO_SMALL : RC_OK);
+}
+
+// Two handles on two threads at the same time give the numbers of the serial loop.
+TEST(CApiWheelset, TwoHandlesOnTwoThreadsEqualSerial) {
+  const std::vector<double> ys{-5e-3, 1e-3, 4e-3};
+  std::vector<rc_wheelset_result> serial(2 * ys.size()), threaded(2 * ys.size());
+  {
+    CWheelset c(true, 1);
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      const rc_wheelset_state s = c_state(ys[k]);
+      ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &serial[k]), RC_OK) << c.error();
+    }
+    CWheelset d(true, 1);
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      const rc_wheelset_state s = c_state(-ys[k], 1e-3);
+      ASSERT_EQ(rc_wheelset_evaluate(d.h, &s, &serial[ys.size() + k]), RC_OK) << d.error();
+    }
+  }
+  CWheelset a(true, 1), b(true, 1);
+  std::vector<rc_status> status(2 * ys.size(), RC_INTERNAL);
+  std::thread t1([&] {
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      const rc_wheelset_state s = c_state(ys[k]);
+      status[k] = rc_wheelset_evaluate(a.h, &s, &threaded[k]);
+    }
+  });
+  std::thread t2([&] {
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      const rc_wheelset_state s = c_state(-ys[k], 1e-3);
+      status[ys.size() + k] = rc_wheelset_evaluate(b.h, &s, &threaded[ys.size() + k]);
+    }
+  });
+  t1.join();
+  t2.join();
+  for (std::size_t k = 0; k < serial.size(); ++k) {
+    EXPECT_EQ(status[k], RC_OK);
+    expect_same(threaded[k], serial[k]);
+  }
+}
+
+TEST(CApiWheelset, BadInputGivesStatusAndMessage) {
+  CWheelset c(true, 1);
+  rc_wheelset_state s = c_state(kNaN);
+  rc_wheelset_result r;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_state.y_m = nan m is not finite"), std::string::npos) << c.error();
+  s = c_state(0.0);
+  s.forward_speed_m_per_s = 0.0;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("forward_speed_m_per_s = 0 m/s must be positive"), std::string::npos) << c.error();
+  s = c_state(0.0);
+  s.rotation = 7;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_state.rotation = 7"), std::string::npos) << c.error();
+  s = c_state(0.2);  // off the track
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, nullptr, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_evaluate: state is null"), std::string::npos) << c.error();
+  EXPECT_EQ(rc_wheelset_evaluate(nullptr, &s, &r), RC_INVALID_INPUT);
+  // Nothing evaluated yet (the failures above leave no result).
+  std::size_t count = 0;
+  EXPECT_EQ(rc_wheelset_patch_count(c.h, RC_WHEEL_RIGHT, &count), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("no state has been evaluated"), std::string::npos) << c.error();
+
+  // Files: an unknown file is RC_IO, naming it; the handle keeps its track.
+  EXPECT_EQ(rc_wheelset_set_track(c.h, "/no/such/wheel.prw", default_rail_profile_path().string().c_str(), nullptr),
+            RC_IO);
+  EXPECT_NE(c.error().find("/no/such/wheel.prw"), std::string::npos) << c.error();
+  EXPECT_EQ(rc_wheelset_set_track(c.h, nullptr, nullptr, nullptr), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("wheel_profile_path is null"), std::string::npos) << c.error();
+  rc_track_parameters t;
+  rc_track_parameters_default(&t);
+  t.track_gauge_m = kNaN;
+  EXPECT_EQ(rc_wheelset_set_track(c.h, "w", "r", &t), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_track_parameters.track_gauge_m = nan"), std::string::npos) << c.error();
+
+  // Options: a refused set keeps the previous ones.
+  rc_wheelset_options o, before;
+  ASSERT_EQ(rc_wheelset_get_options(c.h, &before), RC_OK);
+  o = before;
+  o.friction_coefficient = kNaN;
+  EXPECT_EQ(rc_wheelset_set_options(c.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_options.friction_coefficient = nan"), std::string::npos) << c.error();
+  o = before;
+  o.solvers[0] = 9;
+  EXPECT_EQ(rc_wheelset_set_options(c.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("9 is not an rc_method"), std::string::npos) << c.error();
+  o = before;
+  o.solver_count = 2;
+  o.solvers[1] = o.solvers[0];
+  EXPECT_EQ(rc_wheelset_set_options(c.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("given twice"), std::string::npos) << c.error();
+  o = before;
+  o.right_load_N = -1.0;
+  EXPECT_EQ(rc_wheelset_set_options(c.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("right wheel's vertical load"), std::string::npos) << c.error();
+  rc_wheelset_options after;
+  ASSERT_EQ(rc_wheelset_get_options(c.h, &after), RC_OK);
+  EXPECT_EQ(after.friction_coefficient, before.friction_coefficient);
+  EXPECT_EQ(after.solver_count, before.solver_count);
+
+  // The patches' buffer and side.
+  s = c_state(-7e-3);
+  ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_OK) << c.error();
+  ASSERT_EQ(rc_wheelset_patch_count(c.h, RC_WHEEL_RIGHT, &count), RC_OK);
+  ASSERT_GE(count, 1u);
+  std::vector<rc_wheelset_patch> p(count);
+  EXPECT_EQ(rc_wheelset_patches(c.h, RC_WHEEL_RIGHT, count - 1, p.data()), RC_BUFFER_TOO_SMALL);
+  EXPECT_EQ(rc_wheelset_patches(c.h, 2, count, p.data()), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("side = 2 is not an rc_wheel_side"), std::string::npos) << c.error();
+
+  // No track yet.
+  rc_wheelset* empty = nullptr;
+  ASSERT_EQ(rc_wheelset_create(&empty), RC_OK);
+  EXPECT_EQ(rc_wheelset_evaluate(empty, &s, &r), RC_INVALID_INPUT);
+  rc_wheelset_destroy(empty);
+}
+
+// ---- The single patch with the approach given ---------------------------------------------------
+
+std::string solver_error(const rc_solver* solver) {
+  std::size_t length = 0;
+  rc_solver_last_error(solver, nullptr, 0, &length);
+  std::string message(length + 1, '\0');
+  rc_solver_last_error(solver, message.data(), message.size(), nullptr);
+  message.resize(length);
+  return message;
+}
+
+// Hertz and an ellipse at an approach: the load whose Hertzian approach it is; a grid at an
+// approach: the normal solver's position-driven solution, whose load given back gives the approach.
+TEST(CApiApproach, HertzEllipseAndGridAtAnApproach) {
+  rc_solver* solver = nullptr;
+  ASSERT_EQ(rc_solver_create(&solver), RC_OK);
+  rc_settings settings;
+  rc_settings_default(&settings);
+  settings.mesh_value = 600;
+  ASSERT_EQ(rc_solver_set_settings(solver, &settings), RC_OK);
+  const Material steel{2.1e11, 0.3};
+  const double A = 0.6, B = 1.4;
+  const HertzContact reference = hertz_from_curvatures(A, B, 8e4, steel);
+  rc_patch p{};
+  p.kind = RC_GEOMETRY_HERTZ;
+  p.A_per_m = A;
+  p.B_per_m = B;
+  p.normal_force_N = kNaN;  // ignored
+  ASSERT_EQ(rc_solver_set_patch_at_approach(solver, &p, reference.approach_m), RC_OK) << solver_error(solver);
+  rc_normal_result n;
+  ASSERT_EQ(rc_solver_normal_result(solver, &n), RC_OK);
+  EXPECT_NEAR(n.normal_force_N, 8e4, 8e4 * 1e-9);
+  EXPECT_NEAR(n.approach_m, reference.approach_m, reference.approach_m * 1e-12);
+  EXPECT_NEAR(n.a_m, reference.a_m, reference.a_m * 1e-9);
+
+  p = rc_patch{};
+  p.kind = RC_GEOMETRY_ELLIPSE;
+  p.a_m = reference.a_m;
+  p.b_m = reference.b_m;
+  ASSERT_EQ(rc_solver_set_patch_at_approach(solver, &p, reference.approach_m), RC_OK) << solver_error(solver);
+  ASSERT_EQ(rc_solver_normal_result(solver, &n), RC_OK);
+  EXPECT_NEAR(n.normal_force_N, 8e4, 8e4 * 1e-6);
+  EXPECT_EQ(rc_solver_set_patch_at_approach(solver, &p, -1e-6), RC_INVALID_INPUT);
+  EXPECT_NE(solver_error(solver).find("must be positive"), std::string::npos) << solver_error(solver);
+  EXPECT_EQ(rc_solver_set_patch_at_approach(solver, &p, kNaN), RC_INVALID_INPUT);
+  EXPECT_NE(solver_error(solver).find("approach_m = nan m is not finite"), std::string::npos);
+
+  // A grid of h = A x1² + B x2² − 40 µm (overlap at the position), approach 0.
+  const int n1 = 40, n2 = 30;
+  const double dx = 0.5e-3;
+  std::vector<double> h(static_cast<std::size_t>(n1 * n2));
+  for (int i2 = 0; i2 < n2; ++i2)
+    for (int i1 = 0; i1 < n1; ++i1) {
+      const double x1 = (i1 - 0.5 * (n1 - 1)) * dx, x2 = (i2 - 0.5 * (n2 - 1)) * dx;
+      h[static_cast<std::size_t>(i2 * n1 + i1)] = A * x1 * x1 + B * x2 * x2 - 40e-6;
+    }
+  p = rc_patch{};
+  p.kind = RC_GEOMETRY_GRID;
+  p.grid_n1 = n1;
+  p.grid_n2 = n2;
+  p.grid_dx1_m = dx;
+  p.grid_dx2_m = dx;
+  p.grid_h_m = h.data();
+  ASSERT_EQ(rc_solver_set_patch_at_approach(solver, &p, 0.0), RC_OK) << solver_error(solver);
+  ASSERT_EQ(rc_solver_normal_result(solver, &n), RC_OK);
+  Mesh mesh;
+  mesh.n1 = n1;
+  mesh.n2 = n2;
+  mesh.dx1_m = mesh.dx2_m = dx;
+  mesh.x1_first_m = -0.5 * (n1 - 1) * dx;
+  mesh.x2_first_m = -0.5 * (n2 - 1) * dx;
+  const NormalSolution cpp = solve_normal_contact_at_approach(mesh, h, 0.0, steel);
+  // The patch's force: the sum over its elements (the C++ sum may add them in another order).
+  EXPECT_NEAR(n.normal_force_N, cpp.normal_force_N, 1e-9 * cpp.normal_force_N);
+  EXPECT_GT(n.normal_force_N, 1e3);
+  rc_creepage c{1e-3, 0.0, 0.0};
+  rc_forces f_approach, f_force;
+  ASSERT_EQ(rc_solver_solve(solver, &c, &f_approach), RC_OK);
+  // The load found, given back: the approach 0 again, and nearly the same forces.
+  p.normal_force_N = n.normal_force_N;
+  ASSERT_EQ(rc_solver_set_patch(solver, &p), RC_OK) << solver_error(solver);
+  rc_normal_result m;
+  ASSERT_EQ(rc_solver_normal_result(solver, &m), RC_OK);
+  EXPECT_NEAR(m.approach_m, 0.0, 1e-9);
+  ASSERT_EQ(rc_solver_solve(solver, &c, &f_force), RC_OK);
+  EXPECT_NEAR(f_force.F1_N, f_approach.F1_N, 1e-6 * n.normal_force_N);
+  // Separated everywhere at this approach: no contact.
+  EXPECT_EQ(rc_solver_set_patch_at_approach(solver, &p, -1e-3), RC_NO_CONTACT);
+  EXPECT_NE(solver_error(solver).find("no element comes into contact"), std::string::npos) << solver_error(solver);
+  rc_solver_destroy(solver);
+}
+
+}  // namespace
+}  // namespace railcontact
