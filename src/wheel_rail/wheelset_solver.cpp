@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,7 @@ constexpr double kHeightTolerance_m = 1e-8;
 constexpr double kTangentialBalanceTolerance = 1e-5;
 constexpr double kCoarseTangentialBalanceTolerance = 1e-3;
 constexpr int kStrictBalancePasses = 6;
+constexpr double kBracketTolerance = 1e-5;
 // nH-FastSim's K2 needs a patch of some extent: below this many elements in contact, and below
 // kFallbackElementsForK2 when the adhesion solve fails, the equivalent ellipse's flexibilities serve.
 constexpr std::size_t kMinimumElementsForK2 = 20;
@@ -484,6 +486,8 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
     std::array<double, 2> tangential_vertical{0.0, 0.0};
     std::array<double, 2> previous_tangential{0.0, 0.0}, previous_residual{0.0, 0.0};
     double previous_roll = 0.0, previous_mismatch = 0.0;
+    std::array<double, 2> bracket_lo{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    std::array<double, 2> bracket_hi{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     std::array<double, 2> heights{0.0, 0.0};
     std::array<double, 2> overlap{0.08e-3, 0.08e-3};
     WheelsetState state = input;
@@ -522,22 +526,35 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
       }
       if (settled) break;
       // The tangential part T is a fixed point T = g(T) with g'(T) near −1 in flange contact (F2
-      // saturated, γ steep): secant steps on g(T) − T instead of plain substitution.
+      // saturated, γ steep): secant steps on the residual r(T) = g(T) − T, which falls with T, kept
+      // inside the bracket of the T values seen with r > 0 and r < 0 (bisection when a secant step
+      // leaves it). The discretisation makes g jump where elements enter the patch: when the bracket
+      // has shrunk to kBracketTolerance of the load around such a jump, its middle is the answer.
       for (std::size_t k = 0; k < 2; ++k) {
-        const double residual = new_tangential[k] - tangential_vertical[k];
+        const double T = tangential_vertical[k];
+        const double residual = new_tangential[k] - T;
+        if (residual > 0.0) bracket_lo[k] = std::max(bracket_lo[k], T);
+        if (residual < 0.0) bracket_hi[k] = std::min(bracket_hi[k], T);
         double next = new_tangential[k];
-        if (pass > 0 && residual != previous_residual[k]) {
-          next = tangential_vertical[k] -
-                 residual * (tangential_vertical[k] - previous_tangential[k]) / (residual - previous_residual[k]);
-        }
-        previous_tangential[k] = tangential_vertical[k];
+        if (pass > 0 && residual != previous_residual[k])
+          next = T - residual * (T - previous_tangential[k]) / (residual - previous_residual[k]);
+        const bool bracketed = std::isfinite(bracket_lo[k]) && std::isfinite(bracket_hi[k]);
+        if (bracketed && !(next > bracket_lo[k] && next < bracket_hi[k])) next = 0.5 * (bracket_lo[k] + bracket_hi[k]);
+        previous_tangential[k] = T;
         previous_residual[k] = residual;
         tangential_vertical[k] = next;
       }
-      require(pass + 1 < kMaximumBalanceIterations, [&] {
-        return fmt::format("wheelset: the vertical balance of the wheels did not settle in {} passes",
-                           kMaximumBalanceIterations);
-      });
+      bool bracket_closed = true;
+      for (std::size_t k = 0; k < 2; ++k)
+        bracket_closed = bracket_closed && bracket_hi[k] - bracket_lo[k] <= kBracketTolerance * loads[k];
+      if (bracket_closed) break;
+      if (pass + 1 >= kMaximumBalanceIterations) {
+        throw Error(ErrorKind::not_converged,
+                    fmt::format("wheelset: the vertical balance of the wheels did not settle in {} passes (the "
+                                "tangential forces' vertical part still changes by {:.3g} N and {:.3g} N)",
+                                kMaximumBalanceIterations, new_tangential[0] - previous_tangential[0],
+                                new_tangential[1] - previous_tangential[1]));
+      }
     }
     result.state = state;
   }
