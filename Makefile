@@ -7,7 +7,7 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev libfftw3-dev libcli11
   libboost-math-dev \
   python3-matplotlib python3-numpy python3-dev python3-pybind11 python3-pytest gfortran
 
-.PHONY: all deps configure build run test test-sanitize bench clean
+.PHONY: all deps deps-fuzz configure build run test test-sanitize fuzz bench clean
 
 all: build
 
@@ -46,8 +46,26 @@ test-sanitize: deps
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) --timeout 900
 
+# libFuzzer on every fuzz target (fuzz/, docs/RELIABILITY.md "Fuzzing"): clang++ with
+# -fsanitize=fuzzer,address,undefined in its own build directory, FUZZ_SECONDS per target, one
+# target after the other (scripts/fuzz.sh; new inputs go to build-fuzz/corpus/, crashes and
+# timeouts to fuzz/crashes/<target>/). Only this target needs clang: make test does not.
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_PACKAGES := clang libclang-rt-14-dev
+FUZZ_FLAGS := -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+deps-fuzz: deps
+	@$(MAKE) --no-print-directory deps DEBIAN_PACKAGES="$(FUZZ_PACKAGES)"
+
+fuzz: deps-fuzz
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+	  -DRAILCONTACT_NATIVE=OFF -DRAILCONTACT_BUILD_TESTS=OFF -DRAILCONTACT_BUILD_BENCHMARKS=OFF -DRAILCONTACT_FUZZ=ON \
+	  -DCMAKE_CXX_FLAGS="$(FUZZ_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
+	scripts/fuzz.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS)
+
 bench: build
 	@for b in $(BUILD)/bench/*_bench; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_run.hpp"
@@ -32,8 +33,11 @@ std::vector<CatalogueRow> catalogue() {
     }
     CatalogueRow row{line, std::stoi(text.substr(0, first)), text.substr(first + 1, second - first - 1),
                      text.substr(second + 1)};
-    for (std::size_t at; (at = row.arguments.find("{DATA}")) != std::string::npos;)
-      row.arguments.replace(at, 6, RAILCONTACT_DATA_DIR);
+    // {DATA}: the shipped data; {TESTDATA}: tests/data, whose bad_inputs/ holds the bad files.
+    const std::pair<std::string, std::string> placeholders[] = {
+        {"{DATA}", RAILCONTACT_DATA_DIR}, {"{TESTDATA}", std::string(RAILCONTACT_SOURCE_DIR) + "/tests/data"}};
+    for (const auto& [name, value] : placeholders)
+      for (std::size_t at; (at = row.arguments.find(name)) != std::string::npos;) row.arguments.replace(at, name.size(), value);
     rows.push_back(row);
   }
   return rows;

@@ -103,7 +103,13 @@ TEST(FlextableCli, BadInputGivesOneClearErrorLine) {
   const std::string rail = (dir / "rail.txt").string();
   railcontact::write_text_profile(rail, railcontact::read_profile(railcontact::default_rail_profile_path()));
   write(dir / "other_rail.toml", wheel_rail_case(0.25e-3, rail));
-  write(dir / "far.toml", wheel_rail_case(3e-3));
+  // The table's recipe (flexibility coarsening 1), so that only y is wrong.
+  write(dir / "far.toml", wheel_rail_case(3e-3) + "flexibility_coarsening = 1\n");
+  // The case's automatic coarsening, or another material, against the table's.
+  write(dir / "other_recipe.toml", wheel_rail_case(0.25e-3));
+  std::string other_material = wheel_rail_case(0.25e-3) + "flexibility_coarsening = 1\n";
+  other_material.replace(other_material.find("E = 2.1e11"), 10, "E = 2.0e11");
+  write(dir / "other_material.toml", other_material);
   write(dir / "broken.json", "{\"format\": \"railcontact flexibility table\",\n\"format_version\": ");
   write(dir / "not_a_table.json", "{\"y\": 1}");
   const std::string ellipse = std::string(RAILCONTACT_SOURCE_DIR) + "/examples/hertz_ellipse.toml";
@@ -113,6 +119,10 @@ TEST(FlextableCli, BadInputGivesOneClearErrorLine) {
       {"run " + (dir / "other_rail.toml").string() + " --flextable " + table, "was built for other profiles"},
       {"run " + (dir / "far.toml").string() + " --flextable " + table,
        "y = 3.0000 mm lies outside its range y = 0.0000 ... 0.5000 mm"},
+      {"run " + (dir / "other_recipe.toml").string() + " --flextable " + table,
+       "flexibility table " + table + " was built with the flexibility coarsening 1 and is used with 0 (automatic)"},
+      {"run " + (dir / "other_material.toml").string() + " --flextable " + table,
+       "flexibility table " + table + " was built for another material (E = 2.1e+11 Pa, nu = 0.3; given E = 2e+11 Pa, nu = 0.3)"},
       {"run --flextable " + (dir / "nonexistent.json").string(), "cannot read the flexibility table"},
       {"run --flextable " + (dir / "broken.json").string(), "malformed JSON"},
       {"run --flextable " + (dir / "not_a_table.json").string(), "not a flexibility table"},

@@ -325,6 +325,12 @@ TEST(FlexibilityTableFastSim, CaseRunTakesFlexibilitiesFromTheTable) {
   const CaseResult on_the_fly_result = run_case(c);
   CaseRunOptions options;
   options.flexibility_table = std::make_shared<const FlexibilityTable>(jump_table());
+  // The table's recipe is checked against the case's (FlexibilityTable::check_recipe): the case's
+  // automatic coarsening is not the table's 1.
+  const std::string recipe = error_of([&] { (void)run_case(c, options); });
+  EXPECT_NE(recipe.find("was built with the flexibility coarsening 1 and is used with 0 (automatic)"), std::string::npos)
+      << recipe;
+  c.flexibility_coarsening = 1;  // the table's recipe
   const CaseResult tabled = run_case(c, options);
   EXPECT_FALSE(tabled.creepage_matrix.has_value());  // no K2
   ASSERT_TRUE(tabled.flexibility_table_values.has_value());

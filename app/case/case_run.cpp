@@ -71,10 +71,13 @@ WheelRailPair case_pair(const Case& c) {
       c.wheel_rail.rail_file.empty() ? default_rail_profile_path() : std::filesystem::path(c.wheel_rail.rail_file));
 }
 
-// A flexibility table must belong to the case: its pair, material, collocation offset, y and Fz.
+// A flexibility table must belong to the case: its pair, material, nH-FastSim recipe (flexibility
+// coarsening and collocation offset, as the case gives them), y and Fz. Each check names the table
+// file, the field that differs and both values.
 void check_table_fits(const FlexibilityTable& table, const Case& c, const WheelRailPair& pair) {
   table.check_profiles(pair);
   table.check_material(c.material, c.rolling.collocation_offset);
+  table.check_recipe(c.flexibility_coarsening, c.rolling.collocation_offset);
   (void)table.lookup(c.wheel_rail.y_m, c.normal_force_N);  // range and gaps
 }
 
@@ -156,9 +159,7 @@ void check_values(const Case& input) {
 }
 
 void check_input(const Case& input, const FlexibilityTable* table) {
-  check_values(input);
-  validate(input.material);  // the library's checks too (whatever a future key adds)
-  validate(input.rolling);
+  validate_case(input);
   if (table != nullptr && input.geometry != GeometryKind::wheel_rail)
     throw Error(fmt::format("the {} applies to wheel-rail cases only ({} is an ellipse case)", table->name(), input.source));
 }
@@ -288,6 +289,12 @@ SolverRun run_solver(SolverKind kind, const Case& input, const CaseResult& resul
 }
 
 }  // namespace
+
+void validate_case(const Case& input) {
+  check_values(input);
+  validate(input.material);  // the library's checks too (whatever a future key adds)
+  validate(input.rolling);
+}
 
 const SolverRun* CaseResult::find(SolverKind kind) const {
   for (const SolverRun& run : runs)

@@ -62,9 +62,14 @@ struct CaseRunOptions {
   // Wheel-rail cases only: nh-fastsim takes its flexibilities L1-L3, and normalised creepages
   // their f11, f22, from this table (interpolated at the case's y and Fz for its patch) instead
   // of K2 (docs/FLEXTABLE.md §6). Throws Error for an ellipse case, a table of other profiles,
-  // material or collocation offset, and y or Fz outside the table.
+  // material or nH-FastSim recipe (FlexibilityTable::check_recipe: the case's [solvers]
+  // flexibility_coarsening, 0 = automatic, and alpha), and y or Fz outside the table.
   std::shared_ptr<const FlexibilityTable> flexibility_table;
 };
+
+// The checks run_case makes before any work: every value of the case against the library's
+// ranges, the error naming the case key. Throws railcontact::Error (invalid_input).
+void validate_case(const Case& input);
 
 // Throws railcontact::Error on bad input or a solver that does not converge. Progress lines go
 // to `progress` when given.

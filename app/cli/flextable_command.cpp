@@ -136,7 +136,12 @@ int run_build(const BuildArguments& args) {
   std::vector<double> loads = args.loads_N;
   std::sort(loads.begin(), loads.end());
   require(std::adjacent_find(loads.begin(), loads.end()) == loads.end(), "--load values must differ");
+  require(loads.size() <= kMaximumFlexibilityTableLoads, [&] {
+    return fmt::format("--load: {} loads; a table holds at most {}", loads.size(), kMaximumFlexibilityTableLoads);
+  });
   const std::vector<double> y = flexibility_table_y_grid(args.y_from_m, args.y_to_m, args.y_step_m);
+  // The work of the build (nodes × elements), refused before the profiles are read.
+  check_flexibility_table_work(y.size(), loads.size(), args.elements);
   const WheelRailPair pair = pair_of(args.wheel, args.rail);
   // Fail on an unwritable output before the work: create (and remove) a file next to it.
   const std::filesystem::path out(args.out);

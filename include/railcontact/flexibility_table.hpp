@@ -204,6 +204,31 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
                                          const FlexibilityTableOptions& options = {},
                                          const FlexibilityTableProgressCallback& progress = {});
 
+// Resource limits (docs/RELIABILITY.md "Resource limits"), checked before anything is allocated
+// or built; results never depend on the machine.
+// Build: every node is a wheel–rail normal solve and K2, about 0.1 s at 3000 elements in contact
+// (measured: `flextable build`, 0.04–0.12 s per node), growing about as elements^1.5 (the patch
+// alone: 0.11 s at 12500, 0.77 s at 50000, 6.7 s at 200000 elements). The work of a build is
+// counted in nodes at 3000 elements, nodes × (target_elements / 3000)^1.5, and may not exceed
+// kMaximumFlexibilityTableWork (200000 such nodes, about 5.6 hours).
+inline constexpr double kFlexibilityTableSecondsPerNode = 0.1;
+inline constexpr double kFlexibilityTableReferenceElements = 3000.0;
+inline constexpr double kMaximumFlexibilityTableWork = 200000.0;
+// At most this many y values and loads in a build's grids (10000 × 100).
+inline constexpr std::size_t kMaximumFlexibilityTableYValues = 10000;
+inline constexpr std::size_t kMaximumFlexibilityTableLoads = 100;
+// A table (read from a file or constructed) holds at most this many nodes (y values × loads):
+// twice a build's largest grid, room for the contact-jump brackets. Checked on the sizes of the
+// y and load lists, before the nodes are read.
+inline constexpr double kMaximumFlexibilityTableNodes = 2e6;
+
+// Throws Error (invalid_input) unless a build of y_values × loads nodes at target_elements
+// elements in contact stays within kMaximumFlexibilityTableWork: "flexibility table: 5001 y
+// values × 1 load = 5001 nodes at 200000 elements in contact would take about 64 hours (about
+// 0.1 s per node at 3000 elements, growing as elements^1.5); at most the work of 200000 nodes at
+// 3000 elements (about 5.6 hours) is allowed: …". build_flexibility_table calls it first.
+void check_flexibility_table_work(std::size_t y_values, std::size_t loads, int target_elements);
+
 // y from y_from to y_to (inclusive, within 1e-9 of a step) in steps of y_step (m); throws Error
 // for non-finite values, y_to < y_from, a non-positive step or more than 10000 values.
 std::vector<double> flexibility_table_y_grid(double y_from_m, double y_to_m, double y_step_m);

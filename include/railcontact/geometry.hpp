@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
@@ -302,8 +303,22 @@ struct PotentialContactArea {
   int growth_steps = 0;     // how often the area had to be enlarged
 };
 
+// The largest potential contact area (mesh elements) a normal problem is set up on, and the
+// memory of that problem per element: the wheel–rail normal solve (h, pressures, the CG vectors,
+// the FFT influence products on the doubled grid) measured at about 350 bytes per mesh element
+// (229 MB of peak memory for the whole `railcontact patch --elements 200000`, a 966 x 648 mesh),
+// counted as 400. 4e6 elements are about 1.5 GiB, six times the largest area the allowed
+// target_elements (at most 200000 in contact) normally need. A larger area is refused before
+// anything is allocated (docs/RELIABILITY.md "Resource limits").
+inline constexpr double kMaximumPotentialAreaElements = 4e6;
+inline constexpr double kNormalSolveBytesPerElement = 400.0;
+// The start of the message of that refusal: "potential contact area: a mesh of …".
+inline constexpr std::string_view kPotentialAreaTooLarge = "potential contact area: a mesh of";
+
 // Mesh and h for an approach estimate (m), e.g. Hertz's approach for the local curvatures
-// A_per_m, B_per_m of the contact point (hertz_from_curvatures in hertz.hpp).
+// A_per_m, B_per_m of the contact point (hertz_from_curvatures in hertz.hpp). Throws Error
+// (invalid_input) "potential contact area: a mesh of N1 x N2 = N elements … needs about X GiB …"
+// when the area would need more than kMaximumPotentialAreaElements elements.
 PotentialContactArea potential_contact_area(const WheelRailPair& pair, const WheelRailContactPoint& contact,
                                             double approach_m, const PotentialAreaOptions& options = {});
 

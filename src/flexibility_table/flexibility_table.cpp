@@ -2,6 +2,7 @@
 // (docs/FLEXTABLE.md §2, §4).
 #include "railcontact/flexibility_table.hpp"
 #include "support/file_fingerprint.hpp"
+#include "flexibility_table/table_size.hpp"
 
 #include <fmt/format.h>
 
@@ -58,6 +59,20 @@ void check_node(const FlexibilityTableNode& n, std::size_t index) {
   });
 }
 
+}  // namespace
+
+void check_table_size(std::size_t y_values, std::size_t loads) {
+  const double nodes = static_cast<double>(y_values) * static_cast<double>(loads);
+  require(nodes <= kMaximumFlexibilityTableNodes, [&] {
+    return fmt::format("flexibility table: {} y values × {} loads = {:g} nodes; at most {:g} nodes are read (a build "
+                       "makes at most {} y values, plus the contact-jump brackets, × {} loads)",
+                       y_values, loads, nodes, kMaximumFlexibilityTableNodes, kMaximumFlexibilityTableYValues,
+                       kMaximumFlexibilityTableLoads);
+  });
+}
+
+namespace {
+
 // Interpolation weights of one axis: up to two (index, weight) pairs with non-zero weight.
 struct AxisWeights {
   std::array<std::size_t, 2> index{};
@@ -102,6 +117,7 @@ FlexibilityTable::FlexibilityTable(FlexibilityTableMetadata metadata, std::vecto
       nodes_(std::move(nodes)),
       jumps_(std::move(contact_jumps)) {
   require(!y_m_.empty() && !loads_N_.empty(), "flexibility table: at least one y value and one load are needed");
+  check_table_size(y_m_.size(), loads_N_.size());
   check_increasing(y_m_, "y values");
   check_increasing(loads_N_, "vertical loads");
   require(loads_N_.front() > 0.0, "flexibility table: the vertical loads must be positive");

@@ -21,8 +21,8 @@ namespace railcontact {
 namespace {
 
 constexpr double kMm = 1e-3;
-constexpr std::size_t kMaxYValues = 10000;
-constexpr std::size_t kMaxLoads = 100;
+constexpr std::size_t kMaxYValues = kMaximumFlexibilityTableYValues;
+constexpr std::size_t kMaxLoads = kMaximumFlexibilityTableLoads;
 
 using Clock = std::chrono::steady_clock;
 
@@ -133,6 +133,21 @@ void validate_grid(const std::vector<double>& values, const char* what, std::siz
 
 }  // namespace
 
+void check_flexibility_table_work(std::size_t y_values, std::size_t loads, int target_elements) {
+  const double nodes = static_cast<double>(y_values) * static_cast<double>(loads);
+  const double per_node = std::pow(std::max(1.0, static_cast<double>(target_elements)) / kFlexibilityTableReferenceElements, 1.5);
+  const double work = nodes * per_node;
+  if (work <= kMaximumFlexibilityTableWork) return;
+  const auto hours = [](double node_equivalents) { return node_equivalents * kFlexibilityTableSecondsPerNode / 3600.0; };
+  throw Error(fmt::format(
+      "flexibility table: {} y values × {} load{} = {:g} nodes at {} elements in contact would take about {:.3g} hours "
+      "(about {:g} s per node at {:g} elements, growing as elements^1.5); at most the work of {:g} nodes at {:g} "
+      "elements (about {:.2g} hours) is allowed: use fewer y values or loads, or fewer elements",
+      y_values, loads, loads == 1 ? "" : "s", nodes, target_elements, hours(work), kFlexibilityTableSecondsPerNode,
+      kFlexibilityTableReferenceElements, kMaximumFlexibilityTableWork, kFlexibilityTableReferenceElements,
+      hours(kMaximumFlexibilityTableWork)));
+}
+
 std::vector<double> flexibility_table_y_grid(double y_from_m, double y_to_m, double y_step_m) {
   require(std::isfinite(y_from_m) && std::isfinite(y_to_m) && y_to_m >= y_from_m, [&] {
     return fmt::format("flexibility table: the y range must be finite with y_to >= y_from (got {} ... {} m)", y_from_m,
@@ -157,6 +172,7 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   validate(options);
   validate_grid(y_grid_m, "y", kMaxYValues);
   validate_grid(load_grid_N, "vertical load", kMaxLoads);
+  check_flexibility_table_work(y_grid_m.size(), load_grid_N.size(), options.patch.target_elements);
   require(load_grid_N.front() > 0.0, "flexibility table: the vertical loads must be positive");
   validate(options.patch.material);
   require(options.patch.target_elements >= kMinimumWheelRailElements &&

@@ -13,6 +13,7 @@
 #include "railcontact/text_file.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "support/file_fingerprint.hpp"
+#include "flexibility_table/table_size.hpp"
 
 namespace railcontact {
 namespace {
@@ -25,6 +26,14 @@ constexpr const char* kFormat = "railcontact flexibility table";
 constexpr int kFormatVersion = 2;
 // The largest table file read (a 100 × 20 grid is about 1 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 256u << 20;  // 256 MiB
+
+// A JSON value quoted in a message: a number, string, boolean or null as written, a list or an
+// object by its kind only (dump() recurses once per level of nesting: a value nested a million
+// levels deep, which the parser accepts, overflowed the stack).
+std::string quoted_value(const json& value) {
+  if (value.is_structured()) return value.is_array() ? "a list" : "an object";
+  return printable_excerpt(value.dump());
+}
 
 // Doubles are written with 17 significant digits (nlohmann's default): a round trip is exact.
 json number_or_null(double value, bool solved) { return solved ? json(value) : json(nullptr); }
@@ -163,6 +172,13 @@ json parse_json(const std::string& text, const std::string& source) {
     const std::size_t end = std::min<std::size_t>(e.byte, text.size());
     const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n');
     throw Error(fmt::format("flexibility table {}:{}: malformed JSON (is it a flexibility table?)", source, line));
+  } catch (const json::exception& e) {
+    // A number beyond the range of a double (1e999) is not a parse_error but out_of_range.406
+    // ("number overflow parsing '1e999'"): no value of a table may be infinite.
+    const std::string what = e.what();
+    const std::size_t bracket = what.find("] ");
+    throw Error(fmt::format("flexibility table {}: malformed JSON: {} (a number beyond ±1.8e308 is not finite)", source,
+                            printable_excerpt(bracket == std::string::npos ? what : what.substr(bracket + 2))));
   }
 }
 
@@ -173,7 +189,7 @@ int read_format_version(Reader& r, const json& root) {
   r.get("format");
   const json& version = r.get("format_version");
   if (!version.is_number_integer() || version.get<int>() < 1 || version.get<int>() > kFormatVersion)
-    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", printable_excerpt(version.dump()), kFormatVersion));
+    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", quoted_value(version), kFormatVersion));
   return version.get<int>();
 }
 
@@ -299,6 +315,11 @@ FlexibilityTable parse_flexibility_table(const std::string& text, const std::str
   FlexibilityTableMetadata m = read_metadata(r, version, source);
   std::vector<double> y = r.numbers("y_m");
   std::vector<double> loads = r.numbers("vertical_load_N");
+  try {
+    check_table_size(y.size(), loads.size());  // before the nodes are read
+  } catch (const Error& e) {
+    r.fail(std::string(e.what()).substr(std::string_view("flexibility table: ").size()));
+  }
   std::vector<ContactJump> jumps = read_jumps(r, y, source);
   std::vector<FlexibilityTableNode> nodes = read_nodes(r, source);
   r.finish();

@@ -50,7 +50,12 @@ bool vertical_axis_points_up(const Profile& profile) {
 }  // namespace
 
 Profile read_miniprof_profile(const std::filesystem::path& path, bool auto_vertical) {
-  const auto lines = geometry::read_lines(path);
+  return geometry::parse_miniprof_profile(read_text_file(path, "profile", geometry::kMaxProfileFileBytes), path,
+                                          auto_vertical);
+}
+
+Profile geometry::parse_miniprof_profile(std::string_view bytes, const std::filesystem::path& path, bool auto_vertical) {
+  const auto lines = geometry::split_lines(bytes);
   Profile profile;
   profile.source = path.string();
   const std::string extension = geometry::lower_case(path.extension().string());

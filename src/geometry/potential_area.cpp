@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
 
 #include "geometry/tangent_section.hpp"
 #include "railcontact/error.hpp"
@@ -45,6 +46,25 @@ double x1_reach(const std::function<double(double)>& h, double level, double fir
 struct Interval {
   double lo, hi;
 };
+
+// "1.5 GiB", "37 MiB": a number of bytes for a message.
+std::string bytes_text(double bytes) {
+  if (bytes >= 0.95 * 1024.0 * 1024.0 * 1024.0) return fmt::format("{:.3g} GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  return fmt::format("{:.3g} MiB", bytes / (1024.0 * 1024.0));
+}
+
+// Refuses a mesh of n1 x n2 elements (counted in double: no int overflow) beyond
+// kMaximumPotentialAreaElements, with the memory it would need, before anything is allocated.
+void check_area_size(double n1, double n2, double dx1_m, double dx2_m) {
+  const double elements = n1 * n2;
+  if (elements <= kMaximumPotentialAreaElements) return;
+  throw Error(fmt::format(
+      "{} {:.0f} x {:.0f} = {:.3g} elements of {:.3g} x {:.3g} mm would need about {} for the normal solve (about {:g} "
+      "bytes per element); at most {:.3g} elements ({}) are allowed: use larger elements (fewer elements in contact)",
+      kPotentialAreaTooLarge, n1, n2, elements, dx1_m * 1e3, dx2_m * 1e3,
+      bytes_text(elements * kNormalSolveBytesPerElement), kNormalSolveBytesPerElement, kMaximumPotentialAreaElements,
+      bytes_text(kMaximumPotentialAreaElements * kNormalSolveBytesPerElement)));
+}
 
 }  // namespace
 
@@ -104,14 +124,23 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
   const double dx1 = options.dx1_m > 0.0 ? options.dx1_m : 2.0 * a1 / options.elements_across;
   const double dx2 = options.dx2_m > 0.0 ? options.dx2_m : (patch.hi - patch.lo) / options.elements_across;
 
+  require(std::isfinite(dx1) && std::isfinite(dx2) && dx1 > 0.0 && dx2 > 0.0, [&] {
+    return fmt::format("potential contact area: the element sizes must be positive and finite (got {} x {} m)", dx1, dx2);
+  });
   const int border = options.border_elements;
-  int n1_lo = static_cast<int>(std::ceil(m1 / dx1)) + border;  // elements below x1 = 0
-  int n1_hi = n1_lo;                                            // and above
   const double x2_centre = 0.5 * (margin2.lo + margin2.hi);
-  int n2_lo = static_cast<int>(std::ceil((x2_centre - margin2.lo) / dx2)) + border;
-  int n2_hi = static_cast<int>(std::ceil((margin2.hi - x2_centre) / dx2)) + border;
+  // The counts in double first: tiny elements must be refused, not overflow an int.
+  const double n1_half = std::ceil(m1 / dx1) + border;
+  const double n2_low = std::ceil((x2_centre - margin2.lo) / dx2) + border;
+  const double n2_high = std::ceil((margin2.hi - x2_centre) / dx2) + border;
+  check_area_size(2.0 * n1_half, n2_low + n2_high, dx1, dx2);
+  int n1_lo = static_cast<int>(n1_half);  // elements below x1 = 0
+  int n1_hi = n1_lo;                      // and above
+  int n2_lo = static_cast<int>(n2_low);
+  int n2_hi = static_cast<int>(n2_high);
 
   for (int step = 0;; ++step) {
+    check_area_size(static_cast<double>(n1_lo) + n1_hi, static_cast<double>(n2_lo) + n2_hi, dx1, dx2);
     Mesh mesh;
     mesh.n1 = n1_lo + n1_hi;
     mesh.n2 = n2_lo + n2_hi;

@@ -12,13 +12,16 @@
 namespace railcontact::geometry {
 
 std::vector<NumberedLine> read_lines(const std::filesystem::path& path) {
-  const std::string bytes = read_text_file(path, "profile", kMaxProfileFileBytes);
+  return split_lines(read_text_file(path, "profile", kMaxProfileFileBytes));
+}
+
+std::vector<NumberedLine> split_lines(std::string_view bytes) {
   std::vector<NumberedLine> lines;
   std::size_t number = 0, begin = 0;
   while (begin < bytes.size()) {
     std::size_t end = bytes.find('\n', begin);
     if (end == std::string::npos) end = bytes.size();
-    std::string text = bytes.substr(begin, end - begin);
+    std::string text(bytes.substr(begin, end - begin));
     if (!text.empty() && text.back() == '\r') text.pop_back();
     lines.push_back({++number, std::move(text)});
     begin = end + 1;

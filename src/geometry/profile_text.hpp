@@ -23,6 +23,8 @@ struct NumberedLine {
 // Throws Error(io) "cannot read the profile <file>: ..." if it cannot be read.
 constexpr std::uintmax_t kMaxProfileFileBytes = 16u << 20;  // 16 MiB
 std::vector<NumberedLine> read_lines(const std::filesystem::path& path);
+// The lines of a file's text (\n or \r\n terminated), numbered from 1.
+std::vector<NumberedLine> split_lines(std::string_view bytes);
 
 // Error message prefix and exceptions naming the file (and line).
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& message);
@@ -50,5 +52,13 @@ std::string quoted(std::string_view text);
 void check_profile(const Profile& profile, std::string_view unit_hint);
 // "the numbers are read as millimetres" (1e-3), "... as metres" (1), "... in units of X m".
 std::string length_unit_hint(double length_unit_m);
+
+// The readers of railcontact/geometry.hpp from a file's text (read_*_profile = read_text_file,
+// then parse_*_profile): `path` names the file in messages, and its extension gives a MiniProf
+// profile's kind (.ban rail, .whl wheel). The same checks and errors as the file readers; used by
+// the fuzz targets (fuzz/).
+Profile parse_simpack_profile(std::string_view text, const std::filesystem::path& path);
+Profile parse_miniprof_profile(std::string_view text, const std::filesystem::path& path, bool auto_vertical = true);
+Profile parse_text_profile(std::string_view text, const std::filesystem::path& path, double length_unit_m = 1e-3);
 
 }  // namespace railcontact::geometry

@@ -113,8 +113,8 @@ Section read_section_line(const Path& path, const geometry::NumberedLine& line, 
 }
 
 // The sections of the file ('!' starts a comment), with a point list of at least 4 points.
-SimpackFile read_sections(const Path& path) {
-  const auto lines = geometry::read_lines(path);
+SimpackFile read_sections(const Path& path, std::string_view bytes) {
+  const auto lines = geometry::split_lines(bytes);
   SimpackFile file;
   Section section = Section::none;
   for (const auto& line : lines) {
@@ -243,7 +243,11 @@ std::string unit_hint(const KeyValues& keys) {
 }  // namespace
 
 Profile read_simpack_profile(const std::filesystem::path& path) {
-  SimpackFile file = read_sections(path);
+  return geometry::parse_simpack_profile(read_text_file(path, "profile", geometry::kMaxProfileFileBytes), path);
+}
+
+Profile geometry::parse_simpack_profile(std::string_view bytes, const std::filesystem::path& path) {
+  SimpackFile file = read_sections(path, bytes);
   Profile profile;
   profile.source = path.string();
   read_profile_kind(path, file.header_keys, profile);

@@ -13,7 +13,13 @@ namespace railcontact {
 
 Profile read_text_profile(const std::filesystem::path& path, double length_unit_m) {
   require(std::isfinite(length_unit_m) && length_unit_m > 0.0, "profile: the length unit must be positive");
-  const auto lines = geometry::read_lines(path);
+  return geometry::parse_text_profile(read_text_file(path, "profile", geometry::kMaxProfileFileBytes), path,
+                                      length_unit_m);
+}
+
+Profile geometry::parse_text_profile(std::string_view bytes, const std::filesystem::path& path, double length_unit_m) {
+  require(std::isfinite(length_unit_m) && length_unit_m > 0.0, "profile: the length unit must be positive");
+  const auto lines = geometry::split_lines(bytes);
   Profile profile;
   profile.source = path.string();
   for (const auto& line : lines) {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "railcontact/error.hpp"
 #include "wheel_rail/cropped_patch.hpp"
@@ -158,6 +159,10 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     try {
       s.area = potential_contact_area(pair, r.contact, approach_m, area_options);
     } catch (const Error& e) {
+      // An area too large for the memory is refused as it is, with the mesh size asked for.
+      if (std::string_view(e.what()).starts_with(kPotentialAreaTooLarge))
+        throw Error(fmt::format("wheel-rail patch at {} with target_elements = {} at Fz = {:g} N: {}", where,
+                                options.target_elements, options.vertical_load_N, e.what()));
       throw potential_area_error(pair, r.contact, approach_m, area_options, e, where, options);
     }
     s.normal = solve_normal_contact(s.area.mesh, s.area.h_m, F3, options.material, options.normal);

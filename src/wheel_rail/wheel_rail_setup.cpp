@@ -11,6 +11,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/text_file.hpp"
 #include "railcontact/wheel_rail.hpp"
+#include "wheel_rail/wheel_rail_setup.hpp"
 
 namespace railcontact {
 namespace {
@@ -25,19 +26,27 @@ std::filesystem::path data_directory() {
   return RAILCONTACT_DATA_DIR;
 }
 
+// A JSON value quoted in a message: a number, string, boolean or null as written, a list or an
+// object by its kind only (dump() recurses once per level of nesting: a value nested a million
+// levels deep, which the parser accepts, overflowed the stack).
+std::string quoted_value(const json& value) {
+  if (value.is_structured()) return value.is_array() ? "a list" : "an object";
+  return printable_excerpt(value.dump());
+}
+
 // A length of the set-up file: a finite number.
 double number(const json& object, const char* key, const std::string& where) {
   const auto it = object.find(key);
   if (it == object.end()) throw Error(fmt::format("{}: missing key '{}'", where, key));
   if (!it->is_number() || !std::isfinite(it->get<double>()))
-    throw Error(fmt::format("{}: '{}' must be a finite number (got {})", where, key, printable_excerpt(it->dump())));
+    throw Error(fmt::format("{}: '{}' must be a finite number (got {})", where, key, quoted_value(*it)));
   return it->get<double>();
 }
 
 std::string text(const json& object, const char* key, const std::string& where) {
   const auto it = object.find(key);
   if (it == object.end()) throw Error(fmt::format("{}: missing key '{}'", where, key));
-  if (!it->is_string()) throw Error(fmt::format("{}: '{}' must be a string (got {})", where, key, printable_excerpt(it->dump())));
+  if (!it->is_string()) throw Error(fmt::format("{}: '{}' must be a string (got {})", where, key, quoted_value(*it)));
   return it->get<std::string>();
 }
 
@@ -52,13 +61,22 @@ void refuse_unknown_keys(const json& object, const std::set<std::string>& known,
 std::filesystem::path default_wheel_rail_setup_path() { return data_directory() / "wheel_rail" / "s1002_uic60.json"; }
 
 WheelRailSetup read_wheel_rail_setup(const std::filesystem::path& path) {
+  return wheel_rail::parse_wheel_rail_setup(read_text_file(path, "wheel-rail set-up", kMaxSetupFileBytes), path);
+}
+
+WheelRailSetup wheel_rail::parse_wheel_rail_setup(std::string_view content, const std::filesystem::path& path) {
   const std::string where = "wheel-rail set-up " + path.string();
-  const std::string content = read_text_file(path, "wheel-rail set-up", kMaxSetupFileBytes);
   json root;
   try {
     root = json::parse(content);
   } catch (const json::parse_error& e) {
     throw Error(fmt::format("{}: malformed JSON at byte {}", where, e.byte));
+  } catch (const json::exception& e) {
+    // A number beyond the range of a double (1e999): out_of_range.406, "number overflow parsing …".
+    const std::string what = e.what();
+    const std::size_t bracket = what.find("] ");
+    throw Error(fmt::format("{}: malformed JSON: {} (a number beyond ±1.8e308 is not finite)", where,
+                            printable_excerpt(bracket == std::string::npos ? what : what.substr(bracket + 2))));
   }
   if (!root.is_object()) throw Error(fmt::format("{}: expected a JSON object", where));
   refuse_unknown_keys(root, {"description", "wheel_profile", "rail_profile", "track"}, where);
