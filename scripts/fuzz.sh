@@ -59,7 +59,11 @@ for target in $TARGETS; do
   if [ $rc -ne 0 ]; then
     status=1
     found=$(grep -E 'Test unit written to' "$log" | sed 's/.*Test unit written to //')
-    line="$target: FINDING after $elapsed s (exit $rc): $found"
+    if [ -n "$found" ]; then
+      line="$target: FINDING after $elapsed s (exit $rc): $found"
+    else
+      line="$target: libFuzzer failed after $elapsed s (exit $rc), no input written: $(head -n 3 "$log" | tr '\n' ' ')"
+    fi
   else
     line="$target: $elapsed s, ${execs:-?} executions, $files corpus files; $last"
   fi

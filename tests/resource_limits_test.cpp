@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <string>
 
@@ -140,6 +141,28 @@ TEST(JsonReaders, DeeplyNestedValuesAreQuotedByTheirKind) {
                      "/s/setup.json");
                }),
                {"'track_gauge_m' must be a finite number (got a list)"});
+}
+
+// A contact jump naming the interval 2^64 - 1: interval + 1 wrapped to 0 and passed the bound
+// check, then y[2^64 - 1] was read (UBSan: pointer overflow; found by the flexibility_table fuzz
+// target, fuzz/crashes/flexibility_table/). The constructor had the same check.
+TEST(JsonReaders, AContactJumpBeyondTheGridIsRefusedNotRead) {
+  std::ifstream file(std::string(RAILCONTACT_SOURCE_DIR) + "/fuzz/corpus/flexibility_table/s1002_uic60_3_nodes.json");
+  nlohmann::json table = nlohmann::json::parse(file);
+  table["contact_jumps"] = nlohmann::json::array({nlohmann::json{{"interval", 18446744073709551615ull},
+                                                                 {"y_left_m", 0.0},
+                                                                 {"y_right_m", 0.00025},
+                                                                 {"y_rail_left_m", 0.0},
+                                                                 {"y_rail_right_m", 0.0}}});
+  expect_parts(failure_of([&] { (void)parse_flexibility_table(table.dump(), "t.json"); }),
+               {"flexibility table t.json: contact_jumps[0] does not name an interval of y_m"});
+  table["contact_jumps"] = nlohmann::json::array();
+  const FlexibilityTable good = parse_flexibility_table(table.dump(), "t.json");
+  expect_parts(failure_of([&] {
+                 (void)FlexibilityTable(good.metadata(), good.y_m(), good.vertical_loads_N(), good.nodes(),
+                                        {ContactJump{static_cast<std::size_t>(-1), 0.0, 0.0}});
+               }),
+               {"a contact jump names a missing or repeated y interval"});
 }
 
 }  // namespace

@@ -138,7 +138,7 @@ FlexibilityTable::FlexibilityTable(FlexibilityTableMetadata metadata, std::vecto
   }
   jump_after_.assign(y_m_.size() > 1 ? y_m_.size() - 1 : 0, 0);
   for (const ContactJump& jump : jumps_) {
-    require(jump.interval + 1 < y_m_.size() && jump_after_[jump.interval] == 0,
+    require(jump.interval < jump_after_.size() && jump_after_[jump.interval] == 0,
             "flexibility table: a contact jump names a missing or repeated y interval");
     jump_after_[jump.interval] = 1;
   }

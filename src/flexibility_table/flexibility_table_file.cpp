@@ -253,7 +253,8 @@ std::vector<ContactJump> read_jumps(Reader& r, const std::vector<double>& y, con
     jump.y_rail_left_m = j.number("y_rail_left_m");
     jump.y_rail_right_m = j.number("y_rail_right_m");
     j.finish();
-    if (jump.interval + 1 >= y.size() || y[jump.interval] != left || y[jump.interval + 1] != right)
+    // interval < y.size() - 1, not interval + 1 < y.size(): 18446744073709551615 + 1 wraps to 0.
+    if (y.size() < 2 || jump.interval >= y.size() - 1 || y[jump.interval] != left || y[jump.interval + 1] != right)
       j.fail(fmt::format("contact_jumps[{}] does not name an interval of y_m", k));
     jumps.push_back(jump);
   }
