@@ -5,6 +5,9 @@
 //   BM_WheelsetCold            by position, a fresh Wheelset per evaluation (plans built, no warm start)
 //   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance)
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
+//   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
+// Counters: patches, elements in contact, and the normal solver's iterations per patch of the last
+// evaluation.
 // The argument is y in micrometres; contact search, normal problem and the tangential solver are
 // all included.
 #include <benchmark/benchmark.h>
@@ -33,26 +36,32 @@ WheelsetState loaded_state(double y_m) {
   return s;
 }
 
-WheelsetOptions by_position(TangentialSolver solver = TangentialSolver::nh_fastsim) {
+WheelsetOptions by_position(TangentialSolver solver = TangentialSolver::nh_fastsim, int coarsening = 0) {
   WheelsetOptions o;
   o.loads.reset();
   o.solvers = {solver};
+  o.nh_fastsim.flexibility_coarsening = coarsening;
   return o;
 }
 
 void report(benchmark::State& state, const WheelsetResult& r) {
   std::size_t patches = 0, elements = 0;
+  int iterations = 0;
   for (const WheelResult& w : r.wheels) {
     patches += w.patches.size();
-    for (const WheelsetPatch& p : w.patches) elements += p.elements_in_contact;
+    for (const WheelsetPatch& p : w.patches) {
+      elements += p.elements_in_contact;
+      iterations += p.normal_iterations;
+    }
   }
   state.counters["patches"] = static_cast<double>(patches);
   state.counters["contact_elements"] = static_cast<double>(elements);
+  state.counters["normal_iterations"] = patches > 0 ? static_cast<double>(iterations) / patches : 0.0;
 }
 
-void time_step(benchmark::State& state, TangentialSolver solver) {
+void time_step(benchmark::State& state, TangentialSolver solver, int coarsening = 0) {
   WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
-  Wheelset wheelset(track(), by_position(solver));
+  Wheelset wheelset(track(), by_position(solver, coarsening));
   WheelsetResult r = wheelset.evaluate(s);
   for (auto _ : state) {
     s.position.lateral_displacement_m += 1e-6;
@@ -64,6 +73,7 @@ void time_step(benchmark::State& state, TangentialSolver solver) {
 
 void BM_WheelsetTimeStep(benchmark::State& state) { time_step(state, TangentialSolver::nh_fastsim); }
 void BM_WheelsetStepExact(benchmark::State& state) { time_step(state, TangentialSolver::exact); }
+void BM_WheelsetStepFullK2(benchmark::State& state) { time_step(state, TangentialSolver::nh_fastsim, 1); }
 
 void BM_WheelsetCold(benchmark::State& state) {
   const WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
@@ -93,6 +103,7 @@ BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -134,6 +134,21 @@ TEST(Wheelset, RefusesNonPhysicalStates) {
   WheelsetOptions bad = coarse();
   bad.friction_coefficient = -0.1;
   EXPECT_THROW(Wheelset(track(), bad), Error);
+  // By position, 5 mm into the rail (a height in the wrong unit or frame): refused at once, naming
+  // the overlap, instead of a normal solve that cannot converge.
+  WheelsetOptions by_position = coarse();
+  by_position.loads.reset();
+  Wheelset pressed(track(), by_position);
+  s = state_at(0.0);
+  s.position.vertical_displacement_m = track().touching_vertical_displacement_m(WheelSide::right, s.position) - 5e-3;
+  try {
+    (void)pressed.evaluate(s);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("overlaps its rail by 4.99"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("at most 2 mm is accepted"), std::string::npos) << e.what();
+  }
 }
 
 using test::CommandResult;

@@ -127,18 +127,7 @@ rc_status rc_settings_default(rc_settings* s) {
 
 // ---- Solver ---------------------------------------------------------------------------------
 
-rc_status rc_solver_create(rc_solver** solver) {
-  if (solver == nullptr) return RC_INVALID_INPUT;
-  *solver = nullptr;
-  try {
-    *solver = new rc_solver();
-    return RC_OK;
-  } catch (const std::bad_alloc&) {
-    return RC_OUT_OF_MEMORY;
-  } catch (...) {
-    return RC_INTERNAL;
-  }
-}
+rc_status rc_solver_create(rc_solver** solver) { return railcontact::c_api::create_handle(solver); }
 
 rc_status rc_solver_destroy(rc_solver* solver) {
   delete solver;
@@ -146,8 +135,7 @@ rc_status rc_solver_destroy(rc_solver* solver) {
 }
 
 rc_status rc_solver_last_error(const rc_solver* solver, char* buffer, size_t size, size_t* length) {
-  if (solver == nullptr) return RC_INVALID_INPUT;
-  return railcontact::c_api::copy_message(solver->error.message(), buffer, size, length);
+  return railcontact::c_api::last_error(solver, buffer, size, length);
 }
 
 rc_status rc_solver_set_settings(rc_solver* solver, const rc_settings* settings) {
@@ -345,18 +333,7 @@ rc_status rc_batch_creep_forces(rc_solver* solver, size_t count, const rc_patch*
 
 // ---- Flexibility table ---------------------------------------------------------------------
 
-rc_status rc_flextable_create(rc_flextable** table) {
-  if (table == nullptr) return RC_INVALID_INPUT;
-  *table = nullptr;
-  try {
-    *table = new rc_flextable();
-    return RC_OK;
-  } catch (const std::bad_alloc&) {
-    return RC_OUT_OF_MEMORY;
-  } catch (...) {
-    return RC_INTERNAL;
-  }
-}
+rc_status rc_flextable_create(rc_flextable** table) { return railcontact::c_api::create_handle(table); }
 
 rc_status rc_flextable_destroy(rc_flextable* table) {
   delete table;
@@ -364,8 +341,7 @@ rc_status rc_flextable_destroy(rc_flextable* table) {
 }
 
 rc_status rc_flextable_last_error(const rc_flextable* table, char* buffer, size_t size, size_t* length) {
-  if (table == nullptr) return RC_INVALID_INPUT;
-  return railcontact::c_api::copy_message(table->error.message(), buffer, size, length);
+  return railcontact::c_api::last_error(table, buffer, size, length);
 }
 
 namespace {

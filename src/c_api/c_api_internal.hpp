@@ -73,6 +73,28 @@ rc_status guarded(LastError* error, F&& f) noexcept {
 // Copies a message into a caller's buffer (rc_*_last_error).
 rc_status copy_message(const std::string& message, char* buffer, std::size_t size, std::size_t* length) noexcept;
 
+// rc_*_create: a new handle in *handle (nullptr on failure).
+template <class Handle>
+rc_status create_handle(Handle** handle) noexcept {
+  if (handle == nullptr) return RC_INVALID_INPUT;
+  *handle = nullptr;
+  try {
+    *handle = new Handle();
+    return RC_OK;
+  } catch (const std::bad_alloc&) {
+    return RC_OUT_OF_MEMORY;
+  } catch (...) {
+    return RC_INTERNAL;
+  }
+}
+
+// rc_*_last_error: the handle's last message into the caller's buffer.
+template <class Handle>
+rc_status last_error(const Handle* handle, char* buffer, std::size_t size, std::size_t* length) noexcept {
+  if (handle == nullptr) return RC_INVALID_INPUT;
+  return copy_message(handle->error.message(), buffer, size, length);
+}
+
 // Checks rc_settings field by field (messages name the field, its value and its range).
 void validate_settings(const rc_settings& settings);
 

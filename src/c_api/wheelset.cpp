@@ -322,18 +322,7 @@ rc_status rc_wheelset_state_default(rc_wheelset_state* s) {
   return RC_OK;
 }
 
-rc_status rc_wheelset_create(rc_wheelset** wheelset) {
-  if (wheelset == nullptr) return RC_INVALID_INPUT;
-  *wheelset = nullptr;
-  try {
-    *wheelset = new rc_wheelset();
-    return RC_OK;
-  } catch (const std::bad_alloc&) {
-    return RC_OUT_OF_MEMORY;
-  } catch (...) {
-    return RC_INTERNAL;
-  }
-}
+rc_status rc_wheelset_create(rc_wheelset** wheelset) { return railcontact::c_api::create_handle(wheelset); }
 
 rc_status rc_wheelset_destroy(rc_wheelset* wheelset) {
   delete wheelset;
@@ -341,8 +330,7 @@ rc_status rc_wheelset_destroy(rc_wheelset* wheelset) {
 }
 
 rc_status rc_wheelset_last_error(const rc_wheelset* wheelset, char* buffer, size_t size, size_t* length) {
-  if (wheelset == nullptr) return RC_INVALID_INPUT;
-  return railcontact::c_api::copy_message(wheelset->error.message(), buffer, size, length);
+  return railcontact::c_api::last_error(wheelset, buffer, size, length);
 }
 
 rc_status rc_wheelset_set_default_track(rc_wheelset* w) {

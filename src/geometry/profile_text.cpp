@@ -11,10 +11,6 @@
 
 namespace railcontact::geometry {
 
-std::vector<NumberedLine> read_lines(const std::filesystem::path& path) {
-  return split_lines(read_text_file(path, "profile", kMaxProfileFileBytes));
-}
-
 std::vector<NumberedLine> split_lines(std::string_view bytes) {
   std::vector<NumberedLine> lines;
   std::size_t number = 0, begin = 0;

@@ -19,10 +19,8 @@ struct NumberedLine {
   std::string text;        // without the line terminator (\n, \r\n)
 };
 
-// All lines of a text file (read_text_file: a regular file of at most kMaxProfileFileBytes).
-// Throws Error(io) "cannot read the profile <file>: ..." if it cannot be read.
+// The largest profile file read (read_text_file refuses larger ones before reading).
 constexpr std::uintmax_t kMaxProfileFileBytes = 16u << 20;  // 16 MiB
-std::vector<NumberedLine> read_lines(const std::filesystem::path& path);
 // The lines of a file's text (\n or \r\n terminated), numbered from 1.
 std::vector<NumberedLine> split_lines(std::string_view bytes);
 

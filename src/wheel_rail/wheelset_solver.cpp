@@ -23,6 +23,8 @@ namespace {
 
 constexpr double kMm = 1e-3;
 constexpr int kMaximumLoadIterations = 40;
+// The deepest overlap of the undeformed wheel and rail a patch may have (see solve_normal).
+constexpr double kMaximumOverlap_m = 2e-3;
 constexpr int kMaximumBalanceIterations = 16;
 // Both wheels' heights agree to this when the roll is balanced (one rigid axle).
 constexpr double kHeightTolerance_m = 1e-8;
@@ -38,8 +40,6 @@ constexpr double kBracketTolerance = 1e-5;
 // kFallbackElementsForK2 when the adhesion solve fails, the equivalent ellipse's flexibilities serve.
 constexpr std::size_t kMinimumElementsForK2 = 20;
 constexpr std::size_t kFallbackElementsForK2 = 200;
-
-double dot3(const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 Vector3 combine(const InterpenetrationRegion& r, double F1, double F2, double F3) {
   Vector3 f{};
@@ -135,6 +135,17 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
   const WheelContactSearch search = track.contact_search(side, position, options.search);
   std::vector<NormalPatch> patches;
   for (const InterpenetrationRegion& region : search.regions) {
+    // Bodies pressed this far into each other carry more than the largest normal force accepted
+    // (kMaximumNormalForce_N, 1e7 N: about 2 mm on S1002/UIC60), and the normal solver cannot
+    // resolve it: a position like this is a wrong input (a vertical position in the wrong unit or
+    // frame), refused before any mesh is built.
+    require(region.max_interpenetration_m <= kMaximumOverlap_m, [&] {
+      return fmt::format("wheelset: the {} wheel overlaps its rail by {:.3f} mm at y = {:.3f} mm, z = {:.3f} mm; at "
+                         "most {:g} mm is accepted (about 1e7 N, the largest normal force): check the vertical "
+                         "position z (mm above the nominal height, not the axle height)",
+                         side_name(side), region.max_interpenetration_m / kMm, position.lateral_displacement_m / kMm,
+                         position.vertical_displacement_m / kMm, kMaximumOverlap_m / kMm);
+    });
     NormalPatch p;
     p.region = region;
     p.area = track.potential_contact_area(position, region, options.element_size_m);
@@ -348,18 +359,22 @@ double tangential_vertical_force(const WheelResult& wheel) {
 }
 
 // The wheel's height at which its normal forces carry `target_N` vertically: Newton-like steps on
-// the overlap δ below first touch, F ∝ δ^(3/2) (Hertz) first, then secant steps.
+// the overlap δ below first touch, F ∝ δ^(3/2) (Hertz) first, then secant steps. overlap_m: the
+// first guess of δ in, the δ found out.
 double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition position, double target_N,
-                    const WheelsetOptions& options, double overlap_guess_m, std::vector<NormalPatch>& patches,
+                    const WheelsetOptions& options, double& overlap_m, std::vector<NormalPatch>& patches,
                     int& iterations, detail::WheelsetWarmStart& warm) {
   const double touching = track.touching_vertical_displacement_m(side, position);
-  double delta = overlap_guess_m;
+  double delta = overlap_m;
   double previous_delta = 0.0, previous_force = 0.0;
   for (iterations = 1; iterations <= kMaximumLoadIterations; ++iterations) {
     position.vertical_displacement_m = touching - delta;
     patches = solve_normal(track, side, position, options, warm);
     const double force = normal_vertical_force(patches);
-    if (std::abs(force - target_N) <= options.load_tolerance * target_N) return position.vertical_displacement_m;
+    if (std::abs(force - target_N) <= options.load_tolerance * target_N) {
+      overlap_m = delta;
+      return position.vertical_displacement_m;
+    }
     double next;
     if (!(force > 0.0)) {
       next = 2.0 * delta;
@@ -371,11 +386,12 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
     }
     previous_delta = delta;
     previous_force = force;
-    delta = std::clamp(next, 0.25 * delta, 4.0 * delta);
-    require(delta < 0.01, [&] {
-      return fmt::format("wheelset: the {} wheel would need an overlap of more than 10 mm to carry {:g} N",
-                         side_name(side), target_N);
+    require(delta < kMaximumOverlap_m || force >= target_N, [&] {
+      return fmt::format("wheelset: the {} wheel would need an overlap of more than {:g} mm to carry {:g} N (at "
+                         "{:g} mm it carries {:g} N)",
+                         side_name(side), kMaximumOverlap_m / kMm, target_N, delta / kMm, force);
     });
+    delta = std::min(std::clamp(next, 0.25 * delta, 4.0 * delta), kMaximumOverlap_m);
   }
   throw Error(ErrorKind::not_converged,
               fmt::format("wheelset: the vertical load {:g} N of the {} wheel was not met in {} iterations",
@@ -495,7 +511,6 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
       for (std::size_t k = 0; k < 2; ++k) {
         heights[k] = solve_height(track_, sides[k], state.position, loads[k] - tangential_vertical[k], options_,
                                   overlap[k], normal[k], iterations[k], *warm_);
-        overlap[k] = track_.touching_vertical_displacement_m(sides[k], state.position) - heights[k];
       }
       bool settled = true;
       if (options_.loads->balance_roll) {
