@@ -6,13 +6,20 @@
 //   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance)
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
 //   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
+//   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp): y within
+//                              ±0.5 mm of the argument in 1 µm steps, 98.1 kN per wheel, 2 mrad of
+//                              yaw; the table (0.2 mm elements, y in 0.1 mm steps over ±0.5 mm,
+//                              90/100/110 kN) is built before the timing
 // Counters: patches, elements in contact, and the normal solver's iterations per patch of the last
 // evaluation.
 // The argument is y in micrometres; contact search, normal problem and the tangential solver are
 // all included.
 #include <benchmark/benchmark.h>
 
+#include <vector>
+
 #include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_table.hpp"
 
 namespace {
 
@@ -99,11 +106,30 @@ void BM_WheelsetByLoad(benchmark::State& state) {
   report(state, r);
 }
 
+void BM_WheelsetTable(benchmark::State& state) {
+  const double y0 = static_cast<double>(state.range(0)) * 1e-6;
+  std::vector<double> ys;
+  for (int k = -5; k <= 5; ++k) ys.push_back(y0 + k * 0.1e-3);
+  const WheelsetTable table = build_wheelset_table(track(), ys, {90e3, 100e3, 110e3});
+  WheelsetState s;
+  s.position.yaw_rad = 2e-3;
+  const WheelLoads loads{98.1e3, 98.1e3, false};
+  WheelsetResult r;
+  long step = 0;
+  for (auto _ : state) {
+    s.position.lateral_displacement_m = y0 + static_cast<double>(step++ % 1000 - 500) * 1e-6;
+    r = table.evaluate(s, loads, 0.3);
+    benchmark::DoNotOptimize(r.force_track_N);
+  }
+  report(state, r);
+}
+
 BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetTable)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -25,3 +25,4 @@
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_geometry.hpp"
+#include "railcontact/wheelset_table.hpp"

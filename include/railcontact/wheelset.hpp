@@ -144,6 +144,10 @@ struct PatchSolverResult {
   TangentialSolver solver = TangentialSolver::nh_fastsim;
   TangentialForces forces;  // on the wheel, contact frame; M3 about the centre of pressure
   Vector3 force_track_N{};  // F1 X1 + F2 X2 + F3 X3 on the wheel, track frame
+  // The flexibilities L1-L3 FastSim ran with (m/Pa): nh_fastsim's from K2 of the patch (or the
+  // equivalent ellipse's for a patch too small for K2), fastsim's of the equivalent ellipse
+  // (Eq 9); zero for the exact solvers.
+  Flexibility flexibility{0.0, 0.0, 0.0};
   std::vector<double> p1_Pa, p2_Pa;  // per contact element (keep_tractions)
   std::vector<std::uint8_t> slip;
   double adhesion_fraction = 0.0;
@@ -210,6 +214,10 @@ class Wheelset {
   WheelsetOptions options_;
   std::unique_ptr<detail::WheelsetWarmStart> warm_;
 };
+
+// The wheelset's motion of a state (the rigid-body velocities the kinematic creepages need), with
+// the rolling shortcut resolved at the nominal radius r0 when the wheels' angular velocity is NaN.
+WheelsetMotion wheelset_motion(const WheelsetState& state, double nominal_rolling_radius_m);
 
 // The default wheelset: S1002 on UIC60 1:40 (the shipped set-up), both sides.
 WheelsetTrack default_wheelset_track();

@@ -12,6 +12,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/flexibility_table.hpp"
+#include "flexibility_table/strict_json.hpp"
 
 #ifndef RAILCONTACT_VERSION
 #define RAILCONTACT_VERSION "unknown"
@@ -25,15 +26,6 @@ constexpr std::size_t kMaxYValues = kMaximumFlexibilityTableYValues;
 constexpr std::size_t kMaxLoads = kMaximumFlexibilityTableLoads;
 
 using Clock = std::chrono::steady_clock;
-
-std::string utc_now() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
 
 std::optional<WheelRailContactPoint> try_contact_point(const WheelRailPair& pair, double y_m) {
   try {
@@ -191,7 +183,7 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   metadata.collocation_offset = options.nh_fastsim.collocation_offset;
   metadata.flexibility_coarsening = options.nh_fastsim.flexibility_coarsening;
   metadata.railcontact_version = RAILCONTACT_VERSION;
-  metadata.created_utc = utc_now();
+  metadata.created_utc = detail::utc_now();
 
   // Contact jumps: on the geometry alone (the first-touch point does not depend on the load).
   std::vector<JumpBracket> brackets;

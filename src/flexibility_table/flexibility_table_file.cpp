@@ -14,11 +14,23 @@
 #include "railcontact/flexibility_table.hpp"
 #include "support/file_fingerprint.hpp"
 #include "flexibility_table/table_size.hpp"
+#include "flexibility_table/strict_json.hpp"
 
 namespace railcontact {
 namespace {
 
 using nlohmann::json;
+using detail::StrictJsonReader;
+constexpr const char* kKind = "flexibility table";  // messages read "flexibility table FILE: …"
+
+// A reader of this file's objects.
+StrictJsonReader reader(const json& object, const std::string& path, const std::string& source) {
+  return StrictJsonReader(object, path, source, kKind);
+}
+
+json parse_json(const std::string& text, const std::string& source) {
+  return detail::parse_strict_json(text, source, kKind);
+}
 
 constexpr const char* kFormat = "railcontact flexibility table";
 // Version 2 records the recipe's flexibility coarsening; version-1 tables (built on the full patch,
@@ -26,14 +38,6 @@ constexpr const char* kFormat = "railcontact flexibility table";
 constexpr int kFormatVersion = 2;
 // The largest table file read (a 100 × 20 grid is about 1 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 256u << 20;  // 256 MiB
-
-// A JSON value quoted in a message: a number, string, boolean or null as written, a list or an
-// object by its kind only (dump() recurses once per level of nesting: a value nested a million
-// levels deep, which the parser accepts, overflowed the stack).
-std::string quoted_value(const json& value) {
-  if (value.is_structured()) return value.is_array() ? "a list" : "an object";
-  return printable_excerpt(value.dump());
-}
 
 // Doubles are written with 17 significant digits (nlohmann's default): a round trip is exact.
 json number_or_null(double value, bool solved) { return solved ? json(value) : json(nullptr); }
@@ -57,83 +61,8 @@ json node_json(const FlexibilityTableNode& n) {
               {"elements_in_contact", s ? json(n.elements_in_contact) : json(nullptr)}};
 }
 
-// Strict access to one JSON object: typed getters naming the key, and a check for unknown keys.
-class Reader {
- public:
-  Reader(const json& object, std::string path, const std::string& source) : object_(object), path_(std::move(path)), source_(source) {
-    if (!object_.is_object()) fail(fmt::format("{} must be an object", path_.empty() ? "the file" : path_));
-  }
-
-  [[noreturn]] void fail(const std::string& what) const { throw Error(fmt::format("flexibility table {}: {}", source_, what)); }
-
-  const json& get(const std::string& key) {
-    used_.insert(key);
-    const auto it = object_.find(key);
-    if (it == object_.end()) fail(fmt::format("missing key '{}'", qualified(key)));
-    return *it;
-  }
-  double number(const std::string& key) {
-    const json& v = get(key);
-    if (!v.is_number()) fail(fmt::format("{} must be a number", qualified(key)));
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(fmt::format("{} must be finite", qualified(key)));
-    return x;
-  }
-  std::string string(const std::string& key) {
-    const json& v = get(key);
-    if (!v.is_string()) fail(fmt::format("{} must be a string", qualified(key)));
-    return v.get<std::string>();
-  }
-  std::size_t count(const std::string& key) {
-    const json& v = get(key);
-    if (!v.is_number_unsigned()) fail(fmt::format("{} must be a non-negative whole number", qualified(key)));
-    return v.get<std::size_t>();
-  }
-  std::vector<double> numbers(const std::string& key) {
-    const json& v = get(key);
-    if (!v.is_array()) fail(fmt::format("{} must be a list of numbers", qualified(key)));
-    std::vector<double> values;
-    for (const json& item : v) {
-      if (!item.is_number()) fail(fmt::format("{} must be a list of numbers", qualified(key)));
-      values.push_back(item.get<double>());
-    }
-    return values;
-  }
-  const json& array(const std::string& key) {
-    const json& v = get(key);
-    if (!v.is_array()) fail(fmt::format("{} must be a list", qualified(key)));
-    return v;
-  }
-  [[nodiscard]] std::string qualified(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-  void finish() const {
-    for (const auto& item : object_.items())
-      if (!used_.contains(item.key())) fail(fmt::format("unknown key '{}'", printable_excerpt(qualified(item.key()))));
-  }
-
- private:
-  const json& object_;
-  std::string path_;
-  const std::string& source_;
-  std::set<std::string> used_;
-};
-
-FileFingerprint read_fingerprint(Reader& parent, const std::string& key, const std::string& source) {
-  Reader r(parent.get(key), parent.qualified(key), source);
-  FileFingerprint f;
-  f.file = r.string("file");
-  const std::string hex = r.string("fnv1a64");
-  try {
-    f.fnv1a64 = parse_fnv1a64_hex(hex);
-  } catch (const Error&) {
-    r.fail(fmt::format("{} = \"{}\" is not a 64-bit FNV-1a hash (16 hexadecimal digits)", r.qualified("fnv1a64"),
-                       printable_excerpt(hex)));
-  }
-  r.finish();
-  return f;
-}
-
 FlexibilityTableNode read_node(const json& item, std::size_t index, const std::string& source) {
-  Reader r(item, fmt::format("nodes[{}]", index), source);
+  StrictJsonReader r = reader(item, fmt::format("nodes[{}]", index), source);
   FlexibilityTableNode n;
   n.y_m = r.number("y_m");
   n.vertical_load_N = r.number("vertical_load_N");
@@ -165,63 +94,33 @@ FlexibilityTableNode read_node(const json& item, std::size_t index, const std::s
   return n;
 }
 
-json parse_json(const std::string& text, const std::string& source) {
-  try {
-    return json::parse(text);
-  } catch (const json::parse_error& e) {
-    const std::size_t end = std::min<std::size_t>(e.byte, text.size());
-    const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(end), '\n');
-    throw Error(fmt::format("flexibility table {}:{}: malformed JSON (is it a flexibility table?)", source, line));
-  } catch (const json::exception& e) {
-    // A number beyond the range of a double (1e999) is not a parse_error but out_of_range.406
-    // ("number overflow parsing '1e999'"): no value of a table may be infinite.
-    const std::string what = e.what();
-    const std::size_t bracket = what.find("] ");
-    throw Error(fmt::format("flexibility table {}: malformed JSON: {} (a number beyond ±1.8e308 is not finite)", source,
-                            printable_excerpt(bracket == std::string::npos ? what : what.substr(bracket + 2))));
-  }
-}
-
 // "format" must name a flexibility table; returns "format_version" (1 to kFormatVersion).
-int read_format_version(Reader& r, const json& root) {
+int read_format_version(StrictJsonReader& r, const json& root) {
   if (!root.contains("format") || !root["format"].is_string() || root["format"].get<std::string>() != kFormat)
     r.fail(fmt::format("not a flexibility table (the key 'format' must be \"{}\")", kFormat));
   r.get("format");
   const json& version = r.get("format_version");
   if (!version.is_number_integer() || version.get<int>() < 1 || version.get<int>() > kFormatVersion)
-    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", quoted_value(version), kFormatVersion));
+    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})", detail::quoted_json_value(version), kFormatVersion));
   return version.get<int>();
-}
-
-TrackWheelsetParameters read_track(Reader& parent, const std::string& source) {
-  Reader t(parent.get("track"), "track", source);
-  TrackWheelsetParameters track;
-  track.track_gauge_m = t.number("track_gauge_m");
-  track.gauge_measuring_depth_m = t.number("gauge_measuring_depth_m");
-  track.flange_back_distance_m = t.number("flange_back_distance_m");
-  track.flange_back_y_m = t.number("flange_back_y_m");
-  track.taping_line_from_flange_back_m = t.number("taping_line_from_flange_back_m");
-  track.nominal_rolling_radius_m = t.number("nominal_rolling_radius_m");
-  t.finish();
-  return track;
 }
 
 // The recipe of the table: version, profiles (file and hash), track, material, mesh size,
 // collocation offset, flexibility coarsening (format version 2) and the match of the
 // flexibilities (term by term).
-FlexibilityTableMetadata read_metadata(Reader& r, int version, const std::string& source) {
+FlexibilityTableMetadata read_metadata(StrictJsonReader& r, int version) {
   FlexibilityTableMetadata m;
   m.railcontact_version = r.string("railcontact_version");
   m.created_utc = r.string("created_utc");
   {
-    Reader profiles(r.get("profiles"), "profiles", source);
-    m.wheel_profile = read_fingerprint(profiles, "wheel", source);
-    m.rail_profile = read_fingerprint(profiles, "rail", source);
+    StrictJsonReader profiles = r.child("profiles");
+    m.wheel_profile = detail::read_fingerprint(profiles, "wheel");
+    m.rail_profile = detail::read_fingerprint(profiles, "rail");
     profiles.finish();
   }
-  m.track = read_track(r, source);
+  m.track = detail::read_track_parameters(r, "track");
   {
-    Reader material(r.get("material"), "material", source);
+    StrictJsonReader material = r.child("material");
     m.material.youngs_modulus_Pa = material.number("youngs_modulus_Pa");
     m.material.poisson_ratio = material.number("poisson_ratio");
     material.finish();
@@ -242,11 +141,11 @@ FlexibilityTableMetadata read_metadata(Reader& r, int version, const std::string
 }
 
 // The contact jumps, each naming an interval of the y grid by its index and its two y values.
-std::vector<ContactJump> read_jumps(Reader& r, const std::vector<double>& y, const std::string& source) {
+std::vector<ContactJump> read_jumps(StrictJsonReader& r, const std::vector<double>& y) {
   std::vector<ContactJump> jumps;
   const json& jump_list = r.array("contact_jumps");
   for (std::size_t k = 0; k < jump_list.size(); ++k) {
-    Reader j(jump_list[k], fmt::format("contact_jumps[{}]", k), source);
+    StrictJsonReader j = r.item(jump_list[k], fmt::format("contact_jumps[{}]", k));
     ContactJump jump;
     jump.interval = j.count("interval");
     const double left = j.number("y_left_m"), right = j.number("y_right_m");
@@ -261,7 +160,7 @@ std::vector<ContactJump> read_jumps(Reader& r, const std::vector<double>& y, con
   return jumps;
 }
 
-std::vector<FlexibilityTableNode> read_nodes(Reader& r, const std::string& source) {
+std::vector<FlexibilityTableNode> read_nodes(StrictJsonReader& r, const std::string& source) {
   std::vector<FlexibilityTableNode> nodes;
   const json& node_list = r.array("nodes");
   for (std::size_t k = 0; k < node_list.size(); ++k) nodes.push_back(read_node(node_list[k], k, source));
@@ -288,15 +187,8 @@ std::string flexibility_table_json(const FlexibilityTable& table) {
       {"railcontact_version", m.railcontact_version},
       {"created_utc", m.created_utc},
       {"profiles",
-       {{"wheel", {{"file", m.wheel_profile.file}, {"fnv1a64", fnv1a64_hex(m.wheel_profile.fnv1a64)}}},
-        {"rail", {{"file", m.rail_profile.file}, {"fnv1a64", fnv1a64_hex(m.rail_profile.fnv1a64)}}}}},
-      {"track",
-       {{"track_gauge_m", t.track_gauge_m},
-        {"gauge_measuring_depth_m", t.gauge_measuring_depth_m},
-        {"flange_back_distance_m", t.flange_back_distance_m},
-        {"flange_back_y_m", t.flange_back_y_m},
-        {"taping_line_from_flange_back_m", t.taping_line_from_flange_back_m},
-        {"nominal_rolling_radius_m", t.nominal_rolling_radius_m}}},
+       {{"wheel", detail::fingerprint_json(m.wheel_profile)}, {"rail", detail::fingerprint_json(m.rail_profile)}}},
+      {"track", detail::track_parameters_json(t)},
       {"material", {{"youngs_modulus_Pa", m.material.youngs_modulus_Pa}, {"poisson_ratio", m.material.poisson_ratio}}},
       {"target_elements", m.target_elements},
       {"collocation_offset", m.collocation_offset},
@@ -311,9 +203,9 @@ std::string flexibility_table_json(const FlexibilityTable& table) {
 
 FlexibilityTable parse_flexibility_table(const std::string& text, const std::string& source) {
   const json root = parse_json(text, source);
-  Reader r(root, "", source);
+  StrictJsonReader r = reader(root, "", source);
   const int version = read_format_version(r, root);
-  FlexibilityTableMetadata m = read_metadata(r, version, source);
+  FlexibilityTableMetadata m = read_metadata(r, version);
   std::vector<double> y = r.numbers("y_m");
   std::vector<double> loads = r.numbers("vertical_load_N");
   try {
@@ -321,7 +213,7 @@ FlexibilityTable parse_flexibility_table(const std::string& text, const std::str
   } catch (const Error& e) {
     r.fail(std::string(e.what()).substr(std::string_view("flexibility table: ").size()));
   }
-  std::vector<ContactJump> jumps = read_jumps(r, y, source);
+  std::vector<ContactJump> jumps = read_jumps(r, y);
   std::vector<FlexibilityTableNode> nodes = read_nodes(r, source);
   r.finish();
   try {

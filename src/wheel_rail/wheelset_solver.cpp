@@ -186,9 +186,8 @@ PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& 
           if (patch.elements().count() >= kFallbackElementsForK2) throw;
         }
       }
-      FastSimResult f = nh ? nh->solve(creepage, mu)
-                           : FastSim(patch, options.nh_fastsim.bound)
-                                 .solve(creepage, fastsim_flexibility(a_m, b_m, patch.material()), mu);
+      r.flexibility = nh ? nh->flexibility() : fastsim_flexibility(a_m, b_m, patch.material());
+      FastSimResult f = nh ? nh->solve(creepage, mu) : FastSim(patch, options.nh_fastsim.bound).solve(creepage, r.flexibility, mu);
       r.forces = f.forces;
       if (options.keep_tractions) {
         r.p1_Pa = std::move(f.p1_Pa);
@@ -199,7 +198,8 @@ PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& 
     }
     case TangentialSolver::fastsim: {
       const FastSim classical(patch, TractionBound::parabolic());
-      FastSimResult f = classical.solve(creepage, fastsim_flexibility(a_m, b_m, patch.material()), mu);
+      r.flexibility = fastsim_flexibility(a_m, b_m, patch.material());
+      FastSimResult f = classical.solve(creepage, r.flexibility, mu);
       r.forces = f.forces;
       if (options.keep_tractions) {
         r.p1_Pa = std::move(f.p1_Pa);
@@ -226,7 +226,9 @@ PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& 
   return r;
 }
 
-WheelsetMotion motion_of(const WheelsetState& state, double nominal_radius_m) {
+}  // namespace
+
+WheelsetMotion wheelset_motion(const WheelsetState& state, double nominal_radius_m) {
   const WheelsetVelocity& v = state.velocity;
   WheelsetMotion m;
   m.forward_speed_m_per_s = v.forward_speed_m_per_s;
@@ -243,13 +245,15 @@ WheelsetMotion motion_of(const WheelsetState& state, double nominal_radius_m) {
   return m;
 }
 
+namespace {
+
 // The patches of a wheel with their creepages and tangential solutions.
 WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const WheelsetState& state,
                          std::vector<NormalPatch>& normal, const WheelsetOptions& options) {
   WheelResult wheel;
   wheel.side = side;
   wheel.vertical_displacement_m = state.position.vertical_displacement_m;
-  const WheelsetMotion motion = motion_of(state, track.parameters().nominal_rolling_radius_m);
+  const WheelsetMotion motion = wheelset_motion(state, track.parameters().nominal_rolling_radius_m);
   const Vector3 centre{0.0, state.position.lateral_displacement_m,
                        track.nominal_axle_height_m() + state.position.vertical_displacement_m};
   for (NormalPatch& n : normal) {

@@ -1,0 +1,183 @@
+#pragma once
+// Stage: flexibility table, the wheelset level (docs/WHEELSET_TABLE.md). Everything a wheelset
+// time step needs from its contact, precomputed over the wheelset's lateral displacement y and the
+// wheel load: each wheel's patches (tread, flange, both) with their normal force, reference point,
+// contact angle, rolling radius, nH-FastSim flexibilities and a coarse copy of the patch for
+// FastSim. A step then costs the kinematic creepages and a few FastSim marches on small patches:
+// microseconds instead of the milliseconds of Wheelset::evaluate.
+//
+//   const WheelsetTable table = build_wheelset_table(default_wheelset_track(), y_grid, loads);
+//   WheelsetResult r = table.evaluate(state, {98.1e3, 98.1e3}, 0.3);  // state: position + velocity
+//
+// What a node holds. Node (y, Fz) is Wheelset::evaluate at lateral displacement y, zero yaw and
+// roll, both wheels loaded with Fz (each wheel's height solved for its own load, the frictionless
+// balance: the normal forces carry the load), with nH-FastSim on every patch. Per wheel and patch
+// it keeps the reference point and frame, F3, the flexibilities L1-L3 of nH-FastSim (from K2 on the
+// patch itself) and the patch coarsened to about kWheelsetTableRuntimeElements elements (the
+// pressure of each block of elements summed, so F3 and the centre of pressure are kept).
+//
+// What a lookup does (WheelsetTable::evaluate): for each wheel, the four nodes around (y, Fz of
+// that wheel); on each of their patches the kinematic creepages of the state (its velocities and
+// yaw; the contact point rotated with the yaw), FastSim on the coarse patch with the node's
+// flexibilities and mu, the forces in the track frame; then the forces of the four nodes are
+// interpolated bilinearly in y and Fz. Patches of neighbouring nodes are matched by their position
+// on the rail profile; a patch missing at a node (it appears between two nodes) counts there with
+// zero force, so a flange contact grows from zero. Reference point, angle and creepages of a patch
+// are the weighted average over the nodes that have it.
+//
+// Approximations (measured in docs/WHEELSET_TABLE.md): the geometry is that of zero yaw and roll
+// (the yaw enters the creepages, not the contact point: the flange contact's lead of r tan γ sin ψ
+// is not modelled); the normal problem is frictionless; FastSim runs on the coarse patch.
+#include <cstddef>
+#include <filesystem>
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "railcontact/flexibility_table.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_geometry.hpp"
+
+namespace railcontact {
+
+// FastSim at lookup runs on patches of about this many elements (fewer when the fine patch has
+// fewer): the cost of a lookup against the error of FastSim's discretisation.
+inline constexpr int kWheelsetTableRuntimeElements = 400;
+// Patches of neighbouring nodes are one patch when their reference points lie at most this far
+// apart on the rail profile (tread and flange contacts lie 10 mm and more apart).
+inline constexpr double kWheelsetTablePatchMatchDistance_m = 4e-3;
+
+// One patch of one wheel at one node, in that wheel's own terms (the left wheel's as it is, not
+// mirrored).
+struct WheelsetTablePatch {
+  Vector3 reference_point_track_m{};       // reference point, track frame (y of the node, its height)
+  Vector3 point_from_wheelset_centre_m{};  // the same from the wheelset centre (zero yaw)
+  Vector3 x1_axis{1.0, 0.0, 0.0}, x2_axis{}, x3_axis{};
+  double contact_angle_rad = 0.0;
+  double rolling_radius_m = 0.0;
+  double rail_profile_y_m = 0.0;
+  double wheel_profile_y_m = 0.0;
+  double normal_force_N = 0.0;   // F3
+  double area_m2 = 0.0;          // of the fine patch
+  std::size_t elements_in_contact = 0;  // of the fine patch
+  double max_pressure_Pa = 0.0;
+  // Centre of pressure from the reference point (contact frame).
+  double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;
+  Flexibility flexibility;  // L1-L3 of nH-FastSim on this patch
+  // The coarse patch for FastSim at lookup, in the solve frame (a left wheel's patch mirrored
+  // x2 -> −x2 into a right wheel's frame, as Wheelset solves it), origin at its centre of pressure.
+  // Empty (no elements) for a patch that has overlap but no element in contact yet.
+  Mesh runtime_mesh;
+  std::vector<double> runtime_pressure_Pa;  // per runtime_mesh element
+};
+
+enum class WheelsetTableNodeStatus {
+  solved,  // both wheels' patches are set
+  failed,  // Wheelset::evaluate failed (message): a gap of the table
+};
+
+struct WheelsetTableNode {
+  double y_m = 0.0;
+  double wheel_load_N = 0.0;  // vertical load of each wheel
+  WheelsetTableNodeStatus status = WheelsetTableNodeStatus::solved;
+  std::string message;
+  std::array<std::vector<WheelsetTablePatch>, 2> wheels;  // right, left; patches gauge side first
+  // Each wheel's height as solved for its load (WheelResult::vertical_displacement_m).
+  std::array<double, 2> vertical_displacement_m{0.0, 0.0};
+};
+
+// Where a table came from: the profile files (fingerprints; fnv1a64 = 0 when a profile was not
+// read from a file), the track, the recipe, the version that built it.
+struct WheelsetTableMetadata {
+  FileFingerprint right_wheel_profile, right_rail_profile, left_wheel_profile, left_rail_profile;
+  TrackWheelsetParameters track;
+  double element_size_m = 0.0;
+  int flexibility_coarsening = 0;   // NhFastSimOptions::flexibility_coarsening (0: automatic)
+  double collocation_offset = 0.0;  // NhFastSimOptions::collocation_offset
+  int runtime_elements = 0;
+  std::string railcontact_version;
+  std::string created_utc;
+};
+
+struct WheelsetTableOptions {
+  // The wheelset solver of each node: material, element size, nH-FastSim's recipe, normal solver,
+  // contact search. Its loads, solvers, friction and keep_tractions are set by the build.
+  WheelsetOptions wheelset{};
+  int runtime_elements = kWheelsetTableRuntimeElements;
+};
+
+struct WheelsetTableProgress {
+  std::size_t nodes_done = 0, nodes_total = 0;
+  const WheelsetTableNode* node = nullptr;
+  double node_seconds = 0.0;
+};
+using WheelsetTableProgressCallback = std::function<void(const WheelsetTableProgress&)>;
+
+class WheelsetTable {
+ public:
+  WheelsetTable() = default;
+  // Nodes in y-major order (nodes[iy * loads + iload]). nominal_rolling_radius_m: r0 of the track
+  // the table was built for (pure rolling in WheelsetVelocity's shortcut). Throws Error unless the
+  // grids are finite and strictly increasing (loads positive), each node sits on its grid point,
+  // solved nodes hold finite, plausible values, and r0 > 0.
+  WheelsetTable(std::vector<double> y_m, std::vector<double> wheel_loads_N, std::vector<WheelsetTableNode> nodes,
+                double nominal_rolling_radius_m, Material material, TractionBound bound = {},
+                WheelsetTableMetadata metadata = {});
+
+  [[nodiscard]] const std::vector<double>& y_m() const { return y_m_; }
+  [[nodiscard]] const std::vector<double>& wheel_loads_N() const { return loads_N_; }
+  [[nodiscard]] const std::vector<WheelsetTableNode>& nodes() const { return nodes_; }
+  [[nodiscard]] const WheelsetTableNode& node(std::size_t iy, std::size_t iload) const;
+  [[nodiscard]] double nominal_rolling_radius_m() const { return nominal_rolling_radius_m_; }
+  [[nodiscard]] const Material& material() const { return material_; }
+  [[nodiscard]] TractionBound bound() const { return bound_; }
+  [[nodiscard]] const WheelsetTableMetadata& metadata() const { return metadata_; }
+  // Where the table came from, for messages: the file it was loaded from (empty when built).
+  [[nodiscard]] const std::string& source() const { return source_; }
+  void set_source(std::string source) { source_ = std::move(source); }
+
+  // Throws Error unless the track's four profiles hash as the table's (a profile not read from a
+  // file is compared by name) and its track parameters are the table's.
+  void check_track(const WheelsetTrack& track) const;
+
+  // The wheelset's contact forces at a state: both wheels, every patch, as Wheelset::evaluate
+  // gives them (one solver, nh_fastsim; no tractions; the state's vertical displacement and roll
+  // are not used: each wheel carries its load, loads.balance_roll is ignored). Throws Error
+  // (invalid_input) for a bad state, load or mu, for y or a load outside the table's grid, and
+  // when a node needed is a gap. Thread-safe (const).
+  [[nodiscard]] WheelsetResult evaluate(const WheelsetState& state, const WheelLoads& loads,
+                                        double friction_coefficient) const;
+
+ private:
+  std::vector<double> y_m_;
+  std::vector<double> loads_N_;
+  std::vector<WheelsetTableNode> nodes_;
+  double nominal_rolling_radius_m_ = 0.0;
+  Material material_{};
+  TractionBound bound_{};
+  WheelsetTableMetadata metadata_;
+  std::string source_;
+  // Per node and wheel, FastSim prepared on each patch's coarse copy (parallel to the patches;
+  // empty optional for a patch without elements).
+  std::vector<std::array<std::vector<std::optional<FastSim>>, 2>> runtime_;
+};
+
+// Builds the table over y_grid_m × wheel_loads_N (both strictly increasing). Nodes whose wheelset
+// solve fails are kept as gaps (message), not thrown; throws Error for bad grids or options and
+// when no node can be solved.
+WheelsetTable build_wheelset_table(const WheelsetTrack& track, const std::vector<double>& y_grid_m,
+                                   const std::vector<double>& wheel_loads_N, const WheelsetTableOptions& options = {},
+                                   const WheelsetTableProgressCallback& progress = {});
+
+// The file format (JSON, docs/WHEELSET_TABLE.md §4). save throws Error (io) when the file cannot
+// be written; load throws Error("wheelset table FILE: …") for unreadable or malformed files (the
+// key at fault named).
+void save_wheelset_table(const WheelsetTable& table, const std::filesystem::path& path);
+WheelsetTable load_wheelset_table(const std::filesystem::path& path);
+std::string wheelset_table_json(const WheelsetTable& table);
+WheelsetTable parse_wheelset_table(const std::string& json_text, const std::string& source);
+
+}  // namespace railcontact

@@ -1,0 +1,321 @@
+// The wheelset table at lookup (wheelset_table.hpp, docs/WHEELSET_TABLE.md): the nodes around the
+// state, FastSim on their coarse patches with the state's creepages, bilinear interpolation of the
+// forces.
+#include "railcontact/wheelset_table.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "railcontact/error.hpp"
+
+namespace railcontact {
+namespace {
+
+constexpr double kMm = 1e-3;
+
+bool finite3(const Vector3& v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+void check_grid(const std::vector<double>& grid, const char* name, bool positive) {
+  if (grid.empty()) throw Error(fmt::format("wheelset table: the {} grid is empty", name));
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    if (!std::isfinite(grid[i]) || (positive && grid[i] <= 0.0))
+      throw Error(fmt::format("wheelset table: {}[{}] = {} must be finite{}", name, i, grid[i], positive ? " and positive" : ""));
+    if (i > 0 && grid[i] <= grid[i - 1])
+      throw Error(fmt::format("wheelset table: the {} grid must be strictly increasing ({}[{}] = {} follows {})", name,
+                              name, i, grid[i], grid[i - 1]));
+  }
+}
+
+void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::size_t k) {
+  const auto fail = [&](const char* what) {
+    throw Error(fmt::format("wheelset table: nodes[{}] wheel {} patch {}: {}", node, wheel, k, what));
+  };
+  if (!finite3(p.reference_point_track_m) || !finite3(p.point_from_wheelset_centre_m) || !finite3(p.x1_axis) ||
+      !finite3(p.x2_axis) || !finite3(p.x3_axis))
+    fail("the reference point and frame must be finite");
+  if (!(std::abs(p.contact_angle_rad) <= 1.5)) fail("the contact angle must lie in [-1.5, 1.5] rad");
+  if (!(p.rolling_radius_m > 0.0 && p.rolling_radius_m < 10.0)) fail("the rolling radius must lie in (0, 10) m");
+  if (!std::isfinite(p.rail_profile_y_m) || !std::isfinite(p.wheel_profile_y_m)) fail("profile positions must be finite");
+  if (!(p.normal_force_N >= 0.0 && p.normal_force_N <= kMaximumNormalForce_N))
+    fail("the normal force must lie in [0, 1e7] N");
+  if (!(p.area_m2 >= 0.0 && p.area_m2 < 0.01)) fail("the area must lie in [0, 0.01) m²");
+  if (!(p.max_pressure_Pa >= 0.0 && std::isfinite(p.max_pressure_Pa))) fail("the maximum pressure must be finite, >= 0");
+  if (!std::isfinite(p.pressure_centre_x1_m) || !std::isfinite(p.pressure_centre_x2_m))
+    fail("the centre of pressure must be finite");
+  if (p.runtime_pressure_Pa.empty()) return;  // a patch with overlap but no element in contact
+  const Flexibility& L = p.flexibility;
+  for (double l : {L.L1, L.L2, L.L3})
+    if (!(l > 0.0 && l < 1e-6)) fail("the flexibilities must lie in (0, 1e-6) m/Pa");
+  validate(p.runtime_mesh, 1u << 20);
+  if (p.runtime_pressure_Pa.size() != p.runtime_mesh.size()) fail("the runtime pressure needs one value per mesh element");
+}
+
+// The interval of `grid` holding x and the weight of its upper node; a grid of one value holds
+// only that value.
+struct Bracket {
+  std::size_t lower = 0, upper = 0;
+  double upper_weight = 0.0;
+};
+Bracket bracket(const std::vector<double>& grid, double x, const char* what, const char* unit, double scale) {
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(grid.back() - grid.front()));
+  if (!(x >= grid.front() - tolerance && x <= grid.back() + tolerance)) {
+    throw Error(fmt::format("wheelset table: {} = {:.6g} {} lies outside the table's range [{:.6g}, {:.6g}] {}", what,
+                            x / scale, unit, grid.front() / scale, grid.back() / scale, unit));
+  }
+  Bracket b;
+  if (grid.size() == 1) return b;
+  const auto it = std::upper_bound(grid.begin(), grid.end(), x);
+  b.upper = std::min<std::size_t>(static_cast<std::size_t>(it - grid.begin()), grid.size() - 1);
+  b.lower = b.upper - 1;
+  b.upper_weight = std::clamp((x - grid[b.lower]) / (grid[b.upper] - grid[b.lower]), 0.0, 1.0);
+  return b;
+}
+
+// One patch of the lookup: the contributions of the nodes that have it.
+struct PatchSum {
+  double rail_profile_y_m = 0.0;  // of its first contribution (for matching)
+  std::vector<std::size_t> nodes;  // the nodes that contributed
+  double present_weight = 0.0;     // sum of their weights
+  // Weighted sums (over the nodes present) of the geometry and creepages ...
+  Vector3 reference_point_track_m{}, x1{}, x2{}, x3{};
+  double contact_angle_rad = 0.0, rolling_radius_m = 0.0, wheel_profile_y_m = 0.0, rail_y_sum_m = 0.0;
+  double area_m2 = 0.0, elements = 0.0, max_pressure_Pa = 0.0, centre_x1_m = 0.0, centre_x2_m = 0.0;
+  Creepage creepage{0.0, 0.0, 0.0};
+  Flexibility flexibility{0.0, 0.0, 0.0};
+  // ... and of the forces (a node without the patch counts with zero force).
+  TangentialForces forces{};
+  double normal_force_N = 0.0;
+  Vector3 force_track_N{};
+};
+
+}  // namespace
+
+WheelsetTable::WheelsetTable(std::vector<double> y_m, std::vector<double> wheel_loads_N,
+                             std::vector<WheelsetTableNode> nodes, double nominal_rolling_radius_m, Material material,
+                             TractionBound bound, WheelsetTableMetadata metadata)
+    : y_m_(std::move(y_m)),
+      loads_N_(std::move(wheel_loads_N)),
+      nodes_(std::move(nodes)),
+      nominal_rolling_radius_m_(nominal_rolling_radius_m),
+      material_(material),
+      bound_(bound),
+      metadata_(std::move(metadata)) {
+  check_grid(y_m_, "y", false);
+  check_grid(loads_N_, "wheel load", true);
+  if (!(nominal_rolling_radius_m_ > 0.0 && nominal_rolling_radius_m_ < 10.0))
+    throw Error(fmt::format("wheelset table: the nominal rolling radius {} m must lie in (0, 10) m", nominal_rolling_radius_m_));
+  if (nodes_.size() != y_m_.size() * loads_N_.size())
+    throw Error(fmt::format("wheelset table: {} nodes for {} y values × {} loads", nodes_.size(), y_m_.size(), loads_N_.size()));
+  runtime_.resize(nodes_.size());
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    const WheelsetTableNode& node = nodes_[n];
+    const double y = y_m_[n / loads_N_.size()], load = loads_N_[n % loads_N_.size()];
+    if (std::abs(node.y_m - y) > 1e-12 || std::abs(node.wheel_load_N - load) > 1e-9 * load)
+      throw Error(fmt::format("wheelset table: nodes[{}] (y = {} m, load {} N) is not on its grid point (y = {} m, load {} N)",
+                              n, node.y_m, node.wheel_load_N, y, load));
+    if (node.status != WheelsetTableNodeStatus::solved) continue;
+    for (int w = 0; w < 2; ++w) {
+      if (!std::isfinite(node.vertical_displacement_m[w]))
+        throw Error(fmt::format("wheelset table: nodes[{}] wheel {}: the vertical displacement must be finite", n, w));
+      for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
+        const WheelsetTablePatch& p = node.wheels[w][k];
+        check_patch(p, n, w, k);
+        if (p.runtime_pressure_Pa.empty()) {
+          runtime_[n][w].emplace_back();
+        } else {
+          runtime_[n][w].emplace_back(FastSim(ContactPatch(p.runtime_mesh, p.runtime_pressure_Pa, material_), bound_));
+        }
+      }
+    }
+  }
+}
+
+const WheelsetTableNode& WheelsetTable::node(std::size_t iy, std::size_t iload) const {
+  if (iy >= y_m_.size() || iload >= loads_N_.size())
+    throw Error(fmt::format("wheelset table: node ({}, {}) outside the {} × {} grid", iy, iload, y_m_.size(), loads_N_.size()));
+  return nodes_[iy * loads_N_.size() + iload];
+}
+
+void WheelsetTable::check_track(const WheelsetTrack& track) const {
+  const std::string name = source_.empty() ? "the wheelset table" : "wheelset table " + source_;
+  const auto check = [&](const FileFingerprint& recorded, const std::string& source, const char* which) {
+    FileFingerprint actual{source, 0};
+    try {
+      actual = file_fingerprint(source);
+    } catch (const Error&) {  // not a file: compared by name
+    }
+    const bool same = recorded.fnv1a64 != 0 ? actual.fnv1a64 == recorded.fnv1a64 : actual.file == recorded.file;
+    if (!same)
+      throw Error(fmt::format("{} was built for another {} profile ({}, FNV-1a {}), not {} (FNV-1a {})", name, which,
+                              recorded.file, recorded.hash_hex(), source, actual.hash_hex()));
+  };
+  check(metadata_.right_wheel_profile, track.pair(WheelSide::right).wheel().source(), "right wheel");
+  check(metadata_.right_rail_profile, track.pair(WheelSide::right).rail().source(), "right rail");
+  check(metadata_.left_wheel_profile, track.pair(WheelSide::left).wheel().source(), "left wheel");
+  check(metadata_.left_rail_profile, track.pair(WheelSide::left).rail().source(), "left rail");
+  const TrackWheelsetParameters& a = metadata_.track;
+  const TrackWheelsetParameters& b = track.parameters();
+  if (a.track_gauge_m != b.track_gauge_m || a.gauge_measuring_depth_m != b.gauge_measuring_depth_m ||
+      a.flange_back_distance_m != b.flange_back_distance_m || a.flange_back_y_m != b.flange_back_y_m ||
+      a.taping_line_from_flange_back_m != b.taping_line_from_flange_back_m ||
+      a.nominal_rolling_radius_m != b.nominal_rolling_radius_m)
+    throw Error(fmt::format("{} was built for other track parameters (gauge {} m, flange-back distance {} m, nominal "
+                            "rolling radius {} m)",
+                            name, a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m));
+}
+
+WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLoads& loads,
+                                       double friction_coefficient) const {
+  if (nodes_.empty()) throw Error("wheelset table: the table is empty");
+  if (!(friction_coefficient > 0.0 && std::isfinite(friction_coefficient)))
+    throw Error(fmt::format("wheelset table: the friction coefficient {} must be positive and finite", friction_coefficient));
+  const WheelsetPosition& position = state.position;
+  if (!std::isfinite(position.lateral_displacement_m) || !std::isfinite(position.yaw_rad) ||
+      !(std::abs(position.yaw_rad) <= 0.1))
+    throw Error(fmt::format("wheelset table: the lateral displacement {} m and yaw {} rad must be finite, |yaw| <= 0.1 rad",
+                            position.lateral_displacement_m, position.yaw_rad));
+  const WheelsetMotion motion = wheelset_motion(state, nominal_rolling_radius_m_);
+  const Bracket by = bracket(y_m_, position.lateral_displacement_m, "the lateral displacement y", "mm", kMm);
+  const double cos_yaw = std::cos(position.yaw_rad), sin_yaw = std::sin(position.yaw_rad);
+
+  WheelsetResult result;
+  result.state = state;
+  for (int w = 0; w < 2; ++w) {
+    const WheelSide side = w == 0 ? WheelSide::right : WheelSide::left;
+    const double load = w == 0 ? loads.right_N : loads.left_N;
+    if (!(load > 0.0 && std::isfinite(load)))
+      throw Error(fmt::format("wheelset table: the {} wheel's load {} N must be positive and finite", side_name(side), load));
+    const Bracket bl = bracket(loads_N_, load, fmt::format("the {} wheel's load", side_name(side)).c_str(), "kN", 1e3);
+    const std::size_t corner_y[4] = {by.lower, by.upper, by.lower, by.upper};
+    const std::size_t corner_l[4] = {bl.lower, bl.lower, bl.upper, bl.upper};
+    const double corner_w[4] = {(1 - by.upper_weight) * (1 - bl.upper_weight), by.upper_weight * (1 - bl.upper_weight),
+                                (1 - by.upper_weight) * bl.upper_weight, by.upper_weight * bl.upper_weight};
+    const double s2 = side == WheelSide::left ? -1.0 : 1.0;  // the solve frame mirrors a left wheel
+    std::vector<PatchSum> sums;
+    WheelResult& wheel = result.wheels[w];
+    wheel.side = side;
+    for (int c = 0; c < 4; ++c) {
+      const double weight = corner_w[c];
+      if (weight <= 0.0) continue;
+      const std::size_t n = corner_y[c] * loads_N_.size() + corner_l[c];
+      const WheelsetTableNode& node = nodes_[n];
+      if (node.status != WheelsetTableNodeStatus::solved)
+        throw Error(fmt::format("wheelset table: the node at y = {:.4g} mm, load {:.4g} kN is a gap ({})", node.y_m / kMm,
+                                node.wheel_load_N / 1e3, node.message));
+      wheel.vertical_displacement_m += weight * node.vertical_displacement_m[w];
+      for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
+        const WheelsetTablePatch& p = node.wheels[w][k];
+        // The contact point turns with the wheelset's yaw; the contact frame stays the rail's.
+        const Vector3& r0 = p.point_from_wheelset_centre_m;
+        ContactFrame frame;
+        frame.point_from_wheelset_centre_m = {cos_yaw * r0[0] - sin_yaw * r0[1], sin_yaw * r0[0] + cos_yaw * r0[1], r0[2]};
+        frame.x1 = p.x1_axis;
+        frame.x2 = p.x2_axis;
+        frame.x3 = p.x3_axis;
+        const Creepage creepage = kinematic_creepage(motion, frame);
+        TangentialForces forces{};
+        if (const std::optional<FastSim>& fastsim = runtime_[n][w][k]) {
+          // In the solve frame (x2 -> −x2 for a left wheel), at the coarse patch's centre of pressure.
+          const Creepage c_solve{creepage.xi, s2 * creepage.eta, s2 * creepage.phi};
+          const double x2c = s2 * p.pressure_centre_x2_m;
+          const Creepage at_centre{c_solve.xi - c_solve.phi * x2c, c_solve.eta + c_solve.phi * p.pressure_centre_x1_m,
+                                   c_solve.phi};
+          forces = fastsim->forces(at_centre, p.flexibility, friction_coefficient);
+          forces.F2_N *= s2;
+          forces.M3_Nm *= s2;
+        }
+        // Match: the patch of another node at nearly the same place on the rail profile.
+        PatchSum* sum = nullptr;
+        for (PatchSum& s : sums) {
+          if (std::abs(s.rail_profile_y_m - p.rail_profile_y_m) <= kWheelsetTablePatchMatchDistance_m &&
+              std::find(s.nodes.begin(), s.nodes.end(), n) == s.nodes.end()) {
+            sum = &s;
+            break;
+          }
+        }
+        if (sum == nullptr) {
+          sums.emplace_back();
+          sum = &sums.back();
+          sum->rail_profile_y_m = p.rail_profile_y_m;
+        }
+        sum->nodes.push_back(n);
+        sum->present_weight += weight;
+        for (int i = 0; i < 3; ++i) {
+          sum->reference_point_track_m[i] += weight * p.reference_point_track_m[i];
+          sum->x1[i] += weight * p.x1_axis[i];
+          sum->x2[i] += weight * p.x2_axis[i];
+          sum->x3[i] += weight * p.x3_axis[i];
+          sum->force_track_N[i] +=
+              weight * (forces.F1_N * p.x1_axis[i] + forces.F2_N * p.x2_axis[i] + p.normal_force_N * p.x3_axis[i]);
+        }
+        sum->contact_angle_rad += weight * p.contact_angle_rad;
+        sum->rolling_radius_m += weight * p.rolling_radius_m;
+        sum->wheel_profile_y_m += weight * p.wheel_profile_y_m;
+        sum->rail_y_sum_m += weight * p.rail_profile_y_m;
+        sum->area_m2 += weight * p.area_m2;
+        sum->elements += weight * static_cast<double>(p.elements_in_contact);
+        sum->max_pressure_Pa += weight * p.max_pressure_Pa;
+        sum->centre_x1_m += weight * p.pressure_centre_x1_m;
+        sum->centre_x2_m += weight * p.pressure_centre_x2_m;
+        sum->creepage.xi += weight * creepage.xi;
+        sum->creepage.eta += weight * creepage.eta;
+        sum->creepage.phi += weight * creepage.phi;
+        sum->flexibility.L1 += weight * p.flexibility.L1;
+        sum->flexibility.L2 += weight * p.flexibility.L2;
+        sum->flexibility.L3 += weight * p.flexibility.L3;
+        sum->forces.F1_N += weight * forces.F1_N;
+        sum->forces.F2_N += weight * forces.F2_N;
+        sum->forces.M3_Nm += weight * forces.M3_Nm;
+        sum->normal_force_N += weight * p.normal_force_N;
+      }
+    }
+    // The patches, gauge side first, each from its sums.
+    std::sort(sums.begin(), sums.end(), [](const PatchSum& a, const PatchSum& b) {
+      return a.rail_y_sum_m / a.present_weight < b.rail_y_sum_m / b.present_weight;
+    });
+    for (const PatchSum& s : sums) {
+      const double g = 1.0 / s.present_weight;  // averages over the nodes present
+      WheelsetPatch patch;
+      patch.side = side;
+      InterpenetrationRegion& region = patch.region;
+      region.side = side;
+      for (int i = 0; i < 3; ++i) region.reference_point_track_m[i] = g * s.reference_point_track_m[i];
+      // The reference point moves with the wheelset's yaw about its centre (0, y, ·).
+      const double rx = region.reference_point_track_m[0], ry = region.reference_point_track_m[1] - position.lateral_displacement_m;
+      region.reference_point_track_m[0] = cos_yaw * rx - sin_yaw * ry;
+      region.reference_point_track_m[1] = position.lateral_displacement_m + sin_yaw * rx + cos_yaw * ry;
+      const auto unit = [](const Vector3& v) {
+        const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        return Vector3{v[0] / n, v[1] / n, v[2] / n};
+      };
+      region.x1_axis = unit(s.x1);
+      region.x2_axis = unit(s.x2);
+      region.x3_axis = unit(s.x3);
+      region.rail_profile_y_m = g * s.rail_y_sum_m;
+      region.wheel_profile_y_m = g * s.wheel_profile_y_m;
+      region.contact_angle_rad = g * s.contact_angle_rad;
+      region.rolling_radius_m = g * s.rolling_radius_m;
+      patch.creepage = Creepage{g * s.creepage.xi, g * s.creepage.eta, g * s.creepage.phi};
+      patch.normal_force_N = s.normal_force_N;
+      patch.area_m2 = s.area_m2;
+      patch.elements_in_contact = static_cast<std::size_t>(std::lround(s.elements));
+      patch.max_pressure_Pa = s.max_pressure_Pa;
+      patch.pressure_centre_x1_m = g * s.centre_x1_m;
+      patch.pressure_centre_x2_m = g * s.centre_x2_m;
+      PatchSolverResult r;
+      r.solver = TangentialSolver::nh_fastsim;
+      r.forces = s.forces;
+      r.force_track_N = s.force_track_N;
+      r.flexibility = Flexibility{g * s.flexibility.L1, g * s.flexibility.L2, g * s.flexibility.L3};
+      patch.solvers.push_back(r);
+      for (int i = 0; i < 3; ++i) wheel.force_track_N[i] += s.force_track_N[i];
+      wheel.patches.push_back(std::move(patch));
+    }
+    for (int i = 0; i < 3; ++i) result.force_track_N[i] += wheel.force_track_N[i];
+  }
+  return result;
+}
+
+}  // namespace railcontact

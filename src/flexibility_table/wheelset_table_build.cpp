@@ -1,0 +1,155 @@
+// Building a wheelset table (wheelset_table.hpp, docs/WHEELSET_TABLE.md): Wheelset::evaluate at
+// every node of the (y, wheel load) grid, each patch kept with its flexibilities and a coarse copy.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset_table.hpp"
+#include "flexibility_table/strict_json.hpp"
+
+#ifndef RAILCONTACT_VERSION
+#define RAILCONTACT_VERSION "unknown"
+#endif
+
+namespace railcontact {
+namespace {
+
+// The largest table a build accepts: about 0.2 s per node at 0.2 mm elements (a wheelset solve by
+// load), so 20000 nodes are about an hour.
+constexpr std::size_t kMaximumWheelsetTableNodes = 20000;
+
+// The coarse copy of a patch for FastSim at lookup: blocks of factor × factor elements, the largest
+// factor (at most kMaximumCoarsening) that leaves about `target` elements.
+int runtime_coarsening(const ContactPatch& fine, int target) {
+  const double ratio = static_cast<double>(fine.elements().count()) / std::max(1, target);
+  return std::clamp(static_cast<int>(std::floor(std::sqrt(std::max(1.0, ratio)))), 1, kMaximumCoarsening);
+}
+
+WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre, WheelSide side, int runtime_elements) {
+  WheelsetTablePatch t;
+  const InterpenetrationRegion& region = patch.region;
+  t.reference_point_track_m = region.reference_point_track_m;
+  for (int i = 0; i < 3; ++i) t.point_from_wheelset_centre_m[i] = region.reference_point_track_m[i] - centre[i];
+  t.x1_axis = region.x1_axis;
+  t.x2_axis = region.x2_axis;
+  t.x3_axis = region.x3_axis;
+  t.contact_angle_rad = region.contact_angle_rad;
+  t.rolling_radius_m = region.rolling_radius_m;
+  t.rail_profile_y_m = region.rail_profile_y_m;
+  t.wheel_profile_y_m = region.wheel_profile_y_m;
+  t.normal_force_N = patch.normal_force_N;
+  t.area_m2 = patch.area_m2;
+  t.elements_in_contact = patch.elements_in_contact;
+  t.max_pressure_Pa = patch.max_pressure_Pa;
+  t.pressure_centre_x1_m = patch.pressure_centre_x1_m;
+  t.pressure_centre_x2_m = patch.pressure_centre_x2_m;
+  t.flexibility = patch.solvers.front().flexibility;
+  if (patch.elements_in_contact == 0) return t;  // overlap, no element in contact yet
+  // The kept patch is in the solve frame (mirrored for a left wheel) with its origin at the centre
+  // of pressure; the coarse copy is re-centred on its own, a fraction of an element away.
+  const int factor = runtime_coarsening(patch.patch, runtime_elements);
+  const ContactPatch coarse = coarsened(patch.patch, factor);
+  if (factor > 1) {  // the coarse patch's centre of pressure, measured from the fine one's
+    const double s2 = side == WheelSide::left ? -1.0 : 1.0;
+    t.pressure_centre_x1_m -= coarse.x1_shift_m();
+    t.pressure_centre_x2_m -= s2 * coarse.x2_shift_m();
+  }
+  t.runtime_mesh = coarse.mesh();
+  t.runtime_pressure_Pa.assign(coarse.mesh().size(), 0.0);
+  const std::vector<std::size_t>& indices = coarse.elements().indices();
+  for (std::size_t e = 0; e < indices.size(); ++e) t.runtime_pressure_Pa[indices[e]] = coarse.pressure_Pa()[e];
+  return t;
+}
+
+}  // namespace
+
+WheelsetTable build_wheelset_table(const WheelsetTrack& track, const std::vector<double>& y_grid_m,
+                                   const std::vector<double>& wheel_loads_N, const WheelsetTableOptions& options,
+                                   const WheelsetTableProgressCallback& progress) {
+  if (y_grid_m.size() * wheel_loads_N.size() > kMaximumWheelsetTableNodes || y_grid_m.empty() || wheel_loads_N.empty()) {
+    throw Error(fmt::format("wheelset table: {} y values × {} loads = {} nodes; from 1 to {} nodes are allowed (about "
+                            "0.2 s each)",
+                            y_grid_m.size(), wheel_loads_N.size(), y_grid_m.size() * wheel_loads_N.size(),
+                            kMaximumWheelsetTableNodes));
+  }
+  if (!(options.runtime_elements >= 20 && options.runtime_elements <= 100000))
+    throw Error(fmt::format("wheelset table: runtime_elements = {} must lie in [20, 100000]", options.runtime_elements));
+  WheelsetOptions wheelset_options = options.wheelset;
+  wheelset_options.solvers = {TangentialSolver::nh_fastsim};
+  wheelset_options.keep_tractions = true;
+  wheelset_options.tangential_forces_in_vertical_balance = false;
+  wheelset_options.allow_wheel_lift = false;
+  validate(wheelset_options);
+
+  std::vector<WheelsetTableNode> nodes(y_grid_m.size() * wheel_loads_N.size());
+  // One wheelset per load: along y its warm start carries over from node to node.
+  std::vector<Wheelset> wheelsets;
+  for (double load : wheel_loads_N) {
+    WheelsetOptions o = wheelset_options;
+    o.loads = WheelLoads{load, load, false};
+    wheelsets.emplace_back(track, o);
+  }
+  std::size_t solved = 0;
+  std::string first_failure;
+  for (std::size_t iy = 0; iy < y_grid_m.size(); ++iy) {
+    for (std::size_t il = 0; il < wheel_loads_N.size(); ++il) {
+      const auto start = std::chrono::steady_clock::now();
+      WheelsetTableNode& node = nodes[iy * wheel_loads_N.size() + il];
+      node.y_m = y_grid_m[iy];
+      node.wheel_load_N = wheel_loads_N[il];
+      WheelsetState state;
+      state.position.lateral_displacement_m = node.y_m;
+      try {
+        const WheelsetResult r = wheelsets[il].evaluate(state);
+        for (int w = 0; w < 2; ++w) {
+          const WheelResult& wheel = r.wheels[w];
+          node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
+          const Vector3 centre{0.0, node.y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
+          for (const WheelsetPatch& p : wheel.patches)
+            node.wheels[w].push_back(table_patch(p, centre, wheel.side, options.runtime_elements));
+        }
+        ++solved;
+      } catch (const Error& e) {
+        node.status = WheelsetTableNodeStatus::failed;
+        node.message = e.what();
+        node.wheels = {};
+        if (first_failure.empty()) first_failure = node.message;
+      }
+      if (progress) {
+        WheelsetTableProgress p;
+        p.nodes_done = iy * wheel_loads_N.size() + il + 1;
+        p.nodes_total = nodes.size();
+        p.node = &node;
+        p.node_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        progress(p);
+      }
+    }
+  }
+  WheelsetTableMetadata metadata;
+  const auto fingerprint = [](const std::string& source) {
+    try {
+      return file_fingerprint(source);
+    } catch (const Error&) {
+      return FileFingerprint{source, 0};  // not read from a file (profile arrays)
+    }
+  };
+  metadata.right_wheel_profile = fingerprint(track.pair(WheelSide::right).wheel().source());
+  metadata.right_rail_profile = fingerprint(track.pair(WheelSide::right).rail().source());
+  metadata.left_wheel_profile = fingerprint(track.pair(WheelSide::left).wheel().source());
+  metadata.left_rail_profile = fingerprint(track.pair(WheelSide::left).rail().source());
+  metadata.track = track.parameters();
+  metadata.element_size_m = wheelset_options.element_size_m;
+  metadata.flexibility_coarsening = wheelset_options.nh_fastsim.flexibility_coarsening;
+  metadata.collocation_offset = wheelset_options.nh_fastsim.collocation_offset;
+  metadata.runtime_elements = options.runtime_elements;
+  metadata.railcontact_version = RAILCONTACT_VERSION;
+  metadata.created_utc = detail::utc_now();
+  if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));
+  return WheelsetTable(y_grid_m, wheel_loads_N, std::move(nodes), track.parameters().nominal_rolling_radius_m,
+                       wheelset_options.material, wheelset_options.nh_fastsim.bound, std::move(metadata));
+}
+
+}  // namespace railcontact

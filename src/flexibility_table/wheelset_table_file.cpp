@@ -1,0 +1,262 @@
+// The wheelset-table file (docs/WHEELSET_TABLE.md §4): one JSON object, every field documented;
+// read strictly (unknown keys, missing keys and wrong types are errors naming the key).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "flexibility_table/strict_json.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
+#include "railcontact/wheelset_table.hpp"
+
+namespace railcontact {
+namespace {
+
+using detail::StrictJsonReader;
+using nlohmann::json;
+
+constexpr const char* kKind = "wheelset table";
+constexpr const char* kFormat = "railcontact wheelset table";
+constexpr int kFormatVersion = 1;
+// The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
+constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
+// At most this many nodes (as a build makes) and elements per runtime mesh.
+constexpr std::size_t kMaxNodes = 20000;
+constexpr std::size_t kMaxRuntimeMeshElements = 1u << 20;
+
+json vector3(const Vector3& v) { return json::array({v[0], v[1], v[2]}); }
+
+json patch_json(const WheelsetTablePatch& p) {
+  const Mesh& m = p.runtime_mesh;
+  return json{{"reference_point_track_m", vector3(p.reference_point_track_m)},
+              {"point_from_wheelset_centre_m", vector3(p.point_from_wheelset_centre_m)},
+              {"x1_axis", vector3(p.x1_axis)},
+              {"x2_axis", vector3(p.x2_axis)},
+              {"x3_axis", vector3(p.x3_axis)},
+              {"contact_angle_rad", p.contact_angle_rad},
+              {"rolling_radius_m", p.rolling_radius_m},
+              {"rail_profile_y_m", p.rail_profile_y_m},
+              {"wheel_profile_y_m", p.wheel_profile_y_m},
+              {"normal_force_N", p.normal_force_N},
+              {"area_m2", p.area_m2},
+              {"elements_in_contact", p.elements_in_contact},
+              {"max_pressure_Pa", p.max_pressure_Pa},
+              {"pressure_centre_x1_m", p.pressure_centre_x1_m},
+              {"pressure_centre_x2_m", p.pressure_centre_x2_m},
+              {"flexibility_m_per_Pa", json::array({p.flexibility.L1, p.flexibility.L2, p.flexibility.L3})},
+              {"runtime_mesh",
+               {{"n1", m.n1}, {"n2", m.n2}, {"dx1_m", m.dx1_m}, {"dx2_m", m.dx2_m}, {"x1_first_m", m.x1_first_m},
+                {"x2_first_m", m.x2_first_m}}},
+              {"runtime_pressure_Pa", p.runtime_pressure_Pa}};
+}
+
+json node_json(const WheelsetTableNode& n) {
+  json wheels = json::array();
+  for (const auto& wheel : n.wheels) {
+    json patches = json::array();
+    for (const WheelsetTablePatch& p : wheel) patches.push_back(patch_json(p));
+    wheels.push_back(patches);
+  }
+  return json{{"y_m", n.y_m},
+              {"wheel_load_N", n.wheel_load_N},
+              {"status", n.status == WheelsetTableNodeStatus::solved ? "solved" : "failed"},
+              {"message", n.message},
+              {"vertical_displacement_m", json::array({n.vertical_displacement_m[0], n.vertical_displacement_m[1]})},
+              {"wheels", wheels}};
+}
+
+Vector3 read_vector3(StrictJsonReader& r, const std::string& key) {
+  const std::vector<double> v = r.numbers(key);
+  if (v.size() != 3) r.fail(fmt::format("{} must be a list of 3 numbers", r.qualified(key)));
+  for (double x : v)
+    if (!std::isfinite(x)) r.fail(fmt::format("{} must be finite", r.qualified(key)));
+  return {v[0], v[1], v[2]};
+}
+
+int read_int(StrictJsonReader& r, const std::string& key, int lo, int hi) {
+  const std::size_t n = r.count(key);
+  if (n < static_cast<std::size_t>(lo) || n > static_cast<std::size_t>(hi))
+    r.fail(fmt::format("{} = {} must lie in [{}, {}]", r.qualified(key), n, lo, hi));
+  return static_cast<int>(n);
+}
+
+WheelsetTablePatch read_patch(StrictJsonReader r) {
+  WheelsetTablePatch p;
+  p.reference_point_track_m = read_vector3(r, "reference_point_track_m");
+  p.point_from_wheelset_centre_m = read_vector3(r, "point_from_wheelset_centre_m");
+  p.x1_axis = read_vector3(r, "x1_axis");
+  p.x2_axis = read_vector3(r, "x2_axis");
+  p.x3_axis = read_vector3(r, "x3_axis");
+  p.contact_angle_rad = r.number("contact_angle_rad");
+  p.rolling_radius_m = r.number("rolling_radius_m");
+  p.rail_profile_y_m = r.number("rail_profile_y_m");
+  p.wheel_profile_y_m = r.number("wheel_profile_y_m");
+  p.normal_force_N = r.number("normal_force_N");
+  p.area_m2 = r.number("area_m2");
+  p.elements_in_contact = r.count("elements_in_contact");
+  p.max_pressure_Pa = r.number("max_pressure_Pa");
+  p.pressure_centre_x1_m = r.number("pressure_centre_x1_m");
+  p.pressure_centre_x2_m = r.number("pressure_centre_x2_m");
+  const std::vector<double> L = r.numbers("flexibility_m_per_Pa");
+  if (L.size() != 3) r.fail(fmt::format("{} must be a list of 3 numbers", r.qualified("flexibility_m_per_Pa")));
+  p.flexibility = {L[0], L[1], L[2]};
+  {
+    StrictJsonReader m = r.child("runtime_mesh");
+    p.runtime_mesh.n1 = read_int(m, "n1", 0, 1 << 20);
+    p.runtime_mesh.n2 = read_int(m, "n2", 0, 1 << 20);
+    p.runtime_mesh.dx1_m = m.number("dx1_m");
+    p.runtime_mesh.dx2_m = m.number("dx2_m");
+    p.runtime_mesh.x1_first_m = m.number("x1_first_m");
+    p.runtime_mesh.x2_first_m = m.number("x2_first_m");
+    m.finish();
+    if (p.runtime_mesh.size() > kMaxRuntimeMeshElements)
+      m.fail(fmt::format("{} has {} × {} elements; at most {} are allowed", r.qualified("runtime_mesh"),
+                         p.runtime_mesh.n1, p.runtime_mesh.n2, kMaxRuntimeMeshElements));
+  }
+  p.runtime_pressure_Pa = r.numbers("runtime_pressure_Pa");
+  for (double x : p.runtime_pressure_Pa)
+    if (!std::isfinite(x) || x < 0.0)
+      r.fail(fmt::format("{} must hold finite, non-negative pressures", r.qualified("runtime_pressure_Pa")));
+  if (!p.runtime_pressure_Pa.empty() && p.runtime_pressure_Pa.size() != p.runtime_mesh.size())
+    r.fail(fmt::format("{} has {} values for a runtime mesh of {} elements", r.qualified("runtime_pressure_Pa"),
+                       p.runtime_pressure_Pa.size(), p.runtime_mesh.size()));
+  r.finish();
+  return p;
+}
+
+WheelsetTableNode read_node(StrictJsonReader r) {
+  WheelsetTableNode n;
+  n.y_m = r.number("y_m");
+  n.wheel_load_N = r.number("wheel_load_N");
+  const std::string status = r.string("status");
+  if (status == "solved") n.status = WheelsetTableNodeStatus::solved;
+  else if (status == "failed") n.status = WheelsetTableNodeStatus::failed;
+  else r.fail(fmt::format("{} must be \"solved\" or \"failed\" (got \"{}\")", r.qualified("status"), printable_excerpt(status)));
+  n.message = r.string("message");
+  const std::vector<double> z = r.numbers("vertical_displacement_m");
+  if (z.size() != 2) r.fail(fmt::format("{} must be a list of 2 numbers (right, left)", r.qualified("vertical_displacement_m")));
+  n.vertical_displacement_m = {z[0], z[1]};
+  const json& wheels = r.array("wheels");
+  if (wheels.size() != 2) r.fail(fmt::format("{} must be a list of 2 wheels (right, left)", r.qualified("wheels")));
+  for (std::size_t w = 0; w < 2; ++w) {
+    if (!wheels[w].is_array()) r.fail(fmt::format("{}[{}] must be a list of patches", r.qualified("wheels"), w));
+    for (std::size_t k = 0; k < wheels[w].size(); ++k)
+      n.wheels[w].push_back(read_patch(r.item(wheels[w][k], fmt::format("{}[{}][{}]", r.qualified("wheels"), w, k))));
+  }
+  if (n.status != WheelsetTableNodeStatus::solved && (!n.wheels[0].empty() || !n.wheels[1].empty()))
+    r.fail(fmt::format("{} must be empty lists: the node is not solved", r.qualified("wheels")));
+  r.finish();
+  return n;
+}
+
+WheelsetTableMetadata read_metadata(StrictJsonReader& r) {
+  WheelsetTableMetadata m;
+  m.railcontact_version = r.string("railcontact_version");
+  m.created_utc = r.string("created_utc");
+  {
+    StrictJsonReader profiles = r.child("profiles");
+    m.right_wheel_profile = detail::read_fingerprint(profiles, "right_wheel");
+    m.right_rail_profile = detail::read_fingerprint(profiles, "right_rail");
+    m.left_wheel_profile = detail::read_fingerprint(profiles, "left_wheel");
+    m.left_rail_profile = detail::read_fingerprint(profiles, "left_rail");
+    profiles.finish();
+  }
+  m.track = detail::read_track_parameters(r, "track");
+  m.element_size_m = r.number("element_size_m");
+  m.flexibility_coarsening = read_int(r, "flexibility_coarsening", 0, kMaximumCoarsening);
+  m.collocation_offset = r.number("collocation_offset");
+  m.runtime_elements = read_int(r, "runtime_elements", 1, 1 << 20);
+  return m;
+}
+
+}  // namespace
+
+std::string wheelset_table_json(const WheelsetTable& table) {
+  const WheelsetTableMetadata& m = table.metadata();
+  json nodes = json::array();
+  for (const WheelsetTableNode& n : table.nodes()) nodes.push_back(node_json(n));
+  const json out = {{"format", kFormat},
+                    {"format_version", kFormatVersion},
+                    {"railcontact_version", m.railcontact_version},
+                    {"created_utc", m.created_utc},
+                    {"profiles",
+                     {{"right_wheel", detail::fingerprint_json(m.right_wheel_profile)},
+                      {"right_rail", detail::fingerprint_json(m.right_rail_profile)},
+                      {"left_wheel", detail::fingerprint_json(m.left_wheel_profile)},
+                      {"left_rail", detail::fingerprint_json(m.left_rail_profile)}}},
+                    {"track", detail::track_parameters_json(m.track)},
+                    {"material",
+                     {{"youngs_modulus_Pa", table.material().youngs_modulus_Pa},
+                      {"poisson_ratio", table.material().poisson_ratio}}},
+                    {"element_size_m", m.element_size_m},
+                    {"flexibility_coarsening", m.flexibility_coarsening},
+                    {"collocation_offset", m.collocation_offset},
+                    {"traction_bound_skew", table.bound().skew},
+                    {"runtime_elements", m.runtime_elements},
+                    {"nominal_rolling_radius_m", table.nominal_rolling_radius_m()},
+                    {"y_m", table.y_m()},
+                    {"wheel_load_N", table.wheel_loads_N()},
+                    {"nodes", nodes}};
+  return out.dump();
+}
+
+WheelsetTable parse_wheelset_table(const std::string& text, const std::string& source) {
+  const json root = detail::parse_strict_json(text, source, kKind);
+  StrictJsonReader r(root, "", source, kKind);
+  if (!root.contains("format") || !root["format"].is_string() || root["format"].get<std::string>() != kFormat)
+    r.fail(fmt::format("not a wheelset table (the key 'format' must be \"{}\")", kFormat));
+  r.get("format");
+  const json& version = r.get("format_version");
+  if (!version.is_number_integer() || version.get<int>() != kFormatVersion)
+    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})",
+                       detail::quoted_json_value(version), kFormatVersion));
+  WheelsetTableMetadata metadata = read_metadata(r);
+  Material material;
+  {
+    StrictJsonReader m = r.child("material");
+    material.youngs_modulus_Pa = m.number("youngs_modulus_Pa");
+    material.poisson_ratio = m.number("poisson_ratio");
+    m.finish();
+  }
+  const TractionBound bound{r.number("traction_bound_skew")};
+  const double nominal_rolling_radius_m = r.number("nominal_rolling_radius_m");
+  std::vector<double> y = r.numbers("y_m");
+  std::vector<double> loads = r.numbers("wheel_load_N");
+  if (y.size() * loads.size() > kMaxNodes || y.size() > kMaxNodes || loads.size() > kMaxNodes)
+    r.fail(fmt::format("{} y values × {} loads: at most {} nodes are allowed", y.size(), loads.size(), kMaxNodes));
+  std::vector<WheelsetTableNode> nodes;
+  const json& node_list = r.array("nodes");
+  if (node_list.size() != y.size() * loads.size())
+    r.fail(fmt::format("nodes has {} entries for {} y values × {} loads", node_list.size(), y.size(), loads.size()));
+  for (std::size_t k = 0; k < node_list.size(); ++k) nodes.push_back(read_node(r.item(node_list[k], fmt::format("nodes[{}]", k))));
+  r.finish();
+  try {
+    validate(material);
+    if (!(bound.skew >= 0.0 && bound.skew <= 1.0)) throw Error(fmt::format("traction_bound_skew {} must lie in [0, 1]", bound.skew));
+    WheelsetTable table(std::move(y), std::move(loads), std::move(nodes), nominal_rolling_radius_m, material, bound,
+                        std::move(metadata));
+    table.set_source(source);
+    return table;
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    const std::string prefix = "wheelset table: ";
+    throw Error(fmt::format("wheelset table {}: {}", source, what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what));
+  }
+}
+
+void save_wheelset_table(const WheelsetTable& table, const std::filesystem::path& path) {
+  std::ofstream file(path);
+  if (!(file << wheelset_table_json(table) << '\n'))
+    throw Error(ErrorKind::io, fmt::format("cannot write the wheelset table {}", path.string()));
+  file.close();
+  if (!file) throw Error(ErrorKind::io, fmt::format("cannot write the wheelset table {}", path.string()));
+}
+
+WheelsetTable load_wheelset_table(const std::filesystem::path& path) {
+  return parse_wheelset_table(read_text_file(path, "wheelset table", kMaxTableFileBytes), path.string());
+}
+
+}  // namespace railcontact

@@ -1,0 +1,247 @@
+// The wheelset table (wheelset_table.hpp, docs/WHEELSET_TABLE.md) on S1002 / UIC60 1:40 against
+// the wheelset it tabulates: at a node with the full patch it is Wheelset::evaluate to rounding;
+// between nodes within the interpolation error; the left wheel is the mirrored right wheel; a
+// flange patch that appears between nodes grows from zero force; bad lookups are refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset_table.hpp"
+
+namespace railcontact {
+namespace {
+
+constexpr double kMu = 0.3;
+
+const WheelsetTrack& track() {
+  static const WheelsetTrack t = default_wheelset_track();
+  return t;
+}
+
+// Coarse elements keep the builds fast (0.5 mm: about 700 elements per tread patch).
+WheelsetTableOptions coarse_table_options(int runtime_elements = kWheelsetTableRuntimeElements) {
+  WheelsetTableOptions o;
+  o.wheelset.element_size_m = 0.5e-3;
+  o.runtime_elements = runtime_elements;
+  return o;
+}
+
+// The same wheelset solved on the fly (frictionless load balance, as the table's nodes).
+WheelsetResult on_the_fly(const WheelsetState& state, double load_right_N, double load_left_N) {
+  WheelsetOptions o = coarse_table_options().wheelset;
+  o.loads = WheelLoads{load_right_N, load_left_N, false};
+  o.tangential_forces_in_vertical_balance = false;
+  o.friction_coefficient = kMu;
+  Wheelset wheelset(track(), o);
+  return wheelset.evaluate(state);
+}
+
+WheelsetState moving_state(double y_m, double yaw_rad = 0.0) {
+  WheelsetState s;
+  s.position.lateral_displacement_m = y_m;
+  s.position.yaw_rad = yaw_rad;
+  s.velocity.forward_speed_m_per_s = 30.0;
+  s.velocity.lateral_velocity_m_per_s = 0.02;
+  s.velocity.yaw_rate_rad_per_s = 0.01;
+  s.velocity.extra_longitudinal_creepage = -1e-3;
+  return s;
+}
+
+// A table whose runtime patches are the fine patches themselves (no coarsening).
+const WheelsetTable& full_patch_table() {
+  static const WheelsetTable t =
+      build_wheelset_table(track(), {-2e-3, -1e-3, 0.0, 1e-3, 2e-3}, {90e3, 110e3}, coarse_table_options(100000));
+  return t;
+}
+
+// The default recipe (runtime patches of about 400 elements), y in steps of 0.5 mm.
+const WheelsetTable& table() {
+  static const WheelsetTable t = build_wheelset_table(
+      track(), {-2e-3, -1.5e-3, -1e-3, -0.5e-3, 0.0, 0.5e-3, 1e-3, 1.5e-3, 2e-3}, {90e3, 110e3}, coarse_table_options());
+  return t;
+}
+
+TEST(WheelsetTable, AtANodeWithTheFullPatchItIsTheWheelsetSolvedOnTheFly) {
+  for (double y : {-2e-3, 0.0, 1e-3}) {
+    for (double load : {90e3, 110e3}) {
+      const WheelsetState state = moving_state(y);
+      const WheelsetResult expected = on_the_fly(state, load, load);
+      const WheelsetResult got = full_patch_table().evaluate(state, WheelLoads{load, load, false}, kMu);
+      for (int w = 0; w < 2; ++w) {
+        ASSERT_EQ(got.wheels[w].patches.size(), expected.wheels[w].patches.size()) << "y " << y << " wheel " << w;
+        for (int i = 0; i < 3; ++i)
+          EXPECT_NEAR(got.wheels[w].force_track_N[i], expected.wheels[w].force_track_N[i], 1e-7 * load)
+              << "y " << y << " load " << load << " wheel " << w << " component " << i;
+        const WheelsetPatch& p = got.wheels[w].patches.front();
+        const WheelsetPatch& q = expected.wheels[w].patches.front();
+        EXPECT_NEAR(p.creepage.xi, q.creepage.xi, 1e-12);
+        EXPECT_NEAR(p.creepage.eta, q.creepage.eta, 1e-12);
+        EXPECT_NEAR(p.creepage.phi, q.creepage.phi, 1e-9);
+        EXPECT_NEAR(p.forces().M3_Nm, q.forces().M3_Nm, 1e-9 * load);
+        EXPECT_NEAR(p.region.contact_angle_rad, q.region.contact_angle_rad, 1e-12);
+        EXPECT_NEAR(got.wheels[w].vertical_displacement_m, expected.wheels[w].vertical_displacement_m, 1e-12);
+      }
+    }
+  }
+}
+
+// Between nodes (y, load and yaw off the grid), the default recipe (coarse runtime patches)
+// against the wheelset on the fly (0.5 mm elements, y in steps of 0.5 mm): within 1.5 % of mu Fz
+// per component (docs/WHEELSET_TABLE.md §3 gives the errors of the 0.2 mm recipe).
+TEST(WheelsetTable, BetweenNodesItStaysWithinOneAndAHalfPercentOfMuFzOfTheWheelsetOnTheFly) {
+  for (double y : {-1.25e-3, -0.3e-3, 1.7e-3}) {
+    for (double yaw : {0.0, 3e-3}) {
+      const WheelsetState state = moving_state(y, yaw);
+      const double right = 97e3, left = 104e3;
+      const WheelsetResult expected = on_the_fly(state, right, left);
+      const WheelsetResult got = table().evaluate(state, WheelLoads{right, left, false}, kMu);
+      for (int w = 0; w < 2; ++w) {
+        const double scale = kMu * (w == 0 ? right : left);
+        for (int i = 0; i < 2; ++i)
+          EXPECT_NEAR(got.wheels[w].force_track_N[i], expected.wheels[w].force_track_N[i], 0.015 * scale)
+              << "y " << y << " yaw " << yaw << " wheel " << w << " component " << i;
+        EXPECT_NEAR(got.wheels[w].force_track_N[2], expected.wheels[w].force_track_N[2], 2e-3 * scale);
+      }
+    }
+  }
+}
+
+// The table's nodes are mirror images (the left wheel is solved as the mirrored right wheel), so
+// lookups at (y, ψ, loads) and (−y, −ψ, loads swapped) are mirror images to rounding.
+TEST(WheelsetTable, TheLeftWheelIsTheMirroredRightWheel) {
+  WheelsetState a = moving_state(-1.37e-3, 2e-3);
+  WheelsetState b = a;
+  b.position.lateral_displacement_m = -a.position.lateral_displacement_m;
+  b.position.yaw_rad = -a.position.yaw_rad;
+  b.velocity.lateral_velocity_m_per_s = -a.velocity.lateral_velocity_m_per_s;
+  b.velocity.yaw_rate_rad_per_s = -a.velocity.yaw_rate_rad_per_s;
+  const WheelsetResult ra = table().evaluate(a, WheelLoads{95e3, 105e3, false}, kMu);
+  const WheelsetResult rb = table().evaluate(b, WheelLoads{105e3, 95e3, false}, kMu);
+  for (int w = 0; w < 2; ++w) {
+    const Vector3& f = ra.wheels[w].force_track_N;
+    const Vector3& g = rb.wheels[1 - w].force_track_N;
+    EXPECT_NEAR(f[0], g[0], 1e-8 * f[2]);
+    EXPECT_NEAR(f[1], -g[1], 1e-8 * f[2]);
+    EXPECT_NEAR(f[2], g[2], 1e-8 * f[2]);
+    EXPECT_NEAR(ra.wheels[w].patches[0].forces().M3_Nm, -rb.wheels[1 - w].patches[0].forces().M3_Nm, 1e-8 * f[2]);
+  }
+}
+
+// A patch that one node has and its neighbour has not (a flange contact appearing between them)
+// grows from zero force, and the wheel's forces change continuously. The second patch is made by
+// hand: a copy of the tread patch 10 mm towards the gauge face, added to the node at y = −5.4 mm.
+TEST(WheelsetTable, APatchThatAppearsBetweenNodesGrowsFromZero) {
+  const WheelsetTable built = build_wheelset_table(track(), {-5.4e-3, -5.0e-3}, {100e3}, coarse_table_options());
+  std::vector<WheelsetTableNode> nodes = built.nodes();
+  ASSERT_EQ(nodes[0].wheels[0].size(), 1u);
+  ASSERT_EQ(nodes[1].wheels[0].size(), 1u);
+  WheelsetTablePatch flange = nodes[0].wheels[0][0];
+  flange.rail_profile_y_m -= 10e-3;
+  flange.normal_force_N *= 0.5;
+  nodes[0].wheels[0].insert(nodes[0].wheels[0].begin(), flange);
+  const WheelsetTable t(built.y_m(), built.wheel_loads_N(), nodes, built.nominal_rolling_radius_m(), built.material(),
+                        built.bound());
+  Vector3 previous{};
+  double largest_step = 0.0, flange_force_near_node = 0.0;
+  for (int k = 0; k <= 40; ++k) {
+    const double y = -5.0e-3 - k * 0.01e-3;
+    const WheelsetResult r = t.evaluate(moving_state(y), WheelLoads{100e3, 100e3, false}, kMu);
+    const WheelResult& right = r.wheels[0];
+    ASSERT_EQ(right.patches.size(), k == 0 ? 1u : 2u) << "y " << y;
+    if (k == 1) flange_force_near_node = right.patches.front().normal_force_N;  // gauge side first
+    if (k > 0)
+      for (int i = 0; i < 3; ++i) largest_step = std::max(largest_step, std::abs(right.force_track_N[i] - previous[i]));
+    previous = right.force_track_N;
+  }
+  // One step of 0.01 mm out of 0.4 mm: 1/40 of the node's flange force.
+  EXPECT_NEAR(flange_force_near_node, flange.normal_force_N / 40.0, 1e-9 * flange.normal_force_N);
+  EXPECT_LT(largest_step, 0.05 * flange.normal_force_N);
+}
+
+TEST(WheelsetTable, LookupsOutsideTheTableOrWithBadInputAreRefused) {
+  const auto message = [](const WheelsetState& state, const WheelLoads& loads, double mu) {
+    try {
+      (void)table().evaluate(state, loads, mu);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.kind(), ErrorKind::invalid_input);
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const WheelLoads loads{100e3, 100e3, false};
+  EXPECT_NE(message(moving_state(2.5e-3), loads, kMu).find("y = 2.5 mm lies outside the table's range [-2, 2] mm"),
+            std::string::npos);
+  EXPECT_NE(message(moving_state(0.0), WheelLoads{100e3, 120e3, false}, kMu)
+                .find("the left wheel's load = 120 kN lies outside the table's range [90, 110] kN"),
+            std::string::npos);
+  EXPECT_NE(message(moving_state(0.0), loads, 0.0).find("friction coefficient 0"), std::string::npos);
+  EXPECT_NE(message(moving_state(std::nan("")), loads, kMu).find("lateral displacement"), std::string::npos);
+  WheelsetState stopped = moving_state(0.0);
+  stopped.velocity.forward_speed_m_per_s = 0.0;
+  EXPECT_NE(message(stopped, loads, kMu), "no error");
+  EXPECT_THROW((void)build_wheelset_table(track(), {1e-3, 0.0}, {100e3}, coarse_table_options()), Error);
+  EXPECT_THROW((void)build_wheelset_table(track(), {0.0}, {-1.0}, coarse_table_options()), Error);
+}
+
+// A node whose wheelset cannot be solved (here: the flange climbing over the rail) is a gap that
+// lookups next to it name.
+TEST(WheelsetTable, AGapIsNamedByTheLookupsThatNeedIt) {
+  const WheelsetTable t = build_wheelset_table(track(), {-12e-3, -4e-3}, {100e3}, coarse_table_options());
+  ASSERT_EQ(t.node(0, 0).status, WheelsetTableNodeStatus::failed);
+  ASSERT_EQ(t.node(1, 0).status, WheelsetTableNodeStatus::solved);
+  EXPECT_NO_THROW((void)t.evaluate(moving_state(-4e-3), WheelLoads{100e3, 100e3, false}, kMu));
+  try {
+    (void)t.evaluate(moving_state(-5e-3), WheelLoads{100e3, 100e3, false}, kMu);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the node at y = -12 mm, load 100 kN is a gap"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+// A table saved and loaded gives the same forces to the last digit (doubles are written with 17
+// significant digits), and keeps where it came from.
+TEST(WheelsetTableFile, ARoundTripGivesTheSameForcesToTheLastDigit) {
+  const WheelsetTable back = parse_wheelset_table(wheelset_table_json(table()), "round-trip.json");
+  EXPECT_EQ(back.metadata().railcontact_version, table().metadata().railcontact_version);
+  EXPECT_EQ(back.metadata().right_wheel_profile.fnv1a64, table().metadata().right_wheel_profile.fnv1a64);
+  EXPECT_NE(back.metadata().right_wheel_profile.fnv1a64, 0u);
+  EXPECT_NO_THROW(back.check_track(track()));
+  const WheelsetState state = moving_state(-0.77e-3, 1e-3);
+  const WheelsetResult a = table().evaluate(state, WheelLoads{93e3, 101e3, false}, kMu);
+  const WheelsetResult b = back.evaluate(state, WheelLoads{93e3, 101e3, false}, kMu);
+  for (int w = 0; w < 2; ++w)
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(a.wheels[w].force_track_N[i], b.wheels[w].force_track_N[i]);
+}
+
+TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
+  const auto message = [](const std::string& text) {
+    try {
+      (void)parse_wheelset_table(text, "t.json");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("{"), "wheelset table t.json:1: malformed JSON (is it a wheelset table?)");
+  EXPECT_NE(message(R"({"format": "railcontact flexibility table"})").find("not a wheelset table"), std::string::npos);
+  std::string text = wheelset_table_json(table());
+  const std::string key = "\"normal_force_N\":";
+  text.replace(text.find(key), key.size(), key + "-");
+  EXPECT_NE(message(text).find("nodes[0] wheel 0 patch 0: the normal force must lie in [0, 1e7] N"), std::string::npos)
+      << message(text);
+  std::string unknown = wheelset_table_json(table());
+  unknown.replace(unknown.find("\"area_m2\""), 9, "\"area_mm2\"");
+  EXPECT_NE(message(unknown).find("missing key 'nodes[0].wheels[0][0].area_m2'"), std::string::npos) << message(unknown);
+}
+
+}  // namespace
+}  // namespace railcontact
