@@ -110,7 +110,7 @@ void BM_WheelsetTable(benchmark::State& state) {
   const double y0 = static_cast<double>(state.range(0)) * 1e-6;
   std::vector<double> ys;
   for (int k = -5; k <= 5; ++k) ys.push_back(y0 + k * 0.1e-3);
-  const WheelsetTable table = build_wheelset_table(track(), ys, {90e3, 100e3, 110e3});
+  const WheelsetTable table = build_wheelset_table(track(), {ys, {0.0}, {90e3, 100e3, 110e3}});
   WheelsetState s;
   s.position.yaw_rad = 2e-3;
   const WheelLoads loads{98.1e3, 98.1e3, false};

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/table_file_output.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "study/flexibility_table_check.hpp"
@@ -73,55 +74,6 @@ void print_nodes(const FlexibilityTable& table) {
   }
 }
 
-// A temporary file in the directory of `out` (same file system: rename(2) moves it into place
-// atomically); mkstemp creates it, the caller removes or renames it.
-std::string temporary_next_to(const std::filesystem::path& out, int& fd) {
-  const std::filesystem::path directory = out.parent_path().empty() ? std::filesystem::path(".") : out.parent_path();
-  std::string name = (directory / ("." + out.filename().string() + ".tmp-XXXXXX")).string();
-  fd = ::mkstemp(name.data());
-  return name;
-}
-
-void check_writable(const std::filesystem::path& out) {
-  const std::filesystem::path directory = out.parent_path().empty() ? std::filesystem::path(".") : out.parent_path();
-  if (!std::filesystem::is_directory(directory))
-    throw Error(ErrorKind::io,
-                fmt::format("cannot write the flexibility table {}: no directory {}", out.string(), directory.string()));
-  require(!std::filesystem::is_directory(out),
-          [&] { return fmt::format("cannot write the flexibility table {}: it is a directory", out.string()); });
-  int fd = -1;
-  const std::string probe = temporary_next_to(out, fd);
-  if (fd < 0)
-    throw Error(ErrorKind::io, fmt::format("cannot write the flexibility table {}: cannot create a file in {}: {}",
-                                           out.string(), directory.string(), std::strerror(errno)));
-  ::close(fd);
-  ::unlink(probe.c_str());
-}
-
-// The table into a temporary file next to `out`, then renamed over it: an interrupted or failed
-// write leaves the previous table (or none), never a truncated one.
-void save_atomically(const FlexibilityTable& table, const std::filesystem::path& out) {
-  int fd = -1;
-  const std::string temporary = temporary_next_to(out, fd);
-  if (fd < 0)
-    throw Error(ErrorKind::io, fmt::format("cannot write the flexibility table {}: {}", out.string(), std::strerror(errno)));
-  ::close(fd);
-  try {
-    save_flexibility_table(table, temporary);
-  } catch (...) {
-    ::unlink(temporary.c_str());
-    throw;
-  }
-  const mode_t mask = ::umask(0);  // mkstemp's 0600 would make the table private: the mode of a new file
-  ::umask(mask);
-  ::chmod(temporary.c_str(), 0666 & ~mask);
-  if (::rename(temporary.c_str(), out.c_str()) != 0) {
-    const int error = errno;
-    ::unlink(temporary.c_str());
-    throw Error(ErrorKind::io, fmt::format("cannot write the flexibility table {}: {}", out.string(), std::strerror(error)));
-  }
-}
-
 int run_build(const BuildArguments& args) {
   require(!args.out.empty(), "--out must name the table file to write");
   require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
@@ -145,7 +97,7 @@ int run_build(const BuildArguments& args) {
   const WheelRailPair pair = pair_of(args.wheel, args.rail);
   // Fail on an unwritable output before the work: create (and remove) a file next to it.
   const std::filesystem::path out(args.out);
-  check_writable(out);
+  check_table_writable(out, "flexibility table");
 
   FlexibilityTableOptions options;
   options.patch.target_elements = args.elements;
@@ -176,7 +128,7 @@ int run_build(const BuildArguments& args) {
                table.y_m()[j.interval] / kMm, table.y_m()[j.interval + 1] / kMm, j.y_rail_left_m / kMm,
                j.y_rail_right_m / kMm);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  save_atomically(table, out);
+  write_table_atomically(out, "flexibility table", [&](const std::filesystem::path& path) { save_flexibility_table(table, path); });
 
   const FlexibilityTableMetadata& m = table.metadata();
   std::size_t solved = 0, several = 0, failed = 0;

@@ -12,6 +12,7 @@
 
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/wheelset_table.hpp"
 #include "case/wheelset_case.hpp"
 #include "railcontact/wheelset.hpp"
 #include "study/output_directory.hpp"
@@ -36,6 +37,7 @@ struct WheelsetArguments {
   bool json = false;
   int flexibility_coarsening = 0;
   std::string sweep_y;  // FROM:TO:STEP in mm
+  std::string table;    // a wheelset table to evaluate from (docs/WHEELSET_TABLE.md)
   std::string out = "railcontact-out/wheelset";
 };
 
@@ -137,7 +139,19 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     fmt::print("Wrote {} evaluations to {}/wheelset_sweep.csv (figures: wheelset_sweep.png)\n", count, a.out);
     return 0;
   }
-  const WheelsetResult r = wheelset.evaluate(state);
+  WheelsetResult r;
+  if (!a.table.empty()) {
+    // From a wheelset table: both wheels carry their loads (nh-fastsim on the table's patches).
+    require(a.sweep_y.empty(), "--table and --sweep-y cannot be combined");
+    require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
+    require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
+            "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
+    const WheelsetTable table = load_wheelset_table(a.table);
+    table.check_track(wheelset.track());
+    r = table.evaluate(state, *options.loads, options.friction_coefficient);
+  } else {
+    r = wheelset.evaluate(state);
+  }
 
   if (a.json) {
     nlohmann::json wheels = nlohmann::json::array();
@@ -161,6 +175,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
         {"element_size_m", options.element_size_m},
         {"by_load", options.loads.has_value()},
         {"solver", solver_name(options.solvers.front())},
+        {"wheelset_table", a.table.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.table)},
         {"wheels", wheels},
         {"force_track_N", vector_json(r.force_track_N)},
     };
@@ -174,7 +189,8 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
              options.loads ? fmt::format("{:g} / {:g} kN on the right / left wheel", load_kN,
                                          options.loads->left_N * 1e-3)
                            : fmt::format("by position, z = {:g} mm", state.position.vertical_displacement_m * 1e3),
-             options.friction_coefficient, options.element_size_m * 1e3, solver_name(options.solvers.front()));
+             options.friction_coefficient, options.element_size_m * 1e3,
+             a.table.empty() ? std::string(solver_name(options.solvers.front())) : "nh-fastsim from the table " + a.table);
   fmt::print("Forces on the wheels in the track frame (x forward, y left, z up), N; patch forces in the contact "
              "frame.\n\n");
   for (const WheelResult& w : r.wheels) {
@@ -226,6 +242,8 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--sweep-y", args->sweep_y,
                   "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
   sub->add_option("--out", args->out, "output directory of a sweep");
+  sub->add_option("--table", args->table,
+                  "evaluate from this wheelset table (`railcontact wheelset-table build`; nh-fastsim, by load)");
   sub->callback([&action, args, sub] { action = [args, sub] { return run_wheelset(*args, *sub); }; });
 }
 

@@ -6,28 +6,29 @@
 // FastSim. A step then costs the kinematic creepages and a few FastSim marches on small patches:
 // microseconds instead of the milliseconds of Wheelset::evaluate.
 //
-//   const WheelsetTable table = build_wheelset_table(default_wheelset_track(), y_grid, loads);
+//   const WheelsetTable table = build_wheelset_table(default_wheelset_track(), {y_grid, yaw_grid, loads});
 //   WheelsetResult r = table.evaluate(state, {98.1e3, 98.1e3}, 0.3);  // state: position + velocity
 //
-// What a node holds. Node (y, Fz) is Wheelset::evaluate at lateral displacement y, zero yaw and
+// What a node holds. Node (y, ψ, Fz) is Wheelset::evaluate at lateral displacement y, yaw ψ, zero
 // roll, both wheels loaded with Fz (each wheel's height solved for its own load, the frictionless
 // balance: the normal forces carry the load), with nH-FastSim on every patch. Per wheel and patch
 // it keeps the reference point and frame, F3, the flexibilities L1-L3 of nH-FastSim (from K2 on the
 // patch itself) and the patch coarsened to about kWheelsetTableRuntimeElements elements (the
 // pressure of each block of elements summed, so F3 and the centre of pressure are kept).
 //
-// What a lookup does (WheelsetTable::evaluate): for each wheel, the four nodes around (y, Fz of
-// that wheel); on each of their patches the kinematic creepages of the state (its velocities and
-// yaw; the contact point rotated with the yaw), FastSim on the coarse patch with the node's
-// flexibilities and mu, the forces in the track frame; then the forces of the four nodes are
-// interpolated bilinearly in y and Fz. Patches of neighbouring nodes are matched by their position
+// What a lookup does (WheelsetTable::evaluate): for each wheel, the nodes around (y, ψ, Fz of that
+// wheel); on each of their patches the kinematic creepages of the state (its velocities and yaw;
+// the contact point turned by the yaw the node does not have), FastSim on the coarse patch with the
+// node's flexibilities and mu, the forces in the track frame; then the forces of the nodes are
+// interpolated linearly in y, ψ and Fz. Patches of neighbouring nodes are matched by their position
 // on the rail profile; a patch missing at a node (it appears between two nodes) counts there with
 // zero force, so a flange contact grows from zero. Reference point, angle and creepages of a patch
 // are the weighted average over the nodes that have it.
 //
-// Approximations (measured in docs/WHEELSET_TABLE.md): the geometry is that of zero yaw and roll
-// (the yaw enters the creepages, not the contact point: the flange contact's lead of r tan γ sin ψ
-// is not modelled); the normal problem is frictionless; FastSim runs on the coarse patch.
+// Approximations (measured in docs/WHEELSET_TABLE.md): the geometry is that of the yaw nodes (with
+// one yaw, zero: the yaw then enters the creepages, not the contact point, and the flange contact's
+// lead of r tan γ sin ψ is not modelled); zero roll; the normal problem is frictionless; FastSim
+// runs on the coarse patch.
 #include <cstddef>
 #include <filesystem>
 #include <array>
@@ -53,8 +54,8 @@ inline constexpr double kWheelsetTablePatchMatchDistance_m = 4e-3;
 // One patch of one wheel at one node, in that wheel's own terms (the left wheel's as it is, not
 // mirrored).
 struct WheelsetTablePatch {
-  Vector3 reference_point_track_m{};       // reference point, track frame (y of the node, its height)
-  Vector3 point_from_wheelset_centre_m{};  // the same from the wheelset centre (zero yaw)
+  Vector3 reference_point_track_m{};       // reference point, track frame (the node's y, yaw, height)
+  Vector3 point_from_wheelset_centre_m{};  // the same from the wheelset centre
   Vector3 x1_axis{1.0, 0.0, 0.0}, x2_axis{}, x3_axis{};
   double contact_angle_rad = 0.0;
   double rolling_radius_m = 0.0;
@@ -79,8 +80,28 @@ enum class WheelsetTableNodeStatus {
   failed,  // Wheelset::evaluate failed (message): a gap of the table
 };
 
+// The grid of a table: nodes at every (y, yaw, wheel load). Each list strictly increasing; the
+// loads positive. A yaw grid of one value serves every yaw by the approximation of §2 (the contact
+// point turned with the yaw); with several values, lookups interpolate between them and a yaw
+// outside the grid is refused.
+struct WheelsetTableGrid {
+  std::vector<double> y_m;
+  std::vector<double> yaw_rad{0.0};
+  std::vector<double> wheel_load_N;
+  [[nodiscard]] std::size_t size() const { return y_m.size() * yaw_rad.size() * wheel_load_N.size(); }
+  // The position of node (iy, iyaw, iload) in WheelsetTable::nodes() (y-major, then yaw, then load).
+  [[nodiscard]] std::size_t index(std::size_t iy, std::size_t iyaw, std::size_t iload) const {
+    return (iy * yaw_rad.size() + iyaw) * wheel_load_N.size() + iload;
+  }
+};
+
+// Throws Error (invalid_input) unless each list is non-empty, finite and strictly increasing, the
+// loads positive and the yaws within ±0.1 rad.
+void validate(const WheelsetTableGrid& grid);
+
 struct WheelsetTableNode {
   double y_m = 0.0;
+  double yaw_rad = 0.0;
   double wheel_load_N = 0.0;  // vertical load of each wheel
   WheelsetTableNodeStatus status = WheelsetTableNodeStatus::solved;
   std::string message;
@@ -119,18 +140,17 @@ using WheelsetTableProgressCallback = std::function<void(const WheelsetTableProg
 class WheelsetTable {
  public:
   WheelsetTable() = default;
-  // Nodes in y-major order (nodes[iy * loads + iload]). nominal_rolling_radius_m: r0 of the track
+  // Nodes in the order of grid.index(). nominal_rolling_radius_m: r0 of the track
   // the table was built for (pure rolling in WheelsetVelocity's shortcut). Throws Error unless the
   // grids are finite and strictly increasing (loads positive), each node sits on its grid point,
   // solved nodes hold finite, plausible values, and r0 > 0.
-  WheelsetTable(std::vector<double> y_m, std::vector<double> wheel_loads_N, std::vector<WheelsetTableNode> nodes,
+  WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNode> nodes,
                 double nominal_rolling_radius_m, Material material, TractionBound bound = {},
                 WheelsetTableMetadata metadata = {});
 
-  [[nodiscard]] const std::vector<double>& y_m() const { return y_m_; }
-  [[nodiscard]] const std::vector<double>& wheel_loads_N() const { return loads_N_; }
+  [[nodiscard]] const WheelsetTableGrid& grid() const { return grid_; }
   [[nodiscard]] const std::vector<WheelsetTableNode>& nodes() const { return nodes_; }
-  [[nodiscard]] const WheelsetTableNode& node(std::size_t iy, std::size_t iload) const;
+  [[nodiscard]] const WheelsetTableNode& node(std::size_t iy, std::size_t iyaw, std::size_t iload) const;
   [[nodiscard]] double nominal_rolling_radius_m() const { return nominal_rolling_radius_m_; }
   [[nodiscard]] const Material& material() const { return material_; }
   [[nodiscard]] TractionBound bound() const { return bound_; }
@@ -152,8 +172,7 @@ class WheelsetTable {
                                         double friction_coefficient) const;
 
  private:
-  std::vector<double> y_m_;
-  std::vector<double> loads_N_;
+  WheelsetTableGrid grid_;
   std::vector<WheelsetTableNode> nodes_;
   double nominal_rolling_radius_m_ = 0.0;
   Material material_{};
@@ -165,11 +184,10 @@ class WheelsetTable {
   std::vector<std::array<std::vector<std::optional<FastSim>>, 2>> runtime_;
 };
 
-// Builds the table over y_grid_m × wheel_loads_N (both strictly increasing). Nodes whose wheelset
-// solve fails are kept as gaps (message), not thrown; throws Error for bad grids or options and
-// when no node can be solved.
-WheelsetTable build_wheelset_table(const WheelsetTrack& track, const std::vector<double>& y_grid_m,
-                                   const std::vector<double>& wheel_loads_N, const WheelsetTableOptions& options = {},
+// Builds the table over the grid. Nodes whose wheelset solve fails are kept as gaps (message), not
+// thrown; throws Error for bad grids or options and when no node can be solved.
+WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTableGrid& grid,
+                                   const WheelsetTableOptions& options = {},
                                    const WheelsetTableProgressCallback& progress = {});
 
 // The file format (JSON, docs/WHEELSET_TABLE.md §4). save throws Error (io) when the file cannot

@@ -92,29 +92,41 @@ struct PatchSum {
 
 }  // namespace
 
-WheelsetTable::WheelsetTable(std::vector<double> y_m, std::vector<double> wheel_loads_N,
-                             std::vector<WheelsetTableNode> nodes, double nominal_rolling_radius_m, Material material,
-                             TractionBound bound, WheelsetTableMetadata metadata)
-    : y_m_(std::move(y_m)),
-      loads_N_(std::move(wheel_loads_N)),
+void validate(const WheelsetTableGrid& grid) {
+  check_grid(grid.y_m, "y", false);
+  check_grid(grid.yaw_rad, "yaw", false);
+  check_grid(grid.wheel_load_N, "wheel load", true);
+  if (!(grid.yaw_rad.front() >= -0.1 && grid.yaw_rad.back() <= 0.1))
+    throw Error(fmt::format("wheelset table: the yaw grid [{}, {}] rad must lie in [-0.1, 0.1] rad", grid.yaw_rad.front(),
+                            grid.yaw_rad.back()));
+}
+
+WheelsetTable::WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNode> nodes,
+                             double nominal_rolling_radius_m, Material material, TractionBound bound,
+                             WheelsetTableMetadata metadata)
+    : grid_(std::move(grid)),
       nodes_(std::move(nodes)),
       nominal_rolling_radius_m_(nominal_rolling_radius_m),
       material_(material),
       bound_(bound),
       metadata_(std::move(metadata)) {
-  check_grid(y_m_, "y", false);
-  check_grid(loads_N_, "wheel load", true);
+  validate(grid_);
   if (!(nominal_rolling_radius_m_ > 0.0 && nominal_rolling_radius_m_ < 10.0))
     throw Error(fmt::format("wheelset table: the nominal rolling radius {} m must lie in (0, 10) m", nominal_rolling_radius_m_));
-  if (nodes_.size() != y_m_.size() * loads_N_.size())
-    throw Error(fmt::format("wheelset table: {} nodes for {} y values × {} loads", nodes_.size(), y_m_.size(), loads_N_.size()));
+  if (nodes_.size() != grid_.size())
+    throw Error(fmt::format("wheelset table: {} nodes for {} y values × {} yaws × {} loads", nodes_.size(),
+                            grid_.y_m.size(), grid_.yaw_rad.size(), grid_.wheel_load_N.size()));
   runtime_.resize(nodes_.size());
   for (std::size_t n = 0; n < nodes_.size(); ++n) {
     const WheelsetTableNode& node = nodes_[n];
-    const double y = y_m_[n / loads_N_.size()], load = loads_N_[n % loads_N_.size()];
-    if (std::abs(node.y_m - y) > 1e-12 || std::abs(node.wheel_load_N - load) > 1e-9 * load)
-      throw Error(fmt::format("wheelset table: nodes[{}] (y = {} m, load {} N) is not on its grid point (y = {} m, load {} N)",
-                              n, node.y_m, node.wheel_load_N, y, load));
+    const std::size_t loads = grid_.wheel_load_N.size(), yaws = grid_.yaw_rad.size();
+    const double y = grid_.y_m[n / (loads * yaws)], yaw = grid_.yaw_rad[(n / loads) % yaws];
+    const double load = grid_.wheel_load_N[n % loads];
+    if (std::abs(node.y_m - y) > 1e-12 || std::abs(node.yaw_rad - yaw) > 1e-12 ||
+        std::abs(node.wheel_load_N - load) > 1e-9 * load)
+      throw Error(fmt::format("wheelset table: nodes[{}] (y = {} m, yaw {} rad, load {} N) is not on its grid point "
+                              "(y = {} m, yaw {} rad, load {} N)",
+                              n, node.y_m, node.yaw_rad, node.wheel_load_N, y, yaw, load));
     if (node.status != WheelsetTableNodeStatus::solved) continue;
     for (int w = 0; w < 2; ++w) {
       if (!std::isfinite(node.vertical_displacement_m[w]))
@@ -132,10 +144,11 @@ WheelsetTable::WheelsetTable(std::vector<double> y_m, std::vector<double> wheel_
   }
 }
 
-const WheelsetTableNode& WheelsetTable::node(std::size_t iy, std::size_t iload) const {
-  if (iy >= y_m_.size() || iload >= loads_N_.size())
-    throw Error(fmt::format("wheelset table: node ({}, {}) outside the {} × {} grid", iy, iload, y_m_.size(), loads_N_.size()));
-  return nodes_[iy * loads_N_.size() + iload];
+const WheelsetTableNode& WheelsetTable::node(std::size_t iy, std::size_t iyaw, std::size_t iload) const {
+  if (iy >= grid_.y_m.size() || iyaw >= grid_.yaw_rad.size() || iload >= grid_.wheel_load_N.size())
+    throw Error(fmt::format("wheelset table: node ({}, {}, {}) outside the {} × {} × {} grid", iy, iyaw, iload,
+                            grid_.y_m.size(), grid_.yaw_rad.size(), grid_.wheel_load_N.size()));
+  return nodes_[grid_.index(iy, iyaw, iload)];
 }
 
 void WheelsetTable::check_track(const WheelsetTrack& track) const {
@@ -177,8 +190,10 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
     throw Error(fmt::format("wheelset table: the lateral displacement {} m and yaw {} rad must be finite, |yaw| <= 0.1 rad",
                             position.lateral_displacement_m, position.yaw_rad));
   const WheelsetMotion motion = wheelset_motion(state, nominal_rolling_radius_m_);
-  const Bracket by = bracket(y_m_, position.lateral_displacement_m, "the lateral displacement y", "mm", kMm);
-  const double cos_yaw = std::cos(position.yaw_rad), sin_yaw = std::sin(position.yaw_rad);
+  const Bracket by = bracket(grid_.y_m, position.lateral_displacement_m, "the lateral displacement y", "mm", kMm);
+  // One yaw node serves every yaw (the contact point turned); several are interpolated.
+  const Bracket byaw = grid_.yaw_rad.size() == 1 ? Bracket{}
+                                                 : bracket(grid_.yaw_rad, position.yaw_rad, "the yaw", "mrad", 1e-3);
 
   WheelsetResult result;
   result.state = state;
@@ -187,30 +202,34 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
     const double load = w == 0 ? loads.right_N : loads.left_N;
     if (!(load > 0.0 && std::isfinite(load)))
       throw Error(fmt::format("wheelset table: the {} wheel's load {} N must be positive and finite", side_name(side), load));
-    const Bracket bl = bracket(loads_N_, load, fmt::format("the {} wheel's load", side_name(side)).c_str(), "kN", 1e3);
-    const std::size_t corner_y[4] = {by.lower, by.upper, by.lower, by.upper};
-    const std::size_t corner_l[4] = {bl.lower, bl.lower, bl.upper, bl.upper};
-    const double corner_w[4] = {(1 - by.upper_weight) * (1 - bl.upper_weight), by.upper_weight * (1 - bl.upper_weight),
-                                (1 - by.upper_weight) * bl.upper_weight, by.upper_weight * bl.upper_weight};
+    const Bracket bl =
+        bracket(grid_.wheel_load_N, load, fmt::format("the {} wheel's load", side_name(side)).c_str(), "kN", 1e3);
     const double s2 = side == WheelSide::left ? -1.0 : 1.0;  // the solve frame mirrors a left wheel
     std::vector<PatchSum> sums;
     WheelResult& wheel = result.wheels[w];
     wheel.side = side;
-    for (int c = 0; c < 4; ++c) {
-      const double weight = corner_w[c];
+    for (int c = 0; c < 8; ++c) {  // the corners of the cell: bit 0 y, bit 1 yaw, bit 2 load
+      const bool upper_y = c & 1, upper_yaw = c & 2, upper_load = c & 4;
+      const double weight = (upper_y ? by.upper_weight : 1.0 - by.upper_weight) *
+                            (upper_yaw ? byaw.upper_weight : 1.0 - byaw.upper_weight) *
+                            (upper_load ? bl.upper_weight : 1.0 - bl.upper_weight);
       if (weight <= 0.0) continue;
-      const std::size_t n = corner_y[c] * loads_N_.size() + corner_l[c];
+      const std::size_t n = grid_.index(upper_y ? by.upper : by.lower, upper_yaw ? byaw.upper : byaw.lower,
+                                        upper_load ? bl.upper : bl.lower);
       const WheelsetTableNode& node = nodes_[n];
+      // The contact point as the node has it, turned by the yaw the node does not have.
+      const double turn = position.yaw_rad - node.yaw_rad;
+      const double cos_turn = std::cos(turn), sin_turn = std::sin(turn);
       if (node.status != WheelsetTableNodeStatus::solved)
-        throw Error(fmt::format("wheelset table: the node at y = {:.4g} mm, load {:.4g} kN is a gap ({})", node.y_m / kMm,
-                                node.wheel_load_N / 1e3, node.message));
+        throw Error(fmt::format("wheelset table: the node at y = {:.4g} mm, yaw {:.4g} mrad, load {:.4g} kN is a gap ({})",
+                                node.y_m / kMm, node.yaw_rad / 1e-3, node.wheel_load_N / 1e3, node.message));
       wheel.vertical_displacement_m += weight * node.vertical_displacement_m[w];
       for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
         const WheelsetTablePatch& p = node.wheels[w][k];
-        // The contact point turns with the wheelset's yaw; the contact frame stays the rail's.
+        // The contact frame stays the rail's.
         const Vector3& r0 = p.point_from_wheelset_centre_m;
         ContactFrame frame;
-        frame.point_from_wheelset_centre_m = {cos_yaw * r0[0] - sin_yaw * r0[1], sin_yaw * r0[0] + cos_yaw * r0[1], r0[2]};
+        frame.point_from_wheelset_centre_m = {cos_turn * r0[0] - sin_turn * r0[1], sin_turn * r0[0] + cos_turn * r0[1], r0[2]};
         frame.x1 = p.x1_axis;
         frame.x2 = p.x2_axis;
         frame.x3 = p.x3_axis;
@@ -242,8 +261,14 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
         }
         sum->nodes.push_back(n);
         sum->present_weight += weight;
+        // The reference point turned about the wheelset centre (0, y_node, ·) likewise.
+        const Vector3 reference{node.y_m * sin_turn + cos_turn * p.reference_point_track_m[0] -
+                                    sin_turn * p.reference_point_track_m[1],
+                                node.y_m + sin_turn * p.reference_point_track_m[0] +
+                                    cos_turn * (p.reference_point_track_m[1] - node.y_m),
+                                p.reference_point_track_m[2]};
         for (int i = 0; i < 3; ++i) {
-          sum->reference_point_track_m[i] += weight * p.reference_point_track_m[i];
+          sum->reference_point_track_m[i] += weight * reference[i];
           sum->x1[i] += weight * p.x1_axis[i];
           sum->x2[i] += weight * p.x2_axis[i];
           sum->x3[i] += weight * p.x3_axis[i];
@@ -282,10 +307,6 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
       InterpenetrationRegion& region = patch.region;
       region.side = side;
       for (int i = 0; i < 3; ++i) region.reference_point_track_m[i] = g * s.reference_point_track_m[i];
-      // The reference point moves with the wheelset's yaw about its centre (0, y, ·).
-      const double rx = region.reference_point_track_m[0], ry = region.reference_point_track_m[1] - position.lateral_displacement_m;
-      region.reference_point_track_m[0] = cos_yaw * rx - sin_yaw * ry;
-      region.reference_point_track_m[1] = position.lateral_displacement_m + sin_yaw * rx + cos_yaw * ry;
       const auto unit = [](const Vector3& v) {
         const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
         return Vector3{v[0] / n, v[1] / n, v[2] / n};

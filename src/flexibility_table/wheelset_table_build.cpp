@@ -66,15 +66,15 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
 
 }  // namespace
 
-WheelsetTable build_wheelset_table(const WheelsetTrack& track, const std::vector<double>& y_grid_m,
-                                   const std::vector<double>& wheel_loads_N, const WheelsetTableOptions& options,
-                                   const WheelsetTableProgressCallback& progress) {
-  if (y_grid_m.size() * wheel_loads_N.size() > kMaximumWheelsetTableNodes || y_grid_m.empty() || wheel_loads_N.empty()) {
-    throw Error(fmt::format("wheelset table: {} y values × {} loads = {} nodes; from 1 to {} nodes are allowed (about "
-                            "0.2 s each)",
-                            y_grid_m.size(), wheel_loads_N.size(), y_grid_m.size() * wheel_loads_N.size(),
+WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTableGrid& grid,
+                                   const WheelsetTableOptions& options, const WheelsetTableProgressCallback& progress) {
+  if (grid.y_m.empty() || grid.yaw_rad.empty() || grid.wheel_load_N.empty() || grid.size() > kMaximumWheelsetTableNodes) {
+    throw Error(fmt::format("wheelset table: {} y values × {} yaws × {} loads = {} nodes; from 1 to {} nodes are allowed "
+                            "(about 0.2 s each)",
+                            grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
                             kMaximumWheelsetTableNodes));
   }
+  validate(grid);  // before the work
   if (!(options.runtime_elements >= 20 && options.runtime_elements <= 100000))
     throw Error(fmt::format("wheelset table: runtime_elements = {} must lie in [20, 100000]", options.runtime_elements));
   WheelsetOptions wheelset_options = options.wheelset;
@@ -84,47 +84,54 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const std::vector
   wheelset_options.allow_wheel_lift = false;
   validate(wheelset_options);
 
-  std::vector<WheelsetTableNode> nodes(y_grid_m.size() * wheel_loads_N.size());
-  // One wheelset per load: along y its warm start carries over from node to node.
+  std::vector<WheelsetTableNode> nodes(grid.size());
+  // One wheelset per yaw and load: along y its warm start carries over from node to node.
   std::vector<Wheelset> wheelsets;
-  for (double load : wheel_loads_N) {
-    WheelsetOptions o = wheelset_options;
-    o.loads = WheelLoads{load, load, false};
-    wheelsets.emplace_back(track, o);
+  for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw) {
+    for (double load : grid.wheel_load_N) {
+      WheelsetOptions o = wheelset_options;
+      o.loads = WheelLoads{load, load, false};
+      wheelsets.emplace_back(track, o);
+    }
   }
-  std::size_t solved = 0;
+  std::size_t solved = 0, done = 0;
   std::string first_failure;
-  for (std::size_t iy = 0; iy < y_grid_m.size(); ++iy) {
-    for (std::size_t il = 0; il < wheel_loads_N.size(); ++il) {
-      const auto start = std::chrono::steady_clock::now();
-      WheelsetTableNode& node = nodes[iy * wheel_loads_N.size() + il];
-      node.y_m = y_grid_m[iy];
-      node.wheel_load_N = wheel_loads_N[il];
-      WheelsetState state;
-      state.position.lateral_displacement_m = node.y_m;
-      try {
-        const WheelsetResult r = wheelsets[il].evaluate(state);
-        for (int w = 0; w < 2; ++w) {
-          const WheelResult& wheel = r.wheels[w];
-          node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
-          const Vector3 centre{0.0, node.y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
-          for (const WheelsetPatch& p : wheel.patches)
-            node.wheels[w].push_back(table_patch(p, centre, wheel.side, options.runtime_elements));
+  for (std::size_t iy = 0; iy < grid.y_m.size(); ++iy) {
+    for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw) {
+      for (std::size_t il = 0; il < grid.wheel_load_N.size(); ++il) {
+        const auto start = std::chrono::steady_clock::now();
+        WheelsetTableNode& node = nodes[grid.index(iy, iyaw, il)];
+        node.y_m = grid.y_m[iy];
+        node.yaw_rad = grid.yaw_rad[iyaw];
+        node.wheel_load_N = grid.wheel_load_N[il];
+        WheelsetState state;
+        state.position.lateral_displacement_m = node.y_m;
+        state.position.yaw_rad = node.yaw_rad;
+        try {
+          const WheelsetResult r = wheelsets[iyaw * grid.wheel_load_N.size() + il].evaluate(state);
+          for (int w = 0; w < 2; ++w) {
+            const WheelResult& wheel = r.wheels[w];
+            node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
+            const Vector3 centre{0.0, node.y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
+            for (const WheelsetPatch& p : wheel.patches)
+              node.wheels[w].push_back(table_patch(p, centre, wheel.side, options.runtime_elements));
+          }
+          ++solved;
+        } catch (const Error& e) {
+          node.status = WheelsetTableNodeStatus::failed;
+          node.message = e.what();
+          node.wheels = {};
+          if (first_failure.empty()) first_failure = node.message;
         }
-        ++solved;
-      } catch (const Error& e) {
-        node.status = WheelsetTableNodeStatus::failed;
-        node.message = e.what();
-        node.wheels = {};
-        if (first_failure.empty()) first_failure = node.message;
-      }
-      if (progress) {
-        WheelsetTableProgress p;
-        p.nodes_done = iy * wheel_loads_N.size() + il + 1;
-        p.nodes_total = nodes.size();
-        p.node = &node;
-        p.node_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        progress(p);
+        ++done;
+        if (progress) {
+          WheelsetTableProgress p;
+          p.nodes_done = done;
+          p.nodes_total = nodes.size();
+          p.node = &node;
+          p.node_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          progress(p);
+        }
       }
     }
   }
@@ -148,7 +155,7 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const std::vector
   metadata.railcontact_version = RAILCONTACT_VERSION;
   metadata.created_utc = detail::utc_now();
   if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));
-  return WheelsetTable(y_grid_m, wheel_loads_N, std::move(nodes), track.parameters().nominal_rolling_radius_m,
+  return WheelsetTable(grid, std::move(nodes), track.parameters().nominal_rolling_radius_m,
                        wheelset_options.material, wheelset_options.nh_fastsim.bound, std::move(metadata));
 }
 

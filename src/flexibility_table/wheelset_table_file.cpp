@@ -61,6 +61,7 @@ json node_json(const WheelsetTableNode& n) {
     wheels.push_back(patches);
   }
   return json{{"y_m", n.y_m},
+              {"yaw_rad", n.yaw_rad},
               {"wheel_load_N", n.wheel_load_N},
               {"status", n.status == WheelsetTableNodeStatus::solved ? "solved" : "failed"},
               {"message", n.message},
@@ -130,6 +131,7 @@ WheelsetTablePatch read_patch(StrictJsonReader r) {
 WheelsetTableNode read_node(StrictJsonReader r) {
   WheelsetTableNode n;
   n.y_m = r.number("y_m");
+  n.yaw_rad = r.number("yaw_rad");
   n.wheel_load_N = r.number("wheel_load_N");
   const std::string status = r.string("status");
   if (status == "solved") n.status = WheelsetTableNodeStatus::solved;
@@ -197,8 +199,9 @@ std::string wheelset_table_json(const WheelsetTable& table) {
                     {"traction_bound_skew", table.bound().skew},
                     {"runtime_elements", m.runtime_elements},
                     {"nominal_rolling_radius_m", table.nominal_rolling_radius_m()},
-                    {"y_m", table.y_m()},
-                    {"wheel_load_N", table.wheel_loads_N()},
+                    {"y_m", table.grid().y_m},
+                    {"yaw_rad", table.grid().yaw_rad},
+                    {"wheel_load_N", table.grid().wheel_load_N},
                     {"nodes", nodes}};
   return out.dump();
 }
@@ -223,20 +226,23 @@ WheelsetTable parse_wheelset_table(const std::string& text, const std::string& s
   }
   const TractionBound bound{r.number("traction_bound_skew")};
   const double nominal_rolling_radius_m = r.number("nominal_rolling_radius_m");
-  std::vector<double> y = r.numbers("y_m");
-  std::vector<double> loads = r.numbers("wheel_load_N");
-  if (y.size() * loads.size() > kMaxNodes || y.size() > kMaxNodes || loads.size() > kMaxNodes)
-    r.fail(fmt::format("{} y values × {} loads: at most {} nodes are allowed", y.size(), loads.size(), kMaxNodes));
+  WheelsetTableGrid grid;
+  grid.y_m = r.numbers("y_m");
+  grid.yaw_rad = r.numbers("yaw_rad");
+  grid.wheel_load_N = r.numbers("wheel_load_N");
+  const std::size_t ny = grid.y_m.size(), nyaw = grid.yaw_rad.size(), nl = grid.wheel_load_N.size();
+  if (ny > kMaxNodes || nyaw > kMaxNodes || nl > kMaxNodes || grid.size() > kMaxNodes)
+    r.fail(fmt::format("{} y values × {} yaws × {} loads: at most {} nodes are allowed", ny, nyaw, nl, kMaxNodes));
   std::vector<WheelsetTableNode> nodes;
   const json& node_list = r.array("nodes");
-  if (node_list.size() != y.size() * loads.size())
-    r.fail(fmt::format("nodes has {} entries for {} y values × {} loads", node_list.size(), y.size(), loads.size()));
+  if (node_list.size() != grid.size())
+    r.fail(fmt::format("nodes has {} entries for {} y values × {} yaws × {} loads", node_list.size(), ny, nyaw, nl));
   for (std::size_t k = 0; k < node_list.size(); ++k) nodes.push_back(read_node(r.item(node_list[k], fmt::format("nodes[{}]", k))));
   r.finish();
   try {
     validate(material);
     if (!(bound.skew >= 0.0 && bound.skew <= 1.0)) throw Error(fmt::format("traction_bound_skew {} must lie in [0, 1]", bound.skew));
-    WheelsetTable table(std::move(y), std::move(loads), std::move(nodes), nominal_rolling_radius_m, material, bound,
+    WheelsetTable table(std::move(grid), std::move(nodes), nominal_rolling_radius_m, material, bound,
                         std::move(metadata));
     table.set_source(source);
     return table;

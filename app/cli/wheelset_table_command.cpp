@@ -1,0 +1,139 @@
+// `railcontact wheelset-table build`: the wheelset table of a wheelset case's profiles and track
+// (docs/WHEELSET_TABLE.md). `railcontact wheelset --table FILE` evaluates states from it.
+#include <fmt/core.h>
+#include <fmt/ostream.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "case/wheelset_case.hpp"
+#include "cli/commands.hpp"
+#include "cli/table_file_output.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/wheelset_table.hpp"
+
+namespace railcontact::cli {
+namespace {
+
+struct BuildArguments {
+  std::string case_file;
+  std::string out;
+  std::string y_mm = "-7:7:0.1";
+  std::string yaw_mrad = "0:0:1";
+  std::vector<double> loads_kN{80.0, 100.0, 120.0};
+  double element_size_mm = 0.2;
+};
+
+// FROM:TO:STEP (in the option's unit, times `scale`), TO reached within 1e-9 of a step; FROM = TO
+// gives one value.
+std::vector<double> range_values(const std::string& text, const char* option, double scale) {
+  std::istringstream in(text);
+  char c1 = 0, c2 = 0;
+  double from = 0, to = 0, step = 0;
+  in >> from >> c1 >> to >> c2 >> step;
+  require(in && c1 == ':' && c2 == ':' && in.peek() == std::char_traits<char>::eof() && std::isfinite(from) &&
+              std::isfinite(to) && std::isfinite(step) && step > 0.0 && to >= from,
+          [&] {
+            return fmt::format("{} '{}' must be FROM:TO:STEP with FROM <= TO and a positive STEP, e.g. -7:7:0.1",
+                               option, text);
+          });
+  const double count = std::floor((to - from) / step + 1e-9) + 1.0;
+  require(count <= 20000.0, [&] { return fmt::format("{} '{}' gives {:.0f} values; at most 20000", option, text, count); });
+  std::vector<double> values;
+  for (int k = 0; k < static_cast<int>(count); ++k) values.push_back((from + k * step) * scale);
+  return values;
+}
+
+int run_build(const BuildArguments& a, const CLI::App& sub) {
+  require(!a.out.empty(), "wheelset-table build: --out must name the table file to write");
+  WheelsetCase c;
+  if (!a.case_file.empty()) c = read_wheelset_case(a.case_file);
+  WheelsetTableGrid grid;
+  grid.y_m = range_values(a.y_mm, "--y", 1e-3);
+  grid.yaw_rad = range_values(a.yaw_mrad, "--yaw", 1e-3);
+  grid.wheel_load_N.clear();
+  for (double load : a.loads_kN) {
+    require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load {:g} kN must be positive", load); });
+    grid.wheel_load_N.push_back(load * 1e3);
+  }
+  std::sort(grid.wheel_load_N.begin(), grid.wheel_load_N.end());
+  validate(grid);
+  WheelsetTableOptions options;
+  options.wheelset = c.options;
+  if (sub.count("--element-size") > 0 || a.case_file.empty()) options.wheelset.element_size_m = a.element_size_mm * 1e-3;
+  const WheelsetTrack track = wheelset_track(c);
+  const std::filesystem::path out(a.out);
+  check_table_writable(out, "wheelset table");  // before the work
+
+  fmt::print(std::cerr, "wheelset-table build: {} y values x {} yaw(s) x {} load(s) = {} nodes, elements {:g} mm\n",
+             grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
+             options.wheelset.element_size_m * 1e3);
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t next_report = 0;
+  // A progress line at every tenth of the nodes and for every gap, with the time left.
+  const auto report = [&](const WheelsetTableProgress& p) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double left = elapsed / static_cast<double>(p.nodes_done) * static_cast<double>(p.nodes_total - p.nodes_done);
+    const WheelsetTableNode& n = *p.node;
+    if (n.status != WheelsetTableNodeStatus::solved)
+      fmt::print(std::cerr, "  node {}/{} at y = {:+.3f} mm, yaw {:g} mrad, {:g} kN is a gap: {}\n", p.nodes_done,
+                 p.nodes_total, n.y_m * 1e3, n.yaw_rad * 1e3, n.wheel_load_N * 1e-3, n.message);
+    if (p.nodes_done >= next_report || p.nodes_done == p.nodes_total) {
+      fmt::print(std::cerr, "  [{:>3.0f} %] {}/{} nodes, {:.0f} s, about {:.0f} s left\n",
+                 100.0 * static_cast<double>(p.nodes_done) / static_cast<double>(p.nodes_total), p.nodes_done,
+                 p.nodes_total, elapsed, left);
+      next_report = p.nodes_done + std::max<std::size_t>(1, p.nodes_total / 10);
+    }
+  };
+  const WheelsetTable table = build_wheelset_table(track, grid, options, report);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_table_atomically(out, "wheelset table", [&](const std::filesystem::path& path) { save_wheelset_table(table, path); });
+
+  std::size_t gaps = 0, patches = 0;
+  for (const WheelsetTableNode& n : table.nodes()) {
+    gaps += n.status != WheelsetTableNodeStatus::solved;
+    patches += n.wheels[0].size() + n.wheels[1].size();
+  }
+  fmt::print("Wheelset table {}\n", a.out);
+  fmt::print("  profiles  {}\n", c.source.empty() ? std::string("S1002 / UIC60 1:40 (the shipped set-up)") : c.source);
+  fmt::print("  y         {:+.3f} ... {:+.3f} mm, {} values\n", grid.y_m.front() * 1e3, grid.y_m.back() * 1e3, grid.y_m.size());
+  fmt::print("  yaw       {:+g} ... {:+g} mrad, {} value(s){}\n", grid.yaw_rad.front() * 1e3, grid.yaw_rad.back() * 1e3,
+             grid.yaw_rad.size(), grid.yaw_rad.size() == 1 ? " (every yaw served by turning the contact point)" : "");
+  std::string loads;
+  for (double load : grid.wheel_load_N) loads += fmt::format("{}{:g}", loads.empty() ? "" : ", ", load * 1e-3);
+  fmt::print("  loads     {} kN per wheel\n", loads);
+  fmt::print("  nodes     {} ({} gaps), {} patches, built in {:.1f} s ({:.3f} s per node)\n", table.nodes().size(), gaps,
+             patches, seconds, seconds / static_cast<double>(table.nodes().size()));
+  return 0;
+}
+
+}  // namespace
+
+void add_wheelset_table_command(CLI::App& app, Action& action) {
+  CLI::App* command = app.add_subcommand(
+      "wheelset-table", "The wheelset table: a wheelset's contact over y, yaw and wheel load, for evaluations in "
+                        "microseconds (docs/WHEELSET_TABLE.md; use it with `railcontact wheelset --table FILE`)");
+  command->require_subcommand(1);
+  auto args = std::make_shared<BuildArguments>();
+  CLI::App* build = command->add_subcommand("build", "build a wheelset table and write it to --out");
+  build->add_option("case", args->case_file,
+                    "wheelset case file (TOML, docs/CASE_FILES.md): its profiles, track, material, mesh; default "
+                    "S1002/UIC60");
+  build->add_option("--out", args->out, "the table file to write (JSON)")->required();
+  build->add_option("--y", args->y_mm, "lateral displacements FROM:TO:STEP (mm)")->capture_default_str();
+  build->add_option("--yaw", args->yaw_mrad, "yaw angles FROM:TO:STEP (mrad); one value serves every yaw")
+      ->capture_default_str();
+  build->add_option("--load", args->loads_kN, "vertical loads per wheel (kN; repeat or list)")
+      ->capture_default_str()
+      ->delimiter(',');
+  build->add_option("--element-size", args->element_size_mm, "element size of the contact meshes (mm)")
+      ->capture_default_str();
+  build->callback([args, build, &action] { action = [args, build] { return run_build(*args, *build); }; });
+}
+
+}  // namespace railcontact::cli
