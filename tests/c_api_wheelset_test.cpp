@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -16,6 +17,7 @@
 #include "railcontact/railcontact.h"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_table.hpp"
 
 namespace railcontact {
 namespace {
@@ -418,6 +420,57 @@ std::string solver_error(const rc_solver* solver) {
 
 // Hertz and an ellipse at an approach: the load whose Hertzian approach it is; a grid at an
 // approach: the normal solver's position-driven solution, whose load given back gives the approach.
+// The wheelset table through the C API: built, saved, loaded back and evaluated, it gives the C++
+// table's lookup to the last digit; cancelling the build and bad use give statuses and messages.
+TEST(CApiWheelsetTable, BuildSaveLoadEvaluateEqualsTheCppTable) {
+  CWheelset w;
+  const double y[] = {-0.5e-3, 0.0, 0.5e-3}, yaw[] = {0.0}, loads[] = {90e3, 110e3};
+  rc_wheelset_state s;
+  rc_wheelset_state_default(&s);
+  s.y_m = 0.2e-3;
+  s.yaw_rad = 1e-3;
+  EXPECT_EQ(rc_wheelset_evaluate_table(w.h, &s, nullptr), RC_INVALID_INPUT);
+  EXPECT_NE(w.error().find("the wheelset has no table"), std::string::npos) << w.error();
+  ASSERT_EQ(rc_wheelset_table_build(w.h, y, 3, yaw, 1, loads, 2, nullptr, nullptr), RC_OK) << w.error();
+  std::size_t ny = 0, nyaw = 0, nl = 0;
+  ASSERT_EQ(rc_wheelset_table_size(w.h, &ny, &nyaw, &nl), RC_OK);
+  EXPECT_EQ(ny * 100 + nyaw * 10 + nl, 312u);
+  const std::string file = ::testing::TempDir() + "railcontact_c_api_wheelset_table.json";
+  ASSERT_EQ(rc_wheelset_table_save(w.h, file.c_str()), RC_OK) << w.error();
+  CWheelset back;
+  ASSERT_EQ(rc_wheelset_table_load(back.h, file.c_str()), RC_OK) << back.error();
+  rc_wheelset_options o;
+  rc_wheelset_get_options(back.h, &o);
+  o.right_load_N = 95e3;
+  o.left_load_N = 105e3;
+  ASSERT_EQ(rc_wheelset_set_options(back.h, &o), RC_OK);
+  rc_wheelset_result r{};
+  ASSERT_EQ(rc_wheelset_evaluate_table(back.h, &s, &r), RC_OK) << back.error();
+  const WheelsetTable table = load_wheelset_table(file);
+  WheelsetState state;
+  state.position.lateral_displacement_m = 0.2e-3;
+  state.position.yaw_rad = 1e-3;
+  const WheelsetResult expected = table.evaluate(state, WheelLoads{95e3, 105e3, false}, 0.3);
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(r.wheel_force_track_N[k][i], expected.wheels[k].force_track_N[i]);
+  const std::vector<rc_wheelset_patch> right = back.patches(RC_WHEEL_RIGHT);
+  ASSERT_EQ(right.size(), 1u);
+  EXPECT_EQ(right[0].solver_count, 1);
+  EXPECT_EQ(right[0].forces[0].F1_N, expected.wheels[0].patches[0].forces().F1_N);
+  std::remove(file.c_str());
+
+  s.y_m = 0.8e-3;  // outside the table
+  EXPECT_EQ(rc_wheelset_evaluate_table(back.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(back.error().find("y = 0.8 mm lies outside the table's range [-0.5, 0.5] mm"), std::string::npos)
+      << back.error();
+  const auto cancel = [](size_t done, size_t, void*) { return done >= 2 ? 1 : 0; };
+  EXPECT_EQ(rc_wheelset_table_build(w.h, y, 3, yaw, 1, loads, 2, cancel, nullptr), RC_CANCELLED);
+  const double bad_yaw[] = {0.0, 0.5};
+  EXPECT_EQ(rc_wheelset_table_build(w.h, y, 3, bad_yaw, 2, loads, 2, nullptr, nullptr), RC_INVALID_INPUT);
+  EXPECT_NE(w.error().find("the yaw grid [0, 0.5] rad must lie in [-0.1, 0.1] rad"), std::string::npos) << w.error();
+  EXPECT_EQ(rc_wheelset_table_load(w.h, "/nonexistent/t.json"), RC_IO);
+}
+
 TEST(CApiApproach, HertzEllipseAndGridAtAnApproach) {
   rc_solver* solver = nullptr;
   ASSERT_EQ(rc_solver_create(&solver), RC_OK);

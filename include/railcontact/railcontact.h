@@ -505,6 +505,39 @@ RC_API rc_status rc_wheelset_batch_evaluate(rc_wheelset* wheelset, size_t count,
                                             int threads, rc_wheelset_result* results, size_t patches_per_wheel,
                                             rc_wheelset_patch* patches, int* statuses);
 
+/* ---- The wheelset table (docs/WHEELSET_TABLE.md) ---------------------------------------------
+   A wheelset's patches precomputed over a grid of lateral displacement y, yaw and wheel load, so
+   that a state is evaluated in microseconds: the kinematic creepages of the state on each node's
+   patches, FastSim with the node's nH-FastSim flexibilities, the forces interpolated between the
+   nodes. A wheelset holds at most one table; it serves rc_wheelset_evaluate_table. */
+
+/* Builds the table of this wheelset's track with its options (material, element size) over the
+   grid: y_m (m), yaw_rad (rad, |yaw| <= 0.1; one value, e.g. 0, serves every yaw by turning the
+   contact point) and loads_N (N per wheel), each strictly increasing; about 0.2-0.5 s per node
+   (y_count x yaw_count x load_count nodes, at most 20000). progress (may be null) is called after
+   each node; a non-zero return cancels (RC_CANCELLED). Nodes that cannot be solved are gaps:
+   evaluations next to them fail, naming the node. Replaces a table the wheelset had. */
+RC_API rc_status rc_wheelset_table_build(rc_wheelset* wheelset, const double* y_m, size_t y_count, const double* yaw_rad,
+                                         size_t yaw_count, const double* loads_N, size_t load_count,
+                                         rc_progress_callback progress, void* user_data);
+/* Loads a table file (`railcontact wheelset-table build`, rc_wheelset_table_save) and checks that it
+   was built for this wheelset's track: its four profile files (hashes) and dimensions. */
+RC_API rc_status rc_wheelset_table_load(rc_wheelset* wheelset, const char* path);
+/* Writes the wheelset's table (JSON, docs/WHEELSET_TABLE.md §4). */
+RC_API rc_status rc_wheelset_table_save(const rc_wheelset* wheelset, const char* path);
+/* The grid of the wheelset's table: the number of y, yaw and load values (each may be null). */
+RC_API rc_status rc_wheelset_table_size(const rc_wheelset* wheelset, size_t* y_count, size_t* yaw_count,
+                                        size_t* load_count);
+
+/* Evaluates a state from the table: each wheel carries its load of the options (right_load_N,
+   left_load_N; normal_mode must be RC_WHEELSET_BY_LOAD), the friction coefficient is the options',
+   the solver nh-fastsim (one entry in each patch's forces). The state's z and roll are not used.
+   RC_INVALID_INPUT when y, yaw (with several yaw values) or a load lies outside the grid or a node
+   needed is a gap. The result and patches are queried as after rc_wheelset_evaluate. Thread-safe
+   against other wheelsets; the table itself is not modified. */
+RC_API rc_status rc_wheelset_evaluate_table(rc_wheelset* wheelset, const rc_wheelset_state* state,
+                                            rc_wheelset_result* result);
+
 #ifdef __cplusplus
 }
 #endif

@@ -14,6 +14,7 @@
 #include "railcontact/railcontact.h"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_table.hpp"
 
 namespace railcontact::c_api {
 
@@ -181,6 +182,7 @@ struct rc_wheelset {
   std::optional<railcontact::Wheelset> wheelset;  // the track and the options; empty without a track
   rc_wheelset_options options{};
   std::optional<railcontact::WheelsetResult> last;
+  std::optional<railcontact::WheelsetTable> table;  // rc_wheelset_table_build / _load
   mutable railcontact::c_api::LastError error;  // set by const calls too
   rc_wheelset();
 };

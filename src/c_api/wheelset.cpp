@@ -276,6 +276,23 @@ void run_batch_range(const BatchJob& job, std::size_t begin, std::size_t end) no
   }
 }
 
+std::vector<double> finite_grid(const double* values, std::size_t count, const char* what) {
+  require(count >= 1 && count <= 20000, [&] { return fmt::format("{}: {} values; 1 to 20000 are allowed", what, count); });
+  require_pointer(values, what);
+  std::vector<double> v(values, values + count);
+  for (std::size_t k = 0; k < v.size(); ++k)
+    require(std::isfinite(v[k]), [&] { return fmt::format("{}[{}] = {} is not finite", what, k, v[k]); });
+  return v;
+}
+
+struct TableBuildCancelled {};
+
+const rc::WheelsetTable& require_table(const rc_wheelset* w) {
+  if (!w->table)
+    throw Error("the wheelset has no table (rc_wheelset_table_build or rc_wheelset_table_load first)");
+  return *w->table;
+}
+
 }  // namespace
 
 rc_wheelset::rc_wheelset() { rc_wheelset_options_default(&options); }
@@ -484,6 +501,84 @@ rc_status rc_wheelset_batch_evaluate(rc_wheelset* w, size_t count, const rc_whee
     }
   });
   return status != RC_OK ? status : first_failure;
+}
+
+rc_status rc_wheelset_table_build(rc_wheelset* w, const double* y_m, size_t y_count, const double* yaw_rad,
+                                  size_t yaw_count, const double* loads_N, size_t load_count,
+                                  rc_progress_callback progress, void* user_data) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    rc::WheelsetTableGrid grid;
+    grid.y_m = finite_grid(y_m, y_count, "rc_wheelset_table_build: y_m");
+    grid.yaw_rad = finite_grid(yaw_rad, yaw_count, "rc_wheelset_table_build: yaw_rad");
+    grid.wheel_load_N = finite_grid(loads_N, load_count, "rc_wheelset_table_build: loads_N");
+    require(grid.size() <= 20000, [&] {
+      return fmt::format("rc_wheelset_table_build: {} x {} x {} = {} nodes; at most 20000", y_count, yaw_count,
+                         load_count, grid.size());
+    });
+    rc::validate(grid);
+    const rc::Wheelset& wheelset = require_wheelset(w);
+    rc::WheelsetTableOptions options;
+    options.wheelset = wheelset.options();
+    rc::WheelsetTableProgressCallback callback;
+    if (progress != nullptr)
+      callback = [&](const rc::WheelsetTableProgress& p) {
+        if (progress(p.nodes_done, p.nodes_total, user_data) != 0) throw TableBuildCancelled{};
+      };
+    try {
+      rc::WheelsetTable built = rc::build_wheelset_table(wheelset.track(), grid, options, callback);
+      w->table.reset();
+      w->table.emplace(std::move(built));
+    } catch (const TableBuildCancelled&) {
+      throw StatusError{RC_CANCELLED, "rc_wheelset_table_build: cancelled by the progress callback"};
+    }
+  });
+}
+
+rc_status rc_wheelset_table_load(rc_wheelset* w, const char* path) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(path, "rc_wheelset_table_load: path");
+    const rc::Wheelset& wheelset = require_wheelset(w);
+    rc::WheelsetTable loaded = rc::load_wheelset_table(path);
+    loaded.check_track(wheelset.track());
+    w->table.reset();
+    w->table.emplace(std::move(loaded));
+  });
+}
+
+rc_status rc_wheelset_table_save(const rc_wheelset* w, const char* path) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(path, "rc_wheelset_table_save: path");
+    rc::save_wheelset_table(require_table(w), path);
+  });
+}
+
+rc_status rc_wheelset_table_size(const rc_wheelset* w, size_t* y_count, size_t* yaw_count, size_t* load_count) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    const rc::WheelsetTableGrid& grid = require_table(w).grid();
+    if (y_count != nullptr) *y_count = grid.y_m.size();
+    if (yaw_count != nullptr) *yaw_count = grid.yaw_rad.size();
+    if (load_count != nullptr) *load_count = grid.wheel_load_N.size();
+  });
+}
+
+rc_status rc_wheelset_evaluate_table(rc_wheelset* w, const rc_wheelset_state* state, rc_wheelset_result* result) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(state, "rc_wheelset_evaluate_table: state");
+    const rc::WheelsetState s = state_of(*state);
+    const rc::WheelsetTable& table = require_table(w);
+    require(w->options.normal_mode == RC_WHEELSET_BY_LOAD,
+            "rc_wheelset_evaluate_table: the wheels carry the loads of the options: normal_mode must be "
+            "RC_WHEELSET_BY_LOAD");
+    w->last.reset();
+    w->last = table.evaluate(s, rc::WheelLoads{w->options.right_load_N, w->options.left_load_N, false},
+                             w->options.friction_coefficient);
+    if (result != nullptr) *result = result_of(*w->last);
+  });
 }
 
 }  // extern "C"
