@@ -33,5 +33,6 @@ void add_run_command(CLI::App& app, Action& action);
 void add_patch_command(CLI::App& app, Action& action);
 void add_flextable_command(CLI::App& app, Action& action);
 void add_wheelset_command(CLI::App& app, Action& action);
+void add_geometry_command(CLI::App& app, Action& action);
 
 }  // namespace railcontact::cli
