@@ -43,6 +43,7 @@ PUBLIC_LAYERS = {
     "kalker.hpp": 3,
     "geometry.hpp": 4,
     "wheelset_geometry.hpp": 4,
+    "contact_geometry.hpp": 4,
     "normal.hpp": 6,
     "tangential.hpp": 7,
     "wheel_rail.hpp": 8,

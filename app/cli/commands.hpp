@@ -34,5 +34,6 @@ void add_patch_command(CLI::App& app, Action& action);
 void add_flextable_command(CLI::App& app, Action& action);
 void add_wheelset_command(CLI::App& app, Action& action);
 void add_wheelset_table_command(CLI::App& app, Action& action);
+void add_geometry_command(CLI::App& app, Action& action);
 
 }  // namespace railcontact::cli

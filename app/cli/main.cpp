@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   railcontact::cli::add_flextable_command(app, action);
   railcontact::cli::add_wheelset_command(app, action);
   railcontact::cli::add_wheelset_table_command(app, action);
+  railcontact::cli::add_geometry_command(app, action);
   if (argc > 1 && argv[1][0] != '-') {
     try {
       app.get_subcommand(argv[1]);

@@ -7,12 +7,14 @@
 //   hertz.hpp             Hertz's solution (the normal problem of an ellipse)
 //   kalker.hpp            Kalker's linear theory: C11, C22, C23, FastSim's flexibilities (Eq 9)
 //   geometry.hpp          profiles, the wheel–rail pair, contact point, undeformed distance
+//   contact_geometry.hpp  the rigid wheelset on its track: Δr(y), contact angles, roll, equivalent conicity
 //   normal.hpp            the non-Hertzian normal problem (docs/METHOD.md §5)
 //   tangential.hpp        K2 (Eq 10-18), FastSim (Eq 1-9), NhFastSim (Eq 19-21), exact rolling (Eq A1)
 //   wheel_rail.hpp        the wheel–rail stage: profiles in, contact patch with angle, spin, F3 out
 //   wheelset.hpp          the wheelset's motion and the kinematic creepages of a contact
 //   flexibility_table.hpp precomputed nH-FastSim flexibilities over y and load
 // Units are SI throughout (m, N, Pa, rad; spin in 1/m); names carry the unit where it matters.
+#include "railcontact/contact_geometry.hpp"
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/flexibility_table.hpp"
