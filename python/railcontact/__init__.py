@@ -540,3 +540,47 @@ class Wheelset:
         if status != 0 and errors == "raise":
             _raise(status, message)
         return [None if r is None else _wheelset_result(r, self._solvers) for r in results]
+
+    # ---- The wheelset table (docs/WHEELSET_TABLE.md) ---------------------------------------------
+
+    def build_table(self, y, yaw=(0.0,), loads=(80e3, 100e3, 120e3), *, progress=None) -> None:
+        """Builds this wheelset's table (its track, material and element size) over the grid y (m),
+        yaw (rad; one value serves every yaw by turning the contact point) and loads (N per wheel),
+        each strictly increasing; about 0.2-0.5 s per node. progress(done, total) is called after
+        each node; returning False cancels (CancelledError). Replaces a table the wheelset had."""
+        grids = [np.ascontiguousarray(np.atleast_1d(np.asarray(v, dtype=float))) for v in (y, yaw, loads)]
+        for name, g in zip(("y", "yaw", "loads"), grids):
+            if g.ndim != 1 or g.size == 0:
+                raise InvalidInputError(f"{name} must be a non-empty list of numbers")
+        self._core.build_table(*grids, progress)
+
+    def load_table(self, path) -> None:
+        """Loads a table file (`railcontact wheelset-table build`, save_table), checked against this
+        wheelset's track (its four profile files and dimensions)."""
+        self._core.load_table(str(path))
+
+    def save_table(self, path) -> None:
+        """Writes this wheelset's table (JSON)."""
+        self._core.save_table(str(path))
+
+    def _table_row(self, y, yaw, speed, lateral_velocity, yaw_rate, wheel_angular_velocity, extra_creepage):
+        return np.array([y, 0.0, 0.0, yaw, speed, lateral_velocity, 0.0, 0.0, yaw_rate,
+                         float("nan") if wheel_angular_velocity is None else wheel_angular_velocity, extra_creepage],
+                        dtype=float)
+
+    def evaluate_table(self, y: float = 0.0, yaw: float = 0.0, *, speed: float = 20.0, lateral_velocity: float = 0.0,
+                       yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
+                       extra_creepage: float = 0.0) -> WheelsetResult:
+        """A state from the table (arguments as in evaluate(); each wheel carries its load of the
+        options, nh-fastsim only). Raises InvalidInputError outside the table's grid."""
+        row = self._table_row(y, yaw, speed, lateral_velocity, yaw_rate, wheel_angular_velocity, extra_creepage)
+        return _wheelset_result(self._core.evaluate_table(row), ("nh-fastsim",))
+
+    def table_forces(self, y: float, yaw: float, *, speed: float, lateral_velocity: float = 0.0,
+                     yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
+                     extra_creepage: float = 0.0) -> np.ndarray:
+        """The fast path of a simulation step: from the table, the array [Fx, Fy, Fz of the right
+        wheel, Fx, Fy, Fz of the left wheel (N, track frame: x forward, y left, z up), Mz (N m) about
+        the wheelset centre], without result objects."""
+        row = self._table_row(y, yaw, speed, lateral_velocity, yaw_rate, wheel_angular_velocity, extra_creepage)
+        return self._core.table_forces(row)

@@ -636,6 +636,84 @@ class WheelsetHandle {
     return py::make_tuple(out, statuses, py::make_tuple(static_cast<int>(status), message));
   }
 
+  // The wheelset table (docs/WHEELSET_TABLE.md).
+  void build_table(const DoubleArray& y, const DoubleArray& yaw, const DoubleArray& loads, const py::object& progress) {
+    struct Context {
+      py::object callback;
+      std::optional<py::error_already_set> error;
+    } context{progress, std::nullopt};
+    const auto trampoline = [](std::size_t done, std::size_t total, void* user) -> int {
+      auto* c = static_cast<Context*>(user);
+      py::gil_scoped_acquire acquire;
+      try {
+        const py::object r = c->callback(done, total);
+        return (!r.is_none() && r.cast<bool>() == false) ? 1 : 0;  // False stops the build
+      } catch (py::error_already_set& e) {
+        c->error.emplace(std::move(e));
+        return 1;
+      }
+    };
+    rc_status status;
+    {
+      py::gil_scoped_release release;
+      status = rc_wheelset_table_build(handle_, y.data(), static_cast<std::size_t>(y.size()), yaw.data(),
+                                       static_cast<std::size_t>(yaw.size()), loads.data(),
+                                       static_cast<std::size_t>(loads.size()), progress.is_none() ? nullptr : +trampoline,
+                                       &context);
+    }
+    if (context.error) throw std::move(*context.error);
+    check(status);
+  }
+
+  void load_table(const std::string& path) {
+    rc_status status;
+    {
+      py::gil_scoped_release release;
+      status = rc_wheelset_table_load(handle_, path.c_str());
+    }
+    check(status);
+  }
+
+  void save_table(const std::string& path) const { check(rc_wheelset_table_save(handle_, path.c_str())); }
+
+  py::dict evaluate_table(const DoubleArray& row) {
+    if (row.ndim() != 1 || row.shape(0) != kStateColumns) raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
+    const rc_wheelset_state s = wheelset_state(row.data());
+    rc_wheelset_result r{};
+    check(rc_wheelset_evaluate_table(handle_, &s, &r));
+    std::vector<rc_wheelset_patch> patches;
+    std::size_t per_wheel = 0;
+    for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
+    patches.resize(2 * per_wheel);
+    for (int w = 0; w < 2; ++w)
+      check(rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel));
+    return wheelset_result_dict(r, patches.data(), per_wheel);
+  }
+
+  // The fast path of a simulation step: [Fx, Fy, Fz of the right wheel, of the left wheel (track
+  // frame, N), Mz about the wheelset centre (N m)] from the table, without building result objects.
+  py::array_t<double> table_forces(const DoubleArray& row) {
+    if (row.ndim() != 1 || row.shape(0) != kStateColumns) raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
+    const rc_wheelset_state s = wheelset_state(row.data());
+    rc_wheelset_result r{};
+    check(rc_wheelset_evaluate_table(handle_, &s, &r));
+    py::array_t<double> out(7);
+    double* f = out.mutable_data();
+    double yaw_moment = 0.0;
+    for (int w = 0; w < 2; ++w) {
+      for (int i = 0; i < 3; ++i) f[3 * w + i] = r.wheel_force_track_N[w][i];
+      rc_wheelset_patch patch[8];
+      const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(r.patch_count[w]), 8);
+      check(rc_wheelset_patches(handle_, w, 8, patch));
+      for (std::size_t j = 0; j < n; ++j) {
+        const double rx = patch[j].reference_point_track_m[0], ry = patch[j].reference_point_track_m[1] - s.y_m;
+        yaw_moment += rx * patch[j].force_track_N[0][1] - ry * patch[j].force_track_N[0][0];
+      }
+    }
+    f[6] = yaw_moment;
+    return out;
+  }
+
  private:
   rc_wheelset* handle_ = nullptr;
 };
@@ -670,7 +748,12 @@ PYBIND11_MODULE(_core, m) {
       .def("options", &WheelsetHandle::options)
       .def("set_options", &WheelsetHandle::set_options)
       .def("evaluate", &WheelsetHandle::evaluate)
-      .def("batch", &WheelsetHandle::batch);
+      .def("batch", &WheelsetHandle::batch)
+      .def("build_table", &WheelsetHandle::build_table)
+      .def("load_table", &WheelsetHandle::load_table)
+      .def("save_table", &WheelsetHandle::save_table)
+      .def("evaluate_table", &WheelsetHandle::evaluate_table)
+      .def("table_forces", &WheelsetHandle::table_forces);
 
   py::class_<FlexTable>(m, "FlexTable")
       .def(py::init<>())

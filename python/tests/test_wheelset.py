@@ -185,3 +185,54 @@ def test_single_patch_at_an_approach():
         solver.set_grid(h, dx, dx, approach=-1e-3)
     with pytest.raises(railcontact.InvalidInputError, match="either normal_force"):
         solver.set_hertz(0.6, 1.4)
+
+
+# ---- The wheelset table (docs/WHEELSET_TABLE.md) -------------------------------------------------
+
+@pytest.fixture(scope="module")
+def tabled(tmp_path_factory):
+    w = railcontact.Wheelset(element_size=0.5e-3, loads=(95e3, 105e3))
+    calls = []
+    w.build_table(np.arange(-1e-3, 1.001e-3, 0.5e-3), (-2e-3, 0.0, 2e-3), (90e3, 110e3),
+                  progress=lambda done, total: calls.append((done, total)))
+    assert calls[-1] == (30, 30)
+    return w
+
+
+def test_table_forces_are_the_table_evaluation(tabled):
+    r = tabled.evaluate_table(0.3e-3, 1e-3, speed=30.0, lateral_velocity=0.02, yaw_rate=0.01)
+    f = tabled.table_forces(0.3e-3, 1e-3, speed=30.0, lateral_velocity=0.02, yaw_rate=0.01)
+    assert np.array_equal(f[:3], r.right.force_track_N) and np.array_equal(f[3:6], r.left.force_track_N)
+    # Mz about the wheelset centre from the patches' reference points and forces.
+    mz = sum(p.reference_point_track_m[0] * p.force_track_N[1] - (p.reference_point_track_m[1] - 0.3e-3) *
+             p.force_track_N[0] for wheel in r.wheels for p in wheel.patches)
+    assert f[6] == pytest.approx(mz, rel=1e-12, abs=1e-9)
+    # The wheels carry the loads of the options (the frictionless balance: F3 X3 sums to the load).
+    assert sum(p.normal_force_N * p.x3_axis[2] for p in r.right.patches) == pytest.approx(95e3, rel=2e-3)
+
+
+def test_table_is_close_to_the_wheelset_on_the_fly(tabled):
+    fly = railcontact.Wheelset(element_size=0.5e-3, loads=(100e3, 100e3), tangential_in_balance=False)
+    on_the_fly = fly.evaluate(-0.25e-3, yaw=1e-3, speed=25.0, lateral_velocity=0.01)
+    tabled_100 = railcontact.Wheelset(element_size=0.5e-3, loads=(100e3, 100e3))
+    path = os.path.join(os.environ.get("TMPDIR", "/tmp"), f"railcontact_pytest_table_{os.getpid()}.json")
+    tabled.save_table(path)
+    try:
+        tabled_100.load_table(path)
+    finally:
+        os.remove(path)
+    table = tabled_100.evaluate_table(-0.25e-3, 1e-3, speed=25.0, lateral_velocity=0.01)
+    for a, b in zip(on_the_fly.wheels, table.wheels):
+        assert np.allclose(a.force_track_N[:2], b.force_track_N[:2], atol=0.02 * 0.3 * 100e3)
+
+
+def test_table_refuses_states_outside_and_cancels(tabled):
+    with pytest.raises(railcontact.InvalidInputError, match="lies outside the table's range"):
+        tabled.table_forces(1.5e-3, 0.0, speed=20.0)
+    with pytest.raises(railcontact.InvalidInputError, match="yaw"):
+        tabled.table_forces(0.0, 5e-3, speed=20.0)
+    w = railcontact.Wheelset(element_size=0.5e-3)
+    with pytest.raises(railcontact.CancelledError):
+        w.build_table((0.0, 0.5e-3), (0.0,), (100e3,), progress=lambda done, total: False)
+    with pytest.raises(railcontact.InvalidInputError, match="has no table"):
+        w.table_forces(0.0, 0.0, speed=20.0)
