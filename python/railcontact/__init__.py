@@ -515,6 +515,13 @@ class Wheelset:
                   for k, v in enumerate(row)]
         return _wheelset_result(self._core.evaluate(np.array(values, dtype=float)), self._solvers)
 
+    def reset_warm_start(self) -> None:
+        """Forgets the warm start (the previous evaluation's pressures and the normal solvers'
+        plans): the next evaluate() starts cold and gives the numbers of a fresh Wheelset with the
+        same profiles and options, to the last digit. For a jump in the state (a new run, a
+        restart)."""
+        self._core.reset_warm_start()
+
     def batch(self, states, *, threads: int = 0, errors: str = "raise") -> list:
         """Many states at once on `threads` threads (0: all hardware threads), one wheelset per
         thread, each state from a cold start: the numbers equal those of a loop of evaluate() with
