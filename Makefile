@@ -66,6 +66,8 @@ fuzz: deps-fuzz
 
 bench: build
 	@for b in $(BUILD)/bench/*_bench; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
+	@if [ -d $(BUILD)/python/railcontact ]; then echo "== bench/python_overhead.py"; \
+	  PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_overhead.py --build $(BUILD); fi
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(VALGRIND_BUILD)
