@@ -5,9 +5,9 @@ JOBS ?= 2
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev libfftw3-dev libcli11-dev \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev \
   libboost-math-dev \
-  python3-matplotlib python3-numpy python3-dev python3-pybind11 python3-pytest gfortran
+  python3-matplotlib python3-numpy python3-dev python3-pybind11 python3-pytest gfortran valgrind
 
-.PHONY: all deps deps-fuzz configure build run test test-sanitize fuzz bench clean
+.PHONY: all deps deps-fuzz configure build run test test-sanitize test-valgrind fuzz bench clean
 
 all: build
 
@@ -46,6 +46,16 @@ test-sanitize: deps
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) --timeout 900
 
+# The C examples (tests/install/example.c, handles.c) under valgrind (ctest c_api.valgrind): valgrind
+# cannot run the AVX-512 code of -march=native, so the shared library is built without it in its
+# own build directory (only that target: a few minutes on 2 cores).
+VALGRIND_BUILD ?= build-valgrind
+test-valgrind: deps
+	cmake -S . -B $(VALGRIND_BUILD) -DCMAKE_BUILD_TYPE=Release -DRAILCONTACT_NATIVE=OFF \
+	  -DRAILCONTACT_BUILD_BENCHMARKS=OFF -DRAILCONTACT_BUILD_PYTHON=OFF
+	cmake --build $(VALGRIND_BUILD) -j $(JOBS) --target railcontact_shared
+	ctest --test-dir $(VALGRIND_BUILD) --output-on-failure -L valgrind
+
 # libFuzzer on every fuzz target (fuzz/, docs/RELIABILITY.md "Fuzzing"): clang++ with
 # -fsanitize=fuzzer,address,undefined in its own build directory, FUZZ_SECONDS per target, one
 # target after the other (scripts/fuzz.sh; new inputs go to build-fuzz/corpus/, crashes and
@@ -66,6 +76,8 @@ fuzz: deps-fuzz
 
 bench: build
 	@for b in $(BUILD)/bench/*_bench; do echo "== $$b"; $$b --benchmark_min_time=0.2; done
+	@if [ -d $(BUILD)/python/railcontact ]; then echo "== bench/python_overhead.py"; \
+	  PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_overhead.py --build $(BUILD); fi
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD)
+	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(VALGRIND_BUILD)

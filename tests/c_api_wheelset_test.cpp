@@ -190,6 +190,32 @@ TEST(CApiWheelset, EqualsTheCppWheelset) {
 
 // The profile files of the shipped set-up, given one for both sides or one per wheel and rail
 // with the set-up's dimensions, make the same wheelset as the default track.
+// rc_wheelset_reset_warm_start: the next evaluation gives a fresh handle's numbers to the last digit.
+TEST(CApiWheelset, ResetWarmStartGivesAFreshHandlesNumbers) {
+  CWheelset used(false), fresh(false);
+  rc_wheelset_result r{}, reset{}, first{};
+  const rc_wheelset_state a = c_state(0.0, 0.0, -0.02e-3);
+  ASSERT_EQ(rc_wheelset_evaluate(used.h, &a, &r), RC_OK) << used.error();
+  const rc_wheelset_state b = c_state(0.3e-3, 1e-3, -0.02e-3);
+  ASSERT_EQ(rc_wheelset_evaluate(used.h, &b, &r), RC_OK) << used.error();
+  EXPECT_EQ(rc_wheelset_reset_warm_start(used.h), RC_OK);
+  rc_wheelset_result kept{};
+  EXPECT_EQ(rc_wheelset_result_get(used.h, &kept), RC_OK);  // the last result stays readable
+  expect_same(kept, r);
+  ASSERT_EQ(rc_wheelset_evaluate(used.h, &b, &reset), RC_OK) << used.error();
+  ASSERT_EQ(rc_wheelset_evaluate(fresh.h, &b, &first), RC_OK) << fresh.error();
+  expect_same(reset, first);
+  for (int side = 0; side < 2; ++side) {
+    const auto p = used.patches(side), q = fresh.patches(side);
+    ASSERT_EQ(p.size(), q.size());
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      expect_same(p[j], q[j]);
+      EXPECT_EQ(p[j].normal_iterations, q[j].normal_iterations);
+    }
+  }
+  EXPECT_EQ(rc_wheelset_reset_warm_start(nullptr), RC_INVALID_INPUT);
+}
+
 TEST(CApiWheelset, ProfileFilesGiveTheDefaultTrack) {
   CWheelset reference(true, 0);
   rc_track_parameters dimensions;

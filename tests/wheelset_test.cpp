@@ -91,6 +91,43 @@ TEST(Wheelset, MeetsTheWheelLoads) {
 
 // By position: a patch that has just appeared (overlap of a few micrometres) carries a small,
 // finite force, which grows continuously as the wheel is lowered.
+// After reset_warm_start() an evaluation gives a fresh Wheelset's numbers to the last digit, while
+// the warm step before it started from the previous state's pressures.
+TEST(Wheelset, ResetWarmStartGivesAFreshWheelsetsNumbers) {
+  WheelsetOptions o = coarse();
+  o.loads.reset();
+  o.allow_wheel_lift = true;
+  WheelsetState a = state_at(0.0);
+  a.position.vertical_displacement_m = track().touching_vertical_displacement_m(WheelSide::right, a.position) - 20e-6;
+  WheelsetState b = a;
+  b.position.lateral_displacement_m = 1e-6;  // a time step: the warm start saves iterations
+  Wheelset used(track(), o);
+  (void)used.evaluate(a);
+  const WheelsetResult warm = used.evaluate(b);
+  used.reset_warm_start();
+  const WheelsetResult reset = used.evaluate(b);
+  const WheelsetResult fresh = Wheelset(track(), o).evaluate(b);
+  int warm_iterations = 0, cold_iterations = 0;
+  for (int w = 0; w < 2; ++w) {
+    ASSERT_EQ(reset.wheels[w].patches.size(), fresh.wheels[w].patches.size());
+    ASSERT_FALSE(fresh.wheels[w].patches.empty());
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(reset.wheels[w].force_track_N[i], fresh.wheels[w].force_track_N[i]);
+    for (std::size_t j = 0; j < fresh.wheels[w].patches.size(); ++j) {
+      const WheelsetPatch& p = reset.wheels[w].patches[j];
+      const WheelsetPatch& q = fresh.wheels[w].patches[j];
+      EXPECT_EQ(p.normal_force_N, q.normal_force_N);
+      EXPECT_EQ(p.normal_iterations, q.normal_iterations);
+      EXPECT_EQ(p.elements_in_contact, q.elements_in_contact);
+      EXPECT_EQ(p.forces().F1_N, q.forces().F1_N);
+      EXPECT_EQ(p.forces().F2_N, q.forces().F2_N);
+      EXPECT_EQ(p.forces().M3_Nm, q.forces().M3_Nm);
+      cold_iterations += q.normal_iterations;
+    }
+    for (const WheelsetPatch& p : warm.wheels[w].patches) warm_iterations += p.normal_iterations;
+  }
+  EXPECT_LT(warm_iterations, cold_iterations);  // the step before the reset was warm
+}
+
 TEST(Wheelset, APatchThatAppearsStartsFromZeroForce) {
   WheelsetOptions o = coarse();
   o.loads.reset();

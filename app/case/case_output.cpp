@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "railcontact/error.hpp"
+#include "railcontact/version.h"
 #include "study/figures.hpp"
 
 namespace railcontact {
@@ -80,6 +81,7 @@ std::string case_result_json(const CaseResult& r) {
     results[std::string(solver_name(run.kind))] = j;
   }
   nlohmann::json out = {
+      {"railcontact_version", RC_VERSION_STRING},
       {"patch", patch_json(r)},
       {"creepage", {{"xi", r.creepage.xi}, {"eta", r.creepage.eta}, {"phi", r.creepage.phi}}},
       {"results", results}};

@@ -10,6 +10,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
+#include "railcontact/version.h"
 
 namespace railcontact::cli {
 namespace {
@@ -61,6 +62,7 @@ int run_coefficients(const CoefficientsArguments& args) {
 
   if (args.json) {
     nlohmann::json out = {
+        {"railcontact_version", RC_VERSION_STRING},
         {"a_over_b", args.a_over_b},
         {"nu", args.nu},
         {"alpha", options.adhesion.collocation_offset},

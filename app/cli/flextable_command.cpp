@@ -21,6 +21,7 @@
 #include "cli/table_file_output.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/flexibility_table.hpp"
+#include "railcontact/version.h"
 #include "study/flexibility_table_check.hpp"
 
 namespace railcontact::cli {
@@ -195,7 +196,8 @@ int run_check(const CheckArguments& args) {
     }
     nlohmann::json families = nlohmann::json::array();
     for (const auto& f : check.families) families.push_back(f.name);
-    nlohmann::json out = {{"table", args.table},
+    nlohmann::json out = {{"railcontact_version", RC_VERSION_STRING},
+                          {"table", args.table},
                                 {"interpolation", args.interpolation},
                                 {"mu", args.mu},
                                 {"families", families},

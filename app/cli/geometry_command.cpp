@@ -14,6 +14,7 @@
 #include "cli/commands.hpp"
 #include "railcontact/contact_geometry.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/version.h"
 #include "railcontact/geometry.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "study/contact_geometry_study.hpp"
@@ -103,6 +104,7 @@ int run_geometry(const GeometryArguments& a, const CLI::App& sub) {
   const EquivalentConicity& e = r.at_amplitude;
   if (a.json) {
     const nlohmann::json j = {
+        {"railcontact_version", RC_VERSION_STRING},
         {"profiles", description},
         {"y_from_m", s.y_from_m},
         {"y_to_m", s.y_to_m},

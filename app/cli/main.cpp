@@ -7,11 +7,12 @@
 
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"railcontact: wheel-rail rolling contact (nH-FastSim and exact reference solvers)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("railcontact ") + RAILCONTACT_VERSION);
+  app.set_version_flag("--version", std::string("railcontact ") + RC_VERSION_STRING);
   app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string("railcontact: error: ") + e.what() + "\n"; });
   railcontact::cli::Action action;
   railcontact::cli::add_run_command(app, action);

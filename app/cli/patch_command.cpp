@@ -10,6 +10,7 @@
 
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/version.h"
 #include "railcontact/wheel_rail.hpp"
 #include "study/figures.hpp"
 #include "study/output_directory.hpp"
@@ -85,6 +86,7 @@ int run_patch(const PatchArguments& args) {
   const double time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   nlohmann::json json = study::patch_json(patch);
+  json["railcontact_version"] = RC_VERSION_STRING;
   json["wheel_profile"] = wheel.string();
   json["rail_profile"] = rail.string();
   json["solve_time_s"] = time_s;

@@ -12,6 +12,7 @@
 
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/version.h"
 #include "railcontact/wheelset_table.hpp"
 #include "case/wheelset_case.hpp"
 #include "railcontact/wheelset.hpp"
@@ -164,6 +165,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
                         {"force_track_N", vector_json(w.force_track_N)}});
     }
     const nlohmann::json out = {
+        {"railcontact_version", RC_VERSION_STRING},
         {"state",
          {{"lateral_displacement_m", r.state.position.lateral_displacement_m},
           {"vertical_displacement_m", r.state.position.vertical_displacement_m},

@@ -482,6 +482,11 @@ RC_API rc_status rc_wheelset_get_options(const rc_wheelset* wheelset, rc_wheelse
    patches are queried with rc_wheelset_patch_count and rc_wheelset_patches. */
 RC_API rc_status rc_wheelset_evaluate(rc_wheelset* wheelset, const rc_wheelset_state* state,
                                       rc_wheelset_result* result);
+/* Forgets the warm start (the previous evaluation's pressures and the normal solvers' plans): the
+   next rc_wheelset_evaluate starts cold and gives the numbers of a fresh wheelset with the same
+   track and options, to the last digit. For a jump in the state (a new run, a restart). The last
+   result stays readable. */
+RC_API rc_status rc_wheelset_reset_warm_start(rc_wheelset* wheelset);
 /* The last evaluation's totals and solved state. */
 RC_API rc_status rc_wheelset_result_get(const rc_wheelset* wheelset, rc_wheelset_result* result);
 /* The number of patches of a wheel (side: rc_wheel_side) in the last evaluation. */

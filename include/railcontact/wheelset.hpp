@@ -208,6 +208,11 @@ class Wheelset {
   // (docs/WHEELSET.md §3), no_contact when a wheel has none (unless allow_wheel_lift),
   // not_converged when a solver or the load balance fails. Nothing non-finite is returned.
   [[nodiscard]] WheelsetResult evaluate(const WheelsetState& state);
+  // Forgets the warm start (the previous patches' pressures and the normal solvers' plans): the
+  // next evaluation starts cold and gives the numbers of a fresh Wheelset with the same track and
+  // options, to the last digit. For a jump in the state (a new simulation, a restart from a saved
+  // state) after which the previous pressures are no guide.
+  void reset_warm_start();
 
  private:
   WheelsetTrack track_;

@@ -140,6 +140,7 @@ class Solver:
     def __init__(self, method: str = "nh-fastsim", **settings):
         self._core = _core.Solver()
         self._patch = None  # the ellipse or Hertz patch set, for batch(patches=None)
+        self._normal = None  # the NormalResult of the patch set, made at its first use
         self.configure(method=method, **settings)
 
     def configure(self, method: Optional[str] = None, **settings):
@@ -161,6 +162,7 @@ class Solver:
             if key not in self._KEYWORDS:
                 raise InvalidInputError(f"unknown setting {key!r}")
             values[self._KEYWORDS[key]] = value
+        self._normal = None  # a changed material, mesh or method discards the patch
         self._core.set_settings(values)
 
     @property
@@ -177,7 +179,7 @@ class Solver:
         """Elliptical patch with semi-axes a (along X1) and b (m), Hertzian pressure under the
         normal force F3 (N), or, with approach= instead (m, > 0), under the load whose Hertzian
         approach that is. Prepares the method (nh-fastsim: K2, the costly part)."""
-        self._patch = None
+        self._patch = self._normal = None
         force, approach = _normal_input(normal_force, approach)
         self._core.set_ellipse(float(a), float(b), force, approach)
         if approach is None:  # batch(patches=None) takes this patch (not one set by its approach)
@@ -188,7 +190,7 @@ class Solver:
                   approach: Optional[float] = None) -> NormalResult:
         """Hertz's patch for the undeformed distance h = A x1^2 + B x2^2 (A, B in 1/m) under F3 (N),
         or at the approach (penetration) approach= (m, > 0), F3 following."""
-        self._patch = None
+        self._patch = self._normal = None
         force, approach = _normal_input(normal_force, approach)
         self._core.set_hertz(float(A), float(B), force, approach)
         if approach is None:  # batch(patches=None) takes this patch (not one set by its approach)
@@ -203,7 +205,7 @@ class Solver:
         with the approach prescribed (h measured at the bodies' position, negative where they
         overlap: approach=0 is the position-driven problem) and F3 follows (NoContactError when no
         element touches). The normal problem must give one patch."""
-        self._patch = None
+        self._patch = self._normal = None
         force, approach = _normal_input(normal_force, approach)
         self._core.set_grid(np.ascontiguousarray(h, dtype=float), float(dx1), float(dx2), force, approach)
         return self.normal
@@ -211,14 +213,17 @@ class Solver:
     def set_flextable_patch(self, table: "FlexibilityTable", y: float, vertical_load: float) -> NormalResult:
         """The wheel-rail patch of the table's profile pair at wheelset lateral displacement y (m)
         and vertical wheel load Fz (N); nh-fastsim takes its flexibilities from the table."""
-        self._patch = None
+        self._patch = self._normal = None
         self._core.set_flextable_patch(table._core, float(y), float(vertical_load))
         return self.normal
 
     @property
     def normal(self) -> NormalResult:
-        """The normal results of the patch set."""
-        return NormalResult(**self._core.normal())
+        """The normal results of the patch set (made once per patch: solve() returns it with every
+        result at no cost)."""
+        if self._normal is None:
+            self._normal = NormalResult(**self._core.normal())
+        return self._normal
 
     def solve(self, xi: float = 0.0, eta: float = 0.0, phi: float = 0.0, *, tractions: bool = False,
               jacobian: bool = False) -> Result:
@@ -514,6 +519,13 @@ class Wheelset:
         values = [_finite(names[k], v) if k != 9 or wheel_angular_velocity is not None else float(v)
                   for k, v in enumerate(row)]
         return _wheelset_result(self._core.evaluate(np.array(values, dtype=float)), self._solvers)
+
+    def reset_warm_start(self) -> None:
+        """Forgets the warm start (the previous evaluation's pressures and the normal solvers'
+        plans): the next evaluate() starts cold and gives the numbers of a fresh Wheelset with the
+        same profiles and options, to the last digit. For a jump in the state (a new run, a
+        restart)."""
+        self._core.reset_warm_start()
 
     def batch(self, states, *, threads: int = 0, errors: str = "raise") -> list:
         """Many states at once on `threads` threads (0: all hardware threads), one wheelset per

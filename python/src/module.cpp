@@ -570,6 +570,8 @@ class WheelsetHandle {
     check(rc_wheelset_set_options(handle_, &o));
   }
 
+  void reset_warm_start() { check(rc_wheelset_reset_warm_start(handle_)); }
+
   py::dict evaluate(const DoubleArray& row) {
     if (row.ndim() != 1 || row.shape(0) != kStateColumns)
       raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
@@ -748,6 +750,7 @@ PYBIND11_MODULE(_core, m) {
       .def("options", &WheelsetHandle::options)
       .def("set_options", &WheelsetHandle::set_options)
       .def("evaluate", &WheelsetHandle::evaluate)
+      .def("reset_warm_start", &WheelsetHandle::reset_warm_start)
       .def("batch", &WheelsetHandle::batch)
       .def("build_table", &WheelsetHandle::build_table)
       .def("load_table", &WheelsetHandle::load_table)

@@ -94,6 +94,23 @@ def test_result_normal_and_tractions(circle):
     assert abs(n.x1_m[i1]) < 3 * n.dx1_m and abs(n.x2_m[i2]) < 3 * n.dx2_m
 
 
+def test_result_normal_follows_the_patch():
+    # Solver.normal is made once per patch: a new patch, or settings that discard it, renew it.
+    s = railcontact.Solver("nh-fastsim", elements=500)
+    first = s.set_ellipse(a=5e-3, b=5e-3, normal_force=F3)
+    assert s.solve(xi=1e-3).normal is first
+    second = s.set_ellipse(a=6e-3, b=4e-3, normal_force=F3)
+    assert s.solve(xi=1e-3).normal == second != first
+    s.configure(elements=1500)  # a new mesh discards the patch
+    with pytest.raises(railcontact.InvalidInputError, match="no contact patch is set"):
+        s.solve(xi=1e-3)
+    third = s.set_ellipse(a=6e-3, b=4e-3, normal_force=F3)
+    assert third.elements_in_contact > 2 * second.elements_in_contact
+    assert s.solve(xi=1e-3).normal == third
+    s.configure(mu=0.2)  # friction alone keeps the patch and its normal result
+    assert s.solve(xi=1e-3).normal == third
+
+
 def test_jacobian(circle):
     r = circle.solve(xi=1e-5, jacobian=True)
     J = r.jacobian

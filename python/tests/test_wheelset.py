@@ -123,6 +123,22 @@ def test_batch_equals_the_loop_and_threads(wheelset):
     assert np.array_equal(out[1].force_track_N, loop[1].force_track_N)
 
 
+def test_reset_warm_start_gives_a_fresh_wheelsets_numbers():
+    options = dict(element_size=COARSE, loads=None, allow_wheel_lift=True)
+    used = railcontact.Wheelset(**options)
+    used.evaluate(y=0.0, z=-0.02e-3)
+    used.evaluate(y=0.3e-3, z=-0.02e-3, yaw=1e-3)
+    used.reset_warm_start()
+    a = used.evaluate(y=0.3e-3, z=-0.02e-3, yaw=1e-3)
+    b = railcontact.Wheelset(**options).evaluate(y=0.3e-3, z=-0.02e-3, yaw=1e-3)
+    assert np.array_equal(a.force_track_N, b.force_track_N)
+    for w in range(2):
+        assert len(a.wheels[w].patches) == len(b.wheels[w].patches) > 0
+        for p, q in zip(a.wheels[w].patches, b.wheels[w].patches):
+            assert (p.F1_N, p.F2_N, p.M3_Nm, p.normal_force_N, p.normal_iterations) == \
+                (q.F1_N, q.F2_N, q.M3_Nm, q.normal_force_N, q.normal_iterations)
+
+
 def test_two_wheelsets_on_two_threads_equal_serial():
     ys = (-3e-3, 1e-3)
     serial = [railcontact.Wheelset(element_size=COARSE).evaluate(y=y).force_track_N for y in ys]

@@ -435,6 +435,13 @@ rc_status rc_wheelset_evaluate(rc_wheelset* w, const rc_wheelset_state* state, r
   });
 }
 
+rc_status rc_wheelset_reset_warm_start(rc_wheelset* w) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    if (w->wheelset) w->wheelset->reset_warm_start();
+  });
+}
+
 rc_status rc_wheelset_result_get(const rc_wheelset* w, rc_wheelset_result* result) {
   if (w == nullptr) return RC_INVALID_INPUT;
   return guarded(&w->error, [&] {

@@ -13,10 +13,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "flexibility_table/strict_json.hpp"
-
-#ifndef RAILCONTACT_VERSION
-#define RAILCONTACT_VERSION "unknown"
-#endif
+#include "railcontact/version.h"
 
 namespace railcontact {
 namespace {
@@ -182,7 +179,7 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   metadata.target_elements = options.patch.target_elements;
   metadata.collocation_offset = options.nh_fastsim.collocation_offset;
   metadata.flexibility_coarsening = options.nh_fastsim.flexibility_coarsening;
-  metadata.railcontact_version = RAILCONTACT_VERSION;
+  metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = detail::utc_now();
 
   // Contact jumps: on the geometry alone (the first-touch point does not depend on the load).

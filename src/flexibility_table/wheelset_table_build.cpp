@@ -9,10 +9,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset_table.hpp"
 #include "flexibility_table/strict_json.hpp"
-
-#ifndef RAILCONTACT_VERSION
-#define RAILCONTACT_VERSION "unknown"
-#endif
+#include "railcontact/version.h"
 
 namespace railcontact {
 namespace {
@@ -152,7 +149,7 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   metadata.flexibility_coarsening = wheelset_options.nh_fastsim.flexibility_coarsening;
   metadata.collocation_offset = wheelset_options.nh_fastsim.collocation_offset;
   metadata.runtime_elements = options.runtime_elements;
-  metadata.railcontact_version = RAILCONTACT_VERSION;
+  metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = detail::utc_now();
   if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));
   return WheelsetTable(grid, std::move(nodes), track.parameters().nominal_rolling_radius_m,

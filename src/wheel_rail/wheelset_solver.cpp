@@ -471,6 +471,7 @@ Wheelset& Wheelset::operator=(const Wheelset& other) {
   return *this;
 }
 Wheelset::Wheelset(Wheelset&&) noexcept = default;
+void Wheelset::reset_warm_start() { warm_ = std::make_unique<detail::WheelsetWarmStart>(); }
 Wheelset& Wheelset::operator=(Wheelset&&) noexcept = default;
 
 WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
