@@ -1,0 +1,34 @@
+"""The hunting example (examples/hunting_simulation.py, docs/PYTHON.md "A hunting simulation"),
+run in its quick mode: it finds hunting at 70 m/s and none at 40 m/s from a small start, the three
+contact models agree over the first steps, and the table is the cheapest by far."""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+
+SOURCE = os.environ.get("RAILCONTACT_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def test_hunting_example_quick(tmp_path):
+    out = tmp_path / "hunting"
+    r = subprocess.run([sys.executable, os.path.join(SOURCE, "examples", "hunting_simulation.py"), "--quick",
+                        "--out", str(out)], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr[-2000:]
+    summary = json.loads((out / "hunting_summary.json").read_text())
+    import railcontact
+    assert summary["railcontact_version"] == railcontact.__version__
+    # From a 0.5 mm start: decaying at 40 m/s, a flange-contact limit cycle at 70 m/s.
+    assert summary["critical_speed_small_start_m_per_s"] == 70.0
+    rows = np.genfromtxt(out / "hunting.csv", delimiter=",", names=True, dtype=None, encoding=None)
+    assert rows["amplitude_small_start_m"][0] < 1e-3 < rows["amplitude_small_start_m"][1] < 8e-3
+    cost = {c["model"]: c for c in summary["cost"]}
+    assert cost["table"]["us_per_evaluation"] * 100 < cost["on-the-fly nh-fastsim"]["us_per_evaluation"]
+    # The three models over the same first 20 ms at 70 m/s: the same motion to a few micrometres.
+    runs = np.genfromtxt(out / "hunting_runs.csv", delimiter=",", names=True, dtype=None, encoding=None)
+    ends = {m: runs["y_m"][runs["model"] == m][-1] for m in set(runs["model"])}
+    assert abs(ends["table"] - ends["on-the-fly nh-fastsim"]) < 5e-6
+    assert abs(ends["table"] - ends["on-the-fly fastsim"]) < 50e-6
+    for figure in ("hunting_time.png", "hunting_bifurcation.png", "hunting_models.png"):
+        assert (out / figure).stat().st_size > 10000
