@@ -279,6 +279,25 @@ class Solver {
   rc_solver* handle_ = nullptr;
 };
 
+// A Python progress callback for a table build: progress(done, total) after each node; returning
+// False stops the build (the C API then returns RC_CANCELLED); an exception it raises is kept and
+// raised again after the build.
+struct ProgressCallback {
+  py::object callback;
+  std::optional<py::error_already_set> error;
+  static int call(std::size_t done, std::size_t total, void* user) {
+    auto* c = static_cast<ProgressCallback*>(user);
+    py::gil_scoped_acquire acquire;
+    try {
+      const py::object r = c->callback(done, total);
+      return (!r.is_none() && r.cast<bool>() == false) ? 1 : 0;
+    } catch (py::error_already_set& e) {
+      c->error.emplace(std::move(e));
+      return 1;
+    }
+  }
+};
+
 class FlexTable {
  public:
   FlexTable() {
@@ -312,27 +331,13 @@ class FlexTable {
 
   void build(const std::optional<std::string>& setup, const DoubleArray& y, const DoubleArray& loads,
              int target_elements, double E, double nu, const py::object& progress) {
-    struct Context {
-      py::object callback;
-      std::optional<py::error_already_set> error;
-    } context{progress, std::nullopt};
-    const auto trampoline = [](std::size_t done, std::size_t total, void* user) -> int {
-      auto* c = static_cast<Context*>(user);
-      py::gil_scoped_acquire acquire;
-      try {
-        const py::object r = c->callback(done, total);
-        return (!r.is_none() && r.cast<bool>() == false) ? 1 : 0;  // False stops the build
-      } catch (py::error_already_set& e) {
-        c->error.emplace(std::move(e));
-        return 1;
-      }
-    };
+    ProgressCallback context{progress, std::nullopt};
     rc_status status;
     {
       py::gil_scoped_release release;
       status = rc_flextable_build(handle_, setup ? setup->c_str() : nullptr, y.data(), static_cast<std::size_t>(y.size()),
                                   loads.data(), static_cast<std::size_t>(loads.size()), target_elements, E, nu,
-                                  progress.is_none() ? nullptr : +trampoline, &context);
+                                  progress.is_none() ? nullptr : &ProgressCallback::call, &context);
     }
     if (context.error) throw std::move(*context.error);
     check(status);
@@ -640,27 +645,13 @@ class WheelsetHandle {
 
   // The wheelset table (docs/WHEELSET_TABLE.md).
   void build_table(const DoubleArray& y, const DoubleArray& yaw, const DoubleArray& loads, const py::object& progress) {
-    struct Context {
-      py::object callback;
-      std::optional<py::error_already_set> error;
-    } context{progress, std::nullopt};
-    const auto trampoline = [](std::size_t done, std::size_t total, void* user) -> int {
-      auto* c = static_cast<Context*>(user);
-      py::gil_scoped_acquire acquire;
-      try {
-        const py::object r = c->callback(done, total);
-        return (!r.is_none() && r.cast<bool>() == false) ? 1 : 0;  // False stops the build
-      } catch (py::error_already_set& e) {
-        c->error.emplace(std::move(e));
-        return 1;
-      }
-    };
+    ProgressCallback context{progress, std::nullopt};
     rc_status status;
     {
       py::gil_scoped_release release;
       status = rc_wheelset_table_build(handle_, y.data(), static_cast<std::size_t>(y.size()), yaw.data(),
                                        static_cast<std::size_t>(yaw.size()), loads.data(),
-                                       static_cast<std::size_t>(loads.size()), progress.is_none() ? nullptr : +trampoline,
+                                       static_cast<std::size_t>(loads.size()), progress.is_none() ? nullptr : &ProgressCallback::call,
                                        &context);
     }
     if (context.error) throw std::move(*context.error);
