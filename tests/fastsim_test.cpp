@@ -588,3 +588,29 @@ TEST(NhFastSim, FlexibilitiesFromTheCoarsenedPatchAreCloseToTheFinePatchs) {
 
 }  // namespace
 }  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+// forces_and_adhesion is solve() without the fields: the same forces and adhesion fraction to the
+// last bit, with and without spin, in adhesion and in full slip.
+TEST(FastSimForcesAndAdhesion, EqualsSolveWithoutTheFields) {
+  const ContactPatch patch =
+      hertzian_patch(elliptical_contact_with_count(6e-3, 4e-3, 1200), 6e-3, 4e-3, 80e3, Material{});
+  const FastSim fastsim(patch);
+  const Flexibility L{2e-14, 2.5e-14, 1.5e-14};  // about Kalker's for this ellipse (m/Pa)
+  for (const Creepage& c : {Creepage{1e-4, 0.0, 0.0}, Creepage{1e-3, -5e-4, 0.3}, Creepage{2e-2, 1e-2, -2.0}}) {
+    const FastSimResult full = fastsim.solve(c, L, 0.3);
+    const FastSimResult lean = fastsim.forces_and_adhesion(c, L, 0.3);
+    EXPECT_EQ(lean.forces.F1_N, full.forces.F1_N);
+    EXPECT_EQ(lean.forces.F2_N, full.forces.F2_N);
+    EXPECT_EQ(lean.forces.M3_Nm, full.forces.M3_Nm);
+    EXPECT_EQ(lean.adhesion_fraction, full.adhesion_fraction);
+    EXPECT_TRUE(lean.p1_Pa.empty() && lean.slip.empty());
+  }
+  EXPECT_GT(fastsim.forces_and_adhesion(Creepage{1e-4, 0.0, 0.0}, L, 0.3).adhesion_fraction, 0.5);
+  EXPECT_LT(fastsim.forces_and_adhesion(Creepage{2e-2, 1e-2, -2.0}, L, 0.3).adhesion_fraction, 0.05);
+}
+
+}  // namespace
+}  // namespace railcontact

@@ -240,7 +240,10 @@ RC_API rc_status rc_solver_jacobian(rc_solver* solver, const rc_creepage* creepa
 RC_API rc_status rc_solver_traction_size(const rc_solver* solver, int* n1, int* n2, size_t* count);
 /* Copies the fields into the caller's buffers of `size` values each (each may be null: not
    wanted): p1, p2 tangential traction on the wheel (Pa), p3 normal pressure (Pa), slip 1 where
-   the element slips, 0 in adhesion or outside contact. RC_BUFFER_TOO_SMALL when size < n1 * n2. */
+   the element slips, 0 in adhesion or outside contact. RC_BUFFER_TOO_SMALL when size < n1 * n2.
+   For nh-fastsim and fastsim the fields are computed by the first call after a solve, from its
+   creepages (about the cost of one more solve; rc_solver_solve itself computes the forces only);
+   the exact solvers keep them from the solve. */
 RC_API rc_status rc_solver_tractions(const rc_solver* solver, size_t size, double* p1_Pa, double* p2_Pa,
                                      double* p3_Pa, int* slip);
 

@@ -159,6 +159,10 @@ class FastSim {
   [[nodiscard]] TangentialForces forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
   // Forces, tractions, slip flags. Same checks as forces().
   [[nodiscard]] FastSimResult solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
+  // Forces and the adhesion fraction only (p1_Pa, p2_Pa, slip left empty): the cost of forces(),
+  // for a caller that needs the adhesion fraction but not the fields. Same checks as forces().
+  [[nodiscard]] FastSimResult forces_and_adhesion(const Creepage& creepage, const Flexibility& flexibility,
+                                                  double mu) const;
 
   [[nodiscard]] std::size_t element_count() const;
   [[nodiscard]] TractionBound bound() const;
@@ -249,6 +253,8 @@ class NhFastSim {
   [[nodiscard]] TangentialForces forces(const Creepage& creepage, double mu) const;
   // Forces, tractions and slip flags per contact element (patch order).
   [[nodiscard]] FastSimResult solve(const Creepage& creepage, double mu) const;
+  // Forces and the adhesion fraction only (FastSim::forces_and_adhesion).
+  [[nodiscard]] FastSimResult forces_and_adhesion(const Creepage& creepage, double mu) const;
 
   // Raw creepages from the normalised ones of the paper's study (Eq 22-23):
   // xi = xi' 3 mu F3 / f11, eta = eta' 3 mu F3 / f22; phi as given (1/m).

@@ -254,7 +254,7 @@ rc_status rc_solver_tractions(const rc_solver* solver, size_t size, double* p1_P
   if (solver == nullptr) return RC_INVALID_INPUT;
   return guarded(&solver->error, [&] {
     const PreparedPatch& p = solver->solver.require_patch();
-    const railcontact::c_api::Evaluation& e = solver->solver.last();
+    const railcontact::c_api::Evaluation& e = solver->solver.last_with_fields();
     const std::size_t n = p.patch.mesh().size();
     if (size < n)
       throw StatusError{RC_BUFFER_TOO_SMALL,

@@ -120,9 +120,13 @@ struct PatchKey {
   bool operator==(const PatchKey& other) const;
 };
 
-// One evaluation's results: forces and the tractions per contact element (patch order).
+// One evaluation's results: forces and the tractions per contact element (patch order). FastSim's
+// fields are computed only when asked for (has_fields false until then); the exact solvers give
+// them with the forces.
 struct Evaluation {
   rc_forces forces{};
+  rc_creepage creepage{};
+  bool has_fields = false;
   std::vector<double> p1_Pa, p2_Pa;
   std::vector<std::uint8_t> slip;
 };
@@ -145,12 +149,15 @@ class SinglePatchSolver {
   // The prepared patch when it is that of `patch` (else null).
   [[nodiscard]] std::shared_ptr<const PreparedPatch> prepared_for(const rc_patch& patch) const;
 
-  // Forces (and the fields, kept for tractions()).
+  // Forces (the fields of the exact solvers are kept; FastSim's are computed by last_with_fields()).
   rc_forces solve(const rc_creepage& creepage);
   // Forces and the Jacobian (row-major) by central differences.
   rc_forces jacobian(const rc_creepage& creepage, double jacobian[9]);
 
   [[nodiscard]] const Evaluation& last() const;
+  // The last evaluation with its traction fields (computed now for FastSim: the same creepages,
+  // the same numbers as one solve with the fields).
+  [[nodiscard]] const Evaluation& last_with_fields() const;
 
   // Prepares a patch for the given settings (no state).
   // approach_m: null for the patch's normal force, else the grid's prescribed approach.
@@ -162,12 +169,12 @@ class SinglePatchSolver {
   static PatchKey key_of(const rc_patch& patch);
 
  private:
-  Evaluation evaluate(const rc_creepage& creepage) const;
+  Evaluation evaluate(const rc_creepage& creepage, bool with_fields) const;
 
   rc_settings settings_{};
   std::shared_ptr<const PreparedPatch> prepared_;
   std::optional<PatchKey> key_;  // empty for a wheel-rail patch
-  std::optional<Evaluation> last_;
+  mutable std::optional<Evaluation> last_;  // its fields are filled in lazily (last_with_fields)
 };
 
 }  // namespace railcontact::c_api

@@ -412,7 +412,7 @@ const PreparedPatch& SinglePatchSolver::require_patch() const {
   return *prepared_;
 }
 
-Evaluation SinglePatchSolver::evaluate(const rc_creepage& c) const {
+Evaluation SinglePatchSolver::evaluate(const rc_creepage& c, bool with_fields) const {
   const PreparedPatch& p = require_patch();
   require(std::isfinite(c.xi) && std::isfinite(c.eta) && std::isfinite(c.phi_per_m), [&] {
     return fmt::format("rc_creepage (xi = {}, eta = {}, phi = {} 1/m) must be finite", c.xi, c.eta, c.phi_per_m);
@@ -420,6 +420,7 @@ Evaluation SinglePatchSolver::evaluate(const rc_creepage& c) const {
   const Creepage creepage{c.xi, c.eta, c.phi_per_m};
   const double mu = settings_.friction_coefficient;
   Evaluation e;
+  e.creepage = c;
   const auto take = [&e](const TangentialForces& f, double adhesion) {
     e.forces.F1_N = f.F1_N;
     e.forces.F2_N = f.F2_N;
@@ -427,8 +428,14 @@ Evaluation SinglePatchSolver::evaluate(const rc_creepage& c) const {
     e.forces.adhesion_fraction = adhesion;
   };
   if (p.nh_fastsim || p.fastsim) {
-    FastSimResult r = p.nh_fastsim ? p.nh_fastsim->solve(creepage, mu) : p.fastsim->solve(creepage, p.fastsim_flexibility, mu);
+    // The forces-only march unless the fields are wanted: the march without per-element output
+    // costs half (docs/BENCHMARKS.md "Python and C API overhead").
+    const FastSim& fastsim = p.nh_fastsim ? p.nh_fastsim->fastsim() : *p.fastsim;
+    const Flexibility& flexibility = p.nh_fastsim ? p.nh_fastsim->flexibility() : p.fastsim_flexibility;
+    FastSimResult r = with_fields ? fastsim.solve(creepage, flexibility, mu)
+                                  : fastsim.forces_and_adhesion(creepage, flexibility, mu);
     take(r.forces, r.adhesion_fraction);
+    e.has_fields = with_fields;
     e.p1_Pa = std::move(r.p1_Pa);
     e.p2_Pa = std::move(r.p2_Pa);
     e.slip = std::move(r.slip);
@@ -437,6 +444,7 @@ Evaluation SinglePatchSolver::evaluate(const rc_creepage& c) const {
     RollingSolution r = settings_.method == RC_METHOD_EXACT ? solve_rolling_exact(p.patch, creepage, mu, options)
                                                             : solve_rolling_regularised(p.patch, creepage, mu, options);
     take(r.forces, r.adhesion_fraction);
+    e.has_fields = true;
     e.p1_Pa = std::move(r.p1_Pa);
     e.p2_Pa = std::move(r.p2_Pa);
     e.slip = std::move(r.slip);
@@ -446,7 +454,7 @@ Evaluation SinglePatchSolver::evaluate(const rc_creepage& c) const {
 
 rc_forces SinglePatchSolver::solve(const rc_creepage& creepage) {
   last_.reset();
-  last_ = evaluate(creepage);
+  last_ = evaluate(creepage, false);
   return last_->forces;
 }
 
@@ -460,7 +468,7 @@ rc_forces SinglePatchSolver::jacobian(const rc_creepage& c, double J[9]) {
     double* const minus_value[3] = {&minus.xi, &minus.eta, &minus.phi_per_m};
     *plus_value[j] += steps[j];
     *minus_value[j] -= steps[j];
-    const rc_forces fp = evaluate(plus).forces, fm = evaluate(minus).forces;
+    const rc_forces fp = evaluate(plus, false).forces, fm = evaluate(minus, false).forces;
     const double h2 = *plus_value[j] - *minus_value[j];  // the step as represented
     J[0 * 3 + j] = (fp.F1_N - fm.F1_N) / h2;
     J[1 * 3 + j] = (fp.F2_N - fm.F2_N) / h2;
@@ -472,6 +480,12 @@ rc_forces SinglePatchSolver::jacobian(const rc_creepage& c, double J[9]) {
 const Evaluation& SinglePatchSolver::last() const {
   (void)require_patch();
   if (!last_) throw Error("no creepages have been solved on this patch yet (rc_solver_solve first)");
+  return *last_;
+}
+
+const Evaluation& SinglePatchSolver::last_with_fields() const {
+  const Evaluation& e = last();
+  if (!e.has_fields) last_ = evaluate(e.creepage, true);
   return *last_;
 }
 

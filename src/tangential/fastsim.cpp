@@ -93,7 +93,9 @@ struct MarchCoefficients {
 
 // The march of every run (Eq 2-3 increments, Eq 7-8 limit), forces summed per Eq 13:
 // F1 = S sum p1, F2 = S sum p2, M3 = S sum (x1 p2 - x2 p1).
-template <bool kSpin, bool kRecord>
+// kRecord: the tractions and slip flags of every element into record (and the slipping count);
+// kCount: only the count of slipping elements into record->slipping (the adhesion fraction).
+template <bool kSpin, bool kRecord, bool kCount = kRecord>
 TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record) {
   Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
   const double* step_m = layout.step_m.data();
@@ -133,8 +135,8 @@ TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficie
           record->p2_Pa[e] = q2[r];
           record->slip[e] = slip[r] ? 1 : 0;
         }
-        record->slipping += static_cast<std::size_t>(stdx::popcount(slip));  // padding never slips
       }
+      if constexpr (kCount) record->slipping += static_cast<std::size_t>(stdx::popcount(slip));  // padding never slips
       sum_p1 += p1;
       sum_p2 += p2;
       sum_x1p2 += x1 * p2;
@@ -258,6 +260,19 @@ TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& fl
                                                       : march<false, false>(*layout_, k, mu, nullptr);
   require_finite_forces(forces);
   return forces;
+}
+
+FastSimResult FastSim::forces_and_adhesion(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
+  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
+  require_marchable(k, layout_->reach_m, creepage, flexibility);
+  MarchRecord count;
+  FastSimResult result;
+  result.forces = creepage.phi != 0.0 ? march<true, false, true>(*layout_, k, mu, &count)
+                                      : march<false, false, true>(*layout_, k, mu, &count);
+  require_finite_forces(result.forces);
+  const std::size_t n = layout_->element_count;
+  result.adhesion_fraction = static_cast<double>(n - count.slipping) / static_cast<double>(n);
+  return result;
 }
 
 FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const {

@@ -99,6 +99,10 @@ FastSimResult NhFastSim::solve(const Creepage& creepage, double mu) const {
   return fastsim_.solve(creepage, flexibilities_.flexibility, mu);
 }
 
+FastSimResult NhFastSim::forces_and_adhesion(const Creepage& creepage, double mu) const {
+  return fastsim_.forces_and_adhesion(creepage, flexibilities_.flexibility, mu);
+}
+
 Creepage NhFastSim::creepage_from_normalised(double xi_normalised, double eta_normalised, double phi_per_m, double mu,
                                              double normal_force_N) const {
   const double saturation = 3.0 * mu * normal_force_N;  // Eq 22-23
