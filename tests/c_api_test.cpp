@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <limits>
 #include <string>
 #include <thread>
@@ -467,6 +469,72 @@ TEST(CApi, FlexibilityTableBuildSaveLoadAndUse) {
   EXPECT_EQ(rc_solver_set_patch_flextable(s.h, loaded, 0.5e-3, 98100.0), RC_INVALID_INPUT);
   rc_flextable_destroy(table);
   rc_flextable_destroy(loaded);
+}
+
+}  // namespace
+}  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+// The target: the C API gives the CLI's numbers for the same case, to the last digit —
+// a single patch with nh-fastsim and fastsim (`railcontact run`), and a wheelset
+// (`railcontact wheelset`, by load, both wheels).
+TEST(CApiEqualsCli, SinglePatchAndWheelsetToTheLastDigit) {
+  const std::filesystem::path dir = test::scratch_directory("c_api_equals_cli");
+  std::ofstream(dir / "case.toml") << "[geometry]\ntype = \"ellipse\"\na = 0.006\nb = 0.004\n[material]\nE = 2.1e11\n"
+                                      "nu = 0.3\n[load]\nnormal_force = 80000\n[friction]\nmu = 0.3\n[creepage]\n"
+                                      "xi = 0.001\neta = 0.0005\nphi = 0.3\n[mesh]\nelements = 2800\n[solvers]\n"
+                                      "run = [\"nh-fastsim\", \"fastsim\"]\n";
+  const test::CommandResult cli =
+      test::run_cli("run " + (dir / "case.toml").string() + " --json --out " + (dir / "run").string());
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  const nlohmann::json j = nlohmann::json::parse(cli.out);
+  for (const auto& [method, name] : {std::pair{RC_METHOD_NH_FASTSIM, "nh-fastsim"}, std::pair{RC_METHOD_FASTSIM, "fastsim"}}) {
+    rc_solver* solver = nullptr;
+    ASSERT_EQ(rc_solver_create(&solver), RC_OK);
+    rc_settings settings;
+    rc_settings_default(&settings);
+    settings.method = method;
+    settings.mesh_value = 2800;
+    ASSERT_EQ(rc_solver_set_settings(solver, &settings), RC_OK);
+    rc_patch patch{};
+    patch.kind = RC_GEOMETRY_ELLIPSE;
+    patch.a_m = 0.006;
+    patch.b_m = 0.004;
+    patch.normal_force_N = 80000;
+    const rc_creepage creepage{0.001, 0.0005, 0.3};
+    rc_forces f{};
+    ASSERT_EQ(rc_creep_forces(solver, &patch, &creepage, &f, nullptr), RC_OK);
+    EXPECT_EQ(f.F1_N, j["results"][name]["F1"].get<double>()) << name;
+    EXPECT_EQ(f.F2_N, j["results"][name]["F2"].get<double>()) << name;
+    EXPECT_EQ(f.M3_Nm, j["results"][name]["M3"].get<double>()) << name;
+    EXPECT_EQ(f.adhesion_fraction, j["results"][name]["adhesion_fraction"].get<double>()) << name;
+    rc_solver_destroy(solver);
+  }
+
+  const test::CommandResult wheelset_cli = test::run_cli("wheelset --y 1.3 --yaw 0.5 --element-size 0.5 --json");
+  ASSERT_EQ(wheelset_cli.exit_code, 0) << wheelset_cli.err;
+  const nlohmann::json w = nlohmann::json::parse(wheelset_cli.out);
+  rc_wheelset* wheelset = nullptr;
+  ASSERT_EQ(rc_wheelset_create(&wheelset), RC_OK);
+  ASSERT_EQ(rc_wheelset_set_default_track(wheelset), RC_OK);
+  rc_wheelset_options o;
+  rc_wheelset_options_default(&o);
+  o.element_size_m = 0.5e-3;
+  ASSERT_EQ(rc_wheelset_set_options(wheelset, &o), RC_OK);
+  rc_wheelset_state s;
+  rc_wheelset_state_default(&s);
+  s.y_m = 1.3 * 1e-3;  // as the CLI converts --y 1.3 (mm): 1.3e-3 is another double
+  s.yaw_rad = 0.5 * 1e-3;
+  rc_wheelset_result r{};
+  ASSERT_EQ(rc_wheelset_evaluate(wheelset, &s, &r), RC_OK);
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < 3; ++i)
+      EXPECT_EQ(r.wheel_force_track_N[k][i], w["wheels"][k]["force_track_N"][i].get<double>())
+          << k << " " << i << " difference " << r.wheel_force_track_N[k][i] - w["wheels"][k]["force_track_N"][i].get<double>();
+  rc_wheelset_destroy(wheelset);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
