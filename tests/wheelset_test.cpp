@@ -309,3 +309,41 @@ TEST(Wheelset, KinematicCreepagesHaveTheirClosedForms) {
 
 }  // namespace
 }  // namespace railcontact
+
+namespace railcontact {
+namespace {
+
+// `railcontact wheelset --sweep-y`: one CSV row per patch and position; a sweep that runs into the
+// flange-climb limit keeps the rows before it, and its error says where and why it stopped.
+TEST(WheelsetCli, SweepWritesTheCsvAndStopsAtTheFlangeClimbLimit) {
+  const std::filesystem::path dir = test::scratch_directory("wheelset_sweep_cli");
+  const std::string no_figures = "RAILCONTACT_SCRIPTS=/nonexistent-railcontact-scripts ";
+  const auto rows_at = [](const std::filesystem::path& csv) {
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);  // header
+    std::vector<std::string> y;
+    while (std::getline(in, line)) y.push_back(line.substr(0, line.find(',')));
+    return y;
+  };
+  const test::CommandResult ok =
+      test::run_cli("wheelset --sweep-y 0:-1:0.5 --element-size 0.5 --out " + (dir / "a").string(), no_figures);
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("Wrote 3 evaluations"), std::string::npos) << ok.out;
+  EXPECT_EQ(rows_at(dir / "a" / "wheelset_sweep.csv"),
+            (std::vector<std::string>{"0.000000", "0.000000", "-0.500000", "-0.500000", "-1.000000", "-1.000000"}));
+
+  const test::CommandResult stopped =
+      test::run_cli("wheelset --sweep-y -8.75:-9.5:0.25 --element-size 0.5 --out " + (dir / "b").string(), no_figures);
+  EXPECT_EQ(stopped.exit_code, 2);
+  EXPECT_NE(stopped.err.find("railcontact: error: the sweep stopped at y = -9.25 mm after 2 evaluations (written)"),
+            std::string::npos)
+      << stopped.err;
+  EXPECT_NE(stopped.err.find("the flange is climbing over the rail"), std::string::npos) << stopped.err;
+  EXPECT_EQ(rows_at(dir / "b" / "wheelset_sweep.csv"),
+            (std::vector<std::string>{"-8.750000", "-8.750000", "-9.000000", "-9.000000"}));
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace railcontact

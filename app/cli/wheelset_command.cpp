@@ -135,9 +135,15 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     sweep.y_step_m = step * 1e-3;
     study::OutputDirectory out(a.out, &std::cerr);
     fmt::print(std::cerr, "wheelset sweep: y = {:g} ... {:g} mm in steps of {:g} mm\n", from, to, step);
-    const int count = study::run_wheelset_sweep(wheelset, state, sweep, out, std::cerr);
+    const study::WheelsetSweepResult done = study::run_wheelset_sweep(wheelset, state, sweep, out, std::cerr);
     out.commit();
-    fmt::print("Wrote {} evaluations to {}/wheelset_sweep.csv (figures: wheelset_sweep.png)\n", count, a.out);
+    fmt::print("Wrote {} evaluations to {}/wheelset_sweep.csv (figures: wheelset_sweep.png)\n", done.evaluations, a.out);
+    if (done.stopped) {
+      // The rows up to the last position that could be evaluated are kept; the error says why the
+      // next one could not (for a sweep into the flange, where the flange climbs).
+      throw Error(done.stop_kind, fmt::format("the sweep stopped at y = {:g} mm after {} evaluations (written): {}",
+                                              done.stopped_at_y_m * 1e3, done.evaluations, done.stop_message));
+    }
     return 0;
   }
   WheelsetResult r;

@@ -13,8 +13,9 @@
 
 namespace railcontact::study {
 
-int run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const WheelsetSweep& sweep,
-                       OutputDirectory& out, std::ostream& log) {
+WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const WheelsetSweep& sweep,
+                                       OutputDirectory& out, std::ostream& log) {
+  WheelsetSweepResult result;
   require(std::isfinite(sweep.y_from_m) && std::isfinite(sweep.y_to_m) && std::isfinite(sweep.y_step_m) &&
               sweep.y_step_m >= 1e-6 && sweep.y_step_m <= 10e-3,
           [&] {
@@ -42,7 +43,19 @@ int run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const Whe
   for (long k = 0; k <= steps; ++k) {
     WheelsetState s = state;
     s.position.lateral_displacement_m = sweep.y_from_m + direction * static_cast<double>(k) * sweep.y_step_m;
-    const WheelsetResult r = wheelset.evaluate(s);
+    WheelsetResult r;
+    try {
+      r = wheelset.evaluate(s);
+    } catch (const Error& e) {
+      if (k == 0) throw;
+      result.stopped = true;
+      result.stopped_at_y_m = s.position.lateral_displacement_m;
+      result.stop_kind = e.kind();
+      result.stop_message = e.what();
+      fmt::print(log, "  y = {:+.3f} mm: stopped ({})\n", s.position.lateral_displacement_m * 1e3, e.what());
+      break;
+    }
+    ++result.evaluations;
     for (const WheelResult& w : r.wheels) {
       for (std::size_t p = 0; p < w.patches.size(); ++p) {
         const WheelsetPatch& patch = w.patches[p];
@@ -69,7 +82,7 @@ int run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const Whe
   csv.close();
   if (csv.fail()) throw Error(ErrorKind::io, fmt::format("cannot write {}", csv_path.string()));
   draw_figures("plot_wheelset_sweep.py", out.staging(), log);
-  return static_cast<int>(steps + 1);
+  return result;
 }
 
 }  // namespace railcontact::study
