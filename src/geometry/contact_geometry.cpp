@@ -374,7 +374,11 @@ EquivalentConicity equivalent_conicity(const RollingRadiusDifference& d, double 
                        options.integration_points);
   });
   const double largest = largest_conicity_amplitude_m(d);
-  require(std::isfinite(amplitude_m) && amplitude_m > 0.0 && amplitude_m <= largest, [&] {
+  // The largest amplitude is found by bisection to rounding: an amplitude within 1 nm above it (e.g.
+  // 6 mm on a sweep of ±6 mm, whose bisection may end a few ulp short of 6 mm without FMA) is that
+  // amplitude.
+  constexpr double kAmplitudeTolerance_m = 1e-9;
+  require(std::isfinite(amplitude_m) && amplitude_m > 0.0 && amplitude_m <= largest + kAmplitudeTolerance_m, [&] {
     return fmt::format("equivalent conicity: the amplitude {:g} mm must lie in (0, {:.3f}] mm (the motion must stay "
                        "within the tabulated Δr, y = [{:g}, {:g}] mm)",
                        amplitude_m / kMm, largest / kMm, d.y_min_m() / kMm, d.y_max_m() / kMm);
@@ -383,6 +387,7 @@ EquivalentConicity equivalent_conicity(const RollingRadiusDifference& d, double 
   e.amplitude_m = amplitude_m;
   e.centre_m = d.centre_m();
   const int n = options.integration_points;
+  amplitude_m = std::min(amplitude_m, largest);
 
   // The wavelength: y = m + ŷ sin θ over the half-wave θ in (−π/2, π/2); the integrand
   // ŷ cos θ / sqrt(E − V(y)) stays finite at the turning points (where V' = Δr ≠ 0).
