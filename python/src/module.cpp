@@ -588,13 +588,7 @@ class WheelsetHandle {
       status = rc_wheelset_evaluate(handle_, &s, &r);
     }
     check(status);
-    std::vector<rc_wheelset_patch> patches;
-    std::size_t per_wheel = 0;
-    for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
-    patches.resize(2 * per_wheel);
-    for (int w = 0; w < 2; ++w)
-      check(rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel));
-    return wheelset_result_dict(r, patches.data(), per_wheel);
+    return result_with_patches(r);
   }
 
   // states (N, 11). Returns a list of result dicts (None for a failed state), the statuses, and
@@ -674,13 +668,7 @@ class WheelsetHandle {
     const rc_wheelset_state s = wheelset_state(row.data());
     rc_wheelset_result r{};
     check(rc_wheelset_evaluate_table(handle_, &s, &r));
-    std::vector<rc_wheelset_patch> patches;
-    std::size_t per_wheel = 0;
-    for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
-    patches.resize(2 * per_wheel);
-    for (int w = 0; w < 2; ++w)
-      check(rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel));
-    return wheelset_result_dict(r, patches.data(), per_wheel);
+    return result_with_patches(r);
   }
 
   // The fast path of a simulation step: [Fx, Fy, Fz of the right wheel, of the left wheel (track
@@ -708,6 +696,17 @@ class WheelsetHandle {
   }
 
  private:
+  // The totals of the last evaluation with both wheels' patches, as a dict.
+  py::dict result_with_patches(const rc_wheelset_result& r) const {
+    std::vector<rc_wheelset_patch> patches;
+    std::size_t per_wheel = 0;
+    for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
+    patches.resize(2 * per_wheel);
+    for (int w = 0; w < 2; ++w)
+      check(rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel));
+    return wheelset_result_dict(r, patches.data(), per_wheel);
+  }
+
   rc_wheelset* handle_ = nullptr;
 };
 
