@@ -46,6 +46,48 @@ TEST(ExactRolling, LargeCreepageSaturatesAtMuTimesNormalForce) {
   }
 }
 
+// Inexact Newton (each GMRES solve only as tight as the Newton residual warrants) converges to
+// the same solution as solving every step to krylov_tolerance, with far fewer GMRES iterations.
+TEST(ExactRolling, InexactNewtonGivesTheSameSolutionWithFewerKrylovIterations) {
+  const ContactPatch p = patch(6e-3, 4e-3, 1200);
+  RollingOptions fixed;
+  fixed.inexact_newton = false;
+  int inexact_iterations = 0, fixed_iterations = 0;
+  for (const Creepage c : {Creepage{5e-4, 5e-4, 0.5}, Creepage{1e-4, 0, 0}, Creepage{0, 0, 2.0}, Creepage{2e-3, -1e-3, 0}}) {
+    const RollingSolution inexact = solve_rolling_exact(p, c, kMu);
+    const RollingSolution tight = solve_rolling_exact(p, c, kMu, fixed);
+    const double scale = kMu * p.normal_force_N();
+    EXPECT_NEAR(inexact.forces.F1_N, tight.forces.F1_N, 1e-8 * scale);
+    EXPECT_NEAR(inexact.forces.F2_N, tight.forces.F2_N, 1e-8 * scale);
+    EXPECT_NEAR(inexact.forces.M3_Nm, tight.forces.M3_Nm, 1e-8 * scale * 6e-3);
+    EXPECT_LE(inexact.residual, RollingOptions{}.tolerance);
+    inexact_iterations += inexact.krylov_iterations;
+    fixed_iterations += tight.krylov_iterations;
+  }
+  EXPECT_LT(inexact_iterations, 0.7 * fixed_iterations) << inexact_iterations << " against " << fixed_iterations;
+}
+
+// Small creepages, mostly adhesion: the clipped starting guess puts the few slipping elements on
+// the kink of the Newton function, where the Newton step need not descend. Before the line search
+// fell back to the full step, these stalled (Newton did not converge in 100 iterations).
+TEST(ExactRolling, ConvergesWhereTheLineSearchFindsNoDescent) {
+  for (const bool inexact_newton : {false, true}) {
+    RollingOptions options;
+    options.inexact_newton = inexact_newton;
+    const ContactPatch p = patch(6e-3, 4e-3, 1200);
+    for (const Creepage c : {Creepage{1e-4, 0, 0}, Creepage{5e-5, 1e-4, 0}}) {
+      const RollingSolution s = solve_rolling_exact(p, c, kMu, options);
+      EXPECT_LE(s.residual, options.tolerance);
+      // Mostly adhesion, so close to the linear theory of the same patch (within the slip's share).
+      EXPECT_GT(s.adhesion_fraction, 0.8);
+      EXPECT_LT(s.forces.F1_N * c.xi + s.forces.F2_N * c.eta, 0.0);
+    }
+    const ContactPatch small = patch(6e-3, 6e-3, 300);
+    const RollingSolution s = solve_rolling_exact(small, Creepage{2e-5, 1e-4, 0}, kMu, options);
+    EXPECT_LE(s.residual, options.tolerance);
+  }
+}
+
 TEST(ExactRolling, SolutionSatisfiesCoulombsLawElementByElement) {
   const ContactPatch p = patch(6e-3, 6e-3, 1200);
   const RollingSolution s = solve_rolling_exact(p, {8e-4, 3e-4, 0.4}, kMu);

@@ -312,8 +312,12 @@ struct RollingOptions {
   double collocation_offset = 0.0;  // alpha in [-0.95, 1] (METHOD.md §3), the same as the adhesion solver's
   double tolerance = 1e-9;          // Newton: max residual relative to mu max(p3), in (0, 1e-3]
   int max_newton_iterations = 100;  // positive
-  double krylov_tolerance = 1e-6;   // inner GMRES, relative, in (0, 0.5]
+  double krylov_tolerance = 1e-6;   // inner GMRES, relative, in (0, 0.5]: the tightest one (see inexact_newton)
   int max_krylov_iterations = 300;  // positive
+  // Exact solver only: each Newton step's GMRES stops at max(krylov_tolerance, min(residual, 0.1))
+  // (inexact Newton; the same converged solution, about half the GMRES iterations); false: every
+  // step to krylov_tolerance.
+  bool inexact_newton = true;
   // Regularised law only: epsilon as a slip velocity per unit rolling speed (dimensionless;
   // equals the paper's epsilon in m/s at V = 1 m/s), in [1e-14, 1e-2]. The paper uses 1e-8.
   double regularisation = 1e-8;

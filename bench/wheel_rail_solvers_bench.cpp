@@ -1,0 +1,157 @@
+// The solvers on the issue-15 comparison patch (docs/BENCHMARKS.md "Speed on the S1002/UIC60
+// patch"): S1002 on UIC60 1:40 at y = 0, Fz = 98.1 kN, mu = 0.3, the paper's creepages
+// xi' = eta' = 0.5 with the spin of the conicity; the argument is the target number of elements in
+// contact (4700: the reference exact program's patch, ~4656 in contact).
+//   BM_NhFastSimOnTheFly          NhFastSim(patch) with its flexibilities + forces, in a process
+//                                 that has solved before (FFT plans made)
+//   BM_NhFastSimStage_*           its stages one by one (the profile breakdown)
+//   BM_FastSimWithKnownFlexibilities  the march alone (flexibilities known: the table's cost)
+//   BM_Exact                      solve_rolling_exact, inexact Newton (the default)
+//   BM_ExactFixedKrylovTolerance  the same with every GMRES solve to 1e-6 (before 2026-11-25)
+// Counters: elements in contact, GMRES/Newton iterations.
+#include <benchmark/benchmark.h>
+
+#include <map>
+
+#include "elastic/influence_operator.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/wheel_rail.hpp"
+#include "tangential/adhesion_tuning.hpp"
+
+namespace {
+
+using namespace railcontact;
+
+constexpr double kMu = 0.3;
+
+struct Case {
+  WheelRailPatch patch;
+  Creepage creepage;
+};
+
+const Case& comparison_case(int target_elements) {
+  static std::map<int, Case> cases;
+  auto it = cases.find(target_elements);
+  if (it != cases.end()) return it->second;
+  WheelRailPatchOptions options;
+  options.target_elements = target_elements;
+  WheelRailPatch patch = solve_wheel_rail_patch(default_wheel_rail_pair(), 0.0, options);
+  const NhFastSim nh(patch.patch);
+  const Creepage creepage =
+      nh.creepage_from_normalised(0.5, 0.5, patch.spin_per_m, kMu, patch.patch.normal_force_N());
+  return cases.emplace(target_elements, Case{std::move(patch), creepage}).first->second;
+}
+
+void count_elements(benchmark::State& state, const Case& c) {
+  state.counters["elements"] = static_cast<double>(c.patch.elements_in_contact);
+}
+
+void BM_NhFastSimOnTheFly(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
+  count_elements(state, c);
+  state.counters["coarsening"] = NhFastSim::automatic_coarsening(c.patch.patch);
+}
+BENCHMARK(BM_NhFastSimOnTheFly)->Arg(3000)->Arg(4700)->Arg(11000)->Unit(benchmark::kMicrosecond);
+
+// The stages of NhFastSim's constructor (src/tangential/nh_fastsim.cpp), each on its own.
+void BM_NhFastSimStage_FastSimSetUp(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(FastSim(c.patch.patch));
+  count_elements(state, c);
+}
+BENCHMARK(BM_NhFastSimStage_FastSimSetUp)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+void BM_NhFastSimStage_Coarsening(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  const int factor = NhFastSim::automatic_coarsening(c.patch.patch);
+  for (auto _ : state) benchmark::DoNotOptimize(coarsened(c.patch.patch, factor));
+  count_elements(state, c);
+}
+BENCHMARK(BM_NhFastSimStage_Coarsening)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+ContactPatch coarse_patch(const Case& c) {
+  return coarsened(c.patch.patch, NhFastSim::automatic_coarsening(c.patch.patch));
+}
+
+void BM_NhFastSimStage_OperatorSetUp(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  const ContactPatch coarse = coarse_patch(c);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(make_steady_rolling_operator(coarse.elements().mesh(), coarse.material(), 0.0));
+  state.counters["coarse_elements"] = static_cast<double>(coarse.elements().count());
+}
+BENCHMARK(BM_NhFastSimStage_OperatorSetUp)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+void BM_NhFastSimStage_OperatorProduct(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  const ContactPatch coarse = coarse_patch(c);
+  InfluenceOperator R = make_steady_rolling_operator(coarse.elements().mesh(), coarse.material(), 0.0);
+  const std::vector<double> x(2 * coarse.elements().count(), 1.0);
+  std::vector<double> y(x.size());
+  for (auto _ : state) {
+    R.apply_transpose(coarse.elements().indices(), x, y);
+    benchmark::DoNotOptimize(y.data());
+  }
+  state.counters["coarse_elements"] = static_cast<double>(coarse.elements().count());
+}
+BENCHMARK(BM_NhFastSimStage_OperatorProduct)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+// K2's two force rows as NhFastSim solves them (operator set-up, preconditioner, two GMRES solves).
+void BM_NhFastSimStage_ForceRowsOfK2(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  const ContactPatch coarse = coarse_patch(c);
+  AdhesionOptions options;
+  options.part = CreepageMatrixPart::force_rows;
+  options.tolerance = 1e-3;
+  const AdhesionTuning tuning{AdhesionPreconditioner::marching_half_laplacian, 1.5};
+  int iterations = 0;
+  for (auto _ : state) {
+    const AdhesionSolution K2 = solve_full_adhesion(coarse.elements(), coarse.material(), options, tuning);
+    iterations = K2.iterations;
+    benchmark::DoNotOptimize(K2.creepage_matrix.data());
+  }
+  state.counters["gmres_iterations"] = iterations;
+  state.counters["coarse_elements"] = static_cast<double>(coarse.elements().count());
+}
+BENCHMARK(BM_NhFastSimStage_ForceRowsOfK2)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+void BM_NhFastSimStage_CoarseFastSimAndMatch(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  const NhFastSim nh(c.patch.patch);
+  const ContactPatch coarse = coarse_patch(c);
+  for (auto _ : state) benchmark::DoNotOptimize(nh_fastsim_flexibility(FastSim(coarse), *nh.creepage_matrix()));
+}
+BENCHMARK(BM_NhFastSimStage_CoarseFastSimAndMatch)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+void BM_FastSimWithKnownFlexibilities(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  const NhFastSim nh(c.patch.patch);
+  for (auto _ : state) benchmark::DoNotOptimize(nh.forces(c.creepage, kMu));
+  count_elements(state, c);
+}
+BENCHMARK(BM_FastSimWithKnownFlexibilities)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+void run_exact(benchmark::State& state, bool inexact_newton) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  RollingOptions options;
+  options.inexact_newton = inexact_newton;
+  RollingSolution solution;
+  for (auto _ : state) {
+    solution = solve_rolling_exact(c.patch.patch, c.creepage, kMu, options);
+    benchmark::DoNotOptimize(solution.forces);
+  }
+  count_elements(state, c);
+  state.counters["newton"] = solution.newton_iterations;
+  state.counters["gmres_iterations"] = solution.krylov_iterations;
+}
+
+void BM_Exact(benchmark::State& state) { run_exact(state, true); }
+BENCHMARK(BM_Exact)->Arg(3000)->Arg(4700)->Arg(11000)->Unit(benchmark::kMillisecond);
+
+void BM_ExactFixedKrylovTolerance(benchmark::State& state) { run_exact(state, false); }
+BENCHMARK(BM_ExactFixedKrylovTolerance)->Arg(3000)->Arg(4700)->Arg(11000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
