@@ -106,7 +106,8 @@ typedef struct rc_settings {
                                    [-0.95, 1]; default 0 */
   double tolerance;             /* exact solvers: Newton residual relative to mu max p3,
                                    (0, 1e-3]; default 1e-9 */
-  double krylov_tolerance;      /* exact solvers: inner GMRES, relative, (0, 0.5]; default 1e-6 */
+  double krylov_tolerance;      /* exact solvers: inner GMRES, relative, (0, 0.5]; default 1e-6 (the exact
+                                   solver's last Newton steps; earlier ones stop at min(residual, 0.1)) */
   double regularisation;        /* exact-regularised: epsilon (slip per unit rolling speed, -),
                                    [1e-14, 1e-2]; default 1e-8 */
   double normal_tolerance;      /* grid geometry: normal solver's relative residual,

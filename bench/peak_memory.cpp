@@ -1,0 +1,54 @@
+// Peak memory of the solvers on the S1002/UIC60 patch at y = 0 (docs/BENCHMARKS.md "Peak memory"):
+// one solve per process, since the peak (getrusage's ru_maxrss) only grows. Prints the peak
+// resident size after the normal problem and after the tangential solve, and the time of the
+// process's first nH-FastSim (FFT planning of its coarse size included).
+//   build/bench/peak_memory TARGET_ELEMENTS {exact|nh-fastsim}
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "railcontact/tangential.hpp"
+#include "railcontact/wheel_rail.hpp"
+
+namespace {
+
+double peak_MiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace railcontact;
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: peak_memory TARGET_ELEMENTS {exact|nh-fastsim}\n");
+    return 2;
+  }
+  const double start_MiB = peak_MiB();
+  WheelRailPatchOptions options;
+  options.target_elements = std::atoi(argv[1]);
+  const WheelRailPatch patch = solve_wheel_rail_patch(default_wheel_rail_pair(), 0.0, options);
+  const double normal_MiB = peak_MiB();
+  // The first nH-FastSim of the process (its coarse FFT size planned here), timed.
+  auto begin = std::chrono::steady_clock::now();
+  const NhFastSim nh(patch.patch);
+  const Creepage creepage = nh.creepage_from_normalised(0.5, 0.5, patch.spin_per_m, 0.3, patch.patch.normal_force_N());
+  TangentialForces forces = nh.forces(creepage, 0.3);
+  const double first_nh_fastsim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  double exact_s = 0.0;
+  if (std::string(argv[2]) == "exact") {
+    begin = std::chrono::steady_clock::now();
+    forces = solve_rolling_exact(patch.patch, creepage, 0.3).forces;
+    exact_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  }
+  std::printf("%s elements_in_contact %zu potential_area %zu peak_MiB: start %.1f after_normal %.1f after_solve %.1f "
+              "first_nh_fastsim_ms %.3f exact_s %.3f F1_N %.1f F2_N %.1f\n",
+              argv[2], patch.elements_in_contact, patch.potential_area.size(), start_MiB, normal_MiB, peak_MiB(),
+              1e3 * first_nh_fastsim_s, exact_s, forces.F1_N, forces.F2_N);
+  return 0;
+}
