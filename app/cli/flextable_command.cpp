@@ -22,7 +22,9 @@
 #include "railcontact/error.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "railcontact/version.h"
+#include "study/case_pool.hpp"
 #include "study/flexibility_table_check.hpp"
+#include "study/mpi_cases.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -39,6 +41,7 @@ struct BuildArguments {
   std::optional<std::string> rail;
   int elements = 3000;
   int flexibility_coarsening = 0;
+  std::string threads;
 };
 
 struct CheckArguments {
@@ -76,6 +79,9 @@ void print_nodes(const FlexibilityTable& table) {
 }
 
 int run_build(const BuildArguments& args) {
+  // Every core by default (one thread per rank under mpirun); the table does not depend on it.
+  const int threads = args.threads.empty() ? (study::MpiWorld::several() ? 1 : study::available_cores())
+                                           : study::parse_threads(args.threads);
   require(!args.out.empty(), "--out must name the table file to write");
   require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
     return fmt::format("--elements {} must lie in [{}, {}] (with fewer, the elements are too large for the patch and "
@@ -98,7 +104,8 @@ int run_build(const BuildArguments& args) {
   const WheelRailPair pair = pair_of(args.wheel, args.rail);
   // Fail on an unwritable output before the work: create (and remove) a file next to it.
   const std::filesystem::path out(args.out);
-  check_table_writable(out, "flexibility table");
+  const bool rank0 = study::MpiWorld::rank() == 0;
+  if (rank0) check_table_writable(out, "flexibility table");
 
   FlexibilityTableOptions options;
   options.patch.target_elements = args.elements;
@@ -107,8 +114,12 @@ int run_build(const BuildArguments& args) {
                        args.flexibility_coarsening, kMaximumCoarsening);
   });
   options.nh_fastsim.flexibility_coarsening = args.flexibility_coarsening;
-  fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact\n", y.size(), loads.size(),
-             args.elements);
+  options.runner = study::table_node_runner(threads);
+  options.created_utc = source_date_epoch_utc();
+  if (rank0)
+    fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact, {} thread(s){}\n",
+               y.size(), loads.size(), args.elements, threads,
+               study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
   const auto start = std::chrono::steady_clock::now();
   // One progress line per node with the estimated time left (from the mean time per node so far).
   const auto report = [&](const FlexibilityTableProgress& p) {
@@ -123,7 +134,12 @@ int run_build(const BuildArguments& args) {
                  p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, flexibility_node_status_name(n.status),
                  n.message, left);
   };
-  FlexibilityTable table = build_flexibility_table(pair, y, loads, options, report);
+  FlexibilityTable table;
+  try {
+    table = build_flexibility_table(pair, y, loads, options, report);
+  } catch (const study::WorkerRankDone&) {
+    return 0;  // an MPI rank other than 0: its share is computed, rank 0 writes the table
+  }
   for (const ContactJump& j : table.contact_jumps())
     fmt::print(std::cerr, "  contact jump between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
                table.y_m()[j.interval] / kMm, table.y_m()[j.interval + 1] / kMm, j.y_rail_left_m / kMm,
@@ -272,6 +288,8 @@ void add_flextable_command(CLI::App& app, Action& action) {
   b->add_option("--flexibility-coarsening", build->flexibility_coarsening,
                 "nH-FastSim's K2 on the patch coarsened by this factor (0: automatic, as `run`; 1: the patch itself)")
       ->capture_default_str();
+  b->add_option("--threads", build->threads,
+                "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any number");
   b->callback([build, &action] { action = [build] { return run_build(*build); }; });
 
   auto check = std::make_shared<CheckArguments>();
