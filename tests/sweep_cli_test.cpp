@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -254,6 +255,59 @@ TEST(TableBuildThreads, TwoThreadsWriteTheBytesOfOne) {
     EXPECT_GT(light["L1_m_per_Pa"].get<double>(), 1e-14);  // about 8a / (3 G C11): 4e-14 ... 5e-14 here
     EXPECT_LT(light["L1_m_per_Pa"].get<double>(), 1e-12);
     EXPECT_GT(heavy["L1_m_per_Pa"].get<double>(), light["L1_m_per_Pa"].get<double>());
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// The CSV without one column (a timing, which differs from run to run even on one thread).
+std::string without_column(const std::string& csv, const std::string& name) {
+  const auto rows = rows_of(csv);
+  const std::size_t drop = column(rows.at(0), name);
+  std::string out;
+  for (const auto& r : rows) {
+    for (std::size_t i = 0; i < r.size(); ++i)
+      if (i != drop) out += r[i] + ",";
+    out += "\n";
+  }
+  return out;
+}
+
+// study paper (Fig 5, the heaviest part) and study patches: the same files on one and two threads.
+TEST(StudyThreads, PaperFig5AndPatchesWriteTheSameFilesOnTwoThreads) {
+  const ScratchDirectory dir("study_threads");
+  for (const char* threads : {"1", "2"}) {
+    const std::string t(threads);
+    CommandResult r = run_cli("study paper --elements 300 --y-step 1.5e-3 --samples 1 --no-figures --threads " + t +
+                              " --out " + (dir / ("paper" + t)).string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_cli("study patches --elements 300 --y-step 1e-3 --no-figures --threads " + t + " --out " +
+                (dir / ("patches" + t)).string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* f : {"fig5.csv", "fig5_patches.csv"})
+    EXPECT_EQ(read(dir / "paper1" / f), read(dir / "paper2" / f)) << f;
+  const std::string patches = read(dir / "patches1" / "patches.csv");
+  EXPECT_EQ(without_column(patches, "solve_time_s"), without_column(read(dir / "patches2" / "patches.csv"), "solve_time_s"));
+  for (const auto& entry : std::filesystem::directory_iterator(dir / "patches1"))
+    if (entry.path().filename().string().rfind("patch_y", 0) == 0)
+      EXPECT_EQ(read(entry.path()), read(dir / "patches2" / entry.path().filename())) << entry.path();
+
+  // Real numbers: Fig 5 has 7 y values × 3 families × 5 levels × 4 solvers; nh-fastsim within 10 %
+  // of exact at 300 elements; every patch of the patch study carries its 98.1 kN (F3 = Fz / cos γ).
+  const auto fig5 = rows_of(read(dir / "paper1" / "fig5.csv"));
+  ASSERT_EQ(fig5.size(), 1u + 7 * 3 * 5 * 4);
+  for (std::size_t i = 1; i < fig5.size(); ++i)
+    if (fig5[i][column(fig5[0], "solver")] == "nh-fastsim")
+      EXPECT_LT(std::stod(fig5[i][column(fig5[0], "rel_error")]), 0.10) << i;
+  const auto rows = rows_of(patches);
+  ASSERT_EQ(rows.size(), 1u + 10);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const double F3 = std::stod(rows[i][column(rows[0], "normal_force_N")]);
+    const double gamma = std::stod(rows[i][column(rows[0], "contact_angle_rad")]);
+    EXPECT_NEAR(F3 * std::cos(gamma), 98100.0, 100.0) << i;
   }
 }
 
