@@ -312,3 +312,38 @@ TEST(StudyThreads, PaperFig5AndPatchesWriteTheSameFilesOnTwoThreads) {
 }
 
 }  // namespace
+
+namespace {
+
+// flextable build --shard i/N and merge: the table file of the build on one machine; a shard
+// rerun resumes; a missing shard is refused.
+TEST(TableShards, FlexibilityTableShardsMergeToTheBytesOfOneBuild) {
+  const ScratchDirectory dir("flextable_shards");
+  const std::string epoch = "SOURCE_DATE_EPOCH=1700000000 ";
+  const std::string build = "flextable build --y-from -0.003 --y-to 0.003 --y-step 0.0005 --elements 300 --load 80000 "
+                            "--load 100000 --threads 1 ";
+  ASSERT_EQ(run_cli(build + "--out " + (dir / "one.json").string(), epoch).exit_code, 0);
+  const std::string part = (dir / "t.json").string();
+  for (const char* i : {"0", "1", "2"}) {
+    const CommandResult r = run_cli(build + "--shard " + std::string(i) + "/3 --out " + part, epoch);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("0 from an earlier run"), std::string::npos) << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "t.json"));  // a shard writes its journal only
+  CommandResult again = run_cli(build + "--shard 1/3 --out " + part, epoch);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.out.find("0 nodes computed"), std::string::npos) << again.out;
+  const std::string j0 = part + ".shard-0-of-3.journal", j1 = part + ".shard-1-of-3.journal",
+                    j2 = part + ".shard-2-of-3.journal";
+  const CommandResult merged = run_cli("merge " + j1 + " " + j0 + " " + j2 + " --out " + (dir / "merged.json").string());
+  ASSERT_EQ(merged.exit_code, 0) << merged.err;
+  const std::string one = read(dir / "one.json");
+  EXPECT_EQ(one, read(dir / "merged.json"));
+  EXPECT_GT(nlohmann::json::parse(one)["nodes"].size(), 26u);  // 13 y × 2 loads and the jump's brackets
+  const CommandResult missing = run_cli("merge " + j0 + " " + j2 + " --out " + (dir / "m2.json").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("shard(s) 1 of 3 missing"), std::string::npos) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "m2.json"));
+}
+
+}  // namespace

@@ -5,14 +5,17 @@
 
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "case/sweep_file.hpp"
 #include "cli/commands.hpp"
+#include "cli/flextable_shards.hpp"
 #include "railcontact/error.hpp"
 #include "study/case_pool.hpp"
 #include "study/mpi_cases.hpp"
+#include "study/sweep_journal.hpp"
 #include "study/sweep_run.hpp"
 
 namespace railcontact::cli {
@@ -63,6 +66,13 @@ int run_sweep_command(const SweepArguments& a) {
 
 int run_merge_command(const MergeArguments& a) {
   std::vector<std::filesystem::path> shards(a.shards.begin(), a.shards.end());
+  // A flexibility table's shards (flextable build --shard) or a sweep's.
+  const study::SweepJournal first = study::read_sweep_journal(study::shard_journal_files(shards).front());
+  if (nlohmann::json::parse(first.header.metadata).value("command", "") == "flextable build") {
+    study::SweepJournalHeader header;
+    const auto nodes = study::combine_shard_journals(shards, header);
+    return merge_flextable_shards(header, nodes, a.out);
+  }
   const study::SweepSummary s = study::merge_sweep_shards(shards, a.out, std::cerr);
   fmt::print("Wrote {} ({} cases from {} shard file(s), {} failed)\n", s.written.string(), s.cases, a.shards.size(),
              s.failed);
@@ -87,10 +97,11 @@ void add_sweep_command(CLI::App& app, Action& action) {
 
   auto merge = std::make_shared<MergeArguments>();
   CLI::App* m = app.add_subcommand(
-      "merge", "Combine the shard journals of `railcontact sweep --shard i/N` into one output, the same bytes as the "
-               "sweep on one machine (sweep.csv, sweep.json, figures)");
+      "merge", "Combine the shard journals of `railcontact sweep --shard i/N` (into --out DIR: sweep.csv, sweep.json, "
+               "figures) or of `railcontact flextable build --shard i/N` (into the table file --out): the same bytes as "
+               "the run on one machine");
   m->add_option("shards", merge->shards, "the shards' journal files or their --out directories")->required();
-  m->add_option("--out", merge->out, "output directory")->required();
+  m->add_option("--out", merge->out, "output directory of a sweep, or the table file of a flexibility table")->required();
   m->callback([&action, merge] { action = [merge] { return run_merge_command(*merge); }; });
 }
 

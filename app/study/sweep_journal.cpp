@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -142,6 +143,81 @@ void SweepJournalWriter::close() {
     throw Error(ErrorKind::io, fmt::format("cannot write the sweep journal {}", path_.string()));
   }
   file_ = nullptr;
+}
+
+std::vector<std::filesystem::path> shard_journal_files(const std::vector<std::filesystem::path>& paths) {
+  require(!paths.empty(), "merge: give the shards' journal files (*.journal) or their directories");
+  std::vector<std::filesystem::path> files;
+  for (const std::filesystem::path& p : paths) {
+    if (std::filesystem::is_directory(p)) {
+      std::size_t found = 0;
+      for (const auto& entry : std::filesystem::directory_iterator(p)) {
+        const std::string name = entry.path().filename().string();
+        if (name.find("shard-") != std::string::npos && entry.path().extension() == ".journal") {
+          files.push_back(entry.path());
+          ++found;
+        }
+      }
+      require(found > 0, [&] { return fmt::format("merge: {} holds no shard journal (*shard-<i>-of-<N>.journal)", p.string()); });
+    } else {
+      if (!std::filesystem::exists(p)) throw Error(ErrorKind::io, fmt::format("merge: {} does not exist", p.string()));
+      files.push_back(p);
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::map<std::size_t, CaseResult> combine_shard_journals(const std::vector<std::filesystem::path>& paths,
+                                                         SweepJournalHeader& header) {
+  const std::vector<std::filesystem::path> files = shard_journal_files(paths);
+  std::vector<SweepJournal> journals;
+  for (const auto& f : files) journals.push_back(read_sweep_journal(f));
+  const SweepJournalHeader& first = journals.front().header;
+  std::vector<int> seen(first.shard.count, -1);
+  std::map<std::size_t, CaseResult> done;
+  for (std::size_t i = 0; i < journals.size(); ++i) {
+    const SweepJournal& j = journals[i];
+    const SweepJournalHeader& h = j.header;
+    require(h.recipe == first.recipe && h.version == first.version && h.cases == first.cases &&
+                h.shard.count == first.shard.count,
+            [&] {
+              return fmt::format("merge: {} and {} are not shards of the same sweep or table (railcontact {} / {}, "
+                                 "recipe {} / {}, {} / {} cases, {} / {} shards)",
+                                 files[0].string(), files[i].string(), first.version, h.version, first.recipe, h.recipe,
+                                 first.cases, h.cases, first.shard.count, h.shard.count);
+            });
+    require(seen[h.shard.index] < 0, [&] {
+      return fmt::format("merge: shard {}/{} given twice ({} and {})", h.shard.index, h.shard.count,
+                         files[static_cast<std::size_t>(seen[h.shard.index])].string(), files[i].string());
+    });
+    seen[h.shard.index] = static_cast<int>(i);
+    std::size_t expected = 0, missing = 0, first_missing = 0;
+    for (std::size_t k = h.shard.index; k < h.cases; k += h.shard.count) {
+      ++expected;
+      if (!j.done.contains(k) && missing++ == 0) first_missing = k;
+    }
+    require(missing == 0, [&] {
+      return fmt::format("merge: {} (shard {}/{}) is incomplete: {} of its {} cases missing (the first: case {}); rerun "
+                         "that shard with the same --out (it resumes)",
+                         files[i].string(), h.shard.index, h.shard.count, missing, expected, first_missing);
+    });
+    for (const auto& [k, r] : j.done) {
+      require(h.shard.contains(k), [&] {
+        return fmt::format("merge: {} holds case {}, which is not in its shard {}/{}", files[i].string(), k,
+                           h.shard.index, h.shard.count);
+      });
+      done.emplace(k, r);
+    }
+  }
+  std::string absent;
+  for (std::size_t s = 0; s < seen.size(); ++s)
+    if (seen[s] < 0) absent += fmt::format("{}{}", absent.empty() ? "" : ", ", s);
+  require(absent.empty(), [&] {
+    return fmt::format("merge: shard(s) {} of {} missing (give every shard's journal once)", absent, first.shard.count);
+  });
+  header = first;
+  return done;
 }
 
 }  // namespace railcontact::study

@@ -21,6 +21,7 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "study/case_pool.hpp"
 
@@ -66,5 +67,15 @@ class SweepJournalWriter {
   std::filesystem::path path_;
   std::FILE* file_ = nullptr;
 };
+
+// The journal files of `paths` (files, or directories searched for *shard-<i>-of-<N>.journal),
+// sorted. Throws Error naming a path that does not exist or a directory without a journal.
+std::vector<std::filesystem::path> shard_journal_files(const std::vector<std::filesystem::path>& paths);
+
+// The cases of the shards 0 .. N-1 of one sweep or table build, by index, and their common header.
+// Throws Error (invalid_input) naming the files unless they belong together (version, recipe,
+// cases, N), each shard is given once and is complete, and no case lies outside its shard.
+std::map<std::size_t, CaseResult> combine_shard_journals(const std::vector<std::filesystem::path>& paths,
+                                                         SweepJournalHeader& header);
 
 }  // namespace railcontact::study
