@@ -7,6 +7,7 @@
 #include "study/coefficient_study.hpp"
 #include "study/hertz_study.hpp"
 #include "study/case_pool.hpp"
+#include "study/mpi_cases.hpp"
 #include "study/paper_study.hpp"
 #include "study/patch_study.hpp"
 
@@ -17,7 +18,11 @@ namespace {
 constexpr const char* kThreadsHelp =
     "threads for the independent cases (a whole number >= 1; default: all cores); the files do not depend on it";
 
-int threads_of(const std::string& text) { return text.empty() ? study::available_cores() : study::parse_threads(text); }
+// Default: every core; under mpirun one thread per rank.
+int threads_of(const std::string& text) {
+  if (!text.empty()) return study::parse_threads(text);
+  return study::MpiWorld::several() ? 1 : study::available_cores();
+}
 
 // `study coefficients`: paper §3, Table 1, Fig 3 and Fig 4 against Kalker's table.
 void add_coefficients_study(CLI::App* study, Action& action) {

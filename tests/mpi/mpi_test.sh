@@ -1,6 +1,6 @@
 #!/bin/sh
 # ctest mpi.three_ranks (docs/SCALING.md): `mpirun -n 3` gives the bytes of the serial run for a
-# sweep, a flexibility table and a wheelset table. Arguments: railcontact, mpiexec, source dir.
+# sweep, a flexibility table, a wheelset table and the paper study's Fig 5. Arguments: railcontact, mpiexec, source dir.
 set -eu
 cli=$1
 mpiexec=$2
@@ -40,4 +40,9 @@ wheelset="wheelset-table build --y=-3:3:0.5 --load 100 --element-size 1"
 "$cli" $wheelset --threads 1 --out "$work/w1.json" > /dev/null 2>&1
 $mpi "$cli" $wheelset --out "$work/w3.json" > /dev/null 2>&1
 cmp "$work/w1.json" "$work/w3.json"
-echo "mpi: sweep ($rows lines), flexibility table and wheelset table on 3 ranks: the serial bytes"
+paper="study paper --elements 300 --y-step 1.5e-3 --samples 1 --no-figures"
+"$cli" $paper --threads 1 --out "$work/p1" > /dev/null 2>&1
+$mpi "$cli" $paper --out "$work/p3" > /dev/null 2>&1
+cmp "$work/p1/fig5.csv" "$work/p3/fig5.csv"
+cmp "$work/p1/fig5_patches.csv" "$work/p3/fig5_patches.csv"
+echo "mpi: sweep ($rows lines), flexibility table, wheelset table and the paper study's Fig 5 on 3 ranks: the serial bytes"
