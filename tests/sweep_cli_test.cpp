@@ -246,6 +246,9 @@ TEST(TableBuildThreads, TwoThreadsWriteTheBytesOfOne) {
   EXPECT_EQ(read(dir / "w1.json"), read(dir / "w2.json"));
   const nlohmann::json t = nlohmann::json::parse(f1);
   EXPECT_EQ(t["created_utc"], "2023-11-14T22:13:20Z");  // SOURCE_DATE_EPOCH
+  const CommandResult bad = run_cli("flextable build --out " + (dir / "bad.json").string(), "SOURCE_DATE_EPOCH=soon ");
+  railcontact::test::expect_one_error_line(bad, "SOURCE_DATE_EPOCH 'soon' must be a whole number of seconds");
+  EXPECT_EQ(bad.exit_code, 2);
   ASSERT_GE(t["y_m"].size(), 9u);  // and the brackets of the contact jumps
   ASSERT_EQ(t["nodes"].size(), t["y_m"].size() * 2);
   for (std::size_t k = 0; k < t["nodes"].size(); k += 2) {
