@@ -25,6 +25,8 @@ std::string hash_hex(std::string_view bytes) {
 namespace {
 
 constexpr const char* kMagic = "railcontact sweep journal 1";
+// The most cases a journal may name: a sweep's 1e6, a flexibility table's 2e6 nodes, with room.
+constexpr std::size_t kMaximumJournalCases = 10000000;
 
 std::string header_text(const SweepJournalHeader& h) {
   return fmt::format("{}\nversion {}\nrecipe {}\ncases {}\nshard {}/{}\nmetadata {}\n{}\nheader {}\n{}\n", kMagic,
@@ -42,7 +44,7 @@ bool line_at(const std::string& text, std::size_t& pos, std::string& line) {
 }
 
 bool block_at(const std::string& text, std::size_t& pos, std::size_t bytes, std::string& block) {
-  if (pos + bytes + 1 > text.size() || text[pos + bytes] != '\n') return false;
+  if (pos > text.size() || bytes >= text.size() - pos || text[pos + bytes] != '\n') return false;  // no overflow
   block = text.substr(pos, bytes);
   pos += bytes + 1;
   return true;
@@ -55,7 +57,10 @@ SweepJournal read_sweep_journal(const std::filesystem::path& path) {
   if (!in) throw Error(ErrorKind::io, fmt::format("cannot read the sweep journal {}", path.string()));
   std::ostringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return parse_sweep_journal(buffer.str(), path);
+}
+
+SweepJournal parse_sweep_journal(const std::string& text, const std::filesystem::path& path) {
   SweepJournal j;
   std::size_t pos = 0;
   std::string line;
@@ -75,11 +80,12 @@ SweepJournal read_sweep_journal(const std::filesystem::path& path) {
   j.header.recipe = field("recipe");
   {
     std::istringstream s(field("cases"));
-    if (!(s >> cases)) throw bad("a bad cases line");
+    if (!(s >> cases) || cases > kMaximumJournalCases) throw bad("a bad cases line");
   }
   {
     std::istringstream s(field("shard"));
-    if (!(s >> shard_index >> slash >> shard_count) || slash != '/' || shard_count == 0 || shard_index >= shard_count)
+    if (!(s >> shard_index >> slash >> shard_count) || slash != '/' || shard_count == 0 || shard_count > 100000 ||
+        shard_index >= shard_count)
       throw bad("a bad shard line");
   }
   j.header.cases = cases;

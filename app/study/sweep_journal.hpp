@@ -50,6 +50,8 @@ struct SweepJournal {
 // Reads a journal. Throws Error (invalid_input) naming the file when its header is not a sweep
 // journal's (a record cut short is not an error: see above).
 SweepJournal read_sweep_journal(const std::filesystem::path& path);
+// The same from the journal's text (`path` names it in messages).
+SweepJournal parse_sweep_journal(const std::string& text, const std::filesystem::path& path);
 
 // Appends records to a journal, creating it with the header when it does not exist (or cutting it
 // to valid_bytes when it does). Each record is written with one write and flushed.
