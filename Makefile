@@ -5,7 +5,8 @@ JOBS ?= 2
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev libfftw3-dev libcli11-dev \
   nlohmann-json3-dev libtomlplusplus-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev \
   libboost-math-dev \
-  python3-matplotlib python3-numpy python3-scipy python3-dev python3-pybind11 python3-pytest gfortran valgrind
+  python3-matplotlib python3-numpy python3-scipy python3-dev python3-pybind11 python3-pytest gfortran valgrind \
+  libopenmpi-dev openmpi-bin
 
 .PHONY: all deps deps-fuzz configure build run test test-sanitize test-valgrind fuzz bench clean
 

@@ -28,7 +28,7 @@ while [ $# -gt 0 ]; do
     *) TARGETS="$TARGETS $1"; shift ;;
   esac
 done
-[ -n "$TARGETS" ] || TARGETS="case_file wheelset_case simpack_profile miniprof_profile text_profile wheel_rail_setup flexibility_table wheelset_table"
+[ -n "$TARGETS" ] || TARGETS="case_file wheelset_case simpack_profile miniprof_profile text_profile wheel_rail_setup flexibility_table wheelset_table sweep_file sweep_journal"
 
 mkdir -p "$BUILD/logs"
 status=0

@@ -125,7 +125,25 @@ TEST(JsonVersion, EveryJsonOutputOfTheToolCarriesTheLibraryVersion) {
     run_json("wheelset", "--table " + table + " --y 0.2 --load 100 --json");
   }
   run_json("geometry", "--y-from=-2 --y-to 2 --y-step 0.5 --amplitude 1 --json --out " + (dir / "geometry").string());
-  EXPECT_EQ(checked, 11);
+  // sweep writes DIR/sweep.json; a shard's journal holds it and merge writes it again.
+  {
+    covered.insert("sweep");
+    covered.insert("merge");
+    std::ofstream(dir / "sweep.toml") << "[mesh]\nelement_size_mm = 1.0\n[grid]\ny_mm = [0, 1]\n";
+    const CommandResult s = run_cli("sweep " + (dir / "sweep.toml").string() + " --out " + (dir / "sweep").string(), kNoFigures);
+    ASSERT_EQ(s.exit_code, 0) << s.err;
+    expect_version(parse_file(dir / "sweep" / "sweep.json"), "sweep --out DIR/sweep.json");
+    for (const std::string i : {"0", "1"}) {
+      const CommandResult shard = run_cli("sweep " + (dir / "sweep.toml").string() + " --shard " + i + "/2 --out " +
+                                              (dir / ("shard" + i)).string(), kNoFigures);
+      ASSERT_EQ(shard.exit_code, 0) << shard.err;
+    }
+    const CommandResult m =
+        run_cli("merge " + (dir / "shard0").string() + " " + (dir / "shard1").string() + " --out " + (dir / "merged").string(), kNoFigures);
+    ASSERT_EQ(m.exit_code, 0) << m.err;
+    expect_version(parse_file(dir / "merged" / "sweep.json"), "merge --out DIR/sweep.json");
+  }
+  EXPECT_EQ(checked, 13);
 
   // Every command that mentions JSON in its help is one of those run above.
   std::set<std::string> mentioning;

@@ -122,11 +122,28 @@ void read_rest(Section friction, Section material, Section mesh, Section solvers
 
 }  // namespace
 
+namespace {
+const std::set<std::string> kWheelsetCaseSections{"setup",    "position", "velocity", "load",
+                                                  "friction", "material", "mesh",     "solvers"};
+}  // namespace
+
 WheelsetCase parse_wheelset_case(std::string_view text, const std::string& source,
                                  const std::filesystem::path& base_directory) {
-  static const std::set<std::string> kSections{"setup",    "position", "velocity", "load",
-                                               "friction", "material", "mesh",     "solvers"};
-  const toml::table root = parse_toml_sections(text, source, kSections);
+  const toml::table root = parse_toml_sections(text, source, kWheelsetCaseSections);
+  return wheelset_case_from_toml(root, source, base_directory);
+}
+
+WheelsetCase parse_wheelset_case_with(std::string_view text, const std::string& source,
+                                      const std::filesystem::path& base_directory,
+                                      const std::set<std::string>& caller_sections, toml::table& root) {
+  std::set<std::string> sections = kWheelsetCaseSections;
+  sections.insert(caller_sections.begin(), caller_sections.end());
+  root = parse_toml_sections(text, source, sections);
+  return wheelset_case_from_toml(root, source, base_directory);
+}
+
+WheelsetCase wheelset_case_from_toml(const toml::table& root, const std::string& source,
+                                     const std::filesystem::path& base_directory) {
   const toml::table empty;
   const auto section = [&](const std::string& name) {
     return Section(section_table(root, name, source, false, empty), name, source);

@@ -35,5 +35,6 @@ void add_flextable_command(CLI::App& app, Action& action);
 void add_wheelset_command(CLI::App& app, Action& action);
 void add_wheelset_table_command(CLI::App& app, Action& action);
 void add_geometry_command(CLI::App& app, Action& action);
+void add_sweep_command(CLI::App& app, Action& action);  // also `merge`
 
 }  // namespace railcontact::cli

@@ -13,16 +13,21 @@
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/flextable_shards.hpp"
 #include "cli/table_file_output.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "railcontact/version.h"
+#include "study/case_pool.hpp"
 #include "study/flexibility_table_check.hpp"
+#include "study/mpi_cases.hpp"
+#include "study/sweep_journal.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -39,7 +44,37 @@ struct BuildArguments {
   std::optional<std::string> rail;
   int elements = 3000;
   int flexibility_coarsening = 0;
+  std::string threads;
+  std::string shard;
+  bool restart = false;
+  std::optional<std::string> created_utc;  // merge: the shards' (else SOURCE_DATE_EPOCH's, or now)
 };
+
+// A shard's part of a build is in its journal: the build stops there (the table is merge's).
+struct ShardDone {
+  std::filesystem::path journal;
+  std::size_t computed = 0, resumed = 0;
+};
+
+// The arguments of a build as recorded in a shard's journal (and the profiles' fingerprints):
+// merge rebuilds the table's grid, metadata and contact jumps from them.
+nlohmann::json build_recipe(const BuildArguments& a, const WheelRailPair& pair) {
+  nlohmann::json loads = a.loads_N;
+  return {{"railcontact_version", RC_VERSION_STRING},
+          {"command", "flextable build"},
+          {"arguments",
+           {{"y_from_m", a.y_from_m},
+            {"y_to_m", a.y_to_m},
+            {"y_step_m", a.y_step_m},
+            {"loads_N", loads},
+            {"wheel", a.wheel ? nlohmann::json(*a.wheel) : nlohmann::json(nullptr)},
+            {"rail", a.rail ? nlohmann::json(*a.rail) : nlohmann::json(nullptr)},
+            {"elements", a.elements},
+            {"flexibility_coarsening", a.flexibility_coarsening}}},
+          {"wheel_profile_fnv1a64", file_fingerprint(pair.wheel().source()).hash_hex()},
+          {"rail_profile_fnv1a64", file_fingerprint(pair.rail().source()).hash_hex()},
+          {"created_utc", source_date_epoch_utc()}};
+}
 
 struct CheckArguments {
   std::string table;
@@ -75,7 +110,10 @@ void print_nodes(const FlexibilityTable& table) {
   }
 }
 
-int run_build(const BuildArguments& args) {
+int run_build(const BuildArguments& args, const std::map<std::size_t, study::CaseResult>* merged = nullptr) {
+  // Every core by default (one thread per rank under mpirun); the table does not depend on it.
+  const int threads = args.threads.empty() ? (study::MpiWorld::several() ? 1 : study::available_cores())
+                                           : study::parse_threads(args.threads);
   require(!args.out.empty(), "--out must name the table file to write");
   require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
     return fmt::format("--elements {} must lie in [{}, {}] (with fewer, the elements are too large for the patch and "
@@ -98,7 +136,8 @@ int run_build(const BuildArguments& args) {
   const WheelRailPair pair = pair_of(args.wheel, args.rail);
   // Fail on an unwritable output before the work: create (and remove) a file next to it.
   const std::filesystem::path out(args.out);
-  check_table_writable(out, "flexibility table");
+  const bool rank0 = study::MpiWorld::rank() == 0;
+  if (rank0) check_table_writable(out, "flexibility table");
 
   FlexibilityTableOptions options;
   options.patch.target_elements = args.elements;
@@ -107,8 +146,66 @@ int run_build(const BuildArguments& args) {
                        args.flexibility_coarsening, kMaximumCoarsening);
   });
   options.nh_fastsim.flexibility_coarsening = args.flexibility_coarsening;
-  fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact\n", y.size(), loads.size(),
-             args.elements);
+  options.runner = study::table_node_runner(threads);
+  options.created_utc = args.created_utc ? *args.created_utc : source_date_epoch_utc();
+  const study::Shard shard = args.shard.empty() ? study::Shard{} : study::parse_shard(args.shard);
+  if (merged != nullptr) {
+    // merge: the nodes come from the shards' journals.
+    options.runner = [merged](std::size_t count, const TableNodeSolver&, const TableNodeStore& store) {
+      require(merged->size() == count, [&] {
+        return fmt::format("merge: the shards hold {} nodes; this build has {} (the profiles differ?)", merged->size(), count);
+      });
+      for (const auto& [k, r] : *merged) store(k, r.text);
+    };
+  } else if (!shard.whole()) {
+    // A shard: its nodes (on threads or ranks) into its journal, resumed when it exists.
+    const std::string recipe = build_recipe(args, pair).dump(2);
+    const std::filesystem::path journal =
+        fmt::format("{}.shard-{}-of-{}.journal", args.out, shard.index, shard.count);
+    options.runner = [=, &args](std::size_t count, const TableNodeSolver& solve, const TableNodeStore&) {
+      study::SweepJournalHeader header{RC_VERSION_STRING, study::hash_hex(recipe), count, shard, recipe, ""};
+      std::map<std::size_t, study::CaseResult> done;
+      bool exists = false;
+      std::uintmax_t valid = 0;
+      if (study::MpiWorld::rank() == 0) {
+        if (args.restart) std::filesystem::remove(journal);
+        if (std::filesystem::exists(journal)) {
+          study::SweepJournal j = study::read_sweep_journal(journal);
+          require(j.header.recipe == header.recipe && j.header.cases == count && j.header.shard.index == shard.index &&
+                      j.header.shard.count == shard.count && j.header.version == header.version,
+                  [&] {
+                    return fmt::format("{} holds {} nodes of another build (the arguments, profiles or railcontact "
+                                       "changed); rerun with --restart to discard them",
+                                       journal.string(), j.done.size());
+                  });
+          done = std::move(j.done);
+          exists = true;
+          valid = j.valid_bytes;
+        }
+      }
+      std::vector<std::size_t> todo;
+      for (std::size_t k = shard.index; k < count; k += shard.count)
+        if (!done.contains(k)) todo.push_back(k);
+      std::optional<study::SweepJournalWriter> writer;
+      if (study::MpiWorld::rank() == 0) writer.emplace(journal, header, exists, valid);
+      const study::CaseWorkerFactory factory = [&solve]() -> study::CaseWorker {
+        return [&solve](std::size_t k) { return study::CaseResult{solve(k), false}; };
+      };
+      study::ProgressLine line(std::cerr, "nodes", todo.size());
+      std::size_t computed = 0;
+      study::run_cases_on_ranks(todo, threads, factory, [&](std::size_t k, study::CaseResult&& r) {
+        writer->append(k, r);
+        line.done(++computed);
+      });
+      if (study::MpiWorld::rank() != 0) throw study::WorkerRankDone{};
+      writer->close();
+      throw ShardDone{journal, computed, done.size()};
+    };
+  }
+  if (rank0)
+    fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact, {} thread(s){}\n",
+               y.size(), loads.size(), args.elements, threads,
+               study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
   const auto start = std::chrono::steady_clock::now();
   // One progress line per node with the estimated time left (from the mean time per node so far).
   const auto report = [&](const FlexibilityTableProgress& p) {
@@ -123,7 +220,17 @@ int run_build(const BuildArguments& args) {
                  p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, flexibility_node_status_name(n.status),
                  n.message, left);
   };
-  FlexibilityTable table = build_flexibility_table(pair, y, loads, options, report);
+  FlexibilityTable table;
+  try {
+    table = build_flexibility_table(pair, y, loads, options, report);
+  } catch (const study::WorkerRankDone&) {
+    return 0;  // an MPI rank other than 0: its share is computed, rank 0 writes the table
+  } catch (const ShardDone& done) {
+    fmt::print("Wrote {} (shard {}/{}: {} nodes computed, {} from an earlier run); combine the shards with "
+               "`railcontact merge`\n",
+               done.journal.string(), shard.index, shard.count, done.computed, done.resumed);
+    return 0;
+  }
   for (const ContactJump& j : table.contact_jumps())
     fmt::print(std::cerr, "  contact jump between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
                table.y_m()[j.interval] / kMm, table.y_m()[j.interval + 1] / kMm, j.y_rail_left_m / kMm,
@@ -255,6 +362,33 @@ int run_check(const CheckArguments& args) {
 
 }  // namespace
 
+int merge_flextable_shards(const study::SweepJournalHeader& header, const std::map<std::size_t, study::CaseResult>& nodes,
+                           const std::string& out) {
+  const nlohmann::json recipe = nlohmann::json::parse(header.metadata);
+  const nlohmann::json& a = recipe.at("arguments");
+  BuildArguments args;
+  args.out = out;
+  args.y_from_m = a.at("y_from_m").get<double>();
+  args.y_to_m = a.at("y_to_m").get<double>();
+  args.y_step_m = a.at("y_step_m").get<double>();
+  args.loads_N = a.at("loads_N").get<std::vector<double>>();
+  if (!a.at("wheel").is_null()) args.wheel = a.at("wheel").get<std::string>();
+  if (!a.at("rail").is_null()) args.rail = a.at("rail").get<std::string>();
+  args.elements = a.at("elements").get<int>();
+  args.flexibility_coarsening = a.at("flexibility_coarsening").get<int>();
+  args.threads = "1";
+  args.created_utc = recipe.at("created_utc").get<std::string>();
+  // The profiles here must be those the shards were built from.
+  const WheelRailPair pair = pair_of(args.wheel, args.rail);
+  require(file_fingerprint(pair.wheel().source()).hash_hex() == recipe.at("wheel_profile_fnv1a64").get<std::string>() &&
+              file_fingerprint(pair.rail().source()).hash_hex() == recipe.at("rail_profile_fnv1a64").get<std::string>(),
+          [&] {
+            return fmt::format("merge: the profiles {} and {} here are not those the shards were built from", 
+                               pair.wheel().source(), pair.rail().source());
+          });
+  return run_build(args, &nodes);
+}
+
 void add_flextable_command(CLI::App& app, Action& action) {
   CLI::App* flextable = app.add_subcommand("flextable", "flexibility table of a profile pair: build it, check its accuracy");
   flextable->require_subcommand(1);
@@ -272,6 +406,11 @@ void add_flextable_command(CLI::App& app, Action& action) {
   b->add_option("--flexibility-coarsening", build->flexibility_coarsening,
                 "nH-FastSim's K2 on the patch coarsened by this factor (0: automatic, as `run`; 1: the patch itself)")
       ->capture_default_str();
+  b->add_option("--threads", build->threads,
+                "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any number");
+  b->add_option("--shard", build->shard,
+                "compute shard i of N only (nodes k with k mod N = i) into OUT.shard-i-of-N.journal, for `railcontact merge`");
+  b->add_flag("--restart", build->restart, "with --shard: discard the nodes of an earlier run of this shard");
   b->callback([build, &action] { action = [build] { return run_build(*build); }; });
 
   auto check = std::make_shared<CheckArguments>();

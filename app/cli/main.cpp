@@ -8,8 +8,21 @@
 #include "cli/commands.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/version.h"
+#include "study/mpi_cases.hpp"
 
+namespace {
+int run(int argc, char** argv);
+}  // namespace
+
+// Under mpirun with several ranks, an error on any rank ends them all (MPI_Abort) with its exit
+// code: the others would otherwise wait for it forever.
 int main(int argc, char** argv) {
+  railcontact::study::MpiWorld mpi(argc, argv);
+  return run(argc, argv);
+}
+
+namespace {
+int run(int argc, char** argv) {
   CLI::App app{"railcontact: wheel-rail rolling contact (nH-FastSim and exact reference solvers)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("railcontact ") + RC_VERSION_STRING);
@@ -23,6 +36,7 @@ int main(int argc, char** argv) {
   railcontact::cli::add_wheelset_command(app, action);
   railcontact::cli::add_wheelset_table_command(app, action);
   railcontact::cli::add_geometry_command(app, action);
+  railcontact::cli::add_sweep_command(app, action);
   if (argc > 1 && argv[1][0] != '-') {
     try {
       app.get_subcommand(argv[1]);
@@ -44,12 +58,16 @@ int main(int argc, char** argv) {
     return action ? action() : 0;
   } catch (const railcontact::Error& e) {
     fmt::print(stderr, "railcontact: error: {}\n", e.what());
+    railcontact::study::MpiWorld::abort_all(railcontact::cli::exit_code(e.kind()));
     return railcontact::cli::exit_code(e.kind());
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "railcontact: error: out of memory (reduce the number of elements)\n");
+    railcontact::study::MpiWorld::abort_all(railcontact::cli::kExitOutOfMemory);
     return railcontact::cli::kExitOutOfMemory;
   } catch (const std::exception& e) {
     fmt::print(stderr, "railcontact: error: internal error: {}\n", e.what());
   }
+  railcontact::study::MpiWorld::abort_all(railcontact::cli::exit_code(railcontact::ErrorKind::internal));
   return railcontact::cli::exit_code(railcontact::ErrorKind::internal);
 }
+}  // namespace

@@ -6,12 +6,23 @@
 #include "study/bound_study.hpp"
 #include "study/coefficient_study.hpp"
 #include "study/hertz_study.hpp"
+#include "study/case_pool.hpp"
+#include "study/mpi_cases.hpp"
 #include "study/paper_study.hpp"
 #include "study/patch_study.hpp"
 
 namespace railcontact::cli {
 
 namespace {
+
+constexpr const char* kThreadsHelp =
+    "threads for the independent cases (a whole number >= 1; default: all cores); the files do not depend on it";
+
+// Default: every core; under mpirun one thread per rank.
+int threads_of(const std::string& text) {
+  if (!text.empty()) return study::parse_threads(text);
+  return study::MpiWorld::several() ? 1 : study::available_cores();
+}
 
 // `study coefficients`: paper §3, Table 1, Fig 3 and Fig 4 against Kalker's table.
 void add_coefficients_study(CLI::App* study, Action& action) {
@@ -82,8 +93,11 @@ void add_patch_study(CLI::App* study, Action& action) {
   patch_cmd->add_option("--wheel", *wheel, "wheel profile file (default: the shipped S1002)");
   patch_cmd->add_option("--rail", *rail, "rail profile file (default: the shipped UIC60 1:40)");
   patch_cmd->add_flag("!--no-figures", patches->figures, "skip the figures (CSV and summary only)");
-  patch_cmd->callback([patches, patches_out, wheel, rail, &action] {
-    action = [patches, patches_out, wheel, rail] {
+  auto patch_threads = std::make_shared<std::string>();
+  patch_cmd->add_option("--threads", *patch_threads, kThreadsHelp);
+  patch_cmd->callback([patches, patches_out, wheel, rail, patch_threads, &action] {
+    action = [patches, patches_out, wheel, rail, patch_threads] {
+      patches->threads = threads_of(*patch_threads);
       patches->output_directory = *patches_out;
       if (!wheel->empty()) patches->wheel_profile = *wheel;
       if (!rail->empty()) patches->rail_profile = *rail;
@@ -103,8 +117,11 @@ void add_paper_study(CLI::App* study, Action& action) {
   pc->add_option("--y-step", paper->y_step_m, "step of y for Fig 5 (m)")->capture_default_str();
   pc->add_option("--samples", paper->timing_samples, "random cases per mesh size for Fig 8")->capture_default_str();
   pc->add_flag("!--no-figures", paper->figures, "skip the figures");
-  pc->callback([paper, paper_out, &action] {
-    action = [paper, paper_out] {
+  auto paper_threads = std::make_shared<std::string>();
+  pc->add_option("--threads", *paper_threads, kThreadsHelp);
+  pc->callback([paper, paper_out, paper_threads, &action] {
+    action = [paper, paper_out, paper_threads] {
+      paper->threads = threads_of(*paper_threads);
       paper->output_directory = *paper_out;
       study::run_paper_study(*paper, std::cerr);
       return 0;

@@ -7,9 +7,13 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
+#include <ctime>
+#include <string>
 
 #include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -67,5 +71,21 @@ void write_table_atomically(const std::filesystem::path& out, const std::string&
   }
 }
 
+
+std::string source_date_epoch_utc() {
+  const char* text = std::getenv("SOURCE_DATE_EPOCH");
+  if (text == nullptr || *text == '\0') return {};
+  const std::string value(text);
+  const bool digits = value.size() <= 12 && std::all_of(value.begin(), value.end(), [](char c) { return c >= '0' && c <= '9'; });
+  if (!digits)
+    throw Error(fmt::format("SOURCE_DATE_EPOCH '{}' must be a whole number of seconds since 1970-01-01 (or unset)",
+                            printable_excerpt(value)));
+  const std::time_t t = static_cast<std::time_t>(std::stoll(value));
+  std::tm utc{};
+  gmtime_r(&t, &utc);
+  char out[32];
+  std::strftime(out, sizeof out, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return out;
+}
 
 }  // namespace railcontact::cli

@@ -17,4 +17,9 @@ void check_table_writable(const std::filesystem::path& out, const std::string& w
 void write_table_atomically(const std::filesystem::path& out, const std::string& what,
                             const std::function<void(const std::filesystem::path&)>& write);
 
+// The table's created_utc from the environment's SOURCE_DATE_EPOCH (seconds since 1970, the
+// reproducible-builds convention), e.g. "2024-05-01T12:00:00Z"; empty (the build's time) when it is
+// not set. Throws Error (invalid_input) naming the value unless it is a whole number >= 0.
+std::string source_date_epoch_utc();
+
 }  // namespace railcontact::cli

@@ -16,6 +16,8 @@
 #include "cli/table_file_output.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset_table.hpp"
+#include "study/case_pool.hpp"
+#include "study/mpi_cases.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -27,6 +29,7 @@ struct BuildArguments {
   std::string yaw_mrad = "0:0:1";
   std::vector<double> loads_kN{80.0, 100.0, 120.0};
   double element_size_mm = 0.2;
+  std::string threads;
 };
 
 // FROM:TO:STEP (in the option's unit, times `scale`), TO reached within 1e-9 of a step; FROM = TO
@@ -51,6 +54,10 @@ std::vector<double> range_values(const std::string& text, const char* option, do
 
 int run_build(const BuildArguments& a, const CLI::App& sub) {
   require(!a.out.empty(), "wheelset-table build: --out must name the table file to write");
+  // Every core by default (one thread per rank under mpirun); the table does not depend on it.
+  const int threads = a.threads.empty() ? (study::MpiWorld::several() ? 1 : study::available_cores())
+                                        : study::parse_threads(a.threads);
+  const bool rank0 = study::MpiWorld::rank() == 0;
   WheelsetCase c;
   if (!a.case_file.empty()) c = read_wheelset_case(a.case_file);
   WheelsetTableGrid grid;
@@ -68,11 +75,16 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
   if (sub.count("--element-size") > 0 || a.case_file.empty()) options.wheelset.element_size_m = a.element_size_mm * 1e-3;
   const WheelsetTrack track = wheelset_track(c);
   const std::filesystem::path out(a.out);
-  check_table_writable(out, "wheelset table");  // before the work
+  if (rank0) check_table_writable(out, "wheelset table");  // before the work
+  options.runner = study::table_node_runner(threads);
+  options.created_utc = source_date_epoch_utc();
 
-  fmt::print(std::cerr, "wheelset-table build: {} y values x {} yaw(s) x {} load(s) = {} nodes, elements {:g} mm\n",
-             grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
-             options.wheelset.element_size_m * 1e3);
+  if (rank0)
+    fmt::print(std::cerr,
+               "wheelset-table build: {} y values x {} yaw(s) x {} load(s) = {} nodes, elements {:g} mm, {} thread(s){}\n",
+               grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
+               options.wheelset.element_size_m * 1e3, threads,
+               study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
   const auto start = std::chrono::steady_clock::now();
   std::size_t next_report = 0;
   // A progress line at every tenth of the nodes and for every gap, with the time left.
@@ -90,7 +102,12 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
       next_report = p.nodes_done + std::max<std::size_t>(1, p.nodes_total / 10);
     }
   };
-  const WheelsetTable table = build_wheelset_table(track, grid, options, report);
+  WheelsetTable table;
+  try {
+    table = build_wheelset_table(track, grid, options, report);
+  } catch (const study::WorkerRankDone&) {
+    return 0;  // an MPI rank other than 0: its share is computed, rank 0 writes the table
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_table_atomically(out, "wheelset table", [&](const std::filesystem::path& path) { save_wheelset_table(table, path); });
 
@@ -133,6 +150,9 @@ void add_wheelset_table_command(CLI::App& app, Action& action) {
       ->delimiter(',');
   build->add_option("--element-size", args->element_size_mm, "element size of the contact meshes (mm)")
       ->capture_default_str();
+  build->add_option("--threads", args->threads,
+                    "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any "
+                    "number");
   build->callback([args, build, &action] { action = [args, build] { return run_build(*args, *build); }; });
 }
 

@@ -6,11 +6,13 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -22,6 +24,8 @@
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 #include "railcontact/wheel_rail.hpp"
+#include "study/case_pool.hpp"
+#include "study/mpi_cases.hpp"
 #include "study/figures.hpp"
 #include "study/output_directory.hpp"
 
@@ -147,7 +151,21 @@ void check_options(const PaperStudyOptions& options) {
 
 // Fig 5 at one y: every family, level and solver against `exact` (Eq 25), one fig5.csv row each.
 // Returns the worst nh-fastsim error at this y.
-double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, Fig5Errors& errors) {
+// The errors of one y in the order they were computed ("family/solver", error): merged into the
+// study's statistics in the order of y, so the means are the same sums on any number of threads.
+using ErrorRecords = std::vector<std::pair<std::string, double>>;
+
+void add_error(Fig5Errors& errors, const std::string& key, double error, double y) {
+  ErrorStats& s = errors.stats[key];
+  if (error > s.max) {
+    s.max = error;
+    s.y_at_max = y;
+  }
+  s.sum += error;
+  ++s.count;
+}
+
+double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, ErrorRecords& errors) {
   const WheelRailPatch& wr = p.wheel_rail;
   double worst = 0;
   for (const Family& family : kFamilies) {
@@ -165,13 +183,7 @@ double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, 
         const double error = std::fabs(F - F_exact) / F_exact;
         fmt::print(fig5, "{},{:.6f},{},{},{:.6f},{},{:.4f},{:.4f},{:.6f}\n", family.name, y, family.xi * level,
                    family.eta * level, c.phi, solver, F, F_exact, error);
-        ErrorStats& s = errors.stats[fmt::format("{}/{}", family.name, solver)];
-        if (error > s.max) {
-          s.max = error;
-          s.y_at_max = y;
-        }
-        s.sum += error;
-        ++s.count;
+        errors.emplace_back(fmt::format("{}/{}", family.name, solver), error);
         if (std::string(solver) == "nh-fastsim") worst = std::max(worst, error);
       }
     }
@@ -182,31 +194,90 @@ double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, 
 // ---- Fig 5: relative total-force error vs y, three families, nh-fastsim and fastsim.
 Fig5Errors write_fig5_error_sweep(const WheelRailPair& pair, const PaperStudyOptions& options, std::ostream& progress) {
   const auto& dir = options.output_directory;
+  Fig5Errors errors;
+  const int y_count = static_cast<int>(std::lround(9e-3 / options.y_step_m)) + 1;
+  // Each y on its own (threads: options.threads; under mpirun over the ranks), its rows and errors
+  // sent back as text (an exact round trip), kept by index and written in the order of y: the files
+  // are the same bytes on any number of threads or ranks.
+  struct AtY {
+    std::string patch_row, fig5_rows, progress;
+    ErrorRecords errors;
+    bool skipped = false;
+  };
+  const auto encode = [](const AtY& r) {
+    std::string t = fmt::format("{} {} {} {} {}\n", r.skipped ? 1 : 0, r.patch_row.size(), r.fig5_rows.size(),
+                                r.progress.size(), r.errors.size());
+    t += r.patch_row + r.fig5_rows + r.progress;
+    for (const auto& [key, error] : r.errors) t += fmt::format("{}\t{:.17g}\n", key, error);
+    return t;
+  };
+  const auto decode = [](const std::string& t) {
+    AtY r;
+    std::istringstream in(t);
+    int skipped = 0;
+    std::size_t a = 0, b = 0, c = 0, n = 0;
+    in >> skipped >> a >> b >> c >> n;
+    in.get();
+    r.skipped = skipped != 0;
+    std::size_t at = static_cast<std::size_t>(in.tellg());
+    r.patch_row = t.substr(at, a);
+    r.fig5_rows = t.substr(at + a, b);
+    r.progress = t.substr(at + a + b, c);
+    std::istringstream rest(t.substr(at + a + b + c));
+    for (std::string line; n-- > 0 && std::getline(rest, line);) {
+      const std::size_t tab = line.find('\t');
+      r.errors.emplace_back(line.substr(0, tab), std::strtod(line.c_str() + tab + 1, nullptr));
+    }
+    return r;
+  };
+  std::vector<AtY> at(static_cast<std::size_t>(y_count));
+  const auto y_of = [&](std::size_t k) { return -4.5e-3 + static_cast<double>(k) * options.y_step_m; };
+  std::vector<std::size_t> todo(at.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = k;
+  const CaseWorkerFactory factory = [&]() -> CaseWorker {
+    return [&](std::size_t k) {
+      const double y = y_of(k);
+      AtY r;
+      std::optional<PreparedPatch> p;
+      try {
+        p = prepare(pair, y, options.elements);
+      } catch (const Error& e) {  // several contact patches: out of scope
+        if (e.kind() != ErrorKind::several_patches) throw;
+        r.patch_row = fmt::format("{:.6f},\"{}\",,,,,,,,,,,\n", y, e.what());
+        r.progress = fmt::format("  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
+        r.skipped = true;
+        return CaseResult{encode(r), false};
+      }
+      const WheelRailPatch& wr = p->wheel_rail;
+      r.patch_row = fmt::format("{:.6f},ok,{:.6f},{:.6f},{:.3f},{:.6e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", y,
+                                wr.contact_angle_rad, wr.spin_per_m, wr.normal_force_N, wr.area_m2, wr.elements_in_contact,
+                                p->nh->flexibility().L1, p->nh->flexibility().L2, p->nh->flexibility().L3,
+                                p->equivalent_ellipse.L1, p->equivalent_ellipse.L2, p->equivalent_ellipse.L3);
+      std::ostringstream rows;
+      const double worst = compare_solvers_at(*p, y, rows, r.errors);
+      r.fig5_rows = rows.str();
+      r.progress = fmt::format("  [{:2}/{}] y = {:+.2f} mm: {} elements, gamma {:.4f} rad, worst nh-fastsim error {:.2f}%\n",
+                               k + 1, y_count, 1e3 * y, wr.elements_in_contact, wr.contact_angle_rad, 100 * worst);
+      return CaseResult{encode(r), false};
+    };
+  };
+  ProgressLine line(progress, "y values", at.size());
+  std::size_t done = 0;
+  run_cases_on_ranks(todo, options.threads, factory, [&](std::size_t k, CaseResult&& result) {
+    at[k] = decode(result.text);
+    progress << at[k].progress;
+    line.done(++done);
+  });
+  if (MpiWorld::rank() != 0) return errors;  // another rank: its share is computed
   std::ofstream fig5 = open_csv(dir / "fig5.csv", "family,y,xi_n,eta_n,phi,solver,F,F_exact,rel_error\n");
   std::ofstream patches = open_csv(dir / "fig5_patches.csv",
                                    "y,status,contact_angle_rad,spin_per_m,normal_force_N,area_m2,elements,"
                                    "L1,L2,L3,L1_ellipse,L2_ellipse,L3_ellipse\n");
-  Fig5Errors errors;
-  const int y_count = static_cast<int>(std::lround(9e-3 / options.y_step_m)) + 1;
-  for (int k = 0; k < y_count; ++k) {
-    const double y = -4.5e-3 + k * options.y_step_m;
-    std::optional<PreparedPatch> p;
-    try {
-      p = prepare(pair, y, options.elements);
-    } catch (const Error& e) {  // several contact patches: out of scope
-      if (e.kind() != ErrorKind::several_patches) throw;
-      fmt::print(patches, "{:.6f},\"{}\",,,,,,,,,,,\n", y, e.what());
-      fmt::print(progress, "  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
-      errors.skipped.push_back(y);
-      continue;
-    }
-    const WheelRailPatch& wr = p->wheel_rail;
-    fmt::print(patches, "{:.6f},ok,{:.6f},{:.6f},{:.3f},{:.6e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", y,
-               wr.contact_angle_rad, wr.spin_per_m, wr.normal_force_N, wr.area_m2, wr.elements_in_contact, p->nh->flexibility().L1,
-               p->nh->flexibility().L2, p->nh->flexibility().L3, p->equivalent_ellipse.L1, p->equivalent_ellipse.L2, p->equivalent_ellipse.L3);
-    const double worst = compare_solvers_at(*p, y, fig5, errors);
-    fmt::print(progress, "  [{:2}/{}] y = {:+.2f} mm: {} elements, gamma {:.4f} rad, worst nh-fastsim error {:.2f}%\n",
-               k + 1, y_count, 1e3 * y, wr.elements_in_contact, wr.contact_angle_rad, 100 * worst);
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    patches << at[k].patch_row;
+    fig5 << at[k].fig5_rows;
+    if (at[k].skipped) errors.skipped.push_back(y_of(k));
+    for (const auto& [key, error] : at[k].errors) add_error(errors, key, error, y_of(k));
   }
   return errors;
 }
@@ -398,6 +469,11 @@ void write_summary(const PaperStudyOptions& options, const SummaryInputs& inputs
 
 void run_paper_study(const PaperStudyOptions& requested, std::ostream& progress) {
   check_options(requested);
+  if (MpiWorld::rank() != 0) {
+    // Under mpirun: the other ranks compute Fig 5's y values that rank 0 hands out, and nothing else.
+    write_fig5_error_sweep(default_wheel_rail_pair(), requested, progress);
+    return;
+  }
   OutputDirectory output(requested.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   PaperStudyOptions options = requested;
   options.output_directory = output.staging();

@@ -13,6 +13,7 @@ struct PaperStudyOptions {
   double y_step_m = 0.5e-3;      // Fig 5: y from -4.5 to 4.5 mm
   int timing_samples = 10;       // Fig 8: random cases per mesh size
   bool figures = true;
+  int threads = 1;               // Fig 5's y values on threads (the files do not depend on it)
 };
 
 void run_paper_study(const PaperStudyOptions& options, std::ostream& progress);

@@ -15,6 +15,7 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
+#include "study/case_pool.hpp"
 #include "study/figures.hpp"
 #include "study/output_directory.hpp"
 #include "study/patch_files.hpp"
@@ -226,12 +227,21 @@ int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
   const std::filesystem::path& dir = output.staging();
   const auto start = std::chrono::steady_clock::now();
 
-  std::vector<Row> rows;
-  int single = 0;
-  for (std::size_t k = 0; k < ys.size(); ++k) {
-    rows.push_back(solve_row(pair, ys[k], options, dir));
-    const Row& r = rows.back();
-    if (r.status == "single") ++single;
+  // Each y on its own (options.threads), its row filed by index: the files do not depend on the
+  // number of threads.
+  std::vector<Row> rows(ys.size());
+  std::vector<std::size_t> todo(ys.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = k;
+  const CaseWorkerFactory factory = [&]() -> CaseWorker {
+    return [&](std::size_t k) {
+      rows[k] = solve_row(pair, ys[k], options, dir);  // this y's own slot and pressure file
+      return CaseResult{};
+    };
+  };
+  ProgressLine line(progress, "y values", ys.size());
+  std::size_t done = 0;
+  run_cases_on_threads(todo, options.threads, factory, [&](std::size_t k, CaseResult&&) {
+    const Row& r = rows[k];
     if (r.solved) {
       fmt::print(progress, "  [{:2}/{}] y = {:+.2f} mm: {}, gamma = {:.4f} rad, {} elements, area {:.1f} mm2, "
                            "p max {:.0f} MPa, {:.0f} ms\n",
@@ -240,7 +250,10 @@ int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
     } else {
       fmt::print(progress, "  [{:2}/{}] y = {:+.2f} mm: {}: {}\n", k + 1, ys.size(), r.y_m * 1e3, r.status, r.message);
     }
-  }
+    line.done(++done);
+  });
+  int single = 0;
+  for (const Row& r : rows) single += r.status == "single";
   write_csv(dir / "patches.csv", rows);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_summary(dir / "summary.md", options, rows, wheel.filename().string(), rail.filename().string(), total);

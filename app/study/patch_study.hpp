@@ -21,6 +21,7 @@ struct PatchStudyOptions {
   std::optional<std::filesystem::path> wheel_profile;
   std::optional<std::filesystem::path> rail_profile;
   bool figures = true;
+  int threads = 1;  // the y values on threads (the files do not depend on it)
 };
 
 // Writes patches.csv (one row per y with a status column: single / several_patches / error),

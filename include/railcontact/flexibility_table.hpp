@@ -173,6 +173,17 @@ class FlexibilityTable {
   std::string source_;
 };
 
+// Runs a build's independent nodes k = 0 … count−1 (docs/SCALING.md): solve(k) computes node k and
+// returns it as text (an exact round trip), store(k, text) files it in the build. A runner may
+// call solve on several threads at once (each call uses its own solver objects) or hand the work
+// to other processes running the same build (MPI ranks), as long as, in the process whose build
+// returns, every k is stored exactly once (store calls may come from any thread, one at a time).
+// The nodes and the table do not depend on the runner. Empty: one node after the other on the
+// calling thread. The library starts no threads and sends no messages itself.
+using TableNodeSolver = std::function<std::string(std::size_t k)>;
+using TableNodeStore = std::function<void(std::size_t k, const std::string& text)>;
+using TableNodeRunner = std::function<void(std::size_t count, const TableNodeSolver& solve, const TableNodeStore& store)>;
+
 struct FlexibilityTableOptions {
   // Mesh, material, normal solver of each node; vertical_load_N is replaced by the grid's loads.
   WheelRailPatchOptions patch;
@@ -184,6 +195,11 @@ struct FlexibilityTableOptions {
   bool locate_contact_jumps = true;
   double contact_jump_m = 0.2e-3;
   double contact_jump_resolution_m = 1e-6;
+  // Who computes the nodes (above); empty: serially on the calling thread.
+  TableNodeRunner runner;
+  // The metadata's created_utc (ISO 8601, e.g. 2024-05-01T12:00:00Z); empty: the time of the
+  // build. For reproducible files (the CLI gives SOURCE_DATE_EPOCH's time here).
+  std::string created_utc;
 };
 
 // Progress of a build, reported after each node (the library does not print; the caller may).

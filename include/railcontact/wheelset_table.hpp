@@ -128,7 +128,15 @@ struct WheelsetTableOptions {
   // contact search. Its loads, solvers, friction and keep_tractions are set by the build.
   WheelsetOptions wheelset{};
   int runtime_elements = kWheelsetTableRuntimeElements;
+  // Who computes the blocks of nodes (TableNodeRunner, railcontact/flexibility_table.hpp; a block
+  // is kWheelsetTableBlock consecutive y values at one yaw and load); empty: serially.
+  TableNodeRunner runner;
+  // The metadata's created_utc; empty: the time of the build (as FlexibilityTableOptions).
+  std::string created_utc;
 };
+// Nodes per block of a build: along a block the wheelset's warm start carries over from one y to
+// the next; each block starts cold, so the blocks are independent (threads, MPI ranks).
+inline constexpr std::size_t kWheelsetTableBlock = 8;
 
 struct WheelsetTableProgress {
   std::size_t nodes_done = 0, nodes_total = 0;

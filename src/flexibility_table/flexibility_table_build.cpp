@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <mutex>
 #include <optional>
 
 #include "railcontact/error.hpp"
@@ -180,7 +181,7 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   metadata.collocation_offset = options.nh_fastsim.collocation_offset;
   metadata.flexibility_coarsening = options.nh_fastsim.flexibility_coarsening;
   metadata.railcontact_version = RC_VERSION_STRING;
-  metadata.created_utc = detail::utc_now();
+  metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
 
   // Contact jumps: on the geometry alone (the first-touch point does not depend on the load).
   std::vector<JumpBracket> brackets;
@@ -204,18 +205,38 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
     jumps.push_back({left, j.y_rail_left_m, j.y_rail_right_m});
   }
 
-  std::vector<FlexibilityTableNode> nodes;
-  const std::size_t total = y.size() * load_grid_N.size();
-  std::size_t solved = 0;
-  for (double y_m : y) {
-    for (double Fz : load_grid_N) {
-      const auto start = Clock::now();
-      nodes.push_back(solve_node(pair, y_m, Fz, options));
-      const FlexibilityTableNode& n = nodes.back();
-      solved += n.status == FlexibilityNodeStatus::solved;
-      if (progress) progress({nodes.size(), total, &n, std::chrono::duration<double>(Clock::now() - start).count()});
-    }
+  // Every node on its own (no state carries over from one to the next), so that the runner may
+  // compute them in any order and anywhere; encoded for the runner as "seconds\nnode JSON".
+  const std::size_t loads = load_grid_N.size();
+  const std::size_t total = y.size() * loads;
+  std::vector<FlexibilityTableNode> nodes(total);
+  const TableNodeSolver solve = [&](std::size_t k) {
+    const auto start = Clock::now();
+    const FlexibilityTableNode n = solve_node(pair, y[k / loads], load_grid_N[k % loads], options);
+    return fmt::format("{:.17g}\n{}", std::chrono::duration<double>(Clock::now() - start).count(),
+                       detail::flexibility_table_node_json(n));
+  };
+  std::mutex store_lock;
+  std::size_t solved = 0, stored = 0;
+  const TableNodeStore store = [&](std::size_t k, const std::string& text) {
+    require(k < total, [&] { return fmt::format("flexibility table: the runner stored node {} of {}", k, total); });
+    const std::size_t newline = text.find('\n');
+    const double seconds = std::stod(text.substr(0, newline));
+    FlexibilityTableNode n = detail::parse_flexibility_table_node(text.substr(newline + 1), k);
+    const std::lock_guard<std::mutex> guard(store_lock);
+    nodes[k] = std::move(n);
+    solved += nodes[k].status == FlexibilityNodeStatus::solved;
+    ++stored;
+    if (progress) progress({stored, total, &nodes[k], seconds});
+  };
+  if (options.runner) {
+    options.runner(total, solve, store);
+  } else {
+    for (std::size_t k = 0; k < total; ++k) store(k, solve(k));
   }
+  require(stored == total, [&] {
+    return fmt::format("flexibility table: the runner stored {} of the {} nodes", stored, total);
+  });
   require(solved > 0,
           [&] { return fmt::format("flexibility table: no node could be solved (first: {})", nodes.front().message); });
   return FlexibilityTable(std::move(metadata), std::move(y), load_grid_N, std::move(nodes), std::move(jumps));

@@ -169,6 +169,13 @@ std::vector<FlexibilityTableNode> read_nodes(StrictJsonReader& r, const std::str
 
 }  // namespace
 
+namespace detail {
+std::string flexibility_table_node_json(const FlexibilityTableNode& node) { return node_json(node).dump(); }
+FlexibilityTableNode parse_flexibility_table_node(const std::string& text, std::size_t index) {
+  return read_node(parse_json(text, "flexibility table node"), index, "flexibility table node");
+}
+}  // namespace detail
+
 std::string flexibility_table_json(const FlexibilityTable& table) {
   const FlexibilityTableMetadata& m = table.metadata();
   const TrackWheelsetParameters& t = m.track;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "railcontact/flexibility_table.hpp"
+#include "railcontact/wheelset_table.hpp"
 
 namespace railcontact::detail {
 
@@ -56,5 +57,15 @@ FileFingerprint read_fingerprint(StrictJsonReader& parent, const std::string& ke
 nlohmann::json fingerprint_json(const FileFingerprint& fingerprint);
 TrackWheelsetParameters read_track_parameters(StrictJsonReader& parent, const std::string& key);
 nlohmann::json track_parameters_json(const TrackWheelsetParameters& track);
+
+// One flexibility-table node as the table file writes it (JSON, an exact round trip), and back
+// (throws Error naming nodes[index] on malformed text): how a build's runner moves nodes.
+std::string flexibility_table_node_json(const FlexibilityTableNode& node);
+FlexibilityTableNode parse_flexibility_table_node(const std::string& text, std::size_t index);
+
+// Wheelset-table nodes as the table file writes them (a JSON list, an exact round trip), and back:
+// how a build's runner moves a block of nodes.
+std::string wheelset_table_nodes_json(const std::vector<WheelsetTableNode>& nodes);
+std::vector<WheelsetTableNode> parse_wheelset_table_nodes(const std::string& text);
 
 }  // namespace railcontact::detail

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset_table.hpp"
@@ -81,57 +82,93 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   wheelset_options.allow_wheel_lift = false;
   validate(wheelset_options);
 
-  std::vector<WheelsetTableNode> nodes(grid.size());
-  // One wheelset per yaw and load: along y its warm start carries over from node to node.
-  std::vector<Wheelset> wheelsets;
-  for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw) {
-    for (double load : grid.wheel_load_N) {
-      WheelsetOptions o = wheelset_options;
-      o.loads = WheelLoads{load, load, false};
-      wheelsets.emplace_back(track, o);
+  // The nodes in blocks of kWheelsetTableBlock consecutive y values at one yaw and load: along a
+  // block the wheelset's warm start carries over from node to node, each block starts cold. The
+  // blocks are independent, so the runner may compute them in any order and anywhere, and the
+  // table does not depend on it. A block travels as the JSON list of its nodes.
+  struct Block {
+    std::size_t iyaw, il, iy_begin, iy_end;
+  };
+  std::vector<Block> blocks;
+  for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw)
+    for (std::size_t il = 0; il < grid.wheel_load_N.size(); ++il)
+      for (std::size_t iy = 0; iy < grid.y_m.size(); iy += kWheelsetTableBlock)
+        blocks.push_back({iyaw, il, iy, std::min(iy + kWheelsetTableBlock, grid.y_m.size())});
+  const TableNodeSolver solve = [&](std::size_t b) {
+    const Block& block = blocks.at(b);
+    WheelsetOptions o = wheelset_options;
+    o.loads = WheelLoads{grid.wheel_load_N[block.il], grid.wheel_load_N[block.il], false};
+    Wheelset wheelset(track, o);
+    std::vector<WheelsetTableNode> solved_nodes;
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t iy = block.iy_begin; iy < block.iy_end; ++iy) {
+      WheelsetTableNode node;
+      node.y_m = grid.y_m[iy];
+      node.yaw_rad = grid.yaw_rad[block.iyaw];
+      node.wheel_load_N = grid.wheel_load_N[block.il];
+      WheelsetState state;
+      state.position.lateral_displacement_m = node.y_m;
+      state.position.yaw_rad = node.yaw_rad;
+      try {
+        const WheelsetResult r = wheelset.evaluate(state);
+        for (int w = 0; w < 2; ++w) {
+          const WheelResult& wheel = r.wheels[w];
+          node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
+          const Vector3 centre{0.0, node.y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
+          for (const WheelsetPatch& p : wheel.patches)
+            node.wheels[w].push_back(table_patch(p, centre, wheel.side, options.runtime_elements));
+        }
+      } catch (const Error& e) {
+        node.status = WheelsetTableNodeStatus::failed;
+        node.message = e.what();
+        node.wheels = {};
+      }
+      solved_nodes.push_back(std::move(node));
     }
-  }
-  std::size_t solved = 0, done = 0;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return fmt::format("{:.17g}\n{}", seconds, detail::wheelset_table_nodes_json(solved_nodes));
+  };
+  std::vector<WheelsetTableNode> nodes(grid.size());
+  std::mutex store_lock;
+  std::size_t solved = 0, done = 0, blocks_stored = 0;
   std::string first_failure;
-  for (std::size_t iy = 0; iy < grid.y_m.size(); ++iy) {
-    for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw) {
-      for (std::size_t il = 0; il < grid.wheel_load_N.size(); ++il) {
-        const auto start = std::chrono::steady_clock::now();
-        WheelsetTableNode& node = nodes[grid.index(iy, iyaw, il)];
-        node.y_m = grid.y_m[iy];
-        node.yaw_rad = grid.yaw_rad[iyaw];
-        node.wheel_load_N = grid.wheel_load_N[il];
-        WheelsetState state;
-        state.position.lateral_displacement_m = node.y_m;
-        state.position.yaw_rad = node.yaw_rad;
-        try {
-          const WheelsetResult r = wheelsets[iyaw * grid.wheel_load_N.size() + il].evaluate(state);
-          for (int w = 0; w < 2; ++w) {
-            const WheelResult& wheel = r.wheels[w];
-            node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
-            const Vector3 centre{0.0, node.y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
-            for (const WheelsetPatch& p : wheel.patches)
-              node.wheels[w].push_back(table_patch(p, centre, wheel.side, options.runtime_elements));
-          }
-          ++solved;
-        } catch (const Error& e) {
-          node.status = WheelsetTableNodeStatus::failed;
-          node.message = e.what();
-          node.wheels = {};
-          if (first_failure.empty()) first_failure = node.message;
-        }
-        ++done;
-        if (progress) {
-          WheelsetTableProgress p;
-          p.nodes_done = done;
-          p.nodes_total = nodes.size();
-          p.node = &node;
-          p.node_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-          progress(p);
-        }
+  std::size_t first_failure_index = grid.size();
+  const TableNodeStore store = [&](std::size_t b, const std::string& text) {
+    const Block& block = blocks.at(b);
+    const std::size_t newline = text.find('\n');
+    const double seconds = std::stod(text.substr(0, newline));
+    std::vector<WheelsetTableNode> block_nodes = detail::parse_wheelset_table_nodes(text.substr(newline + 1));
+    require(block_nodes.size() == block.iy_end - block.iy_begin, "wheelset table: a block came back incomplete");
+    const std::lock_guard<std::mutex> guard(store_lock);
+    ++blocks_stored;
+    for (std::size_t i = 0; i < block_nodes.size(); ++i) {
+      const std::size_t index = grid.index(block.iy_begin + i, block.iyaw, block.il);
+      WheelsetTableNode& node = nodes[index];
+      node = std::move(block_nodes[i]);
+      if (node.status == WheelsetTableNodeStatus::solved) ++solved;
+      else if (index < first_failure_index) {
+        first_failure_index = index;
+        first_failure = node.message;
+      }
+      ++done;
+      if (progress) {
+        WheelsetTableProgress p;
+        p.nodes_done = done;
+        p.nodes_total = nodes.size();
+        p.node = &node;
+        p.node_seconds = seconds / static_cast<double>(block_nodes.size());
+        progress(p);
       }
     }
+  };
+  if (options.runner) {
+    options.runner(blocks.size(), solve, store);
+  } else {
+    for (std::size_t b = 0; b < blocks.size(); ++b) store(b, solve(b));
   }
+  require(blocks_stored == blocks.size() && done == nodes.size(), [&] {
+    return fmt::format("wheelset table: the runner stored {} of the {} blocks", blocks_stored, blocks.size());
+  });
   WheelsetTableMetadata metadata;
   const auto fingerprint = [](const std::string& source) {
     try {
@@ -150,7 +187,7 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   metadata.collocation_offset = wheelset_options.nh_fastsim.collocation_offset;
   metadata.runtime_elements = options.runtime_elements;
   metadata.railcontact_version = RC_VERSION_STRING;
-  metadata.created_utc = detail::utc_now();
+  metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
   if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));
   return WheelsetTable(grid, std::move(nodes), track.parameters().nominal_rolling_radius_m,
                        wheelset_options.material, wheelset_options.nh_fastsim.bound, std::move(metadata));

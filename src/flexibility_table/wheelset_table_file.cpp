@@ -176,6 +176,23 @@ WheelsetTableMetadata read_metadata(StrictJsonReader& r) {
 
 }  // namespace
 
+namespace detail {
+std::string wheelset_table_nodes_json(const std::vector<WheelsetTableNode>& nodes) {
+  json list = json::array();
+  for (const WheelsetTableNode& n : nodes) list.push_back(node_json(n));
+  return list.dump();
+}
+std::vector<WheelsetTableNode> parse_wheelset_table_nodes(const std::string& text) {
+  const std::string source = "wheelset table nodes";
+  const json root = detail::parse_strict_json(text, source, kKind);
+  std::vector<WheelsetTableNode> nodes;
+  if (!root.is_array()) throw Error("wheelset table nodes: not a list");
+  for (std::size_t k = 0; k < root.size(); ++k)
+    nodes.push_back(read_node(StrictJsonReader(root[k], fmt::format("nodes[{}]", k), source, kKind)));
+  return nodes;
+}
+}  // namespace detail
+
 std::string wheelset_table_json(const WheelsetTable& table) {
   const WheelsetTableMetadata& m = table.metadata();
   json nodes = json::array();

@@ -1,0 +1,51 @@
+#!/bin/sh
+# ctest mpi.three_ranks (docs/SCALING.md): `mpirun -n 3` gives the bytes of the serial run for a
+# sweep, a flexibility table, a wheelset table and the paper study's Fig 5. Arguments: railcontact, mpiexec, source dir.
+set -eu
+cli=$1
+mpiexec=$2
+source=$3
+work=$(mktemp -d "${TMPDIR:-/tmp}/railcontact_mpi_XXXXXX")
+trap 'rm -rf "$work"' EXIT
+export RAILCONTACT_SCRIPTS=/nonexistent-railcontact-scripts SOURCE_DATE_EPOCH=1700000000
+# As root (CI containers) OpenMPI needs both variables; harmless otherwise.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+mpi="$mpiexec --oversubscribe -n 3"
+# Under AddressSanitizer (make test-sanitize) OpenMPI's own allocations, never freed by design,
+# would be reported as leaks: leaks are checked by the other tests.
+export ASAN_OPTIONS="${ASAN_OPTIONS:-}:detect_leaks=0"
+
+# A sweep whose cases differ in cost (one and two patches per wheel, two solvers).
+cat > "$work/s.toml" <<'TOML'
+[mesh]
+element_size_mm = 0.8
+[solvers]
+run = ["nh-fastsim", "fastsim"]
+[grid]
+yaw_mrad = [0, 3]
+y_mm = { from = -6, to = 6, step = 1.5 }
+TOML
+"$cli" sweep "$work/s.toml" --threads 1 --out "$work/serial" > /dev/null 2>&1
+$mpi "$cli" sweep "$work/s.toml" --out "$work/mpi" > "$work/mpi.out" 2> "$work/mpi.err"
+cmp "$work/serial/sweep.csv" "$work/mpi/sweep.csv"
+cmp "$work/serial/sweep.json" "$work/mpi/sweep.json"
+grep -q "and 3 MPI ranks" "$work/mpi.err" || { echo "not run on 3 ranks:"; cat "$work/mpi.err"; exit 1; }
+test "$(grep -c '^Wrote' "$work/mpi.out")" = 1  # rank 0 alone reports and writes
+rows=$(wc -l < "$work/serial/sweep.csv")
+test "$rows" -gt 18
+
+flex="flextable build --y-from -0.003 --y-to 0.003 --y-step 0.0005 --elements 300"
+"$cli" $flex --threads 1 --out "$work/f1.json" > /dev/null 2>&1
+$mpi "$cli" $flex --out "$work/f3.json" > /dev/null 2>&1
+cmp "$work/f1.json" "$work/f3.json"
+
+wheelset="wheelset-table build --y=-3:3:0.5 --load 100 --element-size 1"
+"$cli" $wheelset --threads 1 --out "$work/w1.json" > /dev/null 2>&1
+$mpi "$cli" $wheelset --out "$work/w3.json" > /dev/null 2>&1
+cmp "$work/w1.json" "$work/w3.json"
+paper="study paper --elements 300 --y-step 1.5e-3 --samples 1 --no-figures"
+"$cli" $paper --threads 1 --out "$work/p1" > /dev/null 2>&1
+$mpi "$cli" $paper --out "$work/p3" > /dev/null 2>&1
+cmp "$work/p1/fig5.csv" "$work/p3/fig5.csv"
+cmp "$work/p1/fig5_patches.csv" "$work/p3/fig5_patches.csv"
+echo "mpi: sweep ($rows lines), flexibility table, wheelset table and the paper study's Fig 5 on 3 ranks: the serial bytes"
