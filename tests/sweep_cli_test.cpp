@@ -278,8 +278,8 @@ std::string without_column(const std::string& csv, const std::string& name) {
   return out;
 }
 
-// study paper (Fig 5, the heaviest part) and study patches: the same files on one and two threads.
-TEST(StudyThreads, PaperFig5AndPatchesWriteTheSameFilesOnTwoThreads) {
+// study paper (Fig 5, the heaviest part), study patches and study bound: the same files on one and two threads.
+TEST(StudyThreads, PaperFig5PatchesAndBoundWriteTheSameFilesOnTwoThreads) {
   const ScratchDirectory dir("study_threads");
   for (const char* threads : {"1", "2"}) {
     const std::string t(threads);
@@ -289,7 +289,14 @@ TEST(StudyThreads, PaperFig5AndPatchesWriteTheSameFilesOnTwoThreads) {
     r = run_cli("study patches --elements 300 --y-step 1e-3 --no-figures --threads " + t + " --out " +
                 (dir / ("patches" + t)).string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_cli("study bound --elements 300 --y-step 1.5e-3 --threads " + t + " --out " + (dir / ("bound" + t)).string(),
+                kNoFigures);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
   }
+  const std::string bound = read(dir / "bound1" / "bound_sweep.csv");
+  EXPECT_EQ(bound, read(dir / "bound2" / "bound_sweep.csv"));
+  EXPECT_EQ(read(dir / "bound1" / "summary.md"), read(dir / "bound2" / "summary.md"));
+  EXPECT_EQ(rows_of(bound).size(), 1u + (11 + 7) * 7);  // 11 ellipses and 7 positions, 7 skews each
   for (const char* f : {"fig5.csv", "fig5_patches.csv"})
     EXPECT_EQ(read(dir / "paper1" / f), read(dir / "paper2" / f)) << f;
   const std::string patches = read(dir / "patches1" / "patches.csv");

@@ -67,8 +67,11 @@ void add_bound_study(CLI::App* study, Action& action) {
   b->add_option("--out", *bound_out, "output directory")->required();
   b->add_option("--elements", bound->elements, "elements in contact per patch")->capture_default_str();
   b->add_option("--y-step", bound->y_step_m, "step of the wheel-rail displacement (m)")->capture_default_str();
-  b->callback([bound, bound_out, &action] {
-    action = [bound, bound_out] {
+  auto bound_threads = std::make_shared<std::string>();
+  b->add_option("--threads", *bound_threads, kThreadsHelp);
+  b->callback([bound, bound_out, bound_threads, &action] {
+    action = [bound, bound_out, bound_threads] {
+      bound->threads = threads_of(*bound_threads);
       bound->output_directory = *bound_out;
       study::run_bound_study(*bound, std::cerr);
       return 0;
