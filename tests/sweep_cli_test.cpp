@@ -357,3 +357,26 @@ TEST(TableShards, FlexibilityTableShardsMergeToTheBytesOfOneBuild) {
 }
 
 }  // namespace
+
+namespace {
+
+// study coefficients: Table 1's rows on two threads give the same three tables (Fig 3 and 4 stay
+// on one thread: fig4.csv carries timings).
+TEST(StudyThreads, CoefficientTablesAreTheSameOnTwoThreads) {
+  const ScratchDirectory dir("coefficient_threads");
+  for (const char* threads : {"1", "2"}) {
+    const std::string t(threads);
+    const CommandResult r = run_cli("study coefficients --elements 200 --fine-elements 400 --no-figures --threads " + t +
+                                    " --out " + (dir / ("c" + t)).string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* f : {"table1.csv", "table1_paper.csv", "table1_fine.csv", "fig3.csv"})
+    EXPECT_EQ(read(dir / "c1" / f), read(dir / "c2" / f)) << f;
+  // Kalker's 57 entries, within 7 % on this coarse mesh (0.1-0.4 % at the study's 2800 elements).
+  const auto rows = rows_of(read(dir / "c1" / "table1.csv"));
+  ASSERT_EQ(rows.size(), 1u + 57);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    for (const char* e : {"err_C11", "err_C22", "err_C23"}) EXPECT_LT(std::abs(std::stod(rows[i][column(rows[0], e)])), 0.07) << i;
+}
+
+}  // namespace

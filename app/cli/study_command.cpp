@@ -31,9 +31,14 @@ void add_coefficients_study(CLI::App* study, Action& action) {
   CLI::App* cmd = study->add_subcommand("coefficients", "paper §3: Table 1, Fig 3 and Fig 4 against Kalker's table");
   cmd->add_option("--out", *out, "output directory")->required();
   cmd->add_option("--elements", coefficients->elements, "elements in contact for Table 1")->capture_default_str();
+  cmd->add_option("--fine-elements", coefficients->fine_elements, "elements in contact for the refined Table 1")
+      ->capture_default_str();
   cmd->add_flag("!--no-figures", coefficients->figures, "skip the figures (CSV and summary only)");
-  cmd->callback([coefficients, out, &action] {
-    action = [coefficients, out] {
+  auto coefficient_threads = std::make_shared<std::string>();
+  cmd->add_option("--threads", *coefficient_threads, kThreadsHelp);
+  cmd->callback([coefficients, out, coefficient_threads, &action] {
+    action = [coefficients, out, coefficient_threads] {
+      coefficients->threads = threads_of(*coefficient_threads);
       coefficients->output_directory = *out;
       study::run_coefficient_study(*coefficients, std::cerr);
       return 0;

@@ -15,6 +15,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
+#include "study/case_pool.hpp"
 #include "study/figures.hpp"
 #include "study/output_directory.hpp"
 
@@ -72,17 +73,35 @@ std::ofstream open_csv(const std::filesystem::path& path) {
   return file;
 }
 
-TableStatistics write_table(const std::filesystem::path& path, const Configuration& configuration,
+TableStatistics write_table(const std::filesystem::path& path, const Configuration& configuration, int threads,
                             std::ostream& progress) {
   std::ofstream csv = open_csv(path);
   csv << "a_over_b,nu,C11,C22,C23,table_C11,table_C22,table_C23,err_C11,err_C22,err_C23\n";
   const auto rows = kalker_table_rows();
   TableStatistics stats;
-  std::size_t k = 0;
-  for (const auto& row : rows) {
-    ++k;
-    const EllipseCoefficientResult r =
-        ellipse_creepage_coefficients(row.a_over_b, row.nu, configuration.options);
+  // Each row of Kalker's table on its own (threads), the results filed by row and written in order:
+  // the file is the same on any number of threads.
+  std::vector<EllipseCoefficientResult> results(rows.size());
+  std::vector<std::size_t> todo(rows.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = k;
+  const CaseWorkerFactory factory = [&]() -> CaseWorker {
+    return [&](std::size_t k) {
+      results[k] = ellipse_creepage_coefficients(rows[k].a_over_b, rows[k].nu, configuration.options);
+      return CaseResult{};
+    };
+  };
+  ProgressLine line(progress, "rows", rows.size());
+  std::size_t done = 0;
+  run_cases_on_threads(todo, threads, factory, [&](std::size_t k, CaseResult&&) {
+    const auto e = relative_errors(results[k].coefficients, rows[k].c11, rows[k].c22, rows[k].c23);
+    fmt::print(progress, "  [{:2}/{}] a/b = {:<7.4g} nu = {:.2f}: {} elements, errors {:+.2f}% {:+.2f}% {:+.2f}%\n",
+               k + 1, rows.size(), rows[k].a_over_b, rows[k].nu, results[k].elements_in_contact, 100 * e[0], 100 * e[1],
+               100 * e[2]);
+    line.done(++done);
+  });
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto& row = rows[k];
+    const EllipseCoefficientResult& r = results[k];
     const auto e = relative_errors(r.coefficients, row.c11, row.c22, row.c23);
     const std::array<double, 3> table{row.c11, row.c22, row.c23};
     fmt::print(csv, "{:.6g},{:.2f},{:.6f},{:.6f},{:.6f},{},{},{},{:.6f},{:.6f},{:.6f}\n", row.a_over_b, row.nu,
@@ -97,8 +116,6 @@ TableStatistics write_table(const std::filesystem::path& path, const Configurati
     }
     ++stats.entries;
     stats.total_time_s += r.solve_time_s;
-    fmt::print(progress, "  [{:2}/{}] a/b = {:<7.4g} nu = {:.2f}: {} elements, errors {:+.2f}% {:+.2f}% {:+.2f}%\n", k,
-               rows.size(), row.a_over_b, row.nu, r.elements_in_contact, 100 * e[0], 100 * e[1], 100 * e[2]);
   }
   for (int j = 0; j < 3; ++j) {
     stats.mean[j] /= stats.entries;
@@ -192,11 +209,11 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   const Configuration paper = paper_configuration(options.elements);
   const Configuration fine = railcontact_configuration(options.fine_elements, true);
   fmt::print(progress, "Table 1, {} ({} elements):\n", ours.description, options.elements);
-  const TableStatistics s_ours = write_table(dir / "table1.csv", ours, progress);
+  const TableStatistics s_ours = write_table(dir / "table1.csv", ours, options.threads, progress);
   fmt::print(progress, "Table 1, {} ({} elements):\n", paper.description, options.elements);
-  const TableStatistics s_paper = write_table(dir / "table1_paper.csv", paper, progress);
+  const TableStatistics s_paper = write_table(dir / "table1_paper.csv", paper, options.threads, progress);
   fmt::print(progress, "Table 1, {} ({} elements):\n", fine.description, options.fine_elements);
-  const TableStatistics s_fine = write_table(dir / "table1_fine.csv", fine, progress);
+  const TableStatistics s_fine = write_table(dir / "table1_fine.csv", fine, options.threads, progress);
   fmt::print(progress, "Fig 3 (collocation offset):\n");
   write_fig3(dir / "fig3.csv", progress);
   fmt::print(progress, "Fig 4 (mesh size):\n");
