@@ -225,6 +225,13 @@ TEST(SweepCli, FailedCasesAreRowsWithTheirErrorAndTheExitCodeSaysSo) {
   const std::string before_message = failed_row.substr(0, failed_row.find(",\""));
   EXPECT_EQ(static_cast<std::size_t>(std::count(before_message.begin(), before_message.end(), ',')) + 2, h.size());
   EXPECT_EQ(rows[4][column(h, "mu")], "0.2");
+  // A case of its own friction (a wheelset of its own in the worker) gives `railcontact wheelset`'s numbers.
+  const CommandResult single = run_cli("wheelset --y 1 --mu 0.2 --element-size 1 --json");
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  const nlohmann::json j = nlohmann::json::parse(single.out);
+  EXPECT_NEAR(std::stod(rows[4][column(h, "nh-fastsim_F1_N")]), j["wheels"][0]["patches"][0]["nh-fastsim"]["F1_N"].get<double>(),
+              0.01);
+  EXPECT_NEAR(std::stod(rows[4][column(h, "wheel_Fy_N")]), j["wheels"][0]["force_track_N"][1].get<double>(), 0.01);
   EXPECT_EQ(nlohmann::json::parse(read(dir / "out" / "sweep.json"))["failed_cases"], 1);
 }
 
