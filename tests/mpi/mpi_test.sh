@@ -1,6 +1,7 @@
 #!/bin/sh
 # ctest mpi.three_ranks (docs/SCALING.md): `mpirun -n 3` gives the bytes of the serial run for a
-# sweep, a flexibility table, a wheelset table and the paper study's Fig 5. Arguments: railcontact, mpiexec, source dir.
+# sweep, a flexibility table, a wheelset table and the studies paper (Fig 5), bound and coefficients
+# (Table 1). Arguments: railcontact, mpiexec, source dir.
 set -eu
 cli=$1
 mpiexec=$2
@@ -48,4 +49,15 @@ paper="study paper --elements 300 --y-step 1.5e-3 --samples 1 --no-figures"
 $mpi "$cli" $paper --out "$work/p3" > /dev/null 2>&1
 cmp "$work/p1/fig5.csv" "$work/p3/fig5.csv"
 cmp "$work/p1/fig5_patches.csv" "$work/p3/fig5_patches.csv"
-echo "mpi: sweep ($rows lines), flexibility table, wheelset table and the paper study's Fig 5 on 3 ranks: the serial bytes"
+bound="study bound --elements 300 --y-step 1.5e-3"
+"$cli" $bound --threads 1 --out "$work/b1" > /dev/null 2>&1
+$mpi "$cli" $bound --out "$work/b3" > /dev/null 2>&1
+cmp "$work/b1/bound_sweep.csv" "$work/b3/bound_sweep.csv"
+cmp "$work/b1/summary.md" "$work/b3/summary.md"
+
+coefficients="study coefficients --elements 200 --fine-elements 400 --no-figures"
+"$cli" $coefficients --threads 1 --out "$work/c1" > /dev/null 2>&1
+$mpi "$cli" $coefficients --out "$work/c3" > /dev/null 2>&1
+for f in table1.csv table1_paper.csv table1_fine.csv fig3.csv; do cmp "$work/c1/$f" "$work/c3/$f"; done
+echo "mpi: sweep ($rows lines), flexibility table, wheelset table, the paper study's Fig 5, the bound study and"
+echo "the coefficient study's Table 1 on 3 ranks: the serial bytes"
