@@ -88,29 +88,40 @@ void dispatch(const std::vector<std::size_t>& todo, int threads, const CaseWorke
   // short sleeps so that the dispatcher does not take a core from rank 0's compute threads.
   int running = g_size - 1;
   std::vector<char> message;
-  while (running > 0) {
-    int arrived = 0;
-    MPI_Status status;
-    check(MPI_Iprobe(MPI_ANY_SOURCE, kTagResult, MPI_COMM_WORLD, &arrived, &status), "probe");
-    if (!arrived) {
-      std::this_thread::sleep_for(std::chrono::microseconds(200));
-      continue;
+  try {
+    while (running > 0) {
+      int arrived = 0;
+      MPI_Status status;
+      check(MPI_Iprobe(MPI_ANY_SOURCE, kTagResult, MPI_COMM_WORLD, &arrived, &status), "probe");
+      if (!arrived) {
+        std::this_thread::sleep_for(std::chrono::microseconds(200));
+        continue;
+      }
+      int bytes = 0;
+      check(MPI_Get_count(&status, MPI_BYTE, &bytes), "count");
+      message.resize(static_cast<std::size_t>(bytes));
+      check(MPI_Recv(message.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kTagResult, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+            "receive");
+      std::int64_t k = -1;
+      std::memcpy(&k, message.data(), 8);
+      if (k >= 0) {
+        CaseResult r{std::string(message.data() + 9, message.size() - 9), message[8] != 0};
+        const std::lock_guard<std::mutex> guard(lock);
+        sink(static_cast<std::size_t>(k), std::move(r));
+      }
+      const std::int64_t work = take();
+      check(MPI_Send(&work, 1, MPI_INT64_T, status.MPI_SOURCE, kTagWork, MPI_COMM_WORLD), "send");
+      if (work < 0) --running;
     }
-    int bytes = 0;
-    check(MPI_Get_count(&status, MPI_BYTE, &bytes), "count");
-    message.resize(static_cast<std::size_t>(bytes));
-    check(MPI_Recv(message.data(), bytes, MPI_BYTE, status.MPI_SOURCE, kTagResult, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
-          "receive");
-    std::int64_t k = -1;
-    std::memcpy(&k, message.data(), 8);
-    if (k >= 0) {
-      CaseResult r{std::string(message.data() + 9, message.size() - 9), message[8] != 0};
+  } catch (...) {
+    // The sink (e.g. a full disk) or MPI failed: rank 0's threads stop after their case, then the
+    // error goes up (and main() ends the other ranks with MPI_Abort).
+    {
       const std::lock_guard<std::mutex> guard(lock);
-      sink(static_cast<std::size_t>(k), std::move(r));
+      if (!failure) failure = std::current_exception();
     }
-    const std::int64_t work = take();
-    check(MPI_Send(&work, 1, MPI_INT64_T, status.MPI_SOURCE, kTagWork, MPI_COMM_WORLD), "send");
-    if (work < 0) --running;
+    for (std::thread& t : local) t.join();
+    throw;
   }
   for (std::thread& t : local) t.join();
   if (failure) std::rethrow_exception(failure);
