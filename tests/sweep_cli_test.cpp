@@ -225,6 +225,13 @@ TEST(SweepCli, FailedCasesAreRowsWithTheirErrorAndTheExitCodeSaysSo) {
   const std::string before_message = failed_row.substr(0, failed_row.find(",\""));
   EXPECT_EQ(static_cast<std::size_t>(std::count(before_message.begin(), before_message.end(), ',')) + 2, h.size());
   EXPECT_EQ(rows[4][column(h, "mu")], "0.2");
+  // A case of its own friction (a wheelset of its own in the worker) gives `railcontact wheelset`'s numbers.
+  const CommandResult single = run_cli("wheelset --y 1 --mu 0.2 --element-size 1 --json");
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  const nlohmann::json j = nlohmann::json::parse(single.out);
+  EXPECT_NEAR(std::stod(rows[4][column(h, "nh-fastsim_F1_N")]), j["wheels"][0]["patches"][0]["nh-fastsim"]["F1_N"].get<double>(),
+              0.01);
+  EXPECT_NEAR(std::stod(rows[4][column(h, "wheel_Fy_N")]), j["wheels"][0]["force_track_N"][1].get<double>(), 0.01);
   EXPECT_EQ(nlohmann::json::parse(read(dir / "out" / "sweep.json"))["failed_cases"], 1);
 }
 
@@ -278,8 +285,8 @@ std::string without_column(const std::string& csv, const std::string& name) {
   return out;
 }
 
-// study paper (Fig 5, the heaviest part) and study patches: the same files on one and two threads.
-TEST(StudyThreads, PaperFig5AndPatchesWriteTheSameFilesOnTwoThreads) {
+// study paper (Fig 5, the heaviest part), study patches and study bound: the same files on one and two threads.
+TEST(StudyThreads, PaperFig5PatchesAndBoundWriteTheSameFilesOnTwoThreads) {
   const ScratchDirectory dir("study_threads");
   for (const char* threads : {"1", "2"}) {
     const std::string t(threads);
@@ -289,7 +296,14 @@ TEST(StudyThreads, PaperFig5AndPatchesWriteTheSameFilesOnTwoThreads) {
     r = run_cli("study patches --elements 300 --y-step 1e-3 --no-figures --threads " + t + " --out " +
                 (dir / ("patches" + t)).string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    r = run_cli("study bound --elements 300 --y-step 1.5e-3 --threads " + t + " --out " + (dir / ("bound" + t)).string(),
+                kNoFigures);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
   }
+  const std::string bound = read(dir / "bound1" / "bound_sweep.csv");
+  EXPECT_EQ(bound, read(dir / "bound2" / "bound_sweep.csv"));
+  EXPECT_EQ(read(dir / "bound1" / "summary.md"), read(dir / "bound2" / "summary.md"));
+  EXPECT_EQ(rows_of(bound).size(), 1u + (11 + 7) * 7);  // 11 ellipses and 7 positions, 7 skews each
   for (const char* f : {"fig5.csv", "fig5_patches.csv"})
     EXPECT_EQ(read(dir / "paper1" / f), read(dir / "paper2" / f)) << f;
   const std::string patches = read(dir / "patches1" / "patches.csv");
@@ -347,6 +361,29 @@ TEST(TableShards, FlexibilityTableShardsMergeToTheBytesOfOneBuild) {
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("shard(s) 1 of 3 missing"), std::string::npos) << missing.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "m2.json"));
+}
+
+}  // namespace
+
+namespace {
+
+// study coefficients: Table 1's rows on two threads give the same three tables (Fig 3 and 4 stay
+// on one thread: fig4.csv carries timings).
+TEST(StudyThreads, CoefficientTablesAreTheSameOnTwoThreads) {
+  const ScratchDirectory dir("coefficient_threads");
+  for (const char* threads : {"1", "2"}) {
+    const std::string t(threads);
+    const CommandResult r = run_cli("study coefficients --elements 200 --fine-elements 400 --no-figures --threads " + t +
+                                    " --out " + (dir / ("c" + t)).string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (const char* f : {"table1.csv", "table1_paper.csv", "table1_fine.csv", "fig3.csv"})
+    EXPECT_EQ(read(dir / "c1" / f), read(dir / "c2" / f)) << f;
+  // Kalker's 57 entries, within 7 % on this coarse mesh (0.1-0.4 % at the study's 2800 elements).
+  const auto rows = rows_of(read(dir / "c1" / "table1.csv"));
+  ASSERT_EQ(rows.size(), 1u + 57);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    for (const char* e : {"err_C11", "err_C22", "err_C23"}) EXPECT_LT(std::abs(std::stod(rows[i][column(rows[0], e)])), 0.07) << i;
 }
 
 }  // namespace

@@ -18,6 +18,14 @@ int run(int argc, char** argv);
 // code: the others would otherwise wait for it forever.
 int main(int argc, char** argv) {
   railcontact::study::MpiWorld mpi(argc, argv);
+  if (const int ranks = railcontact::study::MpiWorld::ranks_without_mpi()) {
+    fmt::print(stderr,
+               "railcontact: error: started by mpirun with {} ranks, but this railcontact was built without MPI "
+               "(RAILCONTACT_MPI=OFF, or libopenmpi-dev missing at configure time): run it without mpirun (--threads N), "
+               "or rebuild it with MPI (docs/SCALING.md)\n",
+               ranks);
+    return railcontact::cli::exit_code(railcontact::ErrorKind::invalid_input);
+  }
   return run(argc, argv);
 }
 

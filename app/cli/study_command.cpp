@@ -31,9 +31,14 @@ void add_coefficients_study(CLI::App* study, Action& action) {
   CLI::App* cmd = study->add_subcommand("coefficients", "paper §3: Table 1, Fig 3 and Fig 4 against Kalker's table");
   cmd->add_option("--out", *out, "output directory")->required();
   cmd->add_option("--elements", coefficients->elements, "elements in contact for Table 1")->capture_default_str();
+  cmd->add_option("--fine-elements", coefficients->fine_elements, "elements in contact for the refined Table 1")
+      ->capture_default_str();
   cmd->add_flag("!--no-figures", coefficients->figures, "skip the figures (CSV and summary only)");
-  cmd->callback([coefficients, out, &action] {
-    action = [coefficients, out] {
+  auto coefficient_threads = std::make_shared<std::string>();
+  cmd->add_option("--threads", *coefficient_threads, kThreadsHelp);
+  cmd->callback([coefficients, out, coefficient_threads, &action] {
+    action = [coefficients, out, coefficient_threads] {
+      coefficients->threads = threads_of(*coefficient_threads);
       coefficients->output_directory = *out;
       study::run_coefficient_study(*coefficients, std::cerr);
       return 0;
@@ -67,8 +72,11 @@ void add_bound_study(CLI::App* study, Action& action) {
   b->add_option("--out", *bound_out, "output directory")->required();
   b->add_option("--elements", bound->elements, "elements in contact per patch")->capture_default_str();
   b->add_option("--y-step", bound->y_step_m, "step of the wheel-rail displacement (m)")->capture_default_str();
-  b->callback([bound, bound_out, &action] {
-    action = [bound, bound_out] {
+  auto bound_threads = std::make_shared<std::string>();
+  b->add_option("--threads", *bound_threads, kThreadsHelp);
+  b->callback([bound, bound_out, bound_threads, &action] {
+    action = [bound, bound_out, bound_threads] {
+      bound->threads = threads_of(*bound_threads);
       bound->output_directory = *bound_out;
       study::run_bound_study(*bound, std::cerr);
       return 0;

@@ -4,12 +4,16 @@
 // 0.1 ... 1.0, normalised with f11, f22 of the patch's K2 (Eq 22-23); spin from conicity on the
 // wheel-rail patches, 0.1 1/m on the ellipses. Ellipses: c = sqrt(ab) = 6 mm, F3 = 98.1 kN.
 #include "study/bound_study.hpp"
+#include "study/case_pool.hpp"
+#include "study/mpi_cases.hpp"
 #include "study/output_directory.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -54,12 +58,95 @@ std::array<double, kSkews.size()> worst_errors(const ContactPatch& patch, double
   return worst;
 }
 
+// One patch of the study: its worst errors per skew, or skipped (several patches).
+struct BoundCase {
+  bool skipped = false;
+  std::array<double, kSkews.size()> worst{};
+  std::string progress;
+};
+
+// Sent between ranks as text, an exact round trip.
+std::string encode(const BoundCase& c) {
+  std::string t = fmt::format("{}\n", c.skipped ? 1 : 0);
+  for (double w : c.worst) t += fmt::format("{:.17g} ", w);
+  return t + "\n" + c.progress;
+}
+BoundCase decode(const std::string& t) {
+  BoundCase c;
+  std::istringstream in(t);
+  int skipped = 0;
+  in >> skipped;
+  c.skipped = skipped != 0;
+  for (double& w : c.worst) {
+    std::string word;
+    in >> word;
+    w = std::strtod(word.c_str(), nullptr);
+  }
+  in.get();
+  std::getline(in, c.progress, '\0');
+  return c;
+}
+
+// The ellipses, then the wheel-rail positions: each case on its own (options.threads; under mpirun
+// over the ranks), filed by index, so the files do not depend on the threads or ranks. An MPI rank
+// other than 0 computes what it is given and returns nothing.
+std::vector<BoundCase> compute_cases(const BoundStudyOptions& options, std::ostream& progress) {
+  const Material steel{2.1e11, 0.3};
+  const WheelRailPair pair = default_wheel_rail_pair();
+  WheelRailPatchOptions patch_options;
+  patch_options.vertical_load_N = kLoad;
+  patch_options.target_elements = options.elements;
+  const int y_count = static_cast<int>(std::lround(9e-3 / options.y_step_m)) + 1;
+  std::vector<BoundCase> cases(kRatios.size() + static_cast<std::size_t>(y_count));
+  const auto y_of = [&](std::size_t k) { return -4.5e-3 + static_cast<int>(k - kRatios.size()) * options.y_step_m; };
+  std::vector<std::size_t> todo(cases.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = k;
+  const CaseWorkerFactory factory = [&]() -> CaseWorker {
+    return [&](std::size_t k) {
+      BoundCase r;
+      if (k < kRatios.size()) {
+        const double ratio = kRatios[k];
+        const double c = 6e-3, a = c * std::sqrt(ratio), b = c / std::sqrt(ratio);
+        const ContactPatch patch = hertzian_patch(
+            elliptical_contact_with_count(a, b, options.elements, EllipseMeshLayout::rolling_resolved), a, b, kLoad, steel);
+        r.worst = worst_errors(patch, 0.1);
+        r.progress = fmt::format("  ellipse a/b = {:g} done\n", ratio);
+        return CaseResult{encode(r), false};
+      }
+      const double y = y_of(k);
+      try {
+        const WheelRailPatch wr = solve_wheel_rail_patch(pair, y, patch_options);
+        r.worst = worst_errors(wr.patch, wr.spin_per_m);
+        r.progress = fmt::format("  [{:2}/{}] y = {:+.2f} mm done\n", k - kRatios.size() + 1, y_count, 1e3 * y);
+      } catch (const Error& e) {  // several patches: out of scope, as in `study paper`
+        if (e.kind() != ErrorKind::several_patches) throw;
+        r.skipped = true;
+        r.progress = fmt::format("  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
+      }
+      return CaseResult{encode(r), false};
+    };
+  };
+  ProgressLine line(progress, "patches", cases.size());
+  std::size_t done = 0;
+  run_cases_on_ranks(todo, options.threads, factory, [&](std::size_t k, CaseResult&& result) {
+    cases[k] = decode(result.text);
+    progress << cases[k].progress;
+    line.done(++done);
+  });
+  if (MpiWorld::rank() != 0) return {};
+  return cases;
+}
+
 }  // namespace
 
 void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
   require(options.elements >= 200 && options.elements <= 30000,
           [&] { return fmt::format("study bound: --elements must lie in [200, 30000] (got {})", options.elements); });
   require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study bound: --y-step must lie in (0, 4.5e-3] m");
+  if (MpiWorld::rank() != 0) {  // under mpirun: compute the patches rank 0 hands out, nothing else
+    compute_cases(options, progress);
+    return;
+  }
   OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   const std::filesystem::path& dir = output.staging();
   std::ofstream csv(dir / "bound_sweep.csv");
@@ -78,30 +165,15 @@ void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
     rows += " |\n";
   };
 
-  const Material steel{2.1e11, 0.3};
-  for (double ratio : kRatios) {
-    const double c = 6e-3, a = c * std::sqrt(ratio), b = c / std::sqrt(ratio);
-    const ContactPatch patch = hertzian_patch(
-        elliptical_contact_with_count(a, b, options.elements, EllipseMeshLayout::rolling_resolved), a, b, kLoad, steel);
-    record("ellipse", ratio, fmt::format("ellipse a/b = {:g}", ratio), worst_errors(patch, 0.1), ellipse_worst);
-    fmt::print(progress, "  ellipse a/b = {:g} done\n", ratio);
-  }
-  const WheelRailPair pair = default_wheel_rail_pair();
-  WheelRailPatchOptions patch_options;
-  patch_options.vertical_load_N = kLoad;
-  patch_options.target_elements = options.elements;
-  const int y_count = static_cast<int>(std::lround(9e-3 / options.y_step_m)) + 1;
-  for (int i = 0; i < y_count; ++i) {
-    const double y = -4.5e-3 + i * options.y_step_m;
-    try {
-      const WheelRailPatch wr = solve_wheel_rail_patch(pair, y, patch_options);
-      record("wheel-rail", y, fmt::format("S1002/UIC60 y = {:+.2f} mm", 1e3 * y), worst_errors(wr.patch, wr.spin_per_m),
+  const std::vector<BoundCase> cases = compute_cases(options, progress);
+  const auto y_of = [&](std::size_t k) { return -4.5e-3 + static_cast<int>(k - kRatios.size()) * options.y_step_m; };
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    if (cases[k].skipped) continue;
+    if (k < kRatios.size())
+      record("ellipse", kRatios[k], fmt::format("ellipse a/b = {:g}", kRatios[k]), cases[k].worst, ellipse_worst);
+    else
+      record("wheel-rail", y_of(k), fmt::format("S1002/UIC60 y = {:+.2f} mm", 1e3 * y_of(k)), cases[k].worst,
              wheel_rail_worst);
-      fmt::print(progress, "  [{:2}/{}] y = {:+.2f} mm done\n", i + 1, y_count, 1e3 * y);
-    } catch (const Error& e) {  // several patches: out of scope, as in `study paper`
-      if (e.kind() != ErrorKind::several_patches) throw;
-      fmt::print(progress, "  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
-    }
   }
 
   std::ofstream md(dir / "summary.md");

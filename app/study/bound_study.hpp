@@ -12,6 +12,7 @@ struct BoundStudyOptions {
   std::filesystem::path output_directory;
   int elements = 3000;       // elements in contact per patch
   double y_step_m = 0.5e-3;  // wheel-rail positions from -4.5 to 4.5 mm
+  int threads = 1;           // the patches on threads (the files do not depend on it)
 };
 
 void run_bound_study(const BoundStudyOptions& options, std::ostream& progress);

@@ -5,7 +5,9 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,8 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
+#include "study/case_pool.hpp"
+#include "study/mpi_cases.hpp"
 #include "study/figures.hpp"
 #include "study/output_directory.hpp"
 
@@ -72,17 +76,54 @@ std::ofstream open_csv(const std::filesystem::path& path) {
   return file;
 }
 
-TableStatistics write_table(const std::filesystem::path& path, const Configuration& configuration,
+// Table 1's rows, each on its own (threads; under mpirun over the ranks), filed by row: the
+// coefficients, elements and solve time of each (sent between ranks as text, an exact round trip).
+// An MPI rank other than 0 computes what it is given and returns nothing.
+std::vector<EllipseCoefficientResult> compute_table(const Configuration& configuration, int threads,
+                                                    std::ostream& progress) {
+  const auto rows = kalker_table_rows();
+  std::vector<EllipseCoefficientResult> results(rows.size());
+  std::vector<std::size_t> todo(rows.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = k;
+  const CaseWorkerFactory factory = [&]() -> CaseWorker {
+    return [&](std::size_t k) {
+      const EllipseCoefficientResult r = ellipse_creepage_coefficients(rows[k].a_over_b, rows[k].nu, configuration.options);
+      return CaseResult{fmt::format("{:.17g} {:.17g} {:.17g} {} {:.17g}", r.coefficients.C11, r.coefficients.C22,
+                                    r.coefficients.C23, r.elements_in_contact, r.solve_time_s),
+                        false};
+    };
+  };
+  ProgressLine line(progress, "rows", rows.size());
+  std::size_t done = 0;
+  run_cases_on_ranks(todo, threads, factory, [&](std::size_t k, CaseResult&& text) {
+    EllipseCoefficientResult& r = results[k];
+    std::istringstream in(text.text);
+    std::string c11, c22, c23, seconds;
+    in >> c11 >> c22 >> c23 >> r.elements_in_contact >> seconds;
+    r.coefficients.C11 = std::strtod(c11.c_str(), nullptr);
+    r.coefficients.C22 = std::strtod(c22.c_str(), nullptr);
+    r.coefficients.C23 = std::strtod(c23.c_str(), nullptr);
+    r.solve_time_s = std::strtod(seconds.c_str(), nullptr);
+    const auto e = relative_errors(r.coefficients, rows[k].c11, rows[k].c22, rows[k].c23);
+    fmt::print(progress, "  [{:2}/{}] a/b = {:<7.4g} nu = {:.2f}: {} elements, errors {:+.2f}% {:+.2f}% {:+.2f}%\n",
+               k + 1, rows.size(), rows[k].a_over_b, rows[k].nu, r.elements_in_contact, 100 * e[0], 100 * e[1],
+               100 * e[2]);
+    line.done(++done);
+  });
+  if (MpiWorld::rank() != 0) return {};
+  return results;
+}
+
+TableStatistics write_table(const std::filesystem::path& path, const Configuration& configuration, int threads,
                             std::ostream& progress) {
+  const std::vector<EllipseCoefficientResult> results = compute_table(configuration, threads, progress);
   std::ofstream csv = open_csv(path);
   csv << "a_over_b,nu,C11,C22,C23,table_C11,table_C22,table_C23,err_C11,err_C22,err_C23\n";
   const auto rows = kalker_table_rows();
   TableStatistics stats;
-  std::size_t k = 0;
-  for (const auto& row : rows) {
-    ++k;
-    const EllipseCoefficientResult r =
-        ellipse_creepage_coefficients(row.a_over_b, row.nu, configuration.options);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto& row = rows[k];
+    const EllipseCoefficientResult& r = results[k];
     const auto e = relative_errors(r.coefficients, row.c11, row.c22, row.c23);
     const std::array<double, 3> table{row.c11, row.c22, row.c23};
     fmt::print(csv, "{:.6g},{:.2f},{:.6f},{:.6f},{:.6f},{},{},{},{:.6f},{:.6f},{:.6f}\n", row.a_over_b, row.nu,
@@ -97,8 +138,6 @@ TableStatistics write_table(const std::filesystem::path& path, const Configurati
     }
     ++stats.entries;
     stats.total_time_s += r.solve_time_s;
-    fmt::print(progress, "  [{:2}/{}] a/b = {:<7.4g} nu = {:.2f}: {} elements, errors {:+.2f}% {:+.2f}% {:+.2f}%\n", k,
-               rows.size(), row.a_over_b, row.nu, r.elements_in_contact, 100 * e[0], 100 * e[1], 100 * e[2]);
   }
   for (int j = 0; j < 3; ++j) {
     stats.mean[j] /= stats.entries;
@@ -184,19 +223,23 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   require(options.elements >= 50 && options.elements <= 200000, [&] {
     return fmt::format("study coefficients: --elements must lie in [50, 200000] (got {})", options.elements);
   });
+  const Configuration ours = railcontact_configuration(options.elements, false);
+  const Configuration paper = paper_configuration(options.elements);
+  const Configuration fine = railcontact_configuration(options.fine_elements, true);
+  if (MpiWorld::rank() != 0) {  // under mpirun: the rows of the three tables rank 0 hands out, nothing else
+    for (const Configuration* c : {&ours, &paper, &fine}) compute_table(*c, options.threads, progress);
+    return;
+  }
   OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   const std::filesystem::path& dir = output.staging();
   const auto start = std::chrono::steady_clock::now();
 
-  const Configuration ours = railcontact_configuration(options.elements, false);
-  const Configuration paper = paper_configuration(options.elements);
-  const Configuration fine = railcontact_configuration(options.fine_elements, true);
   fmt::print(progress, "Table 1, {} ({} elements):\n", ours.description, options.elements);
-  const TableStatistics s_ours = write_table(dir / "table1.csv", ours, progress);
+  const TableStatistics s_ours = write_table(dir / "table1.csv", ours, options.threads, progress);
   fmt::print(progress, "Table 1, {} ({} elements):\n", paper.description, options.elements);
-  const TableStatistics s_paper = write_table(dir / "table1_paper.csv", paper, progress);
+  const TableStatistics s_paper = write_table(dir / "table1_paper.csv", paper, options.threads, progress);
   fmt::print(progress, "Table 1, {} ({} elements):\n", fine.description, options.fine_elements);
-  const TableStatistics s_fine = write_table(dir / "table1_fine.csv", fine, progress);
+  const TableStatistics s_fine = write_table(dir / "table1_fine.csv", fine, options.threads, progress);
   fmt::print(progress, "Fig 3 (collocation offset):\n");
   write_fig3(dir / "fig3.csv", progress);
   fmt::print(progress, "Fig 4 (mesh size):\n");

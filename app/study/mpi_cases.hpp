@@ -32,6 +32,8 @@ class MpiWorld {
   static void abort_all(int exit_code);
   // Whether this build has MPI.
   static bool built_with_mpi();
+  // A build without MPI started by mpirun with several ranks: their number (else 0).
+  static int ranks_without_mpi();
 };
 
 // With several ranks: rank 0 hands out `todo` (its own list; the other ranks' is not used),

@@ -135,9 +135,11 @@ std::string input_fields(const SweepCase& c, bool by_load) {
 
 }  // namespace
 
-// One worker per thread: its own wheelsets (one per load and friction), each case started cold.
+// One worker per thread: its own wheelset, rebuilt when the loads or the friction change (in a
+// grid they are the outer axes), each case started cold.
 CaseWorkerFactory sweep_worker_factory(const SweepFile& sweep, const WheelsetTrack& track) {
   return [&sweep, &track]() -> CaseWorker {
+    // At most one wheelset per thread: its plans of the last case are all it keeps.
     auto wheelsets = std::make_shared<std::map<std::tuple<double, double, double>, Wheelset>>();
     const std::size_t solver_count = sweep.base.options.solvers.size();
     return [&sweep, &track, wheelsets, solver_count](std::size_t k) -> CaseResult {
@@ -151,7 +153,10 @@ CaseWorkerFactory sweep_worker_factory(const SweepFile& sweep, const WheelsetTra
         const auto key = std::make_tuple(c.loads ? c.loads->right_N : 0.0, c.loads ? c.loads->left_N : 0.0,
                                          c.friction_coefficient);
         auto it = wheelsets->find(key);
-        if (it == wheelsets->end()) it = wheelsets->emplace(key, Wheelset(track, options)).first;
+        if (it == wheelsets->end()) {
+          wheelsets->clear();
+          it = wheelsets->emplace(key, Wheelset(track, options)).first;
+        }
         Wheelset& wheelset = it->second;
         wheelset.reset_warm_start();  // every case cold: the same numbers in any order
         const WheelsetResult r = wheelset.evaluate(c.state);
