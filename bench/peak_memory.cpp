@@ -23,15 +23,19 @@ double peak_MiB() {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   using namespace railcontact;
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: peak_memory TARGET_ELEMENTS {exact|nh-fastsim}\n");
+  const std::string solver = argc == 3 ? argv[2] : "";
+  char* end = nullptr;
+  const long target = argc == 3 ? std::strtol(argv[1], &end, 10) : 0;
+  if (argc != 3 || end == argv[1] || *end != '\0' || target <= 0 || target > 10'000'000 ||
+      (solver != "exact" && solver != "nh-fastsim")) {
+    std::fprintf(stderr, "usage: peak_memory TARGET_ELEMENTS {exact|nh-fastsim} (TARGET_ELEMENTS a whole number > 0)\n");
     return 2;
   }
   const double start_MiB = peak_MiB();
   WheelRailPatchOptions options;
-  options.target_elements = std::atoi(argv[1]);
+  options.target_elements = static_cast<int>(target);
   const WheelRailPatch patch = solve_wheel_rail_patch(default_wheel_rail_pair(), 0.0, options);
   const double normal_MiB = peak_MiB();
   // The first nH-FastSim of the process (its coarse FFT size planned here), timed.
@@ -41,7 +45,7 @@ int main(int argc, char** argv) {
   TangentialForces forces = nh.forces(creepage, 0.3);
   const double first_nh_fastsim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   double exact_s = 0.0;
-  if (std::string(argv[2]) == "exact") {
+  if (solver == "exact") {
     begin = std::chrono::steady_clock::now();
     forces = solve_rolling_exact(patch.patch, creepage, 0.3).forces;
     exact_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
@@ -51,4 +55,7 @@ int main(int argc, char** argv) {
               argv[2], patch.elements_in_contact, patch.potential_area.size(), start_MiB, normal_MiB, peak_MiB(),
               1e3 * first_nh_fastsim_s, exact_s, forces.F1_N, forces.F2_N);
   return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "peak_memory: %s\n", e.what());
+  return 1;
 }

@@ -97,7 +97,9 @@ void BM_NhFastSimStage_OperatorProduct(benchmark::State& state) {
 }
 BENCHMARK(BM_NhFastSimStage_OperatorProduct)->Arg(4700)->Unit(benchmark::kMicrosecond);
 
-// K2's two force rows as NhFastSim solves them (operator set-up, preconditioner, two GMRES solves).
+// K2's two force rows as NhFastSim solves them (operator set-up, preconditioner, two GMRES solves),
+// with the options of its recipe (adhesion_options and kAdhesionTuning in nh_fastsim.cpp, internal
+// there): the counter nh_fastsim_iterations is NhFastSim's own count, which gmres_iterations must equal.
 void BM_NhFastSimStage_ForceRowsOfK2(benchmark::State& state) {
   const Case& c = comparison_case(static_cast<int>(state.range(0)));
   const ContactPatch coarse = coarse_patch(c);
@@ -112,6 +114,7 @@ void BM_NhFastSimStage_ForceRowsOfK2(benchmark::State& state) {
     benchmark::DoNotOptimize(K2.creepage_matrix.data());
   }
   state.counters["gmres_iterations"] = iterations;
+  state.counters["nh_fastsim_iterations"] = NhFastSim(c.patch.patch).krylov_iterations();
   state.counters["coarse_elements"] = static_cast<double>(coarse.elements().count());
 }
 BENCHMARK(BM_NhFastSimStage_ForceRowsOfK2)->Arg(4700)->Unit(benchmark::kMicrosecond);

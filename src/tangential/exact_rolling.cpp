@@ -61,7 +61,7 @@ void evaluate(RollingSystem& system, const std::vector<double>& w, const std::ve
 // max p3) before the step), the starting guess to max(krylov_tolerance, 0.1). The converged
 // solution is the same (the Newton test on the true residual decides), with 45-60 % fewer GMRES
 // iterations: 3442 against 7158 over 48 S1002/UIC60 cases of 1000-4900 elements, forces within
-// 2e-10 mu F3 (docs/BENCHMARKS.md "Exact solver: inexact Newton").
+// 2e-10 mu F3 (build/bench/exact_newton_cases; docs/BENCHMARKS.md "Speed on the S1002/UIC60 patch").
 constexpr double kLoosestKrylovTolerance = 0.1;
 constexpr int kMaximumHalvings = 10;  // of the line search's step, before the full step is taken
 
