@@ -60,7 +60,7 @@ BENCHMARK(BM_EigenKissFft_RealForward2d)->Arg(120)->Arg(240)->Unit(benchmark::kM
 // 48, 54, 60, 66, 72 elements per axis: at the smallest 7-smooth length >= the minimum, at the
 // measured fast length, and at the fast length without pruning (every row transformed).
 void fft_round_trip(benchmark::State& state, int n, int rows) {
-  const railcontact::detail::RealFft2d fft(n, n, rows);
+  railcontact::detail::RealFft2d fft(n, n, rows);
   railcontact::detail::FftwArray<double> real(fft.real_size());
   railcontact::detail::FftwArray<std::complex<double>> spectrum(fft.spectrum_size());
   for (int k = 0; k < rows * n; ++k) real.data()[k] = (k % 7) * 0.1;

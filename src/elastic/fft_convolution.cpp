@@ -30,29 +30,26 @@ template class FftwArray<std::complex<double>>;
 struct RealFft2d::Plans {
   Plans(int n1, int n2, int rows) : n1(n1), n2(n2), rows(rows) {
     // Planned on scratch arrays (FFTW_ESTIMATE does not touch them), executed on others of the
-    // same size and alignment. FFTW's row-major layout: n2 rows of n1 contiguous values.
+    // same size and alignment. FFTW's row-major layout: n2 rows of n1 contiguous values; the half
+    // spectrum between the passes has n2 rows of h = n1 / 2 + 1, the spectrum h columns of n2.
+    const int h = n1 / 2 + 1;
     FftwArray<double> real(static_cast<std::size_t>(n1) * n2);
-    FftwArray<std::complex<double>> spectrum(static_cast<std::size_t>(n2) * (n1 / 2 + 1));
-    auto* complex = reinterpret_cast<fftw_complex*>(spectrum.data());
-    if (rows == n2) {
-      forward = fftw_plan_dft_r2c_2d(n2, n1, real.data(), complex, FFTW_ESTIMATE);
-      inverse = fftw_plan_dft_c2r_2d(n2, n1, complex, real.data(), FFTW_ESTIMATE);
-      check(forward != nullptr && inverse != nullptr);
-      return;
-    }
-    // Pruned: the 1-D transforms along x1 of the rows that can be non-zero (forward) or are
-    // wanted (inverse), and the transforms along x2 of every spectral column, in place.
+    FftwArray<std::complex<double>> half_rows(static_cast<std::size_t>(n2) * h);
+    FftwArray<std::complex<double>> columns(static_cast<std::size_t>(n2) * h);
+    auto* rows_data = reinterpret_cast<fftw_complex*>(half_rows.data());
+    auto* columns_data = reinterpret_cast<fftw_complex*>(columns.data());
     const int length1[] = {n1};
     const int length2[] = {n2};
-    const int h = n1 / 2 + 1;
+    // Along x1: the rows that can be non-zero (forward) or are wanted (inverse).
     forward =
-        fftw_plan_many_dft_r2c(1, length1, rows, real.data(), nullptr, 1, n1, complex, nullptr, 1, h, FFTW_ESTIMATE);
-    forward_columns =
-        fftw_plan_many_dft(1, length2, h, complex, nullptr, h, 1, complex, nullptr, h, 1, FFTW_FORWARD, FFTW_ESTIMATE);
-    inverse_columns =
-        fftw_plan_many_dft(1, length2, h, complex, nullptr, h, 1, complex, nullptr, h, 1, FFTW_BACKWARD, FFTW_ESTIMATE);
+        fftw_plan_many_dft_r2c(1, length1, rows, real.data(), nullptr, 1, n1, rows_data, nullptr, 1, h, FFTW_ESTIMATE);
     inverse =
-        fftw_plan_many_dft_c2r(1, length1, rows, complex, nullptr, 1, h, real.data(), nullptr, 1, n1, FFTW_ESTIMATE);
+        fftw_plan_many_dft_c2r(1, length1, rows, rows_data, nullptr, 1, h, real.data(), nullptr, 1, n1, FFTW_ESTIMATE);
+    // Along x2: every column, from the strided rows to contiguous columns and back.
+    forward_columns = fftw_plan_many_dft(1, length2, h, rows_data, nullptr, h, 1, columns_data, nullptr, 1, n2,
+                                         FFTW_FORWARD, FFTW_ESTIMATE);
+    inverse_columns = fftw_plan_many_dft(1, length2, h, columns_data, nullptr, 1, n2, rows_data, nullptr, h, 1,
+                                         FFTW_BACKWARD, FFTW_ESTIMATE);
     check(forward != nullptr && forward_columns != nullptr && inverse_columns != nullptr && inverse != nullptr);
   }
   ~Plans() { destroy(); }
@@ -68,10 +65,10 @@ struct RealFft2d::Plans {
       if (plan != nullptr) fftw_destroy_plan(plan);
   }
   int n1, n2, rows;
-  fftw_plan forward = nullptr;          // 2-D, or along x1 on the first `rows` rows (pruned)
-  fftw_plan forward_columns = nullptr;  // pruned only: along x2, every column, in place
-  fftw_plan inverse_columns = nullptr;
-  fftw_plan inverse = nullptr;
+  fftw_plan forward = nullptr;          // r2c along x1 on the first `rows` rows
+  fftw_plan forward_columns = nullptr;  // c2c along x2, every column: strided rows -> contiguous columns
+  fftw_plan inverse_columns = nullptr;  // its inverse: contiguous columns -> strided rows
+  fftw_plan inverse = nullptr;          // c2r along x1 on the first `rows` rows
 };
 
 namespace {
@@ -106,22 +103,24 @@ std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2, int rows) {
 RealFft2d::RealFft2d(int n1, int n2, int rows) : n1_(n1), n2_(n2), rows_(rows) {
   require(n1 > 0 && n2 > 0 && rows > 0 && rows <= n2, "FFT: invalid transform size");
   plans_ = plans_for(n1, n2, rows);
+  forward_rows_ = FftwArray<std::complex<double>>(spectrum_size());  // zero-filled
+  inverse_rows_ = FftwArray<std::complex<double>>(spectrum_size());
 }
 
-void RealFft2d::forward(const double* real, std::complex<double>* spectrum) const {
-  // FFTW's r2c transforms leave their input intact (no FFTW_DESTROY_INPUT for r2c).
-  auto* complex = reinterpret_cast<fftw_complex*>(spectrum);
-  fftw_execute_dft_r2c(plans_->forward, const_cast<double*>(real), complex);
-  if (rows_ == n2_) return;
-  const std::size_t h = static_cast<std::size_t>(n1_ / 2 + 1);
-  std::fill(spectrum + rows_ * h, spectrum + n2_ * h, std::complex<double>(0.0, 0.0));  // the zero rows' transforms
-  fftw_execute_dft(plans_->forward_columns, complex, complex);
+void RealFft2d::forward(const double* real, std::complex<double>* spectrum) {
+  // FFTW's r2c transforms leave their input intact (no FFTW_DESTROY_INPUT for r2c); the rows past
+  // `rows` of forward_rows_ are never written and stay zero (the padding rows' transforms).
+  auto* rows = reinterpret_cast<fftw_complex*>(forward_rows_.data());
+  fftw_execute_dft_r2c(plans_->forward, const_cast<double*>(real), rows);
+  // Out-of-place c2c keeps its input (FFTW_PRESERVE_INPUT is the default but for c2r).
+  fftw_execute_dft(plans_->forward_columns, rows, reinterpret_cast<fftw_complex*>(spectrum));
 }
 
-void RealFft2d::inverse(std::complex<double>* spectrum, double* real) const {
-  auto* complex = reinterpret_cast<fftw_complex*>(spectrum);
-  if (rows_ < n2_) fftw_execute_dft(plans_->inverse_columns, complex, complex);
-  fftw_execute_dft_c2r(plans_->inverse, complex, real);
+void RealFft2d::inverse(const std::complex<double>* spectrum, double* real) {
+  auto* rows = reinterpret_cast<fftw_complex*>(inverse_rows_.data());
+  fftw_execute_dft(plans_->inverse_columns, reinterpret_cast<fftw_complex*>(const_cast<std::complex<double>*>(spectrum)),
+                   rows);
+  fftw_execute_dft_c2r(plans_->inverse, rows, real);  // destroys rows, which is scratch
 }
 
 int smooth_length(int minimum) {
@@ -136,12 +135,12 @@ int smooth_length(int minimum) {
 
 int fft_friendly_length(int minimum) {
   // Lengths at which FFTW 3.3's FFTW_ESTIMATE plans of a pruned real 2-D transform (forward and
-  // inverse, half the rows non-zero, as in every convolution here) are faster than at every
-  // longer length: the cheapest choice for any minimum up to 512 (measured on square transforms,
-  // docs/DEPENDENCIES.md "Padded lengths"). The smallest 7-smooth length was up to 3x slower
-  // (35 and 45 against 36 and 48, 60 against 64, 120 against 128).
-  static constexpr int kFastLengths[] = {16,  20,  32,  36,  42,  48,  64,  72,  84,  98,  100, 128,
-                                         140, 150, 160, 168, 200, 256, 320, 384, 400, 448, 512};
+  // inverse, half the rows non-zero, as in every convolution here; RealFft2d's column-by-column
+  // spectrum) are faster than at every longer length: the cheapest choice for any minimum up to
+  // 512 (measured on square transforms, docs/DEPENDENCIES.md "Padded lengths"). The smallest
+  // 7-smooth length was up to 3x slower (54 against 56, 60 against 64, 126 against 128).
+  static constexpr int kFastLengths[] = {16,  20,  32,  36,  40,  42,  48,  50,  56,  64,  72,  80,  84,  100, 112,
+                                         120, 128, 140, 144, 160, 200, 224, 256, 320, 336, 384, 400, 448, 512};
   if (minimum <= 16 || minimum > 512) return smooth_length(minimum);
   return *std::lower_bound(std::begin(kFastLengths), std::end(kFastLengths), minimum);
 }
@@ -167,7 +166,7 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const d
   }
   kernel_spectra_.resize(static_cast<std::size_t>(components * components));
   double* real = outputs_[0].data();  // scratch until the first product
-  const RealFft2d kernel_fft(N1, N2, N2);  // the kernels fill every row
+  RealFft2d kernel_fft(N1, N2, N2);  // the kernels fill every row
   const auto scaled = [normalisation](double value) { return value * normalisation; };
   for (int k = 0; k < components; ++k) {
     for (int l = 0; l < components; ++l) {

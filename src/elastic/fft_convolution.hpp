@@ -36,9 +36,16 @@ class FftwArray {
 // forward() reads only the first `rows` rows (the rest are taken as zero) and inverse() computes
 // only the first `rows` rows, so the transforms along x1 of the padding rows are skipped
 // (1.2-1.75x faster per forward + inverse pair with half the rows, docs/DEPENDENCIES.md).
+// The spectrum is stored column by column: the n2 values of each of the n1 / 2 + 1 columns
+// (wavenumbers k1) are contiguous. The transforms along x2 then read the row-major half spectrum
+// with a stride and write contiguous columns (out of place, through a scratch array of the
+// instance): 1.2-1.5x faster than in place with a stride both ways, and planned in 30-150 µs
+// instead of 0.2-0.3 ms (docs/DEPENDENCIES.md "Spectrum layout"). Only element-wise products of
+// spectra of the same layout are taken (FftConvolution), so the layout is internal.
 // Plans are immutable and shared: the plans of the last 16 sizes are kept per thread (planning a
 // known size again costs FFTW ~30 µs, 28 of the 35 µs of a 12 x 16 mesh's operator set-up,
-// docs/DEPENDENCIES.md); this changes no result.
+// docs/DEPENDENCIES.md); this changes no result. An instance is used by one thread at a time
+// (its scratch arrays).
 class RealFft2d {
  public:
   RealFft2d(int n1, int n2, int rows);  // 0 < rows <= n2
@@ -47,14 +54,21 @@ class RealFft2d {
   [[nodiscard]] int n2() const { return n2_; }
   [[nodiscard]] std::size_t real_size() const { return static_cast<std::size_t>(n1_) * n2_; }
   [[nodiscard]] std::size_t spectrum_size() const { return static_cast<std::size_t>(n2_) * (n1_ / 2 + 1); }
-  void forward(const double* real, std::complex<double>* spectrum) const;  // real is not modified
-  void inverse(std::complex<double>* spectrum, double* real) const;        // unnormalised; spectrum is destroyed
+  // real (n2 rows of n1, only the first `rows` rows read) -> spectrum (column by column); real
+  // is not modified.
+  void forward(const double* real, std::complex<double>* spectrum);
+  // spectrum (column by column) -> the first `rows` rows of real, unnormalised; spectrum is not
+  // modified.
+  void inverse(const std::complex<double>* spectrum, double* real);
 
   struct Plans;  // fft_convolution.cpp
 
  private:
   int n1_, n2_, rows_;
   std::shared_ptr<const Plans> plans_;
+  // Row-major half spectra (n2 rows of n1 / 2 + 1) between the two passes: the forward one's
+  // padding rows are zeroed once and never written; the inverse one is overwritten by each call.
+  FftwArray<std::complex<double>> forward_rows_, inverse_rows_;
 };
 
 // Smallest n >= minimum whose prime factors are 2, 3, 5, 7.
