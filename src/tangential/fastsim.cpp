@@ -199,6 +199,7 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   require(patch.elements().count() > 0, "fastsim: the contact patch has no element in contact");
   require(std::isfinite(bound.skew) && bound.skew >= 0.0 && bound.skew <= 1.0,
           [&] { return fmt::format("fastsim: the traction bound's skew = {} must lie in [0, 1]", bound.skew); });
+  const Mesh& mesh = patch.mesh();
   auto layout = std::make_shared<detail::FastSimLayout>();
   layout->bound = bound;
   layout->element_count = patch.elements().count();
@@ -232,19 +233,21 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
     const std::size_t b = r / kLanes, lane = r % kLanes;
     const auto length = static_cast<std::size_t>(run.length());
     const std::size_t pad = layout->block_steps[b] - length;
-    layout->lane_x2_m[b * kLanes + lane] = patch.x2(run.first);
+    layout->lane_x2_m[b * kLanes + lane] = mesh.x2(run.i2);  // = patch.x2(run.first), without a division
     for (std::size_t j = 0; j < length; ++j) {
       const std::size_t e = run.first + length - 1 - j;  // j-th element from the leading edge
       const std::size_t s = layout->block_first_slot[b] + (pad + j) * kLanes + lane;
       layout->step_m[s] = step[e];
-      layout->x1_m[s] = patch.x1(e);
+      layout->x1_m[s] = mesh.x1(run.i1_leading - static_cast<int>(j));  // = patch.x1(e)
       layout->bound_Pa[s] = layout->bound_pressure_Pa[e];
       layout->slot_element[s] = e;
     }
   }
-  for (std::size_t e = 0; e < layout->element_count; ++e)
-    layout->reach_m = std::max({layout->reach_m, std::fabs(patch.x1(e)) + 0.5 * patch.mesh().dx1_m,
-                                std::fabs(patch.x2(e)) + 0.5 * patch.mesh().dx2_m});
+  // The largest |x1|, |x2| of an element edge: the runs' end elements bound |x1|.
+  for (const StripRun& run : runs)
+    layout->reach_m = std::max({layout->reach_m, std::fabs(mesh.x1(run.i1_trailing)) + 0.5 * mesh.dx1_m,
+                                std::fabs(mesh.x1(run.i1_leading)) + 0.5 * mesh.dx1_m,
+                                std::fabs(mesh.x2(run.i2)) + 0.5 * mesh.dx2_m});
   layout_ = std::move(layout);
 }
 

@@ -16,6 +16,7 @@ std::vector<double> march_steps_m(const ContactPatch& patch) {
 }
 
 std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew) {
+  const Mesh& mesh = patch.mesh();
   const std::vector<double>& p3 = patch.pressure_Pa();
   std::vector<double> bound(p3.size(), 0.0);
   for (const StripRun& run : patch.runs()) {
@@ -23,7 +24,8 @@ std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew) {
     const std::size_t end = run.first + static_cast<std::size_t>(run.length());
     double strip_force = 0.0, shape_sum = 0.0;  // per unit strip area: sum p3, sum of the bound's shape
     for (std::size_t e = run.first; e < end; ++e) {
-      const double t = (run.x1_leading_m - patch.x1(e)) / length_m;  // 0 at the leading edge, 1 at the trailing
+      const double x1 = mesh.x1(run.i1_trailing + static_cast<int>(e - run.first));  // = patch.x1(e)
+      const double t = (run.x1_leading_m - x1) / length_m;  // 0 at the leading edge, 1 at the trailing
       bound[e] = t * (1.0 - t) * (1.0 + skew * t);  // shape, > 0 at every centre inside the run
       shape_sum += bound[e];
       strip_force += p3[e];
@@ -35,15 +37,16 @@ std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew) {
 }
 
 Eigen::Matrix3d adhesion_force_matrix(const ContactPatch& patch) {
+  const Mesh& mesh = patch.mesh();
   const std::vector<double> step = march_steps_m(patch);
   // Columns: unit xi, unit eta, unit phi (with L = 1); rows F1, F2, M3 / S.
   Eigen::Matrix3d DB = Eigen::Matrix3d::Zero();
   for (const StripRun& run : patch.runs()) {
-    const double x2 = patch.x2(run.first);
+    const double x2 = mesh.x2(run.i2);  // = patch.x2(run.first), without a division
     double p1_xi = 0.0, p2_eta = 0.0, p1_phi = 0.0, p2_phi = 0.0;
     for (std::size_t k = static_cast<std::size_t>(run.length()); k-- > 0;) {  // leading -> trailing
       const std::size_t e = run.first + k;
-      const double x1 = patch.x1(e);
+      const double x1 = mesh.x1(run.i1_trailing + static_cast<int>(k));  // = patch.x1(e)
       p1_xi += step[e];
       p2_eta += step[e];
       p1_phi += -x2 * step[e];
