@@ -3,7 +3,9 @@
 // xi' = eta' = 0.5 with the spin of the conicity; the argument is the target number of elements in
 // contact (4700: the reference exact program's patch, ~4656 in contact).
 //   BM_NhFastSimOnTheFly          NhFastSim(patch) with its flexibilities + forces, in a process
-//                                 that has solved before (FFT plans made)
+//                                 that has solved before (FFT plans made; the same patch, so the
+//                                 coarse K2 operator's kernels are kept from the last call)
+//   BM_NhFastSimOnTheFlyNewPatchEachCall  the same over 21 patches in turn (no kernels kept)
 //   BM_NhFastSimStage_*           its stages one by one (the profile breakdown)
 //   BM_FastSimWithKnownFlexibilities  the march alone (flexibilities known: the table's cost)
 //   BM_Exact                      solve_rolling_exact, inexact Newton (the default)
@@ -12,6 +14,7 @@
 #include <benchmark/benchmark.h>
 
 #include <map>
+#include <vector>
 
 #include "elastic/influence_operator.hpp"
 #include "railcontact/tangential.hpp"
@@ -53,6 +56,34 @@ void BM_NhFastSimOnTheFly(benchmark::State& state) {
   state.counters["coarsening"] = NhFastSim::automatic_coarsening(c.patch.patch);
 }
 BENCHMARK(BM_NhFastSimOnTheFly)->Arg(3000)->Arg(4700)->Arg(11000)->Unit(benchmark::kMicrosecond);
+
+// A different patch on every call: 21 patches of y = -0.5 ... 0.5 mm in steps of 0.05 mm, each with
+// the element size that gives it ~4700 elements, so no two share a coarse mesh and the kept
+// kernels of make_steady_rolling_operator never serve (the cost when each time step brings a new
+// patch; FFT plans of known lengths are still kept).
+void BM_NhFastSimOnTheFlyNewPatchEachCall(benchmark::State& state) {
+  static const std::vector<Case> cases = [] {
+    std::vector<Case> made;
+    WheelRailPatchOptions options;
+    options.target_elements = 4700;
+    for (int i = -10; i <= 10; ++i) {
+      WheelRailPatch patch = solve_wheel_rail_patch(default_wheel_rail_pair(), 0.05e-3 * i, options);
+      const NhFastSim nh(patch.patch);
+      const Creepage creepage =
+          nh.creepage_from_normalised(0.5, 0.5, patch.spin_per_m, kMu, patch.patch.normal_force_N());
+      made.push_back(Case{std::move(patch), creepage});
+    }
+    return made;
+  }();
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const Case& c = cases[next];
+    next = (next + 1) % cases.size();
+    benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
+  }
+  state.counters["patches"] = static_cast<double>(cases.size());
+}
+BENCHMARK(BM_NhFastSimOnTheFlyNewPatchEachCall)->Unit(benchmark::kMicrosecond);
 
 // The stages of NhFastSim's constructor (src/tangential/nh_fastsim.cpp), each on its own.
 void BM_NhFastSimStage_FastSimSetUp(benchmark::State& state) {

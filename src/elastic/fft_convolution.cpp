@@ -159,21 +159,17 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const d
   const int N1 = fft_.n1();
   const int N2 = fft_.n2();
   const double normalisation = 1.0 / (static_cast<double>(N1) * N2);
-  for (int c = 0; c < components; ++c) {
-    inputs_.emplace_back(fft_.real_size());
-    outputs_.emplace_back(fft_.real_size());
-    input_spectra_.emplace_back(fft_.spectrum_size());
-  }
-  kernel_spectra_.resize(static_cast<std::size_t>(components * components));
+  allocate_buffers();
+  auto spectra = std::make_shared<KernelSpectra>(static_cast<std::size_t>(components * components));
   double* real = outputs_[0].data();  // scratch until the first product
   RealFft2d kernel_fft(N1, N2, N2);  // the kernels fill every row
   const auto scaled = [normalisation](double value) { return value * normalisation; };
   for (int k = 0; k < components; ++k) {
     for (int l = 0; l < components; ++l) {
-      FftwArray<std::complex<double>>& spectrum = kernel_spectra_[static_cast<std::size_t>(k * components + l)];
+      FftwArray<std::complex<double>>& spectrum = (*spectra)[static_cast<std::size_t>(k * components + l)];
       spectrum = FftwArray<std::complex<double>>(fft_.spectrum_size());
       if (symmetric_blocks && l < k) {  // K_kl = K_lk: already transformed
-        const auto& same = kernel_spectra_[static_cast<std::size_t>(l * components + k)];
+        const auto& same = (*spectra)[static_cast<std::size_t>(l * components + k)];
         std::copy_n(same.data(), same.size(), spectrum.data());
         continue;
       }
@@ -189,6 +185,30 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const d
       }
       kernel_fft.forward(real, spectrum.data());
     }
+  }
+  std::fill(real, real + fft_.real_size(), 0.0);
+  kernel_spectra_ = std::move(spectra);
+}
+
+FftConvolution::FftConvolution(int n1, int n2, int components, std::shared_ptr<const KernelSpectra> kernel_spectra)
+    : n1_(n1),
+      n2_(n2),
+      components_(components),
+      fft_(fft_friendly_length(2 * n1 - 1), fft_friendly_length(2 * n2 - 1), n2),
+      kernel_spectra_(std::move(kernel_spectra)),
+      sum_(fft_.spectrum_size()) {
+  require(kernel_spectra_ != nullptr &&
+              kernel_spectra_->size() == static_cast<std::size_t>(components * components) &&
+              kernel_spectra_->front().size() == fft_.spectrum_size(),
+          "FFT convolution: kernel spectra of the wrong size");
+  allocate_buffers();
+}
+
+void FftConvolution::allocate_buffers() {
+  for (int c = 0; c < components_; ++c) {
+    inputs_.emplace_back(fft_.real_size());
+    outputs_.emplace_back(fft_.real_size());
+    input_spectra_.emplace_back(fft_.spectrum_size());
   }
 }
 
@@ -210,7 +230,7 @@ void FftConvolution::convolve(bool transpose) {
     double* a = reinterpret_cast<double*>(acc);
     for (int l = 0; l < components_; ++l) {
       const auto* K = reinterpret_cast<const double*>(
-          kernel_spectra_[static_cast<std::size_t>(transpose ? l * components_ + k : k * components_ + l)].data());
+          (*kernel_spectra_)[static_cast<std::size_t>(transpose ? l * components_ + k : k * components_ + l)].data());
       const auto* P = reinterpret_cast<const double*>(input_spectra_[static_cast<std::size_t>(l)].data());
       const bool first = l == 0;
       for (std::size_t q = 0; q < 2 * ns; q += 2) {

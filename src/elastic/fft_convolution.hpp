@@ -77,6 +77,10 @@ int smooth_length(int minimum);
 // estimated plans (a measured table up to 512, smooth_length beyond).
 int fft_friendly_length(int minimum);
 
+// The spectra of a convolution's kernel blocks, [k * components + l] (immutable once made; shared
+// by the convolutions with the same kernels).
+using KernelSpectra = std::vector<FftwArray<std::complex<double>>>;
+
 class FftConvolution {
  public:
   // kernel_table: components^2 blocks (k, l), k slowest, each (2 n2 - 1) rows of (2 n1 - 1)
@@ -84,6 +88,10 @@ class FftConvolution {
   // m2 = -(n2-1)..n2-1. symmetric_blocks: K_kl = K_lk for all blocks (the caller knows; e.g. the
   // half-space's tangential blocks), so only the blocks k <= l are transformed.
   FftConvolution(int n1, int n2, int components, std::span<const double> kernel_table, bool symmetric_blocks = false);
+  // The kernels of another convolution of the same size (no tabulation, no transform), with
+  // buffers of its own.
+  FftConvolution(int n1, int n2, int components, std::shared_ptr<const KernelSpectra> kernel_spectra);
+  [[nodiscard]] const std::shared_ptr<const KernelSpectra>& kernel_spectra() const { return kernel_spectra_; }
 
   [[nodiscard]] int components() const { return components_; }
   [[nodiscard]] std::size_t grid_size() const { return static_cast<std::size_t>(n1_) * n2_; }
@@ -106,10 +114,12 @@ class FftConvolution {
  private:
   int n1_, n2_, components_;
   RealFft2d fft_;
-  std::vector<FftwArray<std::complex<double>>> kernel_spectra_;  // [k * components + l]
+  std::shared_ptr<const KernelSpectra> kernel_spectra_;          // [k * components + l]
   std::vector<FftwArray<double>> inputs_, outputs_;               // padded, per component
   std::vector<FftwArray<std::complex<double>>> input_spectra_;   // per component
   FftwArray<std::complex<double>> sum_;                          // spectrum of one output
+
+  void allocate_buffers();
 };
 
 }  // namespace railcontact::detail

@@ -1,6 +1,9 @@
 #include "elastic/influence_operator.hpp"
 
 #include <algorithm>
+#include <memory>
+#include <utility>
+#include <vector>
 
 #include "elastic/rectangle_antiderivatives.hpp"
 #include "railcontact/error.hpp"
@@ -109,12 +112,23 @@ bool has_symmetric_blocks(const std::vector<double>& table, int components) {
 InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table)
     : mesh_(mesh),
       components_(components),
-      table_(std::move(table)),  // its size is checked by the convolution
-      convolution_(mesh.n1, mesh.n2, components, table_, has_symmetric_blocks(table_, components)),
+      table_(std::make_shared<const std::vector<double>>(std::move(table))),  // size checked by the convolution
+      convolution_(mesh.n1, mesh.n2, components, *table_, has_symmetric_blocks(*table_, components)),
       padded_index_(mesh.size()) {
   const auto n1 = static_cast<std::size_t>(mesh.n1);
   for (std::size_t k = 0; k < padded_index_.size(); ++k)
     padded_index_[k] = static_cast<std::uint32_t>(k / n1 * convolution_.row_stride() + k % n1);
+}
+
+InfluenceOperator::InfluenceOperator(const Mesh& mesh, const InfluenceOperator& same_kernels)
+    : mesh_(mesh),
+      components_(same_kernels.components_),
+      table_(same_kernels.table_),
+      convolution_(mesh.n1, mesh.n2, components_, same_kernels.convolution_.kernel_spectra()),
+      padded_index_(same_kernels.padded_index_) {
+  require(mesh.n1 == same_kernels.mesh_.n1 && mesh.n2 == same_kernels.mesh_.n2 &&
+              mesh.dx1_m == same_kernels.mesh_.dx1_m && mesh.dx2_m == same_kernels.mesh_.dx2_m,
+          "influence operator: shared kernels need the same mesh size and element size");
 }
 
 void InfluenceOperator::apply_on_grid(std::span<const double> in, std::span<double> out) {
@@ -176,8 +190,9 @@ InfluenceOperator make_normal_operator(const Mesh& mesh, const Material& materia
   return InfluenceOperator(mesh, 1, a.a33);
 }
 
-InfluenceOperator make_steady_rolling_operator(const Mesh& mesh, const Material& material, double alpha) {
-  validate(mesh);
+namespace {
+
+InfluenceOperator steady_rolling_operator(const Mesh& mesh, const Material& material, double alpha) {
   // Influence at the collocation points x + alpha dx1/2 for offsets m1 = -(n1-1) .. n1: the
   // upwind difference needs the point one element ahead as well.
   const int lo = -(mesh.n1 - 1), hi = mesh.n1;
@@ -197,6 +212,42 @@ InfluenceOperator make_steady_rolling_operator(const Mesh& mesh, const Material&
     }
   }
   return InfluenceOperator(mesh, 2, std::move(table));
+}
+
+// What the steady-rolling kernels depend on: the mesh's size and element size, the material, alpha.
+struct SteadyRollingKey {
+  int n1, n2;
+  double dx1_m, dx2_m, youngs_modulus_Pa, poisson_ratio, alpha;
+  bool operator==(const SteadyRollingKey&) const = default;
+};
+
+}  // namespace
+
+InfluenceOperator make_steady_rolling_operator(const Mesh& mesh, const Material& material, double alpha) {
+  validate(mesh);
+  // The kernels of the last few small meshes are kept per thread and shared (immutable): nH-FastSim
+  // builds this operator on its coarse patch (~300 elements) on every call, and tabulating and
+  // transforming its kernels was 38 of its ~300 µs (docs/BENCHMARKS.md). In a time step or a sweep
+  // at a fixed element size the coarse mesh keeps its size for many calls. Reusing the kernels
+  // changes no result. Large meshes (the exact solver's, set up once per solve) are not kept.
+  constexpr std::size_t kLargestKeptMesh = 64 * 64;
+  constexpr std::size_t kKeptKernels = 8;
+  if (mesh.size() > kLargestKeptMesh) return steady_rolling_operator(mesh, material, alpha);
+  const SteadyRollingKey key{mesh.n1, mesh.n2, mesh.dx1_m, mesh.dx2_m, material.youngs_modulus_Pa,
+                             material.poisson_ratio, alpha};
+  thread_local std::vector<std::pair<SteadyRollingKey, std::shared_ptr<const InfluenceOperator>>> recent;
+  for (auto it = recent.begin(); it != recent.end(); ++it) {
+    if (it->first == key) {
+      auto hit = std::move(*it);
+      recent.erase(it);
+      recent.push_back(std::move(hit));
+      return InfluenceOperator(mesh, *recent.back().second);
+    }
+  }
+  auto made = std::make_shared<const InfluenceOperator>(steady_rolling_operator(mesh, material, alpha));
+  if (recent.size() == kKeptKernels) recent.erase(recent.begin());
+  recent.emplace_back(key, made);
+  return InfluenceOperator(mesh, *made);
 }
 
 }  // namespace railcontact

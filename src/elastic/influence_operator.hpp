@@ -21,11 +21,14 @@ class InfluenceOperator {
  public:
   // From a precomputed kernel table: components^2 blocks, each (2 n2 - 1) x (2 n1 - 1), m1 fastest.
   InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table);
+  // The kernels of `same_kernels` (its table and spectra, shared) on `mesh`, which must have the
+  // same n1, n2 and element size; buffers of its own. Costs no tabulation and no transform.
+  InfluenceOperator(const Mesh& mesh, const InfluenceOperator& same_kernels);
 
   [[nodiscard]] const Mesh& mesh() const { return mesh_; }
   [[nodiscard]] int components() const { return components_; }
   [[nodiscard]] double kernel(int k, int l, int m1, int m2) const {
-    return table_[((static_cast<std::size_t>(k * components_ + l) * (2 * mesh_.n2 - 1) + (m2 + mesh_.n2 - 1)) *
+    return (*table_)[((static_cast<std::size_t>(k * components_ + l) * (2 * mesh_.n2 - 1) + (m2 + mesh_.n2 - 1)) *
                    (2 * mesh_.n1 - 1)) +
                   static_cast<std::size_t>(m1 + mesh_.n1 - 1)];
   }
@@ -46,7 +49,7 @@ class InfluenceOperator {
  private:
   Mesh mesh_;
   int components_;
-  std::vector<double> table_;
+  std::shared_ptr<const std::vector<double>> table_;
   detail::FftConvolution convolution_;
   std::vector<std::uint32_t> padded_index_;  // mesh index -> index in the padded transform planes
 
