@@ -208,12 +208,13 @@ std::map<std::size_t, CaseResult> combine_shard_journals(const std::vector<std::
                          "that shard with the same --out (it resumes)",
                          files[i].string(), h.shard.index, h.shard.count, missing, expected, first_missing);
     });
-    for (const auto& [k, r] : j.done) {
+    for (const auto& entry : j.done) {
+      const std::size_t k = entry.first;  // not a structured binding: clang 14 cannot capture those
       require(h.shard.contains(k), [&] {
         return fmt::format("merge: {} holds case {}, which is not in its shard {}/{}", files[i].string(), k,
                            h.shard.index, h.shard.count);
       });
-      done.emplace(k, r);
+      done.emplace(k, entry.second);
     }
   }
   std::string absent;
