@@ -312,5 +312,38 @@ TEST(SmoothProfile, FollowsTheShippedPoints) {
   EXPECT_THROW((void)s.z(0.2), Error);
 }
 
+// SmoothProfile evaluates its cubic B-spline piecewise (a Taylor expansion per knot interval, built
+// from Eigen's Spline): the pieces must join as a cubic spline does (value, slope and second
+// derivative continuous at every knot) and the derivatives must be those of the values.
+TEST(SmoothProfile, PiecewiseEvaluationIsATwiceContinuousCubicSpline) {
+  const Profile wheel = read_profile(kProfiles / "MBench_S1002_v3.prw");
+  const SmoothingOptions options;
+  const SmoothProfile s(wheel, options);
+  const double length = s.s_end_m() - s.s_begin_m();
+  const int intervals = std::max(4, static_cast<int>(std::ceil(length / options.knot_spacing_m)));
+  const double h = length / intervals;
+  double value = 0.0, slope = 0.0, second = 0.0;
+  for (int k = 1; k < intervals; ++k) {
+    const double knot = k * h;
+    const ProfileCurvePoint left = s.at(knot - 1e-12), right = s.at(knot + 1e-12);
+    value = std::max({value, std::abs(left.y_m - right.y_m), std::abs(left.z_m - right.z_m)});
+    slope = std::max({slope, std::abs(left.dy_ds - right.dy_ds), std::abs(left.dz_ds - right.dz_ds)});
+    second = std::max({second, std::abs(left.d2y_ds2_per_m - right.d2y_ds2_per_m),
+                       std::abs(left.d2z_ds2_per_m - right.d2z_ds2_per_m)});
+  }
+  EXPECT_LT(value, 1e-11);   // m (2e-12 m apart)
+  EXPECT_LT(slope, 1e-8);    // the slope changes by |z''| 2e-12 ~ 1e-10 across the gap
+  EXPECT_LT(second, 1e-3);   // 1/m, against curvatures up to ~100 1/m at the flange root
+  // Central differences of the values give the first derivatives, and of those the second.
+  for (double at = 0.3 * h; at < length; at += 37.3 * h) {
+    const double e = 1e-6;
+    const ProfileCurvePoint m = s.at(at - e), c = s.at(at), p = s.at(at + e);
+    EXPECT_NEAR((p.y_m - m.y_m) / (2 * e), c.dy_ds, 1e-6) << "s = " << at;
+    EXPECT_NEAR((p.z_m - m.z_m) / (2 * e), c.dz_ds, 1e-6) << "s = " << at;
+    EXPECT_NEAR((p.dz_ds - m.dz_ds) / (2 * e), c.d2z_ds2_per_m, 1e-3 * (1.0 + std::abs(c.d2z_ds2_per_m)))
+        << "s = " << at;
+  }
+}
+
 }  // namespace
 }  // namespace railcontact

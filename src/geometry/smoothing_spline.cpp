@@ -12,6 +12,8 @@
 
 #include <Eigen/Sparse>
 #include <algorithm>
+#include <array>
+#include <cstddef>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -31,12 +33,54 @@ struct SmoothProfile::Impl {
   Curve curve;
   double s_begin_m = 0.0;
   double s_end_m = 0.0;
+  // The same curve, piecewise: on knot interval k, [k h, (k + 1) h] (the last one ends at s_end),
+  // y and z and their first three derivatives at the interval's midpoint, so that evaluation is a
+  // cubic polynomial (the curve is a cubic on each interval; its Taylor expansion is exact).
+  // Eigen's Spline evaluates through the B-spline basis derivatives on every call, which was 27 %
+  // of a wheelset time step (docs/DEPENDENCIES.md "Numerical routines: library or our own").
+  struct Interval {
+    double middle_m;
+    std::array<double, 4> y, z;  // value, d/ds, d2/ds2, d3/ds3 at the middle
+  };
+  double knot_spacing_m = 0.0;
+  std::vector<Interval> intervals;
+  [[nodiscard]] const Interval& interval_at(double s) const;
+  [[nodiscard]] double y_at(double s) const;
   // Samples of y(s) with their running maximum, for inverting y(s) (graph form).
   std::vector<double> table_s_m;
   std::vector<double> table_y_max_m;
   std::string source;
   ProfileKind kind = ProfileKind::unknown;
 };
+
+namespace {
+
+// A cubic and its first two derivatives at offset t from the point of its Taylor coefficients
+// c = (value, first, second, third derivative).
+struct CubicValue {
+  double value, first, second;
+};
+CubicValue cubic_at(const std::array<double, 4>& c, double t) {
+  return {c[0] + t * (c[1] + t * (0.5 * c[2] + t * (c[3] / 6.0))), c[1] + t * (c[2] + t * (0.5 * c[3])),
+          c[2] + t * c[3]};
+}
+
+}  // namespace
+
+const SmoothProfile::Impl::Interval& SmoothProfile::Impl::interval_at(double s) const {
+  const auto last = static_cast<std::ptrdiff_t>(intervals.size()) - 1;
+  auto k = std::clamp(static_cast<std::ptrdiff_t>(std::floor(s / knot_spacing_m)), std::ptrdiff_t{0}, last);
+  // Rounding of s / h at a knot: the interval whose knots bracket s (its lower knot belongs to it).
+  const auto lower_knot = [this](std::ptrdiff_t j) { return static_cast<double>(j) * knot_spacing_m; };
+  if (k > 0 && s < lower_knot(k)) --k;
+  if (k < last && s >= lower_knot(k + 1)) ++k;
+  return intervals[static_cast<std::size_t>(k)];
+}
+
+double SmoothProfile::Impl::y_at(double s) const {
+  const Interval& i = interval_at(s);
+  return cubic_at(i.y, s - i.middle_m).value;
+}
 
 namespace {
 
@@ -150,13 +194,25 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
   impl->s_end_m = length;
   impl->source = profile.source;
   impl->kind = profile.kind;
+  impl->knot_spacing_m = h;
+  impl->intervals.resize(static_cast<std::size_t>(intervals));
+  for (int k = 0; k < intervals; ++k) {
+    const double lower = knots(k + kDegree), upper = knots(k + kDegree + 1);
+    Impl::Interval& interval = impl->intervals[static_cast<std::size_t>(k)];
+    interval.middle_m = 0.5 * (lower + upper);
+    const auto d = impl->curve.derivatives<kDegree>(interval.middle_m);
+    for (int order = 0; order <= kDegree; ++order) {
+      interval.y[static_cast<std::size_t>(order)] = d(0, order);
+      interval.z[static_cast<std::size_t>(order)] = d(1, order);
+    }
+  }
   const int samples = 4 * intervals;
   impl->table_s_m.resize(static_cast<std::size_t>(samples) + 1);
   impl->table_y_max_m.resize(static_cast<std::size_t>(samples) + 1);
   double y_max = -std::numeric_limits<double>::infinity();
   for (int k = 0; k <= samples; ++k) {
     const double sk = k == samples ? length : k * (length / samples);
-    y_max = std::max(y_max, impl->curve(sk)(0));
+    y_max = std::max(y_max, impl->y_at(sk));
     impl->table_s_m[static_cast<std::size_t>(k)] = sk;
     impl->table_y_max_m[static_cast<std::size_t>(k)] = y_max;
   }
@@ -176,15 +232,17 @@ double SmoothProfile::s_end_m() const { return impl().s_end_m; }
 ProfileCurvePoint SmoothProfile::at(double s_m) const {
   const Impl& im = impl();
   const double s = std::clamp(s_m, im.s_begin_m, im.s_end_m);
-  const auto d = im.curve.derivatives<2>(s);
+  const Impl::Interval& interval = im.interval_at(s);
+  const CubicValue y = cubic_at(interval.y, s - interval.middle_m);
+  const CubicValue z = cubic_at(interval.z, s - interval.middle_m);
   ProfileCurvePoint p;
   p.s_m = s;
-  p.y_m = d(0, 0);
-  p.z_m = d(1, 0);
-  p.dy_ds = d(0, 1);
-  p.dz_ds = d(1, 1);
-  p.d2y_ds2_per_m = d(0, 2);
-  p.d2z_ds2_per_m = d(1, 2);
+  p.y_m = y.value;
+  p.z_m = z.value;
+  p.dy_ds = y.first;
+  p.dz_ds = z.first;
+  p.d2y_ds2_per_m = y.second;
+  p.d2z_ds2_per_m = z.second;
   return p;
 }
 
@@ -211,7 +269,7 @@ double SmoothProfile::parameter_at(double y_m) const {
   const auto j = static_cast<std::size_t>(it - ys.begin());
   const double lo = im.table_s_m[j - 1];
   const double hi = im.table_s_m[j];
-  const auto root = geometry::bracketed_root([&](double s) { return im.curve(s)(0) - y_m; }, lo, hi,
+  const auto root = geometry::bracketed_root([&](double s) { return im.y_at(s) - y_m; }, lo, hi,
                                              "the profile parameter at a lateral position");
   return root ? *root : 0.5 * (lo + hi);
 }
