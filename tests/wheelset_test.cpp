@@ -91,6 +91,57 @@ TEST(Wheelset, MeetsTheWheelLoads) {
 
 // By position: a patch that has just appeared (overlap of a few micrometres) carries a small,
 // finite force, which grows continuously as the wheel is lowered.
+// In a time step the normal problem is solved on the window of the previous contact and checked on
+// the whole potential area (docs/WHEELSET.md §8): in flange contact, where the overlap reaches far
+// beyond the contact, the window is a fraction of the area, and the solution is the whole area's to
+// the solver's tolerance (a fresh Wheelset solves the whole area).
+TEST(Wheelset, AWindowedTimeStepGivesTheWholeAreasSolution) {
+  WheelsetOptions o = coarse();
+  o.loads.reset();
+  o.allow_wheel_lift = true;
+  for (const double y : {-6.8e-3, 0.0}) {
+    WheelsetState a = state_at(y);
+    a.position.vertical_displacement_m = track().touching_vertical_displacement_m(WheelSide::right, a.position) - 60e-6;
+    WheelsetState b = a;
+    b.position.lateral_displacement_m += 1e-6;
+    Wheelset stepping(track(), o);
+    (void)stepping.evaluate(a);
+    const WheelsetResult warm = stepping.evaluate(b);
+    const WheelsetResult whole = Wheelset(track(), o).evaluate(b);
+    const WheelsetResult& w = warm;
+    std::size_t windowed = 0;
+    for (int side = 0; side < 2; ++side) {
+      ASSERT_EQ(w.wheels[side].patches.size(), whole.wheels[side].patches.size()) << "y = " << y;
+      for (std::size_t j = 0; j < whole.wheels[side].patches.size(); ++j) {
+        const WheelsetPatch& p = w.wheels[side].patches[j];
+        const WheelsetPatch& q = whole.wheels[side].patches[j];
+        if (p.normal_mesh_elements < q.normal_mesh_elements) ++windowed;
+        const double muF3 = o.friction_coefficient * q.normal_force_N;
+        EXPECT_EQ(p.elements_in_contact, q.elements_in_contact) << "y = " << y;
+        EXPECT_NEAR(p.normal_force_N, q.normal_force_N, 1e-8 * q.normal_force_N) << "y = " << y;
+        EXPECT_NEAR(p.forces().F1_N, q.forces().F1_N, 1e-8 * muF3) << "y = " << y;
+        EXPECT_NEAR(p.forces().F2_N, q.forces().F2_N, 1e-8 * muF3) << "y = " << y;
+      }
+    }
+    EXPECT_GE(windowed, 1u) << "y = " << y << ": no patch was solved on a window";
+    // A step that presses the wheel 40 µm further: the contact outgrows the previous window, the
+    // check sends the solve to the whole area, the numbers are still the whole area's.
+    WheelsetState c = b;
+    c.position.vertical_displacement_m -= 40e-6;
+    const WheelsetResult grown = stepping.evaluate(c);
+    const WheelsetResult grown_whole = Wheelset(track(), o).evaluate(c);
+    for (int side = 0; side < 2; ++side) {
+      ASSERT_EQ(grown.wheels[side].patches.size(), grown_whole.wheels[side].patches.size());
+      for (std::size_t j = 0; j < grown_whole.wheels[side].patches.size(); ++j) {
+        const WheelsetPatch& p = grown.wheels[side].patches[j];
+        const WheelsetPatch& q = grown_whole.wheels[side].patches[j];
+        EXPECT_EQ(p.elements_in_contact, q.elements_in_contact) << "y = " << y;
+        EXPECT_NEAR(p.normal_force_N, q.normal_force_N, 1e-8 * q.normal_force_N) << "y = " << y;
+      }
+    }
+  }
+}
+
 // After reset_warm_start() an evaluation gives a fresh Wheelset's numbers to the last digit, while
 // the warm step before it started from the previous state's pressures.
 TEST(Wheelset, ResetWarmStartGivesAFreshWheelsetsNumbers) {

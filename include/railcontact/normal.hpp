@@ -82,6 +82,11 @@ class NormalContactSolver {
   // e.g. the previous solution of a time step on the same mesh) starts the iteration when given.
   [[nodiscard]] NormalSolution solve_at_approach(const std::vector<double>& undeformed_distance_m, double approach_m,
                                                  const std::vector<double>& initial_pressure_Pa = {});
+  // The complementarity residual of NormalSolution::residual for a given pressure (mesh size,
+  // >= 0) on this mesh, from one fresh product: how far it is from solving the problem with this
+  // h and approach. Checks a solution found on a smaller mesh against the whole one.
+  [[nodiscard]] double complementarity_residual(const std::vector<double>& undeformed_distance_m, double approach_m,
+                                                const std::vector<double>& pressure_Pa);
 
  private:
   struct Plan;

@@ -162,6 +162,9 @@ struct WheelsetPatch {
   double max_pressure_Pa = 0.0;
   std::size_t elements_in_contact = 0;
   int normal_iterations = 0;       // of the final normal solve (conjugate gradients)
+  // Elements of the mesh the normal problem was solved on: the whole potential contact area, or in
+  // a time step the window of the previous step's contact (docs/WHEELSET.md §8).
+  std::size_t normal_mesh_elements = 0;
   double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;  // from the reference point
   std::vector<PatchSolverResult> solvers;  // in the order of WheelsetOptions::solvers
   // The patch (keep_tractions), its origin at the centre of pressure. A left wheel's patch is

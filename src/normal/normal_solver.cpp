@@ -167,6 +167,23 @@ NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>&
   return solution;
 }
 
+double NormalContactSolver::complementarity_residual(const std::vector<double>& h, double approach_m,
+                                                    const std::vector<double>& pressure_Pa) {
+  const Mesh& mesh = plan_->mesh;
+  require(h.size() == mesh.size() && pressure_Pa.size() == mesh.size(),
+          "normal contact: the residual needs h and a pressure per element of the mesh");
+  std::vector<double>& u = plan_->work;
+  plan_->A.apply_on_grid(pressure_Pa, u);
+  // As the conjugate gradients define it: |g| where p > 0, max(0, -g) where p = 0, over max A p.
+  double violation = 0.0, u_max = 0.0;
+  for (std::size_t k = 0; k < mesh.size(); ++k) {
+    const double g = h[k] + u[k] - approach_m;
+    u_max = std::max(u_max, u[k]);
+    violation = std::max(violation, pressure_Pa[k] > 0.0 ? std::fabs(g) : -g);
+  }
+  return u_max > 0.0 ? violation / u_max : (violation > 0.0 ? 1.0 : 0.0);
+}
+
 NormalSolution solve_normal_contact_at_approach(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
                                                 double approach_m, const Material& material,
                                                 const NormalOptions& options) {

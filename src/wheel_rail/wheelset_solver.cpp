@@ -15,6 +15,7 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset.hpp"
+#include "wheel_rail/contact_window.hpp"
 #include "wheel_rail/cropped_patch.hpp"
 
 namespace railcontact {
@@ -51,7 +52,8 @@ Vector3 combine(const InterpenetrationRegion& r, double F1, double F2, double F3
 struct NormalPatch {
   InterpenetrationRegion region;
   TangentPlaneArea area;
-  NormalSolution normal;
+  NormalSolution normal;               // on area.mesh
+  std::size_t solved_mesh_elements = 0;  // of the mesh solved on: a contact window or area.mesh
 };
 
 }  // namespace
@@ -130,6 +132,49 @@ struct WheelsetWarmStart {
 
 namespace {
 
+// The normal problem of a time step on the window of the previous contact (docs/WHEELSET.md §8,
+// wheel_rail/contact_window.hpp): the previous contact's bounding box widened by 3 elements and to
+// whole multiples of 4, used where its padded FFT grid is at most 75 % of the potential area's. The window's
+// solution is the whole area's solution when its contact stays off the window's inner edges and
+// its complementarity residual on the whole area (one product there: no overlap left outside the
+// window) is within 10 times the solver's tolerance; otherwise nothing is returned and the whole
+// area is solved. The two solutions agree to the solver's tolerance (test
+// Wheelset.AWindowedTimeStepGivesTheWholeAreasSolution).
+struct WindowedSolution {
+  NormalSolution normal;  // on the whole area's mesh
+  std::size_t window_elements = 0;
+};
+std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& area, const std::vector<double>& initial,
+                                                        const WheelsetOptions& options,
+                                                        detail::WheelsetWarmStart& warm) {
+  constexpr int kWindowMargin = 3;
+  constexpr int kWindowGranule = 4;
+  constexpr double kLargestWindowFraction = 0.75;
+  if (initial.empty()) return std::nullopt;
+  const std::optional<detail::MeshWindow> window =
+      detail::contact_window(area.mesh, initial, kWindowMargin, kWindowGranule, kLargestWindowFraction);
+  if (!window) return std::nullopt;
+  const Mesh mesh = detail::window_mesh(area.mesh, *window);
+  NormalSolution s = warm.plan(mesh, options)
+                         .solve_at_approach(detail::cut_window(area.mesh, area.h_m, *window), 0.0,
+                                            detail::cut_window(area.mesh, initial, *window));
+  if (!s.converged || s.elements_in_contact == 0 ||
+      detail::contact_on_inner_window_edge(area.mesh, *window, s.pressure_Pa))
+    return std::nullopt;
+  std::vector<double> pressure = detail::paste_window(area.mesh, s.pressure_Pa, *window);
+  const double residual = warm.plan(area.mesh, options).complementarity_residual(area.h_m, 0.0, pressure);
+  if (!(residual <= 10.0 * options.normal.tolerance)) return std::nullopt;
+  s.pressure_Pa = std::move(pressure);
+  s.residual = residual;
+  s.touches_border = false;
+  for (int i2 = 0; i2 < area.mesh.n2; ++i2)
+    for (int i1 = 0; i1 < area.mesh.n1; ++i1)
+      if (s.pressure_Pa[area.mesh.index(i1, i2)] > 0.0 &&
+          (i1 == 0 || i2 == 0 || i1 == area.mesh.n1 - 1 || i2 == area.mesh.n2 - 1))
+        s.touches_border = true;
+  return WindowedSolution{std::move(s), mesh.size()};
+}
+
 std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
                                       const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
   const WheelContactSearch search = track.contact_search(side, position, options.search);
@@ -149,10 +194,14 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     NormalPatch p;
     p.region = region;
     p.area = track.potential_contact_area(position, region, options.element_size_m);
-    NormalContactSolver& solver = warm.plan(p.area.mesh, options);
+    const std::vector<double> initial = warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh);
     // h is measured at this position (negative where the bodies overlap): the approach is zero.
-    p.normal = solver.solve_at_approach(p.area.h_m, 0.0,
-                                        warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh));
+    // In a time step, first on the previous contact's window; else (or if the check fails) on the
+    // whole potential area.
+    std::optional<WindowedSolution> windowed = solve_in_contact_window(p.area, initial, options, warm);
+    p.normal = windowed ? std::move(windowed->normal)
+                        : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, initial);
+    p.solved_mesh_elements = windowed ? windowed->window_elements : p.area.mesh.size();
     if (!p.normal.converged) {
       throw Error(ErrorKind::not_converged,
                   fmt::format("wheelset: the normal problem of the {} wheel's patch at y_p = {:.2f} mm did not "
@@ -269,6 +318,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     patch.normal_force_N = n.normal.normal_force_N;
     patch.elements_in_contact = n.normal.elements_in_contact;
     patch.normal_iterations = n.normal.iterations;
+    patch.normal_mesh_elements = n.solved_mesh_elements;
     const Mesh& mesh = n.area.mesh;
     patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
     std::vector<std::size_t> elements;

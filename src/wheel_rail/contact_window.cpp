@@ -1,0 +1,88 @@
+#include "wheel_rail/contact_window.hpp"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "elastic/fft_convolution.hpp"
+
+namespace railcontact::detail {
+namespace {
+
+// [lo, hi] widened by margin, then to a multiple of granule (at most count), within [0, count).
+void widen(int lo, int hi, int margin, int granule, int count, int& first, int& size) {
+  lo = std::max(0, lo - margin);
+  hi = std::min(count - 1, hi + margin);
+  size = std::min(count, (hi - lo + 1 + granule - 1) / granule * granule);
+  const int extra = size - (hi - lo + 1);
+  first = std::clamp(lo - extra / 2, 0, count - size);
+}
+
+}  // namespace
+
+std::optional<MeshWindow> contact_window(const Mesh& mesh, const std::vector<double>& pressure_Pa, int margin,
+                                         int granule, double largest_fraction) {
+  if (pressure_Pa.size() != mesh.size()) return std::nullopt;
+  int lo1 = mesh.n1, hi1 = -1, lo2 = mesh.n2, hi2 = -1;
+  for (int i2 = 0; i2 < mesh.n2; ++i2)
+    for (int i1 = 0; i1 < mesh.n1; ++i1)
+      if (pressure_Pa[mesh.index(i1, i2)] > 0.0) {
+        lo1 = std::min(lo1, i1);
+        hi1 = std::max(hi1, i1);
+        lo2 = std::min(lo2, i2);
+        hi2 = std::max(hi2, i2);
+      }
+  if (hi1 < 0) return std::nullopt;
+  MeshWindow w;
+  widen(lo1, hi1, margin, granule, mesh.n1, w.lo1, w.n1);
+  widen(lo2, hi2, margin, granule, mesh.n2, w.lo2, w.n2);
+  // The cost that matters is the padded transforms' (fft_convolution.hpp): compare those.
+  const auto padded = [](int n1, int n2) {
+    return static_cast<double>(fft_friendly_length(2 * n1 - 1)) * fft_friendly_length(2 * n2 - 1);
+  };
+  if (padded(w.n1, w.n2) > largest_fraction * padded(mesh.n1, mesh.n2)) return std::nullopt;
+  return w;
+}
+
+Mesh window_mesh(const Mesh& mesh, const MeshWindow& window) {
+  Mesh m = mesh;
+  m.n1 = window.n1;
+  m.n2 = window.n2;
+  m.x1_first_m = mesh.x1(window.lo1);
+  m.x2_first_m = mesh.x2(window.lo2);
+  return m;
+}
+
+std::vector<double> cut_window(const Mesh& mesh, const std::vector<double>& field, const MeshWindow& window) {
+  std::vector<double> cut(static_cast<std::size_t>(window.n1) * static_cast<std::size_t>(window.n2));
+  for (int j2 = 0; j2 < window.n2; ++j2) {
+    const auto from = field.begin() + static_cast<std::ptrdiff_t>(mesh.index(window.lo1, window.lo2 + j2));
+    std::copy(from, from + window.n1, cut.begin() + static_cast<std::ptrdiff_t>(j2) * window.n1);
+  }
+  return cut;
+}
+
+std::vector<double> paste_window(const Mesh& mesh, const std::vector<double>& window_field, const MeshWindow& window) {
+  std::vector<double> field(mesh.size(), 0.0);
+  for (int j2 = 0; j2 < window.n2; ++j2) {
+    const auto from = window_field.begin() + static_cast<std::ptrdiff_t>(j2) * window.n1;
+    std::copy(from, from + window.n1,
+              field.begin() + static_cast<std::ptrdiff_t>(mesh.index(window.lo1, window.lo2 + j2)));
+  }
+  return field;
+}
+
+bool contact_on_inner_window_edge(const Mesh& mesh, const MeshWindow& window,
+                                  const std::vector<double>& window_pressure_Pa) {
+  const bool low1 = window.lo1 > 0, high1 = window.lo1 + window.n1 < mesh.n1;
+  const bool low2 = window.lo2 > 0, high2 = window.lo2 + window.n2 < mesh.n2;
+  const auto loaded = [&](int j1, int j2) {
+    return window_pressure_Pa[static_cast<std::size_t>(j2) * window.n1 + static_cast<std::size_t>(j1)] > 0.0;
+  };
+  for (int j1 = 0; j1 < window.n1; ++j1)
+    if ((low2 && loaded(j1, 0)) || (high2 && loaded(j1, window.n2 - 1))) return true;
+  for (int j2 = 0; j2 < window.n2; ++j2)
+    if ((low1 && loaded(0, j2)) || (high1 && loaded(window.n1 - 1, j2))) return true;
+  return false;
+}
+
+}  // namespace railcontact::detail
