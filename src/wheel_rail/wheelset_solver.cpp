@@ -155,9 +155,15 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
       detail::contact_window(area.mesh, initial, kWindowMargin, kWindowGranule, kLargestWindowFraction);
   if (!window) return std::nullopt;
   const Mesh mesh = detail::window_mesh(area.mesh, *window);
-  NormalSolution s = warm.plan(mesh, options)
-                         .solve_at_approach(detail::cut_window(area.mesh, area.h_m, *window), 0.0,
-                                            detail::cut_window(area.mesh, initial, *window));
+  NormalSolution s;
+  try {
+    s = warm.plan(mesh, options)
+            .solve_at_approach(detail::cut_window(area.mesh, area.h_m, *window), 0.0,
+                               detail::cut_window(area.mesh, initial, *window));
+  } catch (const Error& e) {
+    if (e.kind() != ErrorKind::not_converged) throw;
+    return std::nullopt;  // a breakdown on the window: the whole area decides
+  }
   if (!s.converged || s.elements_in_contact == 0 ||
       detail::contact_on_inner_window_edge(area.mesh, *window, s.pressure_Pa))
     return std::nullopt;
