@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <numeric>
 #include <vector>
 
@@ -455,6 +456,47 @@ TEST(NormalContact, BadInputThrows) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("normal force"), std::string::npos) << e.what();
   }
+}
+
+// The call throws railcontact::Error whose message contains `expected`.
+template <class Call>
+void expect_error_mentioning(Call call, const std::string& expected) {
+  try {
+    call();
+    ADD_FAILURE() << "no error; expected one mentioning: " << expected;
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+  }
+}
+
+// complementarity_residual (the check of a wheelset's contact window, docs/WHEELSET.md §8): a
+// converged solution's residual is the solver's own; a pressure that leaves contact out or one that
+// is not a solution is far from it; bad input is refused, naming it.
+TEST(NormalContact, ComplementarityResidualChecksAGivenPressure) {
+  const double A = 1.0 / (2 * 0.46), B = 1.0 / (2 * 0.3);
+  const HertzContact hertz = hertz_from_curvatures(A, B, kLoad_N, kSteel);
+  const Mesh mesh = Mesh::covering(-1.2 * hertz.a_m, 1.2 * hertz.a_m, -1.2 * hertz.b_m, 1.2 * hertz.b_m, 41, 41);
+  const std::vector<double> h = quadratic_distance(mesh, A, B);
+  NormalContactSolver solver(mesh, kSteel);
+  const NormalSolution s = solver.solve_at_approach(h, hertz.approach_m);
+  ASSERT_TRUE(s.converged);
+  EXPECT_LT(solver.complementarity_residual(h, hertz.approach_m, s.pressure_Pa), 1e-9);
+  std::vector<double> half = s.pressure_Pa;  // the left half of the contact left out: overlap there
+  for (int i2 = 0; i2 < mesh.n2; ++i2)
+    for (int i1 = 0; i1 < mesh.n1 / 2; ++i1) half[mesh.index(i1, i2)] = 0.0;
+  EXPECT_GT(solver.complementarity_residual(h, hertz.approach_m, half), 1e-2);
+  EXPECT_GT(solver.complementarity_residual(h, 0.5 * hertz.approach_m, s.pressure_Pa), 1e-2);
+  std::vector<double> bad = s.pressure_Pa;
+  bad[7] = -1.0;
+  expect_error_mentioning([&] { (void)solver.complementarity_residual(h, hertz.approach_m, bad); },
+                          "element 7 given for the residual must be finite and >= 0");
+  bad[7] = std::numeric_limits<double>::quiet_NaN();
+  expect_error_mentioning([&] { (void)solver.complementarity_residual(h, hertz.approach_m, bad); }, "element 7");
+  expect_error_mentioning([&] { (void)solver.complementarity_residual(h, hertz.approach_m, {1.0, 2.0}); },
+                          "2 pressures given for the residual on a mesh of 1681 elements");
+  expect_error_mentioning(
+      [&] { (void)solver.complementarity_residual(h, std::numeric_limits<double>::infinity(), s.pressure_Pa); },
+      "approach inf m for the residual must be finite");
 }
 
 }  // namespace

@@ -189,7 +189,6 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const d
       kernel_fft.forward(real, spectrum.data());
     }
   }
-  std::fill(real, real + fft_.real_size(), 0.0);
   kernel_spectra_ = std::move(spectra);
 }
 

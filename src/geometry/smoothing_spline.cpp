@@ -30,10 +30,9 @@ namespace railcontact {
 using Curve = Eigen::Spline<double, 2, 3>;
 
 struct SmoothProfile::Impl {
-  Curve curve;
   double s_begin_m = 0.0;
   double s_end_m = 0.0;
-  // The same curve, piecewise: on knot interval k, [k h, (k + 1) h] (the last one ends at s_end),
+  // The fitted curve, piecewise: on knot interval k, [k h, (k + 1) h] (the last one ends at s_end),
   // y and z and their first three derivatives at the interval's midpoint, so that evaluation is a
   // cubic polynomial (the curve is a cubic on each interval; its Taylor expansion is exact).
   // Eigen's Spline evaluates through the B-spline basis derivatives on every call, which was 27 %
@@ -189,7 +188,7 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
           [&] { return fmt::format("profile {}: the smoothing spline could not be computed", name_of(profile)); });
 
   auto impl = std::make_shared<Impl>();
-  impl->curve = Curve(knots, coefficients.transpose());
+  const Curve curve(knots, coefficients.transpose());
   impl->s_begin_m = 0.0;
   impl->s_end_m = length;
   impl->source = profile.source;
@@ -200,7 +199,7 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
     const double lower = knots(k + kDegree), upper = knots(k + kDegree + 1);
     Impl::Interval& interval = impl->intervals[static_cast<std::size_t>(k)];
     interval.middle_m = 0.5 * (lower + upper);
-    const auto d = impl->curve.derivatives<kDegree>(interval.middle_m);
+    const auto d = curve.derivatives<kDegree>(interval.middle_m);
     for (int order = 0; order <= kDegree; ++order) {
       interval.y[static_cast<std::size_t>(order)] = d(0, order);
       interval.z[static_cast<std::size_t>(order)] = d(1, order);

@@ -170,8 +170,21 @@ NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>&
 double NormalContactSolver::complementarity_residual(const std::vector<double>& h, double approach_m,
                                                     const std::vector<double>& pressure_Pa) {
   const Mesh& mesh = plan_->mesh;
-  require(h.size() == mesh.size() && pressure_Pa.size() == mesh.size(),
-          "normal contact: the residual needs h and a pressure per element of the mesh");
+  validate_problem(mesh, h, kMinimumNormalForce_N);
+  require(std::isfinite(approach_m), [&] {
+    return fmt::format("normal contact: the approach {} m for the residual must be finite", approach_m);
+  });
+  require(pressure_Pa.size() == mesh.size(), [&] {
+    return fmt::format("normal contact: {} pressures given for the residual on a mesh of {} elements",
+                       pressure_Pa.size(), mesh.size());
+  });
+  const auto bad = std::find_if(pressure_Pa.begin(), pressure_Pa.end(),
+                                [](double p) { return !std::isfinite(p) || p < 0.0; });
+  require(bad == pressure_Pa.end(), [&] {
+    return fmt::format("normal contact: the pressure {} Pa of element {} given for the residual must be finite "
+                       "and >= 0",
+                       *bad, static_cast<std::size_t>(bad - pressure_Pa.begin()));
+  });
   std::vector<double>& u = plan_->work;
   plan_->A.apply_on_grid(pressure_Pa, u);
   // As the conjugate gradients define it: |g| where p > 0, max(0, -g) where p = 0, over max A p.
