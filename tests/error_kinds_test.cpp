@@ -60,6 +60,7 @@ TEST(ErrorKinds, WheelRailContactKinds) {
   EXPECT_EQ(kind_of([&] { (void)pair.contact_point(0.2); }), ErrorKind::no_contact);
   WheelRailPatchOptions options;
   options.target_elements = 600;
+  options.vertical_load_N = 10000.0;  // tread and flange root apart (at 98.1 kN their overlaps merge)
   EXPECT_EQ(kind_of([&] { (void)solve_wheel_rail_patch(pair, -5e-3, options); }), ErrorKind::several_patches);
   EXPECT_EQ(kind_of([&] { (void)solve_wheel_rail_patch(pair, 0.0, options); }), std::nullopt);
 }
@@ -74,7 +75,7 @@ TEST(ErrorKinds, UnreadableFilesAreIo) {
 TEST(ErrorKinds, CliExitCodeNamesTheKind) {
   using test::run_cli;
   EXPECT_EQ(run_cli("run /nonexistent/case.toml").exit_code, 3);                 // io
-  EXPECT_EQ(run_cli("patch --y -0.005 --elements 600 --json").exit_code, 5);     // several patches
+  EXPECT_EQ(run_cli("patch --y -0.005 --load 10000 --elements 600 --json").exit_code, 5);  // several patches
   EXPECT_EQ(run_cli("patch --y 0.2 --json").exit_code, 4);                       // no contact
   EXPECT_EQ(run_cli("coefficients --a-over-b -2 --nu 0.3").exit_code, 2);        // invalid input
   EXPECT_EQ(run_cli("run --no-such-option").exit_code, 2);                       // command line

@@ -41,8 +41,21 @@ FlexibilityTableOptions coarse_options() {
   return options;
 }
 
-// y = -1 ... 1 mm in 0.5 mm steps at 98.1 kN: holds the contact jump at y ≈ -0.221 mm.
+// y = -1 ... 1 mm in 0.5 mm steps at 98.1 kN on the point of first touch: holds its contact jump
+// at y ≈ -0.221 mm.
+FlexibilityTableOptions first_touch_options() {
+  FlexibilityTableOptions options = coarse_options();
+  options.patch.reference = ContactReference::first_touch;
+  return options;
+}
 const FlexibilityTable& jump_table() {
+  static const FlexibilityTable t =
+      build_flexibility_table(pair(), flexibility_table_y_grid(-1e-3, 1e-3, 0.5e-3), {kFz}, first_touch_options());
+  return t;
+}
+
+// The same grid on the smooth reference (the default): no jump.
+const FlexibilityTable& smooth_table() {
   static const FlexibilityTable t =
       build_flexibility_table(pair(), flexibility_table_y_grid(-1e-3, 1e-3, 0.5e-3), {kFz}, coarse_options());
   return t;
@@ -54,9 +67,10 @@ const FlexibilityTable& load_table() {
   return t;
 }
 
-// y = -5.0 (two patches: tread and flange root) and -4.5 mm.
+// y = -5.0 (two patches at 10 kN: tread and flange root) and -4.5 mm.
+constexpr double kLightFz = 10000.0;
 const FlexibilityTable& gap_table() {
-  static const FlexibilityTable t = build_flexibility_table(pair(), {-5.0e-3, -4.5e-3}, {kFz}, coarse_options());
+  static const FlexibilityTable t = build_flexibility_table(pair(), {-5.0e-3, -4.5e-3}, {kLightFz}, coarse_options());
   return t;
 }
 
@@ -76,9 +90,10 @@ struct OnTheFly {
   Flexibility L;
   Eigen::Matrix3d K2;
 };
-OnTheFly on_the_fly(double y_m, double Fz_N) {
+OnTheFly on_the_fly(double y_m, double Fz_N, ContactReference reference = ContactReference::smooth) {
   WheelRailPatchOptions options;
   options.target_elements = kElements;
+  options.reference = reference;
   options.vertical_load_N = Fz_N;
   OnTheFly r{solve_wheel_rail_patch(pair(), y_m, options), {}, {}};
   const NhFastSim nh(r.patch.patch, coarse_options().nh_fastsim);
@@ -95,7 +110,7 @@ TEST(FlexibilityTable, NodesReproduceOnTheFlyFlexibilitiesExactly) {
   const FlexibilityTable& t = jump_table();
   for (std::size_t iy = 0; iy < t.y_m().size(); ++iy) {
     const double y = t.y_m()[iy];
-    const OnTheFly ref = on_the_fly(y, kFz);
+    const OnTheFly ref = on_the_fly(y, kFz, ContactReference::first_touch);
     for (const FlexibilityTableValues& v : {t.lookup(y, kFz), t.lookup_for_patch(y, kFz, ref.patch.area_m2)}) {
       const std::string at = "y = " + std::to_string(y / kMm) + " mm";
       expect_relative(v.flexibility.L1, ref.L.L1, 1e-13, "L1 " + at);
@@ -128,6 +143,27 @@ TEST(FlexibilityTable, BetweenNodesWithinTheStatedError) {
     EXPECT_NEAR(p.table.L2 / p.on_the_fly.L2, 1.0, 0.012) << p.y_m;
     EXPECT_NEAR(p.table.L3 / p.on_the_fly.L3, 1.0, 0.02) << p.y_m;
   }
+}
+
+// The default table, on the smooth reference: no contact jump to bracket, the spin continuous, and
+// between the nodes within the error stated for the first-touch table.
+TEST(FlexibilityTable, SmoothReferenceTableHasNoJump) {
+  const FlexibilityTable& t = smooth_table();
+  EXPECT_EQ(t.metadata().contact_reference, ContactReference::smooth);
+  EXPECT_TRUE(t.contact_jumps().empty());
+  ASSERT_EQ(t.y_m().size(), 5u);
+  for (std::size_t k = 0; k + 1 < t.y_m().size(); ++k)  // 0.5 mm apart: γ moves by at most ~12 mrad
+    EXPECT_LT(std::fabs(t.node(k + 1, 0).contact_angle_rad - t.node(k, 0).contact_angle_rad), 0.015) << k;
+  study::FlexibilityTableCheckOptions options;
+  const study::FlexibilityTableCheck scaled = study::check_flexibility_table(t, pair(), options);
+  options.interpolation = FlexibilityInterpolation::plain;
+  const study::FlexibilityTableCheck plain = study::check_flexibility_table(t, pair(), options);
+  std::printf("  smooth table between nodes: area-scaled max %.4f mean %.4f, plain max %.4f mean %.4f\n",
+              scaled.max_force_difference, scaled.mean_force_difference, plain.max_force_difference,
+              plain.mean_force_difference);
+  EXPECT_EQ(scaled.points.size(), 4u);
+  EXPECT_LT(scaled.max_force_difference, 0.01);
+  EXPECT_LT(scaled.mean_force_difference, 0.003);
 }
 
 TEST(FlexibilityTable, AreaScalingBeatsPlainInterpolationOnTheCoarseTable) {
@@ -265,13 +301,14 @@ TEST(FlexibilityTable, OutOfRangeNamesTheRange) {
 TEST(FlexibilityTable, SeveralPatchesLeaveAGap) {
   const FlexibilityTable& t = gap_table();
   ASSERT_EQ(t.node(0, 0).status, FlexibilityNodeStatus::several_patches);
-  EXPECT_NE(t.node(0, 0).message.find("2 contact patches"), std::string::npos) << t.node(0, 0).message;
+  EXPECT_NE(t.node(0, 0).message.find("2 contact patches, the largest carrying"), std::string::npos)
+      << t.node(0, 0).message;
   EXPECT_EQ(t.node(1, 0).status, FlexibilityNodeStatus::solved);
-  const std::string e = error_of([&] { (void)t.lookup(-4.75e-3, kFz); });
+  const std::string e = error_of([&] { (void)t.lookup(-4.75e-3, kLightFz); });
   EXPECT_NE(e.find("gap"), std::string::npos) << e;
   EXPECT_NE(e.find("y = -5.0000 mm"), std::string::npos) << e;
   EXPECT_NE(e.find("several-patches"), std::string::npos) << e;
-  EXPECT_NO_THROW((void)t.lookup(-4.5e-3, kFz));  // the solved node itself
+  EXPECT_NO_THROW((void)t.lookup(-4.5e-3, kLightFz));  // the solved node itself
 }
 
 TEST(FlexibilityTable, LoadAxisIsExactAtItsNodesAndCloseBetween) {
@@ -295,8 +332,9 @@ TEST(FlexibilityTable, LoadAxisIsExactAtItsNodesAndCloseBetween) {
 }
 
 TEST(FlexibilityTableFastSim, CachedPatchAndFullStepAgreeWithOnTheFly) {
-  const FlexibilityTableFastSim nh(jump_table(), pair());
+  const FlexibilityTableFastSim nh(smooth_table(), pair());
   EXPECT_EQ(nh.patch_options().target_elements, kElements);
+  EXPECT_EQ(nh.patch_options().reference, ContactReference::smooth);
   const double y = 0.25e-3, mu = 0.3;
   const FlexibilityTableFastSim::Patch patch = nh.prepare(y, kFz);
   const OnTheFly ref = on_the_fly(y, kFz);
@@ -369,7 +407,10 @@ TEST(FlexibilityTableFile, MalformedFilesNameTheProblem) {
   EXPECT_NO_THROW((void)parse_flexibility_table(good, "t.json"));
   EXPECT_NE(error_for("{\n \"format\": ").find("t.json:2: malformed JSON"), std::string::npos) << error_for("{\n \"format\": ");
   EXPECT_NE(error_for("{}").find("not a flexibility table"), std::string::npos);
-  EXPECT_NE(error_for(replaced("\"format_version\": 2", "\"format_version\": 3")).find("format_version 3"), std::string::npos);
+  EXPECT_NE(error_for(replaced("\"format_version\": 3", "\"format_version\": 4")).find("format_version 4"), std::string::npos);
+  EXPECT_NE(error_for(replaced("\"contact_reference\": \"smooth\"", "\"contact_reference\": \"lowest\""))
+                .find("contact_reference \"lowest\" must be \"smooth\" or \"first-touch\""),
+            std::string::npos);
   EXPECT_NE(error_for(replaced("\"target_elements\"", "\"target_element\"")).find("missing key 'target_elements'"),
             std::string::npos);
   EXPECT_NE(error_for(replaced("\"target_elements\"", "\"extra\": 1, \"target_elements\"")).find("unknown key 'extra'"),
@@ -421,13 +462,17 @@ TEST(FlexibilityTable, DefaultBuildUsesTheRecipeOfRunAndRecordsIt) {
   EXPECT_EQ(n.flexibility.L3, nh.flexibility().L3);
   EXPECT_EQ(n.f22_N, nh.flexibilities().f22_N);
   // Saved and loaded, the recipe stays; a version-1 file (before the recipe was recorded) was
-  // built on the patch itself.
+  // built on the patch itself, versions 1 and 2 on the point of first touch.
   const std::string json = flexibility_table_json(t);
   EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().flexibility_coarsening, 0);
+  EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().contact_reference, ContactReference::smooth);
   std::string v1 = json;
-  v1.replace(v1.find("\"format_version\": 2"), 19, "\"format_version\": 1");
+  v1.replace(v1.find("\"format_version\": 3"), 19, "\"format_version\": 1");
   v1.replace(v1.find("\"flexibility_coarsening\": 0,"), 28, "");
-  EXPECT_EQ(parse_flexibility_table(v1, "t.json").metadata().flexibility_coarsening, 1);
+  v1.replace(v1.find("\"contact_reference\": \"smooth\","), 30, "");
+  const FlexibilityTable old = parse_flexibility_table(v1, "t.json");
+  EXPECT_EQ(old.metadata().flexibility_coarsening, 1);
+  EXPECT_EQ(old.metadata().contact_reference, ContactReference::first_touch);
 }
 
 }  // namespace

@@ -26,6 +26,7 @@ struct PatchArguments {
   double load_N = WheelRailPatchOptions{}.vertical_load_N;
   int elements = WheelRailPatchOptions{}.target_elements;
   std::string layout = "rolling-resolved";
+  std::string reference = "smooth";
   bool json = false;
   std::optional<std::string> out;
 };
@@ -35,8 +36,20 @@ void print_table(const WheelRailPatch& p, const std::string& wheel, const std::s
   const Mesh& m = p.potential_area;
   fmt::print("Wheel-rail normal contact (right wheel), y = {:.3f} mm\n", p.lateral_displacement_m * 1e3);
   fmt::print("  wheel {}\n  rail  {}\n\n", wheel, rail);
-  fmt::print("  contact point            y_rail {:.3f} mm, y_wheel {:.3f} mm, {:.3f} mm from the track centre\n",
-             c.y_rail_m * 1e3, c.y_wheel_m * 1e3, c.y_track_m * 1e3);
+  if (p.reference == ContactReference::smooth) {
+    const InterpenetrationRegion& g = p.region;
+    fmt::print("  reference point          y_rail {:.3f} mm, y_wheel {:.3f} mm, {:.3f} mm from the track centre "
+               "(smooth: averaged over the overlap)\n",
+               g.rail_profile_y_m * 1e3, g.wheel_profile_y_m * 1e3, g.reference_point_track_m[1] * 1e3);
+    fmt::print("  first touch              y_rail {:.3f} mm, contact angle {:.5f} rad\n", c.y_rail_m * 1e3,
+               c.contact_angle_rad);
+    fmt::print("  wheelset height z        {:.3f} um above nominal, carrying Fz ({} load iterations)\n",
+               p.vertical_displacement_m * 1e6, p.load_iterations);
+  } else {
+    fmt::print("  contact point            y_rail {:.3f} mm, y_wheel {:.3f} mm, {:.3f} mm from the track centre "
+               "(first touch)\n",
+               c.y_rail_m * 1e3, c.y_wheel_m * 1e3, c.y_track_m * 1e3);
+  }
   fmt::print("  contact angle            {:.5f} rad\n", p.contact_angle_rad);
   fmt::print("  rolling radius           {:.3f} mm\n", p.rolling_radius_m * 1e3);
   fmt::print("  spin (Eq 24)             {:+.5f} 1/m\n", p.spin_per_m);
@@ -46,7 +59,7 @@ void print_table(const WheelRailPatch& p, const std::string& wheel, const std::s
   fmt::print("  max pressure             {:.1f} MPa\n", p.max_pressure_Pa * 1e-6);
   fmt::print("  area                     {:.2f} mm2\n", p.area_m2 * 1e6);
   fmt::print("  extent X1 x X2           {:.3f} x {:.3f} mm\n", p.extent_x1_m * 1e3, p.extent_x2_m * 1e3);
-  fmt::print("  centre of pressure       x1 {:+.3f} mm, x2 {:+.3f} mm from the point of first touch\n",
+  fmt::print("  centre of pressure       x1 {:+.3f} mm, x2 {:+.3f} mm from the reference point\n",
              p.pressure_centre_x1_m * 1e3, p.pressure_centre_x2_m * 1e3);
   fmt::print("  elements in contact      {}  (mesh {} x {}, {:.4f} x {:.4f} mm, {} solves)\n", p.elements_in_contact,
              m.n1, m.n2, m.dx1_m * 1e3, m.dx2_m * 1e3, p.mesh_passes);
@@ -82,6 +95,7 @@ int run_patch(const PatchArguments& args) {
   options.vertical_load_N = args.load_N;
   options.target_elements = args.elements;
   options.layout = args.layout == "square" ? PatchMeshLayout::square : PatchMeshLayout::rolling_resolved;
+  options.reference = parse_contact_reference(args.reference);
   const WheelRailPatch patch = solve_wheel_rail_patch(pair, args.y_m, options);
   const double time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -125,6 +139,10 @@ void add_patch_command(CLI::App& app, Action& action) {
   cmd->add_option("--elements", args->elements, "about this many elements in contact")->capture_default_str();
   cmd->add_option("--mesh", args->layout, "element shape: rolling-resolved (dx1 <= dx2) or square")
       ->check(CLI::IsMember({"rolling-resolved", "square"}))
+      ->capture_default_str();
+  cmd->add_option("--reference", args->reference,
+                  "contact reference: smooth (averaged over the overlap, as railcontact wheelset) or first-touch")
+      ->check(CLI::IsMember({"smooth", "first-touch"}))
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->add_option("--out", args->out, "write pressure.csv, patch.json and pressure.png into this directory");

@@ -75,6 +75,7 @@ FlexibilityTableCheck check_flexibility_table(const FlexibilityTable& table, con
   check.families = paper_creepage_families();
   WheelRailPatchOptions patch_options;
   patch_options.material = table.metadata().material;
+  patch_options.reference = table.metadata().contact_reference;  // the table's own reference
   patch_options.target_elements = options.target_elements > 0 ? options.target_elements : table.metadata().target_elements;
   // nH-FastSim on the fly with the recipe the table was built with: the check then measures the
   // table's interpolation alone.

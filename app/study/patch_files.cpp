@@ -31,8 +31,18 @@ nlohmann::json patch_json(const WheelRailPatch& p) {
              {"max_pressure_Pa", p.local_hertz.max_pressure_Pa},
              {"approach_m", p.local_hertz.approach_m}};
   }
+  nlohmann::json reference = nullptr;
+  if (p.reference == ContactReference::smooth) {
+    reference = {{"y_rail_m", p.region.rail_profile_y_m},
+                 {"y_wheel_m", p.region.wheel_profile_y_m},
+                 {"point_track_m", p.region.reference_point_track_m},
+                 {"wheelset_vertical_displacement_m", p.vertical_displacement_m},
+                 {"load_iterations", p.load_iterations}};
+  }
   return {
       {"y", p.lateral_displacement_m},
+      {"contact_reference", contact_reference_name(p.reference)},
+      {"reference_point", reference},
       {"contact_angle_rad", p.contact_angle_rad},
       {"rolling_radius_m", p.rolling_radius_m},
       {"spin_per_m", p.spin_per_m},

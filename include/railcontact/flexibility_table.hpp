@@ -89,6 +89,8 @@ struct FlexibilityTableMetadata {
   int target_elements = 0;        // WheelRailPatchOptions::target_elements of the build
   double collocation_offset = 0.0;  // NhFastSimOptions::collocation_offset of K2
   int flexibility_coarsening = 0;   // NhFastSimOptions::flexibility_coarsening (0: automatic)
+  // WheelRailPatchOptions::reference of the build (format version 3; older tables: first touch).
+  ContactReference contact_reference = ContactReference::smooth;
   std::string railcontact_version;
   std::string created_utc;        // ISO 8601, e.g. 2024-05-01T12:00:00Z
 };

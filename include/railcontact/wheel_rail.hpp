@@ -72,6 +72,23 @@ enum class PatchMeshLayout {
 inline constexpr int kMinimumWheelRailElements = 100;
 inline constexpr int kMaximumWheelRailElements = 200000;
 
+// The reference of a wheel–rail patch: the origin of its contact frame and its contact angle γ,
+// from which F3 = Fz / cos γ, the spin and the rolling radius follow (docs/WHEEL_RAIL.md §6).
+enum class ContactReference {
+  // The wheelset's smooth reference (docs/WHEELSET.md §4): averages over the interpenetration
+  // region at the wheel's height that carries the load, weighted by the interpenetration. It
+  // moves continuously with y, and it is the reference of `railcontact wheelset`: a single patch
+  // and the wheelset's right wheel at the same y and load (zero roll and yaw) agree.
+  smooth,
+  // The point of first touch of the lowered wheel (before 2026-11-25): it jumps where the lowest
+  // point of the gap moves from one local minimum to another (y ≈ −0.21 mm on S1002/UIC60).
+  first_touch,
+};
+// "smooth", "first-touch"; parse_contact_reference throws Error (invalid_input) naming the
+// allowed names.
+const char* contact_reference_name(ContactReference reference);
+ContactReference parse_contact_reference(const std::string& name);
+
 struct WheelRailPatchOptions {
   // Fz (METHOD.md §9: 10 t), in [kMinimumNormalForce_N, kMaximumNormalForce_N] (1 N ... 1e7 N,
   // contact_patch.hpp), as is F3 = Fz / cos γ.
@@ -95,42 +112,66 @@ struct WheelRailPatchOptions {
   // allow_several_patches (then `patch` holds the largest one and `regions` all of them).
   double significant_load_fraction = 0.01;
   bool allow_several_patches = false;
+  // The patch's reference; with `smooth`, the contact search's rule separates and merges
+  // interpenetration regions (search.merge_distance_m, merge_angle_rad: docs/WHEELSET.md §3),
+  // and each region is one patch.
+  ContactReference reference = ContactReference::smooth;
+  ContactSearchOptions search{};
+  // smooth: relative tolerance of the wheel's height iteration on the vertical load (a single
+  // patch then carries Fz exactly: its last solve is by force).
+  double load_tolerance = 1e-6;
 };
 
 struct WheelRailPatch {
-  WheelRailContactPoint contact;    // point of first touch, contact frame, local curvatures
+  WheelRailContactPoint contact;    // point of first touch, its contact frame, local curvatures
+  ContactReference reference = ContactReference::smooth;
+  // smooth: the interpenetration region of the patch (reference point on the rail, contact frame,
+  // overlap) at the wheel's height below, and that height (the wheelset's vertical displacement
+  // above its nominal height, WheelsetPosition) with the iterations that found it.
+  InterpenetrationRegion region;
+  double vertical_displacement_m = 0.0;
+  int load_iterations = 0;
   double lateral_displacement_m = 0.0;  // wheelset y (track frame, positive to the left)
-  double contact_angle_rad = 0.0;       // γ
-  double rolling_radius_m = 0.0;        // wheel radius at the contact point
+  double contact_angle_rad = 0.0;       // γ of the reference
+  double rolling_radius_m = 0.0;        // wheel radius at the reference
   double spin_per_m = 0.0;              // Eq 24 signed: +2 sin γ / d (right wheel)
   double vertical_load_N = 0.0;         // Fz
-  double normal_force_N = 0.0;          // F3 = Fz / cos γ
-  // The patch (the largest connected region) on the potential-area mesh cropped to the patch's
-  // bounding box, with its origin at its centre of pressure.
+  // F3 of the patch: Fz / cos γ for a single patch; with several patches (allow_several_patches,
+  // smooth reference) the share of this patch, the patches together carrying Fz vertically.
+  double normal_force_N = 0.0;
+  // The patch on the potential-area mesh cropped to its bounding box, with its origin at its centre
+  // of pressure. smooth: every element in contact of the most loaded interpenetration region (as
+  // a wheelset's patch); first touch: the largest connected region.
   ContactPatch patch;
-  // The normal solution on the potential-area mesh (all regions) and that mesh. The mesh origin
-  // is the point of first touch; h on it is potential_h_m.
+  // The normal solution on the potential-area mesh and that mesh. The mesh origin is the
+  // reference point (smooth: only this patch's interpenetration region is on it; first touch: all
+  // regions); h on it is potential_h_m, zero at its lowest point (its approach is normal.approach_m).
   NormalSolution normal;
   Mesh potential_area;
   std::vector<double> potential_h_m;
   // Connected contact regions of `normal`, by decreasing load (regions.size() >= 1).
   std::vector<ContactRegion> regions;
-  std::size_t patches = 1;            // regions carrying more than significant_load_fraction
-  double dropped_load_fraction = 0.0; // load of the regions not in `patch` / F3
-  // Centre of pressure of `patch` in the tangent plane, from the point of first touch.
+  // Patches carrying more than significant_load_fraction of the load (smooth: interpenetration
+  // regions; first touch: connected contact regions), and the fraction of the load not in `patch`
+  // (smooth: of the vertical load Fz; first touch: of F3).
+  std::size_t patches = 1;
+  double dropped_load_fraction = 0.0;
+  // Centre of pressure of `patch` in the tangent plane, from the reference point.
   double pressure_centre_x1_m = 0.0;
   double pressure_centre_x2_m = 0.0;
   // The centre of pressure on the rail (rail profile frame, the tangent-plane point) and the
-  // rail's slope angle there: unlike γ (first touch) it varies continuously through a contact
-  // jump (docs/WHEEL_RAIL.md §6). For information; F3 and the spin use γ.
+  // rail's slope angle there: like the smooth γ (unlike the first-touch one) it varies continuously
+  // through a contact jump (docs/WHEEL_RAIL.md §6). For information; F3 and the spin use γ.
   double pressure_centre_y_rail_m = 0.0;
   double pressure_centre_contact_angle_rad = 0.0;
   // Measures of `patch`: extents along X1 and X2 (element edges), area (elements × S), p3 max.
   double extent_x1_m = 0.0, extent_x2_m = 0.0, area_m2 = 0.0, max_pressure_Pa = 0.0;
-  double approach_m = 0.0;            // δ of the normal solution
+  double approach_m = 0.0;            // δ of the normal solution (along X3, from h's lowest point)
   std::size_t elements_in_contact = 0;  // elements of `patch`
   int iterations = 0;                 // normal-solver iterations of the final solve
-  int mesh_passes = 0;                // normal solves performed (mesh refinements, enlargements)
+  // Normal solves performed: the first-touch mesh passes (refinements, enlargements) and, smooth,
+  // the height iteration's solves.
+  int mesh_passes = 0;
   // Hertz's solution for the local curvatures A, B of the contact point and F3, for comparison
   // (all zero when B <= 0: no Hertzian contact exists).
   HertzContact local_hertz;

@@ -133,6 +133,9 @@ class WheelsetTrack {
   // The same wheel and rail profile on both sides.
   WheelsetTrack(const Profile& wheel, const Profile& rail, const TrackWheelsetParameters& parameters = {},
                 const SmoothingOptions& smoothing = {});
+  // Both sides from one wheel–rail pair (already smoothed and placed; the left side is its mirror
+  // image), with the pair's track parameters: the single wheel–rail patch's smooth reference.
+  explicit WheelsetTrack(const WheelRailPair& pair);
 
   [[nodiscard]] const TrackWheelsetParameters& parameters() const { return parameters_; }
   // The side's wheel–rail pair (its profiles, taping line, gauge point; zero-yaw 2-D geometry).
@@ -177,8 +180,14 @@ class WheelsetTrack {
   [[nodiscard]] TangentPlaneArea potential_contact_area(const WheelsetPosition& position,
                                                         const InterpenetrationRegion& region, double element_size_m,
                                                         int border_elements = 2) const;
+  // The same with elements of dx1 x dx2 (element centres at integer multiples of each from the
+  // reference point), for the single wheel–rail patch's rolling-resolved meshes.
+  [[nodiscard]] TangentPlaneArea potential_contact_area(const WheelsetPosition& position,
+                                                        const InterpenetrationRegion& region, double dx1_m,
+                                                        double dx2_m, int border_elements) const;
 
  private:
+  void place_wheelset();  // the nominal axle height and the flanges' steepest points
   WheelRailPair right_, left_;
   TrackWheelsetParameters parameters_;
   double nominal_axle_height_m_ = 0.0;

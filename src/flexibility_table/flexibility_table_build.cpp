@@ -59,12 +59,10 @@ void find_jumps(const WheelRailPair& pair, double a, const WheelRailContactPoint
   find_jumps(pair, m, *cm, b, cb, options, jumps);
 }
 
-// "2 patches carrying 67.5 %, 32.5 % of the load"
+// "2 contact patches, the largest carrying 67.5 % of the load"
 std::string several_patches_message(const WheelRailPatch& p) {
-  std::string shares;
-  for (std::size_t k = 0; k < p.patches && k < p.regions.size(); ++k)
-    shares += fmt::format("{}{:.1f} %", k == 0 ? "" : ", ", 100.0 * p.regions[k].load_fraction);
-  return fmt::format("{} contact patches carrying {} of the load", p.patches, shares);
+  return fmt::format("{} contact patches, the largest carrying {:.1f} % of the load", p.patches,
+                     100.0 * (1.0 - p.dropped_load_fraction));
 }
 
 FlexibilityTableNode solve_node(const WheelRailPair& pair, double y_m, double Fz_N, const FlexibilityTableOptions& options) {
@@ -178,14 +176,16 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   metadata.track = pair.parameters();
   metadata.material = options.patch.material;
   metadata.target_elements = options.patch.target_elements;
+  metadata.contact_reference = options.patch.reference;
   metadata.collocation_offset = options.nh_fastsim.collocation_offset;
   metadata.flexibility_coarsening = options.nh_fastsim.flexibility_coarsening;
   metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
 
-  // Contact jumps: on the geometry alone (the first-touch point does not depend on the load).
+  // Contact jumps: on the geometry alone (the first-touch point does not depend on the load). The
+  // smooth reference moves continuously: it has none.
   std::vector<JumpBracket> brackets;
-  if (options.locate_contact_jumps) {
+  if (options.locate_contact_jumps && options.patch.reference == ContactReference::first_touch) {
     std::vector<std::optional<WheelRailContactPoint>> points;
     for (double y : y_grid_m) points.push_back(try_contact_point(pair, y));
     for (std::size_t k = 0; k + 1 < y_grid_m.size(); ++k)

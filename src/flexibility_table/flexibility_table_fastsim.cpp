@@ -14,6 +14,7 @@ WheelRailPatchOptions table_patch_options(const FlexibilityTable& table) {
   WheelRailPatchOptions options;
   options.material = table.metadata().material;
   options.target_elements = table.metadata().target_elements;
+  options.reference = table.metadata().contact_reference;
   return options;
 }
 

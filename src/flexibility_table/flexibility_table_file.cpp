@@ -35,7 +35,7 @@ json parse_json(const std::string& text, const std::string& source) {
 constexpr const char* kFormat = "railcontact flexibility table";
 // Version 2 records the recipe's flexibility coarsening; version-1 tables (built on the full patch,
 // coarsening 1) are still read.
-constexpr int kFormatVersion = 2;
+constexpr int kFormatVersion = 3;
 // The largest table file read (a 100 × 20 grid is about 1 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 256u << 20;  // 256 MiB
 
@@ -106,8 +106,8 @@ int read_format_version(StrictJsonReader& r, const json& root) {
 }
 
 // The recipe of the table: version, profiles (file and hash), track, material, mesh size,
-// collocation offset, flexibility coarsening (format version 2) and the match of the
-// flexibilities (term by term).
+// collocation offset, flexibility coarsening (format version 2), the match of the flexibilities
+// (term by term) and the contact reference (format version 3).
 FlexibilityTableMetadata read_metadata(StrictJsonReader& r, int version) {
   FlexibilityTableMetadata m;
   m.railcontact_version = r.string("railcontact_version");
@@ -137,6 +137,13 @@ FlexibilityTableMetadata read_metadata(StrictJsonReader& r, int version) {
     m.flexibility_coarsening = static_cast<int>(coarsening);
   }
   if (r.string("flexibility_match") != "term-by-term") r.fail("flexibility_match must be \"term-by-term\"");
+  m.contact_reference = ContactReference::first_touch;  // format versions 1 and 2
+  if (version >= 3) {
+    const std::string reference = r.string("contact_reference");
+    if (reference != "smooth" && reference != "first-touch")
+      r.fail(fmt::format("contact_reference \"{}\" must be \"smooth\" or \"first-touch\"", reference));
+    m.contact_reference = parse_contact_reference(reference);
+  }
   return m;
 }
 
@@ -201,6 +208,7 @@ std::string flexibility_table_json(const FlexibilityTable& table) {
       {"collocation_offset", m.collocation_offset},
       {"flexibility_coarsening", m.flexibility_coarsening},
       {"flexibility_match", "term-by-term"},
+      {"contact_reference", contact_reference_name(m.contact_reference)},
       {"y_m", table.y_m()},
       {"vertical_load_N", table.vertical_loads_N()},
       {"contact_jumps", jumps},

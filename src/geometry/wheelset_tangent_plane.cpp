@@ -76,26 +76,40 @@ std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition&
 TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& position,
                                                        const InterpenetrationRegion& region, double element_size_m,
                                                        int border_elements) const {
-  require(std::isfinite(element_size_m) && element_size_m >= 1e-6 && element_size_m <= 0.01, [&] {
-    return fmt::format("potential contact area: the element size {:g} mm must lie in [0.001, 10] mm",
-                       element_size_m * 1e3);
-  });
+  return potential_contact_area(position, region, element_size_m, element_size_m, border_elements);
+}
+
+TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& position,
+                                                       const InterpenetrationRegion& region, double dx1_m,
+                                                       double dx2_m, int border_elements) const {
+  for (double d : {dx1_m, dx2_m}) {
+    require(std::isfinite(d) && d >= 1e-6 && d <= 0.01, [&] {
+      return fmt::format("potential contact area: the element size {:g} mm must lie in [0.001, 10] mm", d * 1e3);
+    });
+  }
   require(border_elements >= 1 && border_elements <= 100,
           "potential contact area: the border must be 1 to 100 elements wide");
-  // Element centres at integer multiples of the size from the reference point.
-  const double d = element_size_m;
-  int lo1 = static_cast<int>(std::floor(region.x1_min_m / d)) - border_elements;
-  int hi1 = static_cast<int>(std::ceil(region.x1_max_m / d)) + border_elements;
-  int lo2 = static_cast<int>(std::floor(region.x2_min_m / d)) - border_elements;
-  int hi2 = static_cast<int>(std::ceil(region.x2_max_m / d)) + border_elements;
+  // Element centres at integer multiples of the sizes from the reference point.
+  int lo1 = static_cast<int>(std::floor(region.x1_min_m / dx1_m)) - border_elements;
+  int hi1 = static_cast<int>(std::ceil(region.x1_max_m / dx1_m)) + border_elements;
+  int lo2 = static_cast<int>(std::floor(region.x2_min_m / dx2_m)) - border_elements;
+  int hi2 = static_cast<int>(std::ceil(region.x2_max_m / dx2_m)) + border_elements;
   for (int step = 0;; ++step) {
     Mesh mesh;
     mesh.n1 = hi1 - lo1 + 1;
     mesh.n2 = hi2 - lo2 + 1;
-    mesh.dx1_m = d;
-    mesh.dx2_m = d;
-    mesh.x1_first_m = lo1 * d;
-    mesh.x2_first_m = lo2 * d;
+    mesh.dx1_m = dx1_m;
+    mesh.dx2_m = dx2_m;
+    mesh.x1_first_m = lo1 * dx1_m;
+    mesh.x2_first_m = lo2 * dx2_m;
+    // Counted in double before anything is allocated (docs/RELIABILITY.md "Resource limits").
+    const double elements = static_cast<double>(hi1 - lo1 + 1) * static_cast<double>(hi2 - lo2 + 1);
+    require(elements <= kMaximumPotentialAreaElements, [&] {
+      return fmt::format("{} {} x {} = {:.3g} elements of {:.3g} x {:.3g} mm in the tangent plane of the {} wheel; at most "
+                         "{:.3g} elements are allowed: use larger elements",
+                         kPotentialAreaTooLarge, hi1 - lo1 + 1, hi2 - lo2 + 1, elements, dx1_m * 1e3, dx2_m * 1e3,
+                         side_name(region.side), kMaximumPotentialAreaElements);
+    });
     validate(mesh);
     std::vector<double> h = undeformed_distance_m(position, region, mesh);
     bool low1 = false, high1 = false, low2 = false, high2 = false;

@@ -88,6 +88,14 @@ WheelsetTrack::WheelsetTrack(const WheelsetProfiles& profiles, const TrackWheels
     : right_(profiles.right_wheel, profiles.right_rail, parameters, smoothing),
       left_(profiles.left_wheel, profiles.left_rail, parameters, smoothing),
       parameters_(parameters) {
+  place_wheelset();
+}
+
+WheelsetTrack::WheelsetTrack(const WheelRailPair& pair) : right_(pair), left_(pair), parameters_(pair.parameters()) {
+  place_wheelset();
+}
+
+void WheelsetTrack::place_wheelset() {
   // H0: lower the wheelset (zero displacement, roll and yaw) from H = 0 until the first wheel touches.
   nominal_axle_height_m_ = 0.0;
   double height = -std::numeric_limits<double>::infinity();

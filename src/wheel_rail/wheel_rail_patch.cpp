@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -40,6 +41,12 @@ void validate(const WheelRailPatchOptions& o) {
   require(std::isfinite(o.significant_load_fraction) && o.significant_load_fraction >= 0.0 &&
               o.significant_load_fraction < 1.0,
           "wheel-rail patch: the significant load fraction must lie in [0, 1)");
+  require(std::isfinite(o.load_tolerance) && o.load_tolerance > 0.0 && o.load_tolerance <= 0.01, [&] {
+    return fmt::format("wheel-rail patch: the load tolerance {:g} must lie in (0, 0.01]", o.load_tolerance);
+  });
+  require(o.reference == ContactReference::smooth || o.reference == ContactReference::first_touch,
+          "wheel-rail patch: unknown contact reference");
+  validate(o.search);
   validate(o.material);
 }
 
@@ -108,7 +115,195 @@ struct Solve {
   std::vector<ContactRegion> regions;
 };
 
+// The smooth reference (docs/WHEEL_RAIL.md §6): the wheel's height at which its interpenetration
+// regions, each solved by position in its own tangent plane, carry Fz vertically; each region's
+// reference point and contact angle are the wheelset's (WheelsetTrack::contact_search), so the
+// patch is the wheelset's right-wheel patch at zero roll and yaw.
+constexpr int kMaximumHeightIterations = 30;
+
+// One interpenetration region's normal problem at the wheel's height; its solver plan and last
+// pressure start the next iteration's solve when the mesh stays the same.
+struct RegionSolve {
+  InterpenetrationRegion region;
+  TangentPlaneArea area;
+  NormalSolution normal;
+  std::unique_ptr<NormalContactSolver> solver;
+};
+
+bool same_mesh(const Mesh& a, const Mesh& b) {
+  return a.n1 == b.n1 && a.n2 == b.n2 && a.dx1_m == b.dx1_m && a.dx2_m == b.dx2_m && a.x1_first_m == b.x1_first_m &&
+         a.x2_first_m == b.x2_first_m;
+}
+
+std::vector<RegionSolve> solve_regions(const WheelsetTrack& track, const WheelsetPosition& position, double dx1_m,
+                                       double dx2_m, const WheelRailPatchOptions& options, const std::string& where,
+                                       std::vector<RegionSolve>& previous, int& solves) {
+  const WheelContactSearch search = track.contact_search(WheelSide::right, position, options.search);
+  std::vector<RegionSolve> out;
+  for (const InterpenetrationRegion& region : search.regions) {
+    RegionSolve s;
+    s.region = region;
+    s.area = track.potential_contact_area(position, region, dx1_m, dx2_m, 2);
+    std::vector<double> initial;
+    for (RegionSolve& p : previous) {
+      if (p.solver && same_mesh(p.area.mesh, s.area.mesh)) {
+        s.solver = std::move(p.solver);
+        initial = std::move(p.normal.pressure_Pa);
+        break;
+      }
+    }
+    if (!s.solver) s.solver = std::make_unique<NormalContactSolver>(s.area.mesh, options.material, options.normal);
+    // h is measured at this height (negative where the bodies overlap): the approach is zero.
+    s.normal = s.solver->solve_at_approach(s.area.h_m, 0.0, initial);
+    ++solves;
+    if (!s.normal.converged)
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations "
+                              "(residual {:.2g})",
+                              where, s.normal.iterations, s.normal.residual));
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+double vertical_force(const std::vector<RegionSolve>& solves) {
+  double f = 0.0;
+  for (const RegionSolve& s : solves) f += s.normal.normal_force_N * s.region.x3_axis[2];
+  return f;
+}
+
+// "67.5 % of the load at y_rail = -1.2 mm, 32.5 % at y_rail = -31.0 mm"
+std::string region_load_shares(const std::vector<RegionSolve>& solves, double total_N) {
+  std::string text;
+  for (std::size_t k = 0; k < solves.size(); ++k)
+    text += fmt::format("{}{:.1f} %{} at y_rail = {:+.1f} mm", k == 0 ? "" : ", ",
+                        100.0 * solves[k].normal.normal_force_N * solves[k].region.x3_axis[2] / total_N,
+                        k == 0 ? " of the load" : "", solves[k].region.rail_profile_y_m / kMm);
+  return text;
+}
+
+// The patch with the smooth reference, from the first-touch solution's element sizes and approach.
+void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options,
+                            const Solve& first_touch, const std::string& where, WheelRailPatch& r) {
+  const WheelsetTrack track(pair);
+  WheelsetPosition position;
+  position.lateral_displacement_m = y_m;
+  const double touching = track.touching_vertical_displacement_m(WheelSide::right, position);
+  const double target = options.vertical_load_N;
+  const double dx1 = first_touch.area.mesh.dx1_m, dx2 = first_touch.area.mesh.dx2_m;
+  // The vertical overlap below first touch: from the first-touch approach along its normal, then
+  // Newton-like steps F ∝ δ^(3/2) (Hertz) and secant steps, as a wheelset's height by load.
+  double delta = first_touch.normal.approach_m / std::cos(r.contact.contact_angle_rad);
+  double previous_delta = 0.0, previous_force = 0.0;
+  std::vector<RegionSolve> solves, previous;
+  int solves_done = 0;
+  for (r.load_iterations = 1;; ++r.load_iterations) {
+    if (r.load_iterations > kMaximumHeightIterations)
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("wheel-rail patch at {}: the wheel's height carrying Fz = {:g} N was not found in {} "
+                              "iterations",
+                              where, target, kMaximumHeightIterations));
+    position.vertical_displacement_m = touching - delta;
+    previous = std::move(solves);
+    solves = solve_regions(track, position, dx1, dx2, options, where, previous, solves_done);
+    const double force = vertical_force(solves);
+    if (std::abs(force - target) <= options.load_tolerance * target) break;
+    double next;
+    if (!(force > 0.0)) {
+      next = 2.0 * delta;
+    } else if (r.load_iterations <= 2 || previous_force <= 0.0 || force == previous_force) {
+      next = delta * std::pow(target / force, 2.0 / 3.0);
+    } else {
+      next = delta + (target - force) * (delta - previous_delta) / (force - previous_force);
+      if (!(next > 0.0)) next = delta * std::pow(target / force, 2.0 / 3.0);
+    }
+    previous_delta = delta;
+    previous_force = force;
+    delta = std::clamp(next, 0.25 * delta, 4.0 * delta);
+  }
+  r.mesh_passes += solves_done;
+  r.vertical_displacement_m = position.vertical_displacement_m;
+
+  // The patches by decreasing vertical load; the most loaded one is `patch`.
+  const double total = vertical_force(solves);
+  std::sort(solves.begin(), solves.end(), [](const RegionSolve& a, const RegionSolve& b) {
+    return a.normal.normal_force_N * a.region.x3_axis[2] > b.normal.normal_force_N * b.region.x3_axis[2];
+  });
+  r.patches = static_cast<std::size_t>(std::count_if(solves.begin(), solves.end(), [&](const RegionSolve& s) {
+    return s.normal.normal_force_N * s.region.x3_axis[2] > options.significant_load_fraction * total;
+  }));
+  if (r.patches > 1 && !options.allow_several_patches) {
+    throw Error(ErrorKind::several_patches,
+                fmt::format("{} gives several contact patches ({} patches: {}); several patches are out of scope "
+                            "for a single wheel-rail patch (railcontact wheelset solves them all)",
+                            where, r.patches, region_load_shares(solves, total)));
+  }
+  RegionSolve& main = solves.front();
+  if (solves.size() == 1) {
+    // One patch carries the load exactly (F3 cos γ = Fz, frictionless equilibrium as with the
+    // first-touch reference) on the same mesh and h: its approach moves by the height
+    // iteration's tolerance.
+    main.normal = main.solver->solve(main.area.h_m, target / main.region.x3_axis[2]);
+    ++r.mesh_passes;
+    if (!main.normal.converged)
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations "
+                              "(residual {:.2g})",
+                              where, main.normal.iterations, main.normal.residual));
+  }
+  r.region = main.region;
+  r.contact_angle_rad = main.region.contact_angle_rad;
+  r.rolling_radius_m = main.region.rolling_radius_m;
+  r.spin_per_m = conicity_spin_per_m(r.contact_angle_rad, WheelSide::right,
+                                     2.0 * pair.parameters().nominal_rolling_radius_m);
+  r.normal_force_N = main.normal.normal_force_N;
+  r.dropped_load_fraction =
+      solves.size() == 1 ? 0.0 : std::max(0.0, 1.0 - main.normal.normal_force_N * main.region.x3_axis[2] / total);
+
+  const Mesh& mesh = main.area.mesh;
+  std::vector<std::size_t> elements;
+  double max_pressure = 0.0;
+  for (std::size_t k = 0; k < mesh.size(); ++k) {
+    if (main.normal.pressure_Pa[k] > 0.0) elements.push_back(k);
+    max_pressure = std::max(max_pressure, main.normal.pressure_Pa[k]);
+  }
+  if (elements.empty())
+    throw Error(ErrorKind::no_contact, fmt::format("wheel-rail patch at {}: no element in contact", where));
+  r.patch = detail::cropped_patch(mesh, main.normal.pressure_Pa, elements, options.material);
+  r.pressure_centre_x1_m = -r.patch.x1_shift_m();
+  r.pressure_centre_x2_m = -r.patch.x2_shift_m();
+  // The tangent-plane point O + x2 X2 with X2 = (−cos γ, sin γ) in the rail profile frame.
+  r.pressure_centre_y_rail_m = main.region.rail_profile_y_m - r.pressure_centre_x2_m * std::cos(r.contact_angle_rad);
+  r.pressure_centre_contact_angle_rad = std::atan(-pair.rail().dz_dy(r.pressure_centre_y_rail_m));
+  const detail::IndexBox box = detail::bounding_box(mesh, elements);
+  r.extent_x1_m = (box.hi1 - box.lo1 + 1) * mesh.dx1_m;
+  r.extent_x2_m = (box.hi2 - box.lo2 + 1) * mesh.dx2_m;
+  r.elements_in_contact = elements.size();
+  r.area_m2 = static_cast<double>(r.elements_in_contact) * mesh.element_area_m2();
+  r.max_pressure_Pa = max_pressure;
+  r.iterations = main.normal.iterations;
+  // h from its lowest point: the same normal problem with the approach δ − min h.
+  const double lowest = *std::min_element(main.area.h_m.begin(), main.area.h_m.end());
+  r.approach_m = main.normal.approach_m - lowest;
+  r.normal = std::move(main.normal);
+  r.normal.approach_m = r.approach_m;
+  r.potential_area = mesh;
+  r.potential_h_m = std::move(main.area.h_m);
+  for (double& h : r.potential_h_m) h -= lowest;
+  r.regions = contact_regions(mesh, r.normal.pressure_Pa);
+}
+
 }  // namespace
+
+const char* contact_reference_name(ContactReference reference) {
+  return reference == ContactReference::smooth ? "smooth" : "first-touch";
+}
+
+ContactReference parse_contact_reference(const std::string& name) {
+  if (name == "smooth") return ContactReference::smooth;
+  if (name == "first-touch") return ContactReference::first_touch;
+  throw Error(fmt::format("contact reference \"{}\": expected \"smooth\" or \"first-touch\"", name));
+}
 
 WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options) {
   validate(options);
@@ -208,6 +403,11 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   }
 
   require(best.has_value(), [&] { return fmt::format("wheel-rail patch at {}: no normal solution", where); });
+  r.reference = options.reference;
+  if (options.reference == ContactReference::smooth) {
+    smooth_reference_patch(pair, y_m, options, *best, where, r);
+    return r;
+  }
   Solve& s = *best;
   const Mesh& mesh = s.area.mesh;
   const ContactRegion& main = s.regions.front();
