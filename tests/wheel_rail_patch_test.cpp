@@ -15,6 +15,7 @@
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/tangential.hpp"
 #include "railcontact/wheelset.hpp"
 
 namespace railcontact {
@@ -174,12 +175,18 @@ TEST(WheelRailPatch, PatchOriginIsTheCentreOfPressure) {
   EXPECT_NEAR(p.pressure_centre_x1_m, -patch.x1_shift_m(), 1e-15);
   EXPECT_NEAR(p.pressure_centre_x2_m, -patch.x2_shift_m(), 1e-15);
   EXPECT_NEAR(p.pressure_centre_x1_m, 0.0, 1e-9);  // h is even in x1 (zero yaw)
-  // The patch's mesh is the potential area's, cropped to the patch's bounding box.
+  // The patch's mesh is the potential area's, cropped to the patch's bounding box widened to whole
+  // blocks of nH-FastSim's automatic coarsening counted from the reference point (smooth reference).
   EXPECT_DOUBLE_EQ(patch.mesh().dx1_m, p.potential_area.dx1_m);
   EXPECT_DOUBLE_EQ(patch.mesh().dx2_m, p.potential_area.dx2_m);
-  EXPECT_NEAR(patch.mesh().n1 * patch.mesh().dx1_m, p.extent_x1_m, 1e-12);
-  EXPECT_NEAR(patch.mesh().n2 * patch.mesh().dx2_m, p.extent_x2_m, 1e-12);
-  EXPECT_LT(patch.mesh().size(), p.potential_area.size() / 2);
+  const int block = NhFastSim::automatic_coarsening(patch);
+  EXPECT_EQ(patch.mesh().n1 % block, 0);
+  EXPECT_EQ(patch.mesh().n2 % block, 0);
+  EXPECT_GE(patch.mesh().n1 * patch.mesh().dx1_m, p.extent_x1_m - 1e-12);
+  EXPECT_GE(patch.mesh().n2 * patch.mesh().dx2_m, p.extent_x2_m - 1e-12);
+  EXPECT_LT(patch.mesh().n1 * patch.mesh().dx1_m, p.extent_x1_m + 2 * block * patch.mesh().dx1_m);
+  EXPECT_LT(patch.mesh().n2 * patch.mesh().dx2_m, p.extent_x2_m + 2 * block * patch.mesh().dx2_m);
+  EXPECT_LT(patch.mesh().size(), p.potential_area.size());
   std::vector<double> on_potential_area(p.potential_area.size(), 0.0);
   for (std::size_t e = 0; e < patch.elements().count(); ++e) {
     const int i1 = static_cast<int>(std::lround((patch.x1(e) + p.pressure_centre_x1_m - p.potential_area.x1_first_m) /

@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "railcontact/error.hpp"
+#include "railcontact/tangential.hpp"
 #include "wheel_rail/cropped_patch.hpp"
 
 namespace railcontact {
@@ -269,7 +270,13 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
   }
   if (elements.empty())
     throw Error(ErrorKind::no_contact, fmt::format("wheel-rail patch at {}: no element in contact", where));
+  // Cropped in whole blocks of nH-FastSim's automatic coarsening, counted from the reference point
+  // (as a wheelset's patch): the coarse patch of its flexibilities then changes continuously with y
+  // instead of with the patch's corner, which jumps by an element as elements enter (flexibility
+  // tables: docs/FLEXTABLE.md §4). The elements and pressures are those of the plain crop.
   r.patch = detail::cropped_patch(mesh, main.normal.pressure_Pa, elements, options.material);
+  const int block = NhFastSim::automatic_coarsening(r.patch);
+  if (block > 1) r.patch = detail::block_aligned_patch(mesh, main.normal.pressure_Pa, elements, options.material, block);
   r.pressure_centre_x1_m = -r.patch.x1_shift_m();
   r.pressure_centre_x2_m = -r.patch.x2_shift_m();
   // The tangent-plane point O + x2 X2 with X2 = (−cos γ, sin γ) in the rail profile frame.
