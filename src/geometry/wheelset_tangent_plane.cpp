@@ -73,6 +73,18 @@ std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition&
   return h;
 }
 
+namespace {
+
+// n rounded up to a multiple of the largest power of two g with 16 g <= n (1 below 32 elements): at
+// most a sixteenth more.
+int round_up_to_granule(int n) {
+  int granule = 1;
+  while (granule * 16 <= n) granule *= 2;
+  return (n + granule - 1) / granule * granule;
+}
+
+}  // namespace
+
 TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& position,
                                                        const InterpenetrationRegion& region, double element_size_m,
                                                        int border_elements) const {
@@ -95,6 +107,14 @@ TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& p
   int lo2 = static_cast<int>(std::floor(region.x2_min_m / dx2_m)) - border_elements;
   int hi2 = static_cast<int>(std::ceil(region.x2_max_m / dx2_m)) + border_elements;
   for (int step = 0;; ++step) {
+    // The mesh's size in whole granules (a power of two, at most a sixteenth of it): from one time step
+    // to the next the overlap's extent moves by an element or two, and a size that stays the same
+    // keeps the normal solver's plan (kernels, FFT plans) of the previous step. The extra elements go
+    // to +x1 and to the gauge side (+x2 on the right wheel, −x2 on the left one, whose X2 points the
+    // other way across its rail), so the left wheel stays the mirrored right wheel.
+    if (const int extra = round_up_to_granule(hi1 - lo1 + 1) - (hi1 - lo1 + 1); extra > 0) hi1 += extra;
+    if (const int extra = round_up_to_granule(hi2 - lo2 + 1) - (hi2 - lo2 + 1); extra > 0)
+      (region.side == WheelSide::right ? hi2 : lo2) += region.side == WheelSide::right ? extra : -extra;
     Mesh mesh;
     mesh.n1 = hi1 - lo1 + 1;
     mesh.n2 = hi2 - lo2 + 1;

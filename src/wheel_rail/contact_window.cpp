@@ -8,10 +8,13 @@
 namespace railcontact::detail {
 namespace {
 
-// [lo, hi] widened by margin, then to a multiple of granule (at most count), within [0, count).
+// [lo, hi] widened by margin, then to a multiple of granule (at most count), within [0, count). A
+// long window takes a coarser granule, the largest power of two g with 16 g <= its length (as the
+// potential area, WheelsetTrack::potential_contact_area), so that its size repeats from step to step.
 void widen(int lo, int hi, int margin, int granule, int count, int& first, int& size) {
   lo = std::max(0, lo - margin);
   hi = std::min(count - 1, hi + margin);
+  while (granule * 16 <= hi - lo + 1) granule *= 2;
   size = std::min(count, (hi - lo + 1 + granule - 1) / granule * granule);
   const int extra = size - (hi - lo + 1);
   first = std::clamp(lo - extra / 2, 0, count - size);

@@ -17,7 +17,8 @@ struct MeshWindow {
 };
 
 // The window around the elements with pressure > 0, widened by `margin` elements on every side and
-// then to a multiple of `granule` elements per axis (so that its size, and the solver plan it needs,
+// then to a multiple of `granule` elements per axis (of the largest power of two g with 16 g <= its
+// length when that is coarser; so that its size, and the solver plan it needs,
 // changes seldom from step to step), within the mesh. Empty when no element carries pressure or the
 // window's padded FFT grid would be more than `largest_fraction` of the mesh's (little to gain).
 std::optional<MeshWindow> contact_window(const Mesh& mesh, const std::vector<double>& pressure_Pa, int margin,
