@@ -8,10 +8,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <random>
 #include <string>
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
+#include "wheel_rail/cropped_patch.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/error.hpp"
@@ -426,6 +428,34 @@ TEST(ContactRegions, LabelsFourNeighbourComponents) {
   EXPECT_EQ(regions[2].elements, (std::vector<std::size_t>{mesh.index(2, 2)}));
   EXPECT_TRUE(contact_regions(mesh, std::vector<double>(mesh.size(), 0.0)).empty());
   EXPECT_THROW((void)contact_regions(mesh, std::vector<double>(3, 1.0)), Error);
+}
+
+// The wheelset's quick lobe test on strip runs agrees with contact_regions on 3000 random patterns
+// (12 x 9 elements, 35-75 % in contact: one lobe, several, corner-only contacts), and on the
+// pattern of ContactRegions.LabelsFourNeighbourComponents.
+TEST(ContactRegions, StripRunLobeTestAgreesWithTheRegions) {
+  const Mesh mesh = Mesh::covering(0.0, 12e-3, 0.0, 9e-3, 12, 9);  // 1 mm elements
+  std::mt19937 random(20261125);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  int several = 0, single = 0;
+  for (int pattern = 0; pattern < 3000; ++pattern) {
+    const double density = 0.35 + 0.4 * uniform(random);
+    std::vector<double> p(mesh.size(), 0.0);
+    for (double& value : p)
+      if (uniform(random) < density) value = 1e9;
+    const std::vector<ContactRegion> regions = contact_regions(mesh, p);
+    if (regions.empty()) continue;
+    const bool expected = regions.size() > 1;
+    (expected ? several : single) += 1;
+    ASSERT_EQ(detail::has_several_lobes(ContactPatch(mesh, p, Material{})), expected) << "pattern " << pattern;
+  }
+  EXPECT_GT(several, 100);
+  EXPECT_GT(single, 100);
+  std::vector<double> p(mesh.size(), 0.0);
+  for (auto [i1, i2] : std::vector<std::array<int, 2>>{{0, 0}, {1, 0}, {0, 1}, {1, 1}, {2, 2}}) p[mesh.index(i1, i2)] = 1e9;
+  EXPECT_TRUE(detail::has_several_lobes(ContactPatch(mesh, p, Material{})));  // a corner is no edge
+  p[mesh.index(2, 1)] = 1e9;
+  EXPECT_FALSE(detail::has_several_lobes(ContactPatch(mesh, p, Material{})));
 }
 
 }  // namespace

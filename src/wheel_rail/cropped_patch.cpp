@@ -59,4 +59,31 @@ ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pr
   return ContactPatch(crop, p, material);
 }
 
+bool has_several_lobes(const ContactPatch& patch) {
+  const std::vector<StripRun>& runs = patch.runs();  // strip by strip, x1 increasing
+  std::vector<std::size_t> parent(runs.size());
+  for (std::size_t k = 0; k < runs.size(); ++k) parent[k] = k;
+  const auto root = [&](std::size_t k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  std::size_t previous_first = 0, previous_end = 0;  // the runs of the strip before
+  for (std::size_t first = 0; first < runs.size();) {
+    std::size_t end = first;
+    while (end < runs.size() && runs[end].i2 == runs[first].i2) ++end;
+    if (first > 0 && runs[previous_first].i2 == runs[first].i2 - 1) {
+      for (std::size_t a = previous_first; a < previous_end; ++a)
+        for (std::size_t b = first; b < end; ++b)
+          if (runs[a].i1_trailing <= runs[b].i1_leading && runs[b].i1_trailing <= runs[a].i1_leading)
+            parent[root(a)] = root(b);
+    }
+    previous_first = first;
+    previous_end = end;
+    first = end;
+  }
+  for (std::size_t k = 1; k < runs.size(); ++k)
+    if (root(k) != root(0)) return true;
+  return false;
+}
+
 }  // namespace railcontact::detail

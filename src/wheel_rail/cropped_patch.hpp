@@ -28,4 +28,10 @@ ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure
 ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa,
                                  const std::vector<std::size_t>& elements, const Material& material, int block);
 
+// Whether a patch's elements form more than one 4-neighbour connected lobe (as contact_regions
+// counts them), from its strip runs: runs of adjacent strips touch where their element ranges
+// overlap. A union-find over a few hundred runs, ~1 µs, where contact_regions on a wheelset's
+// potential area takes ~110 µs (89 x 133 elements).
+bool has_several_lobes(const ContactPatch& patch);
+
 }  // namespace railcontact::detail

@@ -282,36 +282,6 @@ PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& 
   return r;
 }
 
-// Whether a patch's elements form more than one 4-neighbour connected lobe, from its strip runs
-// (runs of adjacent strips touch where their element ranges overlap): a union-find over a few
-// hundred runs, ~1 µs, where contact_regions on the potential area takes ~110 µs (89 x 133).
-bool has_several_lobes(const ContactPatch& patch) {
-  const std::vector<StripRun>& runs = patch.runs();  // strip by strip, x1 increasing
-  std::vector<std::size_t> parent(runs.size());
-  for (std::size_t k = 0; k < runs.size(); ++k) parent[k] = k;
-  const auto root = [&](std::size_t k) {
-    while (parent[k] != k) k = parent[k] = parent[parent[k]];
-    return k;
-  };
-  std::size_t previous_first = 0, previous_end = 0;  // the runs of the strip before
-  for (std::size_t first = 0; first < runs.size();) {
-    std::size_t end = first;
-    while (end < runs.size() && runs[end].i2 == runs[first].i2) ++end;
-    if (first > 0 && runs[previous_first].i2 == runs[first].i2 - 1) {
-      for (std::size_t a = previous_first; a < previous_end; ++a)
-        for (std::size_t b = first; b < end; ++b)
-          if (runs[a].i1_trailing <= runs[b].i1_leading && runs[b].i1_trailing <= runs[a].i1_leading)
-            parent[root(a)] = root(b);
-    }
-    previous_first = first;
-    previous_end = end;
-    first = end;
-  }
-  for (std::size_t k = 1; k < runs.size(); ++k)
-    if (root(k) != root(0)) return true;
-  return false;
-}
-
 // The semi-axes of the equivalent ellipse of a set of elements (classical FastSim, Eq 9): the
 // ratio of their bounding box's extents, their area kept.
 std::array<double, 2> equivalent_semi_axes(const Mesh& mesh, const std::vector<std::size_t>& elements) {
@@ -490,7 +460,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     const bool nh = std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) !=
                     options.solvers.end();
     const std::vector<ContactRegion> lobes =
-        nh && has_several_lobes(contact) ? contact_regions(solve_mesh, solve_pressure) : std::vector<ContactRegion>{};
+        nh && detail::has_several_lobes(contact) ? contact_regions(solve_mesh, solve_pressure) : std::vector<ContactRegion>{};
     for (TangentialSolver s : options.solvers) {
       PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobes.size() > 1
                                 ? solve_nh_fastsim_by_lobe(contact, solve_mesh, solve_pressure, lobes, c,
