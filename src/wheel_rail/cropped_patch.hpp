@@ -30,8 +30,9 @@ ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pr
 
 // Whether a patch's elements form more than one 4-neighbour connected lobe (as contact_regions
 // counts them), from its strip runs: runs of adjacent strips touch where their element ranges
-// overlap. A union-find over a few hundred runs, ~1 µs, where contact_regions on a wheelset's
-// potential area takes ~110 µs (89 x 133 elements).
+// overlap. A union-find over its runs: 1.1 µs for a 4700-element patch (108 runs), where
+// contact_regions on a wheelset's potential area takes ~110 µs (89 x 133 elements; both timed
+// with throw-away loops, 2026-11-25).
 bool has_several_lobes(const ContactPatch& patch);
 
 }  // namespace railcontact::detail

@@ -15,6 +15,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "wheel_rail/cropped_patch.hpp"
+#include "wheel_rail/wheel_height.hpp"
 
 namespace railcontact {
 
@@ -110,6 +111,15 @@ Error potential_area_error(const WheelRailPair& pair, const WheelRailContactPoin
                                          where, error.what(), options.vertical_load_N));
 }
 
+// Non-convergence of a normal solve is an error of kind not_converged naming the position.
+void require_converged(const NormalSolution& normal, const std::string& where) {
+  if (!normal.converged)
+    throw Error(ErrorKind::not_converged,
+                fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations "
+                            "(residual {:.2g})",
+                            where, normal.iterations, normal.residual));
+}
+
 struct Solve {
   PotentialContactArea area;
   NormalSolution normal;
@@ -157,11 +167,7 @@ std::vector<RegionSolve> solve_regions(const WheelsetTrack& track, const Wheelse
     // h is measured at this height (negative where the bodies overlap): the approach is zero.
     s.normal = s.solver->solve_at_approach(s.area.h_m, 0.0, initial);
     ++solves;
-    if (!s.normal.converged)
-      throw Error(ErrorKind::not_converged,
-                  fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations "
-                              "(residual {:.2g})",
-                              where, s.normal.iterations, s.normal.residual));
+    require_converged(s.normal, where);
     out.push_back(std::move(s));
   }
   return out;
@@ -193,9 +199,9 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
   const double target = options.vertical_load_N;
   const double dx1 = first_touch.area.mesh.dx1_m, dx2 = first_touch.area.mesh.dx2_m;
   // The vertical overlap below first touch: from the first-touch approach along its normal, then
-  // Newton-like steps F ∝ δ^(3/2) (Hertz) and secant steps, as a wheelset's height by load.
+  // the steps of a wheelset's height by load (wheel_rail/wheel_height.hpp).
   double delta = first_touch.normal.approach_m / std::cos(r.contact.contact_angle_rad);
-  double previous_delta = 0.0, previous_force = 0.0;
+  detail::HeightIteration height;
   std::vector<RegionSolve> solves, previous;
   int solves_done = 0;
   for (r.load_iterations = 1;; ++r.load_iterations) {
@@ -209,18 +215,11 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
     solves = solve_regions(track, position, dx1, dx2, options, where, previous, solves_done);
     const double force = vertical_force(solves);
     if (std::abs(force - target) <= options.load_tolerance * target) break;
-    double next;
-    if (!(force > 0.0)) {
-      next = 2.0 * delta;
-    } else if (r.load_iterations <= 2 || previous_force <= 0.0 || force == previous_force) {
-      next = delta * std::pow(target / force, 2.0 / 3.0);
-    } else {
-      next = delta + (target - force) * (delta - previous_delta) / (force - previous_force);
-      if (!(next > 0.0)) next = delta * std::pow(target / force, 2.0 / 3.0);
-    }
-    previous_delta = delta;
-    previous_force = force;
-    delta = std::clamp(next, 0.25 * delta, 4.0 * delta);
+    if (delta >= detail::kMaximumWheelOverlap_m && force < target)
+      throw Error(fmt::format("wheel-rail patch at {}: the wheel would need an overlap of more than {:g} mm to carry "
+                              "Fz = {:g} N (at {:g} mm it carries {:g} N)",
+                              where, detail::kMaximumWheelOverlap_m / kMm, target, delta / kMm, force));
+    delta = height.next_overlap_m(delta, force, target, r.load_iterations);
   }
   r.mesh_passes += solves_done;
   r.vertical_displacement_m = position.vertical_displacement_m;
@@ -246,11 +245,7 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
     // iteration's tolerance.
     main.normal = main.solver->solve(main.area.h_m, target / main.region.x3_axis[2]);
     ++r.mesh_passes;
-    if (!main.normal.converged)
-      throw Error(ErrorKind::not_converged,
-                  fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations "
-                              "(residual {:.2g})",
-                              where, main.normal.iterations, main.normal.residual));
+    require_converged(main.normal, where);
   }
   r.region = main.region;
   r.contact_angle_rad = main.region.contact_angle_rad;
@@ -369,11 +364,7 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
     }
     s.normal = solve_normal_contact(s.area.mesh, s.area.h_m, F3, options.material, options.normal);
     ++r.mesh_passes;
-    if (!s.normal.converged)
-      throw Error(ErrorKind::not_converged,
-                  fmt::format("wheel-rail patch at {}: the normal solver did not converge in {} iterations "
-                              "(residual {:.2g})",
-                              where, s.normal.iterations, s.normal.residual));
+    require_converged(s.normal, where);
     if (s.normal.touches_border) {
       // The undeformed interpenetration h < δ holds every patch: cover it with a wider margin.
       require(enlargements < options.max_enlargements, [&] {

@@ -18,6 +18,7 @@
 #include "railcontact/wheelset.hpp"
 #include "wheel_rail/contact_window.hpp"
 #include "wheel_rail/cropped_patch.hpp"
+#include "wheel_rail/wheel_height.hpp"
 
 namespace railcontact {
 
@@ -26,7 +27,7 @@ namespace {
 constexpr double kMm = 1e-3;
 constexpr int kMaximumLoadIterations = 40;
 // The deepest overlap of the undeformed wheel and rail a patch may have (see solve_normal).
-constexpr double kMaximumOverlap_m = 2e-3;
+constexpr double kMaximumOverlap_m = detail::kMaximumWheelOverlap_m;
 constexpr int kMaximumBalanceIterations = 16;
 // Both wheels' heights agree to this when the roll is balanced (one rigid axle).
 constexpr double kHeightTolerance_m = 1e-8;
@@ -504,7 +505,7 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
                     int& iterations, detail::WheelsetWarmStart& warm) {
   const double touching = track.touching_vertical_displacement_m(side, position);
   double delta = overlap_m;
-  double previous_delta = 0.0, previous_force = 0.0;
+  detail::HeightIteration height;
   for (iterations = 1; iterations <= kMaximumLoadIterations; ++iterations) {
     position.vertical_displacement_m = touching - delta;
     patches = solve_normal(track, side, position, options, warm);
@@ -513,23 +514,13 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
       overlap_m = delta;
       return position.vertical_displacement_m;
     }
-    double next;
-    if (!(force > 0.0)) {
-      next = 2.0 * delta;
-    } else if (iterations <= 2 || previous_force <= 0.0 || force == previous_force) {
-      next = delta * std::pow(target_N / force, 2.0 / 3.0);
-    } else {
-      next = delta + (target_N - force) * (delta - previous_delta) / (force - previous_force);
-      if (!(next > 0.0)) next = delta * std::pow(target_N / force, 2.0 / 3.0);
-    }
-    previous_delta = delta;
-    previous_force = force;
+    const double next = height.next_overlap_m(delta, force, target_N, iterations);
     require(delta < kMaximumOverlap_m || force >= target_N, [&] {
       return fmt::format("wheelset: the {} wheel would need an overlap of more than {:g} mm to carry {:g} N (at "
                          "{:g} mm it carries {:g} N)",
                          side_name(side), kMaximumOverlap_m / kMm, target_N, delta / kMm, force);
     });
-    delta = std::min(std::clamp(next, 0.25 * delta, 4.0 * delta), kMaximumOverlap_m);
+    delta = next;
   }
   throw Error(ErrorKind::not_converged,
               fmt::format("wheelset: the vertical load {:g} N of the {} wheel was not met in {} iterations",
