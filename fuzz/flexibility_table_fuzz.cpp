@@ -1,7 +1,7 @@
 // Fuzz target: flexibility-table files (JSON, src/flexibility_table/flexibility_table_file.cpp):
 // the JSON parse, format and version, every key of the metadata, grids, contact jumps and nodes,
 // the table's own checks (grids, node values), then what `railcontact run --flextable` does with
-// it: the material and recipe checks and lookups between and at the grid points.
+// it: the material, recipe and contact-reference checks and lookups between and at the grid points.
 #include <algorithm>
 #include <string>
 
@@ -15,6 +15,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         railcontact::parse_flexibility_table(std::string(railcontact::fuzz::as_text(data, size)), "fuzz.json");
     railcontact::fuzz::expect_clean_outcome([&] { table.check_material(railcontact::Material{}, 0.0); });
     railcontact::fuzz::expect_clean_outcome([&] { table.check_recipe(0, 0.0); });
+    railcontact::fuzz::expect_clean_outcome(
+        [&] { table.check_contact_reference(railcontact::ContactReference::smooth); });
     const auto& y = table.y_m();
     const auto& loads = table.vertical_loads_N();
     const std::size_t ny = std::min<std::size_t>(y.size(), 64), nl = std::min<std::size_t>(loads.size(), 8);

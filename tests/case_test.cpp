@@ -129,6 +129,18 @@ TEST(CaseFile, NormalisedCreepageNeedsAWheelRailPatch) {
   EXPECT_NE(error_of(replaced(kValid, "xi = 0.001", "xi_normalised = 0.5")).find("wheel-rail"), std::string::npos);
 }
 
+TEST(CaseFile, WheelRailContactReference) {
+  const std::string wheel_rail = replaced(kValid, "type = \"ellipse\"\na = 0.006\nb = 0.004", "type = \"wheel-rail\"\ny = -0.002");
+  const Case smooth = parse_case(wheel_rail, "wr.toml");
+  EXPECT_EQ(smooth.geometry, GeometryKind::wheel_rail);
+  EXPECT_DOUBLE_EQ(smooth.wheel_rail.y_m, -0.002);
+  EXPECT_EQ(smooth.wheel_rail.reference, ContactReference::smooth);  // the default
+  const Case first = parse_case(replaced(wheel_rail, "y = -0.002", "y = -0.002\ncontact_reference = \"first-touch\""), "wr.toml");
+  EXPECT_EQ(first.wheel_rail.reference, ContactReference::first_touch);
+  EXPECT_EQ(error_of(replaced(wheel_rail, "y = -0.002", "y = -0.002\ncontact_reference = \"centre\"")),
+            "case.toml:5: [geometry] contact_reference must be \"smooth\" or \"first-touch\" (got \"centre\")");
+}
+
 TEST(CaseFile, MissingFile) { EXPECT_THROW(read_case_file("/nonexistent/case.toml"), Error); }
 
 }  // namespace

@@ -358,6 +358,7 @@ TEST(FlexibilityTableFastSim, CachedPatchAndFullStepAgreeWithOnTheFly) {
 TEST(FlexibilityTableFastSim, CaseRunTakesFlexibilitiesFromTheTable) {
   Case c = default_case();
   c.wheel_rail.y_m = 0.25e-3;
+  c.wheel_rail.reference = ContactReference::first_touch;  // the table's
   c.target_elements = kElements;
   c.solvers = {SolverKind::nh_fastsim, SolverKind::fastsim};
   const CaseResult on_the_fly_result = run_case(c);
@@ -369,6 +370,14 @@ TEST(FlexibilityTableFastSim, CaseRunTakesFlexibilitiesFromTheTable) {
   EXPECT_NE(recipe.find("was built with the flexibility coarsening 1 and is used with 0 (automatic)"), std::string::npos)
       << recipe;
   c.flexibility_coarsening = 1;  // the table's recipe
+  // ... and its contact reference (FlexibilityTable::check_contact_reference): a case on the smooth
+  // reference may not use a table built on first touch.
+  Case smooth = c;
+  smooth.wheel_rail.reference = ContactReference::smooth;
+  const std::string reference = error_of([&] { (void)run_case(smooth, options); });
+  EXPECT_NE(reference.find("was built on the first-touch contact reference and is used on the smooth one"),
+            std::string::npos)
+      << reference;
   const CaseResult tabled = run_case(c, options);
   EXPECT_FALSE(tabled.creepage_matrix.has_value());  // no K2
   ASSERT_TRUE(tabled.flexibility_table_values.has_value());

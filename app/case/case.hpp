@@ -10,6 +10,7 @@
 
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/wheel_rail.hpp"
 
 namespace railcontact {
 
@@ -28,6 +29,7 @@ struct WheelRailGeometry {
   std::string wheel_file;  // empty: the shipped S1002 wheel
   std::string rail_file;   // empty: the shipped UIC60 rail (inclined 1:40)
   double y_m = 0.0;        // wheelset lateral displacement; y < 0 towards the flange
+  ContactReference reference = ContactReference::smooth;  // key contact_reference (docs/WHEEL_RAIL.md §4)
 };
 
 struct CreepageInput {

@@ -56,6 +56,12 @@ void read_wheel_rail(Section& geometry, Case& c) {
   if (std::fabs(c.wheel_rail.y_m) > 0.05)
     throw Error(fmt::format("{}: [geometry] y = {} m is not a plausible lateral displacement (|y| <= 0.05 m)",
                             geometry.location("y"), c.wheel_rail.y_m));
+  if (const std::optional<std::string> reference = geometry.optional_string("contact_reference")) {
+    if (*reference != "smooth" && *reference != "first-touch")
+      throw Error(fmt::format("{}: [geometry] contact_reference must be \"smooth\" or \"first-touch\" (got \"{}\")",
+                              geometry.location("contact_reference"), printable_excerpt(*reference)));
+    c.wheel_rail.reference = parse_contact_reference(*reference);
+  }
 }
 
 void read_geometry(Section geometry, Case& c) {

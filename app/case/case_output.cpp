@@ -49,6 +49,7 @@ nlohmann::json patch_json(const CaseResult& r) {
     j["contact_angle_rad"] = s.contact_angle_rad;
     j["rolling_radius_m"] = s.rolling_radius_m;
     j["spin_per_m"] = s.spin_per_m;
+    j["contact_reference"] = contact_reference_name(r.input.wheel_rail.reference);
   }
   if (r.creepage_matrix) {
     const Eigen::Matrix3d& K = *r.creepage_matrix;
@@ -103,8 +104,11 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
   const PatchSummary& s = r.summary;
   fmt::print(out, "Case: {}\n", r.input.source);
   if (s.geometry == "wheel-rail")
-    fmt::print(out, "Patch: wheel-rail, y = {:.2f} mm, contact angle {:.4f} rad, rolling radius {:.2f} mm, spin from conicity {:.4f} 1/m\n",
-               1e3 * s.lateral_displacement_m, s.contact_angle_rad, 1e3 * s.rolling_radius_m, s.spin_per_m);
+    fmt::print(out,
+               "Patch: wheel-rail, y = {:.2f} mm, contact angle {:.4f} rad, rolling radius {:.2f} mm, spin from conicity "
+               "{:.4f} 1/m ({} contact reference)\n",
+               1e3 * s.lateral_displacement_m, s.contact_angle_rad, 1e3 * s.rolling_radius_m, s.spin_per_m,
+               contact_reference_name(r.input.wheel_rail.reference));
   fmt::print(out, "Patch: {} {:.3f} x {:.3f} mm (a, b{}), F3 = {:.1f} kN, area {:.2f} mm2, max pressure {:.0f} MPa\n",
              s.geometry, 1e3 * s.a_m, 1e3 * s.b_m, s.geometry == "ellipse" ? "" : " of the equivalent ellipse",
              1e-3 * s.normal_force_N, 1e6 * s.area_m2, 1e-6 * s.max_pressure_Pa);

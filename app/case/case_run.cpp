@@ -78,6 +78,7 @@ void check_table_fits(const FlexibilityTable& table, const Case& c, const WheelR
   table.check_profiles(pair);
   table.check_material(c.material, c.rolling.collocation_offset);
   table.check_recipe(c.flexibility_coarsening, c.rolling.collocation_offset);
+  table.check_contact_reference(c.wheel_rail.reference);
   (void)table.lookup(c.wheel_rail.y_m, c.normal_force_N);  // range and gaps
 }
 
@@ -89,6 +90,7 @@ ContactPatch wheel_rail_patch(const Case& c, const WheelRailPair& pair, PatchSum
   options.vertical_load_N = c.normal_force_N;
   options.target_elements = c.target_elements;
   options.material = c.material;
+  options.reference = c.wheel_rail.reference;
   const WheelRailPatch wr = solve_wheel_rail_patch(pair, c.wheel_rail.y_m, options);
   if (table != nullptr) table_values = table->lookup_for_patch(c.wheel_rail.y_m, c.normal_force_N, wr.area_m2);
   s.geometry = "wheel-rail";

@@ -149,6 +149,9 @@ class FlexibilityTable {
   // coarsening (NhFastSimOptions::flexibility_coarsening, 0: automatic, compared as recorded) and
   // K2's collocation offset. A case run with a table calls it with the case's values.
   void check_recipe(int flexibility_coarsening, double collocation_offset) const;
+  // Throws Error unless the patch's contact reference (smooth or first touch) is the table's: the
+  // two give patches of other shapes near a contact jump, and other flexibilities there.
+  void check_contact_reference(ContactReference reference) const;
 
   // Interpolated values at (y, Fz). Throws Error naming the range when y or Fz lies outside the
   // grid (a table with one load holds that load only), or naming the node when an interval next

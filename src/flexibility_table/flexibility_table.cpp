@@ -207,6 +207,15 @@ void FlexibilityTable::check_recipe(int flexibility_coarsening, double collocati
   });
 }
 
+void FlexibilityTable::check_contact_reference(ContactReference reference) const {
+  require(reference == metadata_.contact_reference, [&] {
+    return fmt::format("{} was built on the {} contact reference and is used on the {} one (a case's [geometry] "
+                       "contact_reference, railcontact patch --reference): use the table's reference, or build a table "
+                       "with this one",
+                       name(), contact_reference_name(metadata_.contact_reference), contact_reference_name(reference));
+  });
+}
+
 FlexibilityTableValues FlexibilityTable::lookup(double y_m, double vertical_load_N,
                                                 FlexibilityInterpolation interpolation) const {
   return interpolate(y_m, vertical_load_N, 0.0, interpolation);
