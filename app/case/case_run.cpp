@@ -184,6 +184,9 @@ void solve_patch(const Case& input, const FlexibilityTable* table, CaseResult& r
 // nH-FastSim with its flexibilities (from K2, or from the table) and the time its set-up took.
 struct NhFastSimSetUp {
   std::optional<NhFastSim> nh;  // empty when neither the normalisation nor the nh-fastsim solver needs it
+  // A wheel-rail patch of several lobes with flexibilities on the fly: nh-fastsim per lobe (nh
+  // still gives K2 of the whole patch for the report and the normalisation).
+  std::optional<NhFastSimPerLobe> per_lobe;
   double time_s = 0.0;
 };
 
@@ -207,6 +210,8 @@ NhFastSimSetUp set_up_nh_fastsim(const Case& input, CaseResult& result, std::ost
                        nh_options);
     else
       setup.nh.emplace(result.patch, nh_options);
+    if (wants_nh && !tabled && NhFastSimPerLobe::has_several_lobes(result.patch))
+      setup.per_lobe.emplace(result.patch, nh_options);
     setup.time_s = seconds_since(start);
     result.creepage_matrix = setup.nh->creepage_matrix();
   }
@@ -230,6 +235,15 @@ void resolve_creepage(const Case& input, const std::optional<NhFastSim>& nh, Cas
 SolverRun run_nh_fastsim(const NhFastSimSetUp& setup, bool tabled, const Creepage& creepage, double mu) {
   const NhFastSim& nh = *setup.nh;
   SolverRun run;
+  if (setup.per_lobe) {
+    const NhFastSimPerLobe& lobes = *setup.per_lobe;
+    run.flexibility = lobes.flexibility();
+    run.flexibility_source = fmt::format("K2 of each of its {} lobes (the most loaded one's shown)", lobes.lobe_count());
+    run.flexibility_time_s = setup.time_s;
+    run.iterations = lobes.krylov_iterations();
+    take_fastsim_result(lobes.solve(creepage, mu), run);
+    return run;
+  }
   run.flexibility = nh.flexibility();
   run.flexibility_source = tabled ? "table"
                            : nh.coarsening() > 1 ? fmt::format("K2 of the patch coarsened by {}", nh.coarsening())

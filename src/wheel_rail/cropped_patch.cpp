@@ -59,6 +59,14 @@ ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pr
   return ContactPatch(crop, p, material);
 }
 
+std::array<double, 2> equivalent_semi_axes(const Mesh& mesh, const std::vector<std::size_t>& elements) {
+  const IndexBox box = bounding_box(mesh, elements);
+  const double extent1 = (box.hi1 - box.lo1 + 1) * mesh.dx1_m, extent2 = (box.hi2 - box.lo2 + 1) * mesh.dx2_m;
+  const double area = static_cast<double>(elements.size()) * mesh.element_area_m2();
+  const double scale = std::sqrt(area / (M_PI * 0.25 * extent1 * extent2));
+  return {0.5 * extent1 * scale, 0.5 * extent2 * scale};
+}
+
 bool has_several_lobes(const ContactPatch& patch) {
   const std::vector<StripRun>& runs = patch.runs();  // strip by strip, x1 increasing
   std::vector<std::size_t> parent(runs.size());
@@ -84,6 +92,86 @@ bool has_several_lobes(const ContactPatch& patch) {
   for (std::size_t k = 1; k < runs.size(); ++k)
     if (root(k) != root(0)) return true;
   return false;
+}
+
+namespace {
+
+// The strip of the neck in `width` (elements per strip, strips in order), or -1 without one.
+int neck_strip(const std::vector<int>& width) {
+  const int n = static_cast<int>(width.size());
+  std::vector<int> below(static_cast<std::size_t>(n), 0), above(static_cast<std::size_t>(n), 0);
+  for (int i = 1; i < n; ++i) below[i] = std::max(below[i - 1], width[i - 1]);
+  for (int i = n - 2; i >= 0; --i) above[i] = std::max(above[i + 1], width[i + 1]);
+  int neck = -1;
+  double narrowest = kNeckWidthFraction;
+  for (int i = 1; i + 1 < n; ++i) {
+    const int sides = std::min(below[i], above[i]);
+    if (width[i] <= 0 || sides <= 0) continue;
+    const double ratio = static_cast<double>(width[i]) / sides;
+    if (ratio <= narrowest) {
+      narrowest = ratio;
+      neck = i;
+    }
+  }
+  return neck;
+}
+
+ContactRegion region_of(const Mesh& mesh, const std::vector<double>& pressure_Pa, std::vector<std::size_t> elements) {
+  ContactRegion r;
+  double x1 = 0.0, x2 = 0.0, p = 0.0;
+  for (std::size_t k : elements) {
+    const double pk = pressure_Pa[k];
+    p += pk;
+    x1 += pk * mesh.x1(static_cast<int>(k % static_cast<std::size_t>(mesh.n1)));
+    x2 += pk * mesh.x2(static_cast<int>(k / static_cast<std::size_t>(mesh.n1)));
+  }
+  r.elements = std::move(elements);
+  r.normal_force_N = p * mesh.element_area_m2();
+  r.x1_centre_m = p > 0.0 ? x1 / p : 0.0;
+  r.x2_centre_m = p > 0.0 ? x2 / p : 0.0;
+  return r;
+}
+
+void split_region(const Mesh& mesh, const std::vector<double>& pressure_Pa, ContactRegion region,
+                  std::vector<ContactRegion>& out) {
+  const auto row = [&](std::size_t k) { return static_cast<int>(k / static_cast<std::size_t>(mesh.n1)); };
+  const int first = row(region.elements.front()), last = row(region.elements.back());  // increasing indices
+  std::vector<int> width(static_cast<std::size_t>(last - first + 1), 0);
+  for (std::size_t k : region.elements) ++width[static_cast<std::size_t>(row(k) - first)];
+  const int neck = neck_strip(width);
+  if (neck < 0) {
+    out.push_back(std::move(region));
+    return;
+  }
+  std::vector<std::size_t> lower, upper;
+  for (std::size_t k : region.elements) (row(k) - first <= neck ? lower : upper).push_back(k);
+  split_region(mesh, pressure_Pa, region_of(mesh, pressure_Pa, std::move(lower)), out);
+  split_region(mesh, pressure_Pa, region_of(mesh, pressure_Pa, std::move(upper)), out);
+}
+
+}  // namespace
+
+bool has_neck(const ContactPatch& patch) {
+  const std::vector<StripRun>& runs = patch.runs();  // strip by strip
+  if (runs.empty()) return false;
+  const int first = runs.front().i2;
+  std::vector<int> width(static_cast<std::size_t>(runs.back().i2 - first + 1), 0);
+  for (const StripRun& r : runs) width[static_cast<std::size_t>(r.i2 - first)] += r.length();
+  return neck_strip(width) >= 0;
+}
+
+std::vector<ContactRegion> split_at_necks(const Mesh& mesh, const std::vector<double>& pressure_Pa,
+                                          std::vector<ContactRegion> regions) {
+  std::vector<ContactRegion> out;
+  double total = 0.0;
+  for (ContactRegion& r : regions) {
+    total += r.normal_force_N;
+    split_region(mesh, pressure_Pa, std::move(r), out);
+  }
+  for (ContactRegion& r : out) r.load_fraction = total > 0.0 ? r.normal_force_N / total : 0.0;
+  std::stable_sort(out.begin(), out.end(),
+                   [](const ContactRegion& a, const ContactRegion& b) { return a.normal_force_N > b.normal_force_N; });
+  return out;
 }
 
 }  // namespace railcontact::detail

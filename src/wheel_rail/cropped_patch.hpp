@@ -1,10 +1,12 @@
 #pragma once
 // A contact patch cut out of a potential-contact-area mesh: the bounding box of its elements in
 // contact, so that the tangential solvers' FFTs cover the patch only (docs/WHEEL_RAIL.md §2).
+#include <array>
 #include <cstddef>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
+#include "railcontact/normal.hpp"
 
 namespace railcontact::detail {
 
@@ -34,5 +36,32 @@ ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pr
 // contact_regions on a wheelset's potential area takes ~110 µs (89 x 133 elements; both timed
 // with throw-away loops, 2026-11-25).
 bool has_several_lobes(const ContactPatch& patch);
+
+// Necks: a patch of one connected lobe may still be two lobes joined by a narrow neck, such as the
+// tread and the flange root of S1002 on UIC60 at y = −5.25 mm, 98.1 kN (lobes 96 and 62 elements
+// wide joined by a neck of 5, at 0.17 mm elements). A strip (row of constant x2) is a neck when it
+// is at most kNeckWidthFraction as wide as the widest strip on each side of it; the narrowest
+// (relative to those) is the cut. The lobes on either side then take flexibilities of their own
+// (NhFastSimPerLobe), as if the neck were a gap.
+inline constexpr double kNeckWidthFraction = 0.25;
+// Whether the patch's strips have a neck (from its strip runs).
+bool has_neck(const ContactPatch& patch);
+// The regions split at their necks, recursively (the neck strip goes with the strips below it);
+// each part's normal force, load fraction and centre of pressure recomputed, sorted by decreasing
+// normal force. pressure_Pa: one value per mesh element.
+std::vector<ContactRegion> split_at_necks(const Mesh& mesh, const std::vector<double>& pressure_Pa,
+                                          std::vector<ContactRegion> regions);
+
+// The semi-axes (a, b) of the equivalent ellipse of a set of mesh elements (classical FastSim,
+// Eq 9, on a non-elliptical patch): the axis ratio of their bounding box, their area kept
+// (Piotrowski & Kik 2008).
+std::array<double, 2> equivalent_semi_axes(const Mesh& mesh, const std::vector<std::size_t>& elements);
+
+// nH-FastSim's K2 needs a patch of some extent: below kMinimumElementsForK2 elements in contact
+// (its spin coupling vanishes on a single strip), and below kFallbackElementsForK2 when the
+// adhesion solve fails, a patch just appeared takes the equivalent ellipse's flexibilities
+// (docs/WHEELSET.md §5). Shared by the wheelset and NhFastSimPerLobe.
+inline constexpr std::size_t kMinimumElementsForK2 = 20;
+inline constexpr std::size_t kFallbackElementsForK2 = 200;
 
 }  // namespace railcontact::detail

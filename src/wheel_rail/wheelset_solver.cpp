@@ -39,10 +39,9 @@ constexpr double kTangentialBalanceTolerance = 1e-5;
 constexpr double kCoarseTangentialBalanceTolerance = 1e-3;
 constexpr int kStrictBalancePasses = 6;
 constexpr double kBracketTolerance = 1e-5;
-// nH-FastSim's K2 needs a patch of some extent: below this many elements in contact, and below
-// kFallbackElementsForK2 when the adhesion solve fails, the equivalent ellipse's flexibilities serve.
-constexpr std::size_t kMinimumElementsForK2 = 20;
-constexpr std::size_t kFallbackElementsForK2 = 200;
+using detail::equivalent_semi_axes;
+using detail::kFallbackElementsForK2;
+using detail::kMinimumElementsForK2;
 
 Vector3 combine(const InterpenetrationRegion& r, double F1, double F2, double F3) {
   Vector3 f{};
@@ -283,74 +282,20 @@ PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& 
   return r;
 }
 
-// The semi-axes of the equivalent ellipse of a set of elements (classical FastSim, Eq 9): the
-// ratio of their bounding box's extents, their area kept.
-std::array<double, 2> equivalent_semi_axes(const Mesh& mesh, const std::vector<std::size_t>& elements) {
-  const detail::IndexBox box = detail::bounding_box(mesh, elements);
-  const double extent1 = (box.hi1 - box.lo1 + 1) * mesh.dx1_m, extent2 = (box.hi2 - box.lo2 + 1) * mesh.dx2_m;
-  const double area = static_cast<double>(elements.size()) * mesh.element_area_m2();
-  const double scale = std::sqrt(area / (M_PI * 0.25 * extent1 * extent2));
-  return {0.5 * extent1 * scale, 0.5 * extent2 * scale};
-}
-
-// The index on `mesh` of element e of a patch cut out of it (ContactPatch moved its origin to its
-// centre of pressure by x_shift: mesh coordinates = patch coordinates − shift).
-std::size_t mesh_index(const Mesh& mesh, const ContactPatch& patch, std::size_t e) {
-  const auto i1 = static_cast<int>(std::lround((patch.x1(e) - patch.x1_shift_m() - mesh.x1_first_m) / mesh.dx1_m));
-  const auto i2 = static_cast<int>(std::lround((patch.x2(e) - patch.x2_shift_m() - mesh.x2_first_m) / mesh.dx2_m));
-  return mesh.index(i1, i2);
-}
-
-// nH-FastSim on a patch of several connected contact regions (docs/WHEELSET.md §8): a merged
-// interpenetration region, such as the tread and the flange root of S1002 on UIC60 at y = −4.6 …
-// −5.7 mm, holds two lobes 10–20 mm apart. One set of flexibilities for both, from K2 of the whole
-// patch, misses the exact forces by up to 6.9 % of μF3; each lobe with its own flexibilities
-// (K2 of that lobe, coarsened and block-aligned as a patch of its own) and the creepages at its
-// own centre of pressure comes within 1.5 % (0.2 mm elements, y = −4.55 … −5.81 mm in 0.02 mm
-// steps). The lobes' elastic coupling is neglected, as FastSim neglects it within a patch. Forces
-// summed, M3 about the patch's centre of pressure (x1c, x2c), tractions onto the patch's elements.
-// mesh, pressure: the solve frame's potential area; creepage: at the reference point (solve frame).
-PatchSolverResult solve_nh_fastsim_by_lobe(const ContactPatch& patch, const Mesh& mesh,
-                                           const std::vector<double>& pressure_Pa,
-                                           const std::vector<ContactRegion>& lobes, const Creepage& creepage,
-                                           double x1c_m, double x2c_m, const WheelsetOptions& options) {
+// nH-FastSim per lobe on a patch of several connected lobes (NhFastSimPerLobe); creepage at the
+// patch's origin, its centre of pressure.
+PatchSolverResult solve_nh_fastsim_per_lobe(const ContactPatch& patch, const Creepage& creepage,
+                                            const WheelsetOptions& options) {
   PatchSolverResult r;
   r.solver = TangentialSolver::nh_fastsim;
-  std::vector<std::size_t> slot;  // mesh index -> element of `patch` (for the tractions)
+  const NhFastSimPerLobe per_lobe(patch, options.nh_fastsim);
+  r.flexibility = per_lobe.flexibility();  // the most loaded lobe's
+  FastSimResult f = per_lobe.solve(creepage, options.friction_coefficient);
+  r.forces = f.forces;
   if (options.keep_tractions) {
-    slot.assign(mesh.size(), patch.elements().count());
-    for (std::size_t e = 0; e < patch.elements().count(); ++e) slot[mesh_index(mesh, patch, e)] = e;
-    r.p1_Pa.assign(patch.elements().count(), 0.0);
-    r.p2_Pa.assign(patch.elements().count(), 0.0);
-    r.slip.assign(patch.elements().count(), 0);
-  }
-  for (std::size_t k = 0; k < lobes.size(); ++k) {
-    const ContactRegion& lobe = lobes[k];
-    ContactPatch part = detail::cropped_patch(mesh, pressure_Pa, lobe.elements, options.material);
-    WheelsetOptions part_options = options;
-    if (options.nh_fastsim.flexibility_coarsening == 0 && part.elements().count() >= kMinimumElementsForK2) {
-      const int block = NhFastSim::automatic_coarsening(part);
-      if (block > 1) {
-        part = detail::block_aligned_patch(mesh, pressure_Pa, lobe.elements, options.material, block);
-        part_options.nh_fastsim.flexibility_coarsening = block;
-      }
-    }
-    const double x1 = lobe.x1_centre_m, x2 = lobe.x2_centre_m;
-    const Creepage at_lobe{creepage.xi - creepage.phi * x2, creepage.eta + creepage.phi * x1, creepage.phi};
-    const std::array<double, 2> ab = equivalent_semi_axes(mesh, lobe.elements);
-    const PatchSolverResult s = solve_tangential(TangentialSolver::nh_fastsim, part, at_lobe, part_options, ab[0], ab[1]);
-    r.forces.F1_N += s.forces.F1_N;
-    r.forces.F2_N += s.forces.F2_N;
-    r.forces.M3_Nm += s.forces.M3_Nm + (x1 - x1c_m) * s.forces.F2_N - (x2 - x2c_m) * s.forces.F1_N;
-    if (k == 0) r.flexibility = s.flexibility;  // the most loaded lobe's
-    if (options.keep_tractions) {
-      for (std::size_t e = 0; e < part.elements().count(); ++e) {
-        const std::size_t to = slot[mesh_index(mesh, part, e)];
-        r.p1_Pa[to] = s.p1_Pa[e];
-        r.p2_Pa[to] = s.p2_Pa[e];
-        r.slip[to] = s.slip[e];
-      }
-    }
+    r.p1_Pa = std::move(f.p1_Pa);
+    r.p2_Pa = std::move(f.p2_Pa);
+    r.slip = std::move(f.slip);
   }
   return r;
 }
@@ -457,15 +402,12 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     const Creepage at_centre{c.xi - c.phi * x2c, c.eta + c.phi * patch.pressure_centre_x1_m, c.phi};
     // Semi-axes of the equivalent ellipse for classical FastSim: the extents' ratio, the area kept.
     const std::array<double, 2> ab = equivalent_semi_axes(mesh, elements);
-    // nH-FastSim on a patch of several connected lobes: each lobe with its own flexibilities.
-    const bool nh = std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) !=
-                    options.solvers.end();
-    const std::vector<ContactRegion> lobes =
-        nh && detail::has_several_lobes(contact) ? contact_regions(solve_mesh, solve_pressure) : std::vector<ContactRegion>{};
+    // nH-FastSim on a patch of several connected lobes: each lobe with its own flexibilities
+    // (NhFastSimPerLobe, docs/WHEELSET.md §8), coarsened as the caller asked (0: automatically).
+    const bool lobed = NhFastSimPerLobe::has_several_lobes(contact);
     for (TangentialSolver s : options.solvers) {
-      PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobes.size() > 1
-                                ? solve_nh_fastsim_by_lobe(contact, solve_mesh, solve_pressure, lobes, c,
-                                                           patch.pressure_centre_x1_m, x2c, options)
+      PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobed
+                                ? solve_nh_fastsim_per_lobe(contact, at_centre, options)
                                 : solve_tangential(s, contact, at_centre, solve_options, ab[0], ab[1]);
       r.forces.F2_N *= s2;
       r.forces.M3_Nm *= s2;

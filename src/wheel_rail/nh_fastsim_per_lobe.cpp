@@ -1,0 +1,148 @@
+// nH-FastSim per lobe of a patch (include/railcontact/wheel_rail.hpp, docs/WHEELSET.md §8): the
+// patch split into its 4-neighbour connected lobes, each with its own flexibilities and the
+// creepages at its own centre of pressure; forces summed, spin moment about the patch's origin.
+#include <array>
+#include <cmath>
+#include <optional>
+#include <utility>
+
+#include "railcontact/error.hpp"
+#include "railcontact/kalker.hpp"
+#include "railcontact/wheel_rail.hpp"
+#include "wheel_rail/cropped_patch.hpp"
+
+namespace railcontact {
+
+using detail::equivalent_semi_axes;
+using detail::kFallbackElementsForK2;
+using detail::kMinimumElementsForK2;
+
+struct NhFastSimPerLobe::Lobe {
+  ContactPatch part;
+  std::optional<NhFastSim> nh;  // empty: the equivalent-ellipse fallback below
+  std::optional<FastSim> fallback;
+  Flexibility fallback_flexibility;
+  double x1_centre_m = 0.0, x2_centre_m = 0.0;  // its centre of pressure in the patch's coordinates
+  std::vector<std::size_t> to_patch;            // element of `part` -> element of the patch
+
+  Lobe(ContactPatch p, const NhFastSimOptions& options, const Mesh& source, const std::vector<std::size_t>& elements)
+      : part(std::move(p)) {
+    if (part.elements().count() >= kMinimumElementsForK2) {
+      try {
+        nh.emplace(part, options);
+      } catch (const Error&) {
+        if (part.elements().count() >= kFallbackElementsForK2) throw;
+      }
+    }
+    if (!nh) {
+      const std::array<double, 2> ab = equivalent_semi_axes(source, elements);
+      fallback_flexibility = fastsim_flexibility(ab[0], ab[1], part.material());
+      fallback.emplace(part, options.bound);
+    }
+  }
+  [[nodiscard]] FastSimResult solve(const Creepage& c, double mu) const {
+    return nh ? nh->solve(c, mu) : fallback->solve(c, fallback_flexibility, mu);
+  }
+};
+
+NhFastSimPerLobe::NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOptions& options)
+    : patch_elements_(patch.elements().count()) {
+  const std::vector<std::size_t>& indices = patch.elements().indices();
+  // The mesh the patch was cut from: its coordinates are the patch's minus its shift.
+  Mesh source = patch.mesh();
+  source.x1_first_m -= patch.x1_shift_m();
+  source.x2_first_m -= patch.x2_shift_m();
+  if (!has_several_lobes(patch)) {
+    Lobe lobe(patch, options, source, indices);
+    lobe.to_patch.resize(patch_elements_);
+    for (std::size_t e = 0; e < patch_elements_; ++e) lobe.to_patch[e] = e;
+    lobes_.push_back(std::move(lobe));
+    return;
+  }
+  std::vector<double> pressure(source.size(), 0.0);
+  std::vector<std::size_t> slot(source.size(), patch_elements_);  // mesh index -> element of the patch
+  for (std::size_t e = 0; e < patch_elements_; ++e) {
+    pressure[indices[e]] = patch.pressure_Pa()[e];
+    slot[indices[e]] = e;
+  }
+  for (const ContactRegion& region : detail::split_at_necks(source, pressure, contact_regions(source, pressure))) {
+    ContactPatch part = detail::cropped_patch(source, pressure, region.elements, patch.material());
+    NhFastSimOptions part_options = options;
+    if (options.flexibility_coarsening == 0 && part.elements().count() >= kMinimumElementsForK2) {
+      const int block = NhFastSim::automatic_coarsening(part);
+      if (block > 1) {
+        part = detail::block_aligned_patch(source, pressure, region.elements, patch.material(), block);
+        part_options.flexibility_coarsening = block;
+      }
+    }
+    Lobe lobe(std::move(part), part_options, source, region.elements);
+    lobe.x1_centre_m = region.x1_centre_m + patch.x1_shift_m();
+    lobe.x2_centre_m = region.x2_centre_m + patch.x2_shift_m();
+    const ContactPatch& p = lobe.part;
+    lobe.to_patch.resize(p.elements().count());
+    for (std::size_t e = 0; e < p.elements().count(); ++e) {
+      const auto i1 = static_cast<int>(std::lround((p.x1(e) - p.x1_shift_m() - source.x1_first_m) / source.dx1_m));
+      const auto i2 = static_cast<int>(std::lround((p.x2(e) - p.x2_shift_m() - source.x2_first_m) / source.dx2_m));
+      lobe.to_patch[e] = slot[source.index(i1, i2)];
+    }
+    lobes_.push_back(std::move(lobe));
+  }
+}
+
+NhFastSimPerLobe::NhFastSimPerLobe(const NhFastSimPerLobe&) = default;
+NhFastSimPerLobe::NhFastSimPerLobe(NhFastSimPerLobe&&) noexcept = default;
+NhFastSimPerLobe& NhFastSimPerLobe::operator=(const NhFastSimPerLobe&) = default;
+NhFastSimPerLobe& NhFastSimPerLobe::operator=(NhFastSimPerLobe&&) noexcept = default;
+NhFastSimPerLobe::~NhFastSimPerLobe() = default;
+
+FastSimResult NhFastSimPerLobe::solve(const Creepage& creepage, double mu) const {
+  if (lobes_.size() == 1) return lobes_.front().solve(creepage, mu);
+  FastSimResult r;
+  r.p1_Pa.assign(patch_elements_, 0.0);
+  r.p2_Pa.assign(patch_elements_, 0.0);
+  r.slip.assign(patch_elements_, 0);
+  double adhesion_elements = 0.0;
+  for (const Lobe& lobe : lobes_) {
+    const double x1 = lobe.x1_centre_m, x2 = lobe.x2_centre_m;
+    // The rigid slip (ξ − φ x2, η + φ x1) gives the creepages at the lobe's centre of pressure.
+    const Creepage at_lobe{creepage.xi - creepage.phi * x2, creepage.eta + creepage.phi * x1, creepage.phi};
+    const FastSimResult s = lobe.solve(at_lobe, mu);
+    r.forces.F1_N += s.forces.F1_N;
+    r.forces.F2_N += s.forces.F2_N;
+    r.forces.M3_Nm += s.forces.M3_Nm + x1 * s.forces.F2_N - x2 * s.forces.F1_N;
+    for (std::size_t e = 0; e < lobe.to_patch.size(); ++e) {
+      const std::size_t to = lobe.to_patch[e];
+      if (to == patch_elements_) continue;  // a zero-pressure element of a block-aligned crop
+      r.p1_Pa[to] = s.p1_Pa[e];
+      r.p2_Pa[to] = s.p2_Pa[e];
+      r.slip[to] = s.slip[e];
+    }
+    adhesion_elements += s.adhesion_fraction * static_cast<double>(lobe.part.elements().count());
+  }
+  r.adhesion_fraction = adhesion_elements / static_cast<double>(patch_elements_);
+  return r;
+}
+
+bool NhFastSimPerLobe::has_several_lobes(const ContactPatch& patch) {
+  return detail::has_several_lobes(patch) || detail::has_neck(patch);
+}
+
+std::size_t NhFastSimPerLobe::lobe_count() const { return lobes_.size(); }
+
+const Flexibility& NhFastSimPerLobe::flexibility() const {
+  const Lobe& main = lobes_.front();  // contact_regions: by decreasing load
+  return main.nh ? main.nh->flexibility() : main.fallback_flexibility;
+}
+
+int NhFastSimPerLobe::coarsening() const {
+  const Lobe& main = lobes_.front();
+  return main.nh ? main.nh->coarsening() : 0;
+}
+
+int NhFastSimPerLobe::krylov_iterations() const {
+  int n = 0;
+  for (const Lobe& lobe : lobes_) n += lobe.nh ? lobe.nh->krylov_iterations() : 0;
+  return n;
+}
+
+}  // namespace railcontact
