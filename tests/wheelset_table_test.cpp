@@ -93,6 +93,57 @@ TEST(WheelsetTable, AtANodeWithTheFullPatchItIsTheWheelsetSolvedOnTheFly) {
   }
 }
 
+// Where the tread and the flange root form one patch of two lobes (y = −4.8 … −5.6 mm at 100 kN),
+// the table keeps each lobe's flexibilities and coarse patch (NhFastSimPerLobe, docs/WHEELSET.md
+// §8): at a node with the full patches it is the wheelset on the fly (forces to 1e-7 of the load),
+// as without lobes. With the whole patch's flexibilities (the lobes dropped) it is not: the right
+// wheel's longitudinal force moves by more than 1 % of μFz. The lobes survive a round trip.
+TEST(WheelsetTable, APatchOfTwoLobesIsSolvedPerLobeAsOnTheFly) {
+  const WheelsetTable t = build_wheelset_table(track(), {{-5.3e-3, -5.2e-3}, {0.0}, {100e3}}, coarse_table_options(100000));
+  const WheelsetTableNode& node = t.node(0, 0, 0);
+  ASSERT_EQ(node.wheels[0].size(), 1u);
+  ASSERT_EQ(node.wheels[0][0].lobes.size(), 2u);
+  EXPECT_TRUE(node.wheels[1][0].lobes.empty());  // the left wheel's tread
+  for (double y : {-5.3e-3, -5.2e-3}) {
+    const WheelsetState state = moving_state(y);
+    const WheelsetResult expected = on_the_fly(state, 100e3, 100e3);
+    const WheelsetResult got = t.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu);
+    for (int w = 0; w < 2; ++w) {
+      for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(got.wheels[w].force_track_N[i], expected.wheels[w].force_track_N[i], 1e-7 * 100e3)
+            << "y " << y << " wheel " << w << " component " << i;
+      EXPECT_NEAR(got.wheels[w].patches.front().forces().M3_Nm, expected.wheels[w].patches.front().forces().M3_Nm, 1e-9 * 100e3);
+    }
+  }
+  // The lobes dropped in the file: one set of flexibilities for the whole patch.
+  const std::string text = wheelset_table_json(t);
+  const WheelsetTable back = parse_wheelset_table(text, "lobes.json");
+  EXPECT_EQ(back.node(0, 0, 0).wheels[0][0].lobes.size(), 2u);
+  nlohmann::json without = nlohmann::json::parse(text);
+  for (auto& n : without["nodes"]) n["wheels"][0][0]["lobes"] = nlohmann::json::array();
+  const WheelsetTable whole = parse_wheelset_table(without.dump(), "whole.json");
+  const WheelsetState state = moving_state(-5.3e-3);
+  const double a = t.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu).wheels[0].force_track_N[0];
+  const double b = whole.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu).wheels[0].force_track_N[0];
+  EXPECT_EQ(back.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu).wheels[0].force_track_N[0], a);
+  EXPECT_GT(std::abs(a - b), 0.01 * kMu * 100e3) << a << " " << b;
+
+  // The left wheel at +y is the mirrored right wheel at −y, lobes included (a state without
+  // lateral velocity and yaw rate, so that it mirrors).
+  const WheelsetTable mirrored =
+      build_wheelset_table(track(), {{5.2e-3, 5.3e-3}, {0.0}, {100e3}}, coarse_table_options(100000));
+  ASSERT_EQ(mirrored.node(1, 0, 0).wheels[1][0].lobes.size(), 2u);
+  WheelsetState right = moving_state(-5.3e-3), left = moving_state(5.3e-3);
+  right.velocity.lateral_velocity_m_per_s = left.velocity.lateral_velocity_m_per_s = 0.0;
+  right.velocity.yaw_rate_rad_per_s = left.velocity.yaw_rate_rad_per_s = 0.0;
+  const WheelsetResult r = t.evaluate(right, WheelLoads{100e3, 100e3, false}, kMu);
+  const WheelsetResult l = mirrored.evaluate(left, WheelLoads{100e3, 100e3, false}, kMu);
+  EXPECT_NEAR(l.wheels[1].force_track_N[0], r.wheels[0].force_track_N[0], 1e-6 * 100e3);
+  EXPECT_NEAR(l.wheels[1].force_track_N[1], -r.wheels[0].force_track_N[1], 1e-6 * 100e3);
+  EXPECT_NEAR(l.wheels[1].force_track_N[2], r.wheels[0].force_track_N[2], 1e-6 * 100e3);
+  EXPECT_NEAR(l.wheels[1].patches.front().forces().M3_Nm, -r.wheels[0].patches.front().forces().M3_Nm, 1e-8 * 100e3);
+}
+
 // With yaw in the grid, a node in flange contact at yaw is the wheelset solved on the fly at that
 // yaw (the flange contact's lead included), and between yaw nodes 2 mrad apart the table stays
 // within 0.5 % of mu Fz (measured: 0.2 %; with one yaw node the error at y = −6.5 mm reaches 8 %,

@@ -247,6 +247,15 @@ class NhFastSimPerLobe {
   [[nodiscard]] FastSimResult solve(const Creepage& creepage, double mu) const;
 
   [[nodiscard]] std::size_t lobe_count() const;
+  // Lobe k (by decreasing load): its patch (the crop nH-FastSim solved, origin at its centre of
+  // pressure), its flexibilities (Eq 9 of its equivalent ellipse for a lobe too small for K2) and
+  // its centre of pressure in the patch's coordinates.
+  struct LobeView {
+    const ContactPatch& patch;
+    const Flexibility& flexibility;
+    double x1_centre_m, x2_centre_m;
+  };
+  [[nodiscard]] LobeView lobe(std::size_t k) const;
   // The most loaded lobe's flexibilities (those of the patch when it has one lobe).
   [[nodiscard]] const Flexibility& flexibility() const;
   // Its coarsening factor (NhFastSim::coarsening(); 0 for the equivalent-ellipse fallback).

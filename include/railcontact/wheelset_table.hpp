@@ -53,6 +53,16 @@ inline constexpr double kWheelsetTablePatchMatchDistance_m = 4e-3;
 
 // One patch of one wheel at one node, in that wheel's own terms (the left wheel's as it is, not
 // mirrored).
+// One lobe of a patch of several (tread and flange root joined: NhFastSimPerLobe, docs/WHEELSET.md
+// §8): its own flexibilities, centre of pressure and coarse patch.
+struct WheelsetTableLobe {
+  // Centre of pressure of its coarse patch from the patch's reference point (contact frame).
+  double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;
+  Flexibility flexibility;  // L1-L3 of nH-FastSim on this lobe
+  Mesh runtime_mesh;        // as the patch's: solve frame, origin at the lobe's centre of pressure
+  std::vector<double> runtime_pressure_Pa;
+};
+
 struct WheelsetTablePatch {
   Vector3 reference_point_track_m{};       // reference point, track frame (the node's y, yaw, height)
   Vector3 point_from_wheelset_centre_m{};  // the same from the wheelset centre
@@ -73,6 +83,10 @@ struct WheelsetTablePatch {
   // Empty (no elements) for a patch that has overlap but no element in contact yet.
   Mesh runtime_mesh;
   std::vector<double> runtime_pressure_Pa;  // per runtime_mesh element
+  // A patch of several lobes: FastSim on each lobe at lookup, with its own flexibilities and the
+  // creepages at its own centre, the forces summed (the patch's flexibility above is then its most
+  // loaded lobe's, for the record). Empty for a patch of one lobe.
+  std::vector<WheelsetTableLobe> lobes;
 };
 
 enum class WheelsetTableNodeStatus {
@@ -188,8 +202,12 @@ class WheelsetTable {
   WheelsetTableMetadata metadata_;
   std::string source_;
   // Per node and wheel, FastSim prepared on each patch's coarse copy (parallel to the patches;
-  // empty optional for a patch without elements).
-  std::vector<std::array<std::vector<std::optional<FastSim>>, 2>> runtime_;
+  // `whole` empty for a patch without elements), or on each of its lobes' coarse copies.
+  struct RuntimePatch {
+    std::optional<FastSim> whole;
+    std::vector<FastSim> lobes;  // parallel to WheelsetTablePatch::lobes
+  };
+  std::vector<std::array<std::vector<RuntimePatch>, 2>> runtime_;
 };
 
 // Builds the table over the grid. Nodes whose wheelset solve fails are kept as gaps (message), not

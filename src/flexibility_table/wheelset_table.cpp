@@ -44,12 +44,24 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
   if (!(p.max_pressure_Pa >= 0.0 && std::isfinite(p.max_pressure_Pa))) fail("the maximum pressure must be finite, >= 0");
   if (!std::isfinite(p.pressure_centre_x1_m) || !std::isfinite(p.pressure_centre_x2_m))
     fail("the centre of pressure must be finite");
-  if (p.runtime_pressure_Pa.empty()) return;  // a patch with overlap but no element in contact
-  const Flexibility& L = p.flexibility;
-  for (double l : {L.L1, L.L2, L.L3})
-    if (!(l > 0.0 && l < 1e-6)) fail("the flexibilities must lie in (0, 1e-6) m/Pa");
-  validate(p.runtime_mesh, 1u << 20);
-  if (p.runtime_pressure_Pa.size() != p.runtime_mesh.size()) fail("the runtime pressure needs one value per mesh element");
+  if (p.runtime_pressure_Pa.empty()) {  // a patch with overlap but no element in contact
+    if (!p.lobes.empty()) fail("a patch without elements in contact has no lobes");
+    return;
+  }
+  const auto check_runtime = [&](const Flexibility& L, const Mesh& mesh, const std::vector<double>& pressure_Pa) {
+    for (double l : {L.L1, L.L2, L.L3})
+      if (!(l > 0.0 && l < 1e-6)) fail("the flexibilities must lie in (0, 1e-6) m/Pa");
+    validate(mesh, 1u << 20);
+    if (pressure_Pa.size() != mesh.size()) fail("the runtime pressure needs one value per mesh element");
+  };
+  check_runtime(p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
+  if (p.lobes.size() == 1) fail("a patch of one lobe keeps no lobes (two or more, or none)");
+  for (const WheelsetTableLobe& l : p.lobes) {
+    if (!std::isfinite(l.pressure_centre_x1_m) || !std::isfinite(l.pressure_centre_x2_m))
+      fail("a lobe's centre of pressure must be finite");
+    if (l.runtime_pressure_Pa.empty()) fail("a lobe needs its runtime pressure");
+    check_runtime(l.flexibility, l.runtime_mesh, l.runtime_pressure_Pa);
+  }
 }
 
 // The interval of `grid` holding x and the weight of its upper node; a grid of one value holds
@@ -134,11 +146,11 @@ WheelsetTable::WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNo
       for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
         const WheelsetTablePatch& p = node.wheels[w][k];
         check_patch(p, n, w, k);
-        if (p.runtime_pressure_Pa.empty()) {
-          runtime_[n][w].emplace_back();
-        } else {
-          runtime_[n][w].emplace_back(FastSim(ContactPatch(p.runtime_mesh, p.runtime_pressure_Pa, material_), bound_));
-        }
+        RuntimePatch& runtime = runtime_[n][w].emplace_back();
+        if (!p.runtime_pressure_Pa.empty())
+          runtime.whole.emplace(ContactPatch(p.runtime_mesh, p.runtime_pressure_Pa, material_), bound_);
+        for (const WheelsetTableLobe& l : p.lobes)
+          runtime.lobes.emplace_back(ContactPatch(l.runtime_mesh, l.runtime_pressure_Pa, material_), bound_);
       }
     }
   }
@@ -235,13 +247,27 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
         frame.x3 = p.x3_axis;
         const Creepage creepage = kinematic_creepage(motion, frame);
         TangentialForces forces{};
-        if (const std::optional<FastSim>& fastsim = runtime_[n][w][k]) {
+        const RuntimePatch& runtime = runtime_[n][w][k];
+        if (runtime.whole) {
           // In the solve frame (x2 -> −x2 for a left wheel), at the coarse patch's centre of pressure.
           const Creepage c_solve{creepage.xi, s2 * creepage.eta, s2 * creepage.phi};
-          const double x2c = s2 * p.pressure_centre_x2_m;
-          const Creepage at_centre{c_solve.xi - c_solve.phi * x2c, c_solve.eta + c_solve.phi * p.pressure_centre_x1_m,
-                                   c_solve.phi};
-          forces = fastsim->forces(at_centre, p.flexibility, friction_coefficient);
+          const double x1c = p.pressure_centre_x1_m, x2c = s2 * p.pressure_centre_x2_m;
+          const auto at = [&](double x1, double x2) {
+            return Creepage{c_solve.xi - c_solve.phi * x2, c_solve.eta + c_solve.phi * x1, c_solve.phi};
+          };
+          if (runtime.lobes.empty()) {
+            forces = runtime.whole->forces(at(x1c, x2c), p.flexibility, friction_coefficient);
+          } else {
+            // Each lobe with its flexibilities at its own centre; M3 about the patch's centre.
+            for (std::size_t j = 0; j < runtime.lobes.size(); ++j) {
+              const WheelsetTableLobe& lobe = p.lobes[j];
+              const double x1 = lobe.pressure_centre_x1_m, x2 = s2 * lobe.pressure_centre_x2_m;
+              const TangentialForces f = runtime.lobes[j].forces(at(x1, x2), lobe.flexibility, friction_coefficient);
+              forces.F1_N += f.F1_N;
+              forces.F2_N += f.F2_N;
+              forces.M3_Nm += f.M3_Nm + (x1 - x1c) * f.F2_N - (x2 - x2c) * f.F1_N;
+            }
+          }
           forces.F2_N *= s2;
           forces.M3_Nm *= s2;
         }

@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <mutex>
 
 #include "railcontact/error.hpp"
+#include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset_table.hpp"
 #include "flexibility_table/strict_json.hpp"
 #include "railcontact/version.h"
@@ -26,7 +28,21 @@ int runtime_coarsening(const ContactPatch& fine, int target) {
   return std::clamp(static_cast<int>(std::floor(std::sqrt(std::max(1.0, ratio)))), 1, kMaximumCoarsening);
 }
 
-WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre, WheelSide side, int runtime_elements) {
+// The coarse copy of `fine` into mesh and pressure. Returns the coarse copy's centre of pressure
+// measured from the fine one's (zero when the copy is the patch itself, factor 1).
+std::array<double, 2> keep_runtime_copy(const ContactPatch& fine, int target, Mesh& mesh, std::vector<double>& pressure_Pa) {
+  const int factor = runtime_coarsening(fine, target);
+  const ContactPatch coarse = coarsened(fine, factor);
+  mesh = coarse.mesh();
+  pressure_Pa.assign(coarse.mesh().size(), 0.0);
+  const std::vector<std::size_t>& indices = coarse.elements().indices();
+  for (std::size_t e = 0; e < indices.size(); ++e) pressure_Pa[indices[e]] = coarse.pressure_Pa()[e];
+  if (factor == 1) return {0.0, 0.0};
+  return {-coarse.x1_shift_m(), -coarse.x2_shift_m()};
+}
+
+WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre, WheelSide side, int runtime_elements,
+                               const NhFastSimOptions& nh_fastsim) {
   WheelsetTablePatch t;
   const InterpenetrationRegion& region = patch.region;
   t.reference_point_track_m = region.reference_point_track_m;
@@ -47,18 +63,30 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   t.flexibility = patch.solvers.front().flexibility;
   if (patch.elements_in_contact == 0) return t;  // overlap, no element in contact yet
   // The kept patch is in the solve frame (mirrored for a left wheel) with its origin at the centre
-  // of pressure; the coarse copy is re-centred on its own, a fraction of an element away.
-  const int factor = runtime_coarsening(patch.patch, runtime_elements);
-  const ContactPatch coarse = coarsened(patch.patch, factor);
-  if (factor > 1) {  // the coarse patch's centre of pressure, measured from the fine one's
-    const double s2 = side == WheelSide::left ? -1.0 : 1.0;
-    t.pressure_centre_x1_m -= coarse.x1_shift_m();
-    t.pressure_centre_x2_m -= s2 * coarse.x2_shift_m();
+  // of pressure; the coarse copy is re-centred on its own, a fraction of an element away. Centres
+  // are kept in the contact frame: x2 = s2 × (solve frame x2).
+  const double s2 = side == WheelSide::left ? -1.0 : 1.0;
+  const std::array<double, 2> coarse = keep_runtime_copy(patch.patch, runtime_elements, t.runtime_mesh, t.runtime_pressure_Pa);
+  const double fine_x1 = t.pressure_centre_x1_m, fine_x2 = t.pressure_centre_x2_m;
+  t.pressure_centre_x1_m += coarse[0];
+  t.pressure_centre_x2_m += s2 * coarse[1];
+  // A patch of several lobes, as the wheelset solved it (the same NhFastSimPerLobe on the same
+  // patch): each lobe's flexibilities and coarse copy, its share of the runtime elements.
+  if (NhFastSimPerLobe::has_several_lobes(patch.patch)) {
+    const NhFastSimPerLobe per_lobe(patch.patch, nh_fastsim);
+    const double fine_elements = static_cast<double>(patch.patch.elements().count());
+    for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
+      const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);
+      WheelsetTableLobe l;
+      l.flexibility = lobe.flexibility;
+      const int target = std::max(
+          20, static_cast<int>(std::lround(runtime_elements * static_cast<double>(lobe.patch.elements().count()) / fine_elements)));
+      const std::array<double, 2> lobe_coarse = keep_runtime_copy(lobe.patch, target, l.runtime_mesh, l.runtime_pressure_Pa);
+      l.pressure_centre_x1_m = fine_x1 + lobe.x1_centre_m + lobe_coarse[0];
+      l.pressure_centre_x2_m = fine_x2 + s2 * (lobe.x2_centre_m + lobe_coarse[1]);
+      t.lobes.push_back(std::move(l));
+    }
   }
-  t.runtime_mesh = coarse.mesh();
-  t.runtime_pressure_Pa.assign(coarse.mesh().size(), 0.0);
-  const std::vector<std::size_t>& indices = coarse.elements().indices();
-  for (std::size_t e = 0; e < indices.size(); ++e) t.runtime_pressure_Pa[indices[e]] = coarse.pressure_Pa()[e];
   return t;
 }
 
@@ -116,7 +144,8 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
           node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
           const Vector3 centre{0.0, node.y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
           for (const WheelsetPatch& p : wheel.patches)
-            node.wheels[w].push_back(table_patch(p, centre, wheel.side, options.runtime_elements));
+            node.wheels[w].push_back(
+                table_patch(p, centre, wheel.side, options.runtime_elements, wheelset_options.nh_fastsim));
         }
       } catch (const Error& e) {
         node.status = WheelsetTableNodeStatus::failed;

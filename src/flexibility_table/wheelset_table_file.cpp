@@ -20,7 +20,9 @@ using nlohmann::json;
 
 constexpr const char* kKind = "wheelset table";
 constexpr const char* kFormat = "railcontact wheelset table";
-constexpr int kFormatVersion = 1;
+// Version 2 (2026-11-25): each patch's "lobes" (a patch of several lobes); version 1 files read as
+// patches without lobes.
+constexpr int kFormatVersion = 2;
 // The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
 // At most this many nodes (as a build makes) and elements per runtime mesh.
@@ -29,8 +31,21 @@ constexpr std::size_t kMaxRuntimeMeshElements = 1u << 20;
 
 json vector3(const Vector3& v) { return json::array({v[0], v[1], v[2]}); }
 
+json mesh_json(const Mesh& m) {
+  return json{{"n1", m.n1}, {"n2", m.n2}, {"dx1_m", m.dx1_m}, {"dx2_m", m.dx2_m}, {"x1_first_m", m.x1_first_m},
+              {"x2_first_m", m.x2_first_m}};
+}
+
+json flexibility_json(const Flexibility& L) { return json::array({L.L1, L.L2, L.L3}); }
+
 json patch_json(const WheelsetTablePatch& p) {
-  const Mesh& m = p.runtime_mesh;
+  json lobes = json::array();
+  for (const WheelsetTableLobe& l : p.lobes)
+    lobes.push_back(json{{"pressure_centre_x1_m", l.pressure_centre_x1_m},
+                         {"pressure_centre_x2_m", l.pressure_centre_x2_m},
+                         {"flexibility_m_per_Pa", flexibility_json(l.flexibility)},
+                         {"runtime_mesh", mesh_json(l.runtime_mesh)},
+                         {"runtime_pressure_Pa", l.runtime_pressure_Pa}});
   return json{{"reference_point_track_m", vector3(p.reference_point_track_m)},
               {"point_from_wheelset_centre_m", vector3(p.point_from_wheelset_centre_m)},
               {"x1_axis", vector3(p.x1_axis)},
@@ -46,11 +61,10 @@ json patch_json(const WheelsetTablePatch& p) {
               {"max_pressure_Pa", p.max_pressure_Pa},
               {"pressure_centre_x1_m", p.pressure_centre_x1_m},
               {"pressure_centre_x2_m", p.pressure_centre_x2_m},
-              {"flexibility_m_per_Pa", json::array({p.flexibility.L1, p.flexibility.L2, p.flexibility.L3})},
-              {"runtime_mesh",
-               {{"n1", m.n1}, {"n2", m.n2}, {"dx1_m", m.dx1_m}, {"dx2_m", m.dx2_m}, {"x1_first_m", m.x1_first_m},
-                {"x2_first_m", m.x2_first_m}}},
-              {"runtime_pressure_Pa", p.runtime_pressure_Pa}};
+              {"flexibility_m_per_Pa", flexibility_json(p.flexibility)},
+              {"runtime_mesh", mesh_json(p.runtime_mesh)},
+              {"runtime_pressure_Pa", p.runtime_pressure_Pa},
+              {"lobes", lobes}};
 }
 
 json node_json(const WheelsetTableNode& n) {
@@ -84,7 +98,37 @@ int read_int(StrictJsonReader& r, const std::string& key, int lo, int hi) {
   return static_cast<int>(n);
 }
 
-WheelsetTablePatch read_patch(StrictJsonReader r) {
+// flexibility_m_per_Pa, runtime_mesh and runtime_pressure_Pa of a patch or a lobe.
+void read_runtime(StrictJsonReader& r, Flexibility& flexibility, Mesh& mesh, std::vector<double>& pressure_Pa) {
+  const std::vector<double> L = r.numbers("flexibility_m_per_Pa");
+  if (L.size() != 3) r.fail(fmt::format("{} must be a list of 3 numbers", r.qualified("flexibility_m_per_Pa")));
+  flexibility = {L[0], L[1], L[2]};
+  {
+    StrictJsonReader m = r.child("runtime_mesh");
+    mesh.n1 = read_int(m, "n1", 0, 1 << 20);
+    mesh.n2 = read_int(m, "n2", 0, 1 << 20);
+    mesh.dx1_m = m.number("dx1_m");
+    mesh.dx2_m = m.number("dx2_m");
+    mesh.x1_first_m = m.number("x1_first_m");
+    mesh.x2_first_m = m.number("x2_first_m");
+    m.finish();
+    if (mesh.size() > kMaxRuntimeMeshElements)
+      m.fail(fmt::format("{} has {} × {} elements; at most {} are allowed", r.qualified("runtime_mesh"), mesh.n1,
+                         mesh.n2, kMaxRuntimeMeshElements));
+  }
+  pressure_Pa = r.numbers("runtime_pressure_Pa");
+  for (double x : pressure_Pa)
+    if (!std::isfinite(x) || x < 0.0)
+      r.fail(fmt::format("{} must hold finite, non-negative pressures", r.qualified("runtime_pressure_Pa")));
+  if (!pressure_Pa.empty() && pressure_Pa.size() != mesh.size())
+    r.fail(fmt::format("{} has {} values for a runtime mesh of {} elements", r.qualified("runtime_pressure_Pa"),
+                       pressure_Pa.size(), mesh.size()));
+}
+
+// At most this many lobes per patch (a build finds two).
+constexpr std::size_t kMaxLobes = 16;
+
+WheelsetTablePatch read_patch(StrictJsonReader r, int version) {
   WheelsetTablePatch p;
   p.reference_point_track_m = read_vector3(r, "reference_point_track_m");
   p.point_from_wheelset_centre_m = read_vector3(r, "point_from_wheelset_centre_m");
@@ -101,34 +145,26 @@ WheelsetTablePatch read_patch(StrictJsonReader r) {
   p.max_pressure_Pa = r.number("max_pressure_Pa");
   p.pressure_centre_x1_m = r.number("pressure_centre_x1_m");
   p.pressure_centre_x2_m = r.number("pressure_centre_x2_m");
-  const std::vector<double> L = r.numbers("flexibility_m_per_Pa");
-  if (L.size() != 3) r.fail(fmt::format("{} must be a list of 3 numbers", r.qualified("flexibility_m_per_Pa")));
-  p.flexibility = {L[0], L[1], L[2]};
-  {
-    StrictJsonReader m = r.child("runtime_mesh");
-    p.runtime_mesh.n1 = read_int(m, "n1", 0, 1 << 20);
-    p.runtime_mesh.n2 = read_int(m, "n2", 0, 1 << 20);
-    p.runtime_mesh.dx1_m = m.number("dx1_m");
-    p.runtime_mesh.dx2_m = m.number("dx2_m");
-    p.runtime_mesh.x1_first_m = m.number("x1_first_m");
-    p.runtime_mesh.x2_first_m = m.number("x2_first_m");
-    m.finish();
-    if (p.runtime_mesh.size() > kMaxRuntimeMeshElements)
-      m.fail(fmt::format("{} has {} × {} elements; at most {} are allowed", r.qualified("runtime_mesh"),
-                         p.runtime_mesh.n1, p.runtime_mesh.n2, kMaxRuntimeMeshElements));
+  read_runtime(r, p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
+  if (version >= 2) {
+    const json& lobes = r.array("lobes");
+    if (lobes.size() > kMaxLobes)
+      r.fail(fmt::format("{} has {} lobes; at most {} are allowed", r.qualified("lobes"), lobes.size(), kMaxLobes));
+    for (std::size_t j = 0; j < lobes.size(); ++j) {
+      StrictJsonReader l = r.item(lobes[j], fmt::format("{}[{}]", r.qualified("lobes"), j));
+      WheelsetTableLobe lobe;
+      lobe.pressure_centre_x1_m = l.number("pressure_centre_x1_m");
+      lobe.pressure_centre_x2_m = l.number("pressure_centre_x2_m");
+      read_runtime(l, lobe.flexibility, lobe.runtime_mesh, lobe.runtime_pressure_Pa);
+      l.finish();
+      p.lobes.push_back(std::move(lobe));
+    }
   }
-  p.runtime_pressure_Pa = r.numbers("runtime_pressure_Pa");
-  for (double x : p.runtime_pressure_Pa)
-    if (!std::isfinite(x) || x < 0.0)
-      r.fail(fmt::format("{} must hold finite, non-negative pressures", r.qualified("runtime_pressure_Pa")));
-  if (!p.runtime_pressure_Pa.empty() && p.runtime_pressure_Pa.size() != p.runtime_mesh.size())
-    r.fail(fmt::format("{} has {} values for a runtime mesh of {} elements", r.qualified("runtime_pressure_Pa"),
-                       p.runtime_pressure_Pa.size(), p.runtime_mesh.size()));
   r.finish();
   return p;
 }
 
-WheelsetTableNode read_node(StrictJsonReader r) {
+WheelsetTableNode read_node(StrictJsonReader r, int version) {
   WheelsetTableNode n;
   n.y_m = r.number("y_m");
   n.yaw_rad = r.number("yaw_rad");
@@ -146,7 +182,8 @@ WheelsetTableNode read_node(StrictJsonReader r) {
   for (std::size_t w = 0; w < 2; ++w) {
     if (!wheels[w].is_array()) r.fail(fmt::format("{}[{}] must be a list of patches", r.qualified("wheels"), w));
     for (std::size_t k = 0; k < wheels[w].size(); ++k)
-      n.wheels[w].push_back(read_patch(r.item(wheels[w][k], fmt::format("{}[{}][{}]", r.qualified("wheels"), w, k))));
+      n.wheels[w].push_back(
+          read_patch(r.item(wheels[w][k], fmt::format("{}[{}][{}]", r.qualified("wheels"), w, k)), version));
   }
   if (n.status != WheelsetTableNodeStatus::solved && (!n.wheels[0].empty() || !n.wheels[1].empty()))
     r.fail(fmt::format("{} must be empty lists: the node is not solved", r.qualified("wheels")));
@@ -188,7 +225,7 @@ std::vector<WheelsetTableNode> parse_wheelset_table_nodes(const std::string& tex
   std::vector<WheelsetTableNode> nodes;
   if (!root.is_array()) throw Error("wheelset table nodes: not a list");
   for (std::size_t k = 0; k < root.size(); ++k)
-    nodes.push_back(read_node(StrictJsonReader(root[k], fmt::format("nodes[{}]", k), source, kKind)));
+    nodes.push_back(read_node(StrictJsonReader(root[k], fmt::format("nodes[{}]", k), source, kKind), kFormatVersion));
   return nodes;
 }
 }  // namespace detail
@@ -230,9 +267,10 @@ WheelsetTable parse_wheelset_table(const std::string& text, const std::string& s
     r.fail(fmt::format("not a wheelset table (the key 'format' must be \"{}\")", kFormat));
   r.get("format");
   const json& version = r.get("format_version");
-  if (!version.is_number_integer() || version.get<int>() != kFormatVersion)
-    r.fail(fmt::format("format_version {} is not supported (this railcontact reads version {})",
+  if (!version.is_number_integer() || version.get<int>() < 1 || version.get<int>() > kFormatVersion)
+    r.fail(fmt::format("format_version {} is not supported (this railcontact reads versions 1 to {})",
                        detail::quoted_json_value(version), kFormatVersion));
+  const int format_version = version.get<int>();
   WheelsetTableMetadata metadata = read_metadata(r);
   Material material;
   {
@@ -254,7 +292,8 @@ WheelsetTable parse_wheelset_table(const std::string& text, const std::string& s
   const json& node_list = r.array("nodes");
   if (node_list.size() != grid.size())
     r.fail(fmt::format("nodes has {} entries for {} y values × {} yaws × {} loads", node_list.size(), ny, nyaw, nl));
-  for (std::size_t k = 0; k < node_list.size(); ++k) nodes.push_back(read_node(r.item(node_list[k], fmt::format("nodes[{}]", k))));
+  for (std::size_t k = 0; k < node_list.size(); ++k)
+    nodes.push_back(read_node(r.item(node_list[k], fmt::format("nodes[{}]", k)), format_version));
   r.finish();
   try {
     validate(material);

@@ -6,6 +6,8 @@
 #include <optional>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 #include "railcontact/wheel_rail.hpp"
@@ -128,6 +130,13 @@ bool NhFastSimPerLobe::has_several_lobes(const ContactPatch& patch) {
 }
 
 std::size_t NhFastSimPerLobe::lobe_count() const { return lobes_.size(); }
+
+NhFastSimPerLobe::LobeView NhFastSimPerLobe::lobe(std::size_t k) const {
+  if (k >= lobes_.size())
+    throw Error(fmt::format("NhFastSimPerLobe: lobe {} of a patch of {} lobes", k, lobes_.size()));
+  const Lobe& l = lobes_[k];
+  return {l.part, l.nh ? l.nh->flexibility() : l.fallback_flexibility, l.x1_centre_m, l.x2_centre_m};
+}
 
 const Flexibility& NhFastSimPerLobe::flexibility() const {
   const Lobe& main = lobes_.front();  // contact_regions: by decreasing load
