@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include "case/case_run.hpp"
@@ -63,9 +64,30 @@ TEST(NhFastSimPerLobe, OneLobeIsNhFastSim) {
   EXPECT_EQ(per_lobe.flexibility().L1, nh.flexibility().L1);
 }
 
-// Each lobe solved on its own (its own patch, NhFastSim, the rigid slip at its centre of
-// pressure), summed by hand, with M3 moved to the patch's origin: what NhFastSimPerLobe must give,
-// whether the lobes lie apart or are joined by a neck 3 elements wide.
+// Each lobe solved on its own (its own patch, NhFastSim with coarsening 1, the rigid slip at its
+// centre of pressure), the elements below and above x2 = cut (the neck goes with the lower lobe),
+// summed by hand with M3 moved to the patch's origin.
+TangentialForces lobes_by_hand(const TwoLobes& t, const ContactPatch& patch, const Creepage& c, double mu,
+                               double cut_m = 2.5e-3) {
+  std::vector<double> lower = t.pressure_Pa, upper = t.pressure_Pa;
+  for (int i2 = 0; i2 < t.mesh.n2; ++i2)
+    for (int i1 = 0; i1 < t.mesh.n1; ++i1) (t.mesh.x2(i2) < cut_m ? upper : lower)[t.mesh.index(i1, i2)] = 0.0;
+  TangentialForces sum;
+  for (const std::vector<double>* p : {&lower, &upper}) {
+    const ContactPatch lobe(t.mesh, *p, Material{});
+    // The lobe's centre of pressure in the patch's coordinates (both are shifts of the mesh).
+    const double x1 = patch.x1_shift_m() - lobe.x1_shift_m(), x2 = patch.x2_shift_m() - lobe.x2_shift_m();
+    const Creepage at_lobe{c.xi - c.phi * x2, c.eta + c.phi * x1, c.phi};
+    const TangentialForces f = NhFastSim(lobe, NhFastSimOptions{.flexibility_coarsening = 1}).forces(at_lobe, mu);
+    sum.F1_N += f.F1_N;
+    sum.F2_N += f.F2_N;
+    sum.M3_Nm += f.M3_Nm + x1 * f.F2_N - x2 * f.F1_N;
+  }
+  return sum;
+}
+
+// What NhFastSimPerLobe must give, whether the lobes lie apart or are joined by a neck 3 elements
+// wide (ratio 3/24 of the small lobe's widest strip: below a quarter, no blending).
 TEST(NhFastSimPerLobe, TwoLobesAreEachLobesNhFastSimSummed) {
   for (int neck : {0, 3}) {
     SCOPED_TRACE("neck width " + std::to_string(neck));
@@ -76,27 +98,10 @@ TEST(NhFastSimPerLobe, TwoLobesAreEachLobesNhFastSimSummed) {
     ASSERT_TRUE(NhFastSimPerLobe::has_several_lobes(patch));
     const NhFastSimPerLobe per_lobe(patch, NhFastSimOptions{.flexibility_coarsening = 1});
     ASSERT_EQ(per_lobe.lobe_count(), 2u);
-
-    // By hand: the elements below and above x2 = 2.5 mm (the neck goes with the lower lobe).
-    std::vector<double> lower = t.pressure_Pa, upper = t.pressure_Pa;
-    for (int i2 = 0; i2 < t.mesh.n2; ++i2)
-      for (int i1 = 0; i1 < t.mesh.n1; ++i1) (t.mesh.x2(i2) < 2.5e-3 ? upper : lower)[t.mesh.index(i1, i2)] = 0.0;
+    EXPECT_EQ(per_lobe.whole_patch_weight(), 0.0);
     const Creepage c{2e-3, 1e-3, 0.6};  // at the patch's origin, its centre of pressure
     const double mu = 0.3;
-    TangentialForces sum;
-    double force_lobes = 0.0;
-    for (const std::vector<double>* p : {&lower, &upper}) {
-      const ContactPatch lobe(t.mesh, *p, Material{});
-      force_lobes += lobe.normal_force_N();
-      // The lobe's centre of pressure in the patch's coordinates (both are shifts of the mesh).
-      const double x1 = patch.x1_shift_m() - lobe.x1_shift_m(), x2 = patch.x2_shift_m() - lobe.x2_shift_m();
-      const Creepage at_lobe{c.xi - c.phi * x2, c.eta + c.phi * x1, c.phi};
-      const TangentialForces f = NhFastSim(lobe, NhFastSimOptions{.flexibility_coarsening = 1}).forces(at_lobe, mu);
-      sum.F1_N += f.F1_N;
-      sum.F2_N += f.F2_N;
-      sum.M3_Nm += f.M3_Nm + x1 * f.F2_N - x2 * f.F1_N;
-    }
-    EXPECT_NEAR(force_lobes, patch.normal_force_N(), 1e-9 * patch.normal_force_N());
+    const TangentialForces sum = lobes_by_hand(t, patch, c, mu);
     const FastSimResult r = per_lobe.solve(c, mu);
     const double scale = mu * patch.normal_force_N();
     EXPECT_NEAR(r.forces.F1_N, sum.F1_N, 1e-10 * scale);
@@ -110,6 +115,37 @@ TEST(NhFastSimPerLobe, TwoLobesAreEachLobesNhFastSimSummed) {
     }
     EXPECT_NEAR(F1, r.forces.F1_N, 1e-9 * scale);
     EXPECT_NEAR(F2, r.forces.F2_N, 1e-9 * scale);
+  }
+}
+
+// A neck between a quarter and half the lobes' width is blended: the whole patch's forces with the
+// weight (r − 1/4) / (1/4), linear in the neck's ratio r (from half on the patch is one lobe), so
+// that the forces move continuously as a neck widens, where without the blend they would jump from
+// the lobes' to the whole patch's. The small lobe's widest strip is 24 elements, its first strip 8:
+// a band of 7 is the neck (r = 7/24, the cut above its top strip); with a band of 9 or 11 the small
+// lobe's first strip is narrower than the band and is the neck (r = 8/24, the cut above it).
+TEST(NhFastSimPerLobe, AWideningNeckBlendsIntoTheWholePatch) {
+  const Creepage c{2e-3, 1e-3, 0.6};
+  const double mu = 0.3;
+  const NhFastSimOptions options{.flexibility_coarsening = 1};
+  for (const auto& [neck, ratio, cut_m] : {std::tuple{7, 7.0 / 24, 2.5e-3}, std::tuple{9, 8.0 / 24, 2.75e-3},
+                                           std::tuple{11, 8.0 / 24, 2.75e-3}}) {
+    SCOPED_TRACE("neck width " + std::to_string(neck));
+    const TwoLobes t = two_lobes(neck);
+    const ContactPatch patch(t.mesh, t.pressure_Pa, Material{});
+    EXPECT_NEAR(detail::neck_ratio(patch), ratio, 1e-15);
+    const NhFastSimPerLobe per_lobe(patch, options);
+    ASSERT_EQ(per_lobe.lobe_count(), 2u);
+    const double w = (ratio - 0.25) / 0.25;
+    EXPECT_NEAR(per_lobe.whole_patch_weight(), w, 1e-15);
+    ASSERT_NE(per_lobe.whole_patch_flexibility(), nullptr);
+    const TangentialForces whole = NhFastSim(patch, options).forces(c, mu);
+    const TangentialForces lobes = lobes_by_hand(t, patch, c, mu, cut_m);
+    const TangentialForces got = per_lobe.solve(c, mu).forces;
+    const double scale = mu * patch.normal_force_N();
+    EXPECT_NEAR(got.F1_N, (1 - w) * lobes.F1_N + w * whole.F1_N, 1e-10 * scale);
+    EXPECT_NEAR(got.F2_N, (1 - w) * lobes.F2_N + w * whole.F2_N, 1e-10 * scale);
+    EXPECT_NEAR(got.M3_Nm, (1 - w) * lobes.M3_Nm + w * whole.M3_Nm, 1e-12 * scale);
   }
 }
 

@@ -230,7 +230,8 @@ namespace railcontact {
 // thread-safe.
 class NhFastSimPerLobe {
  public:
-  // Whether the patch's elements form more than one lobe (then it is worth more than NhFastSim).
+  // Whether the patch's elements form more than one lobe, or two joined by a neck (then it is
+  // worth more than NhFastSim).
   [[nodiscard]] static bool has_several_lobes(const ContactPatch& patch);
 
   // Throws Error as NhFastSim does (for a lobe of 200 elements or more whose K2 fails).
@@ -262,10 +263,19 @@ class NhFastSimPerLobe {
   [[nodiscard]] int coarsening() const;
   // GMRES iterations of all the lobes' K2 solves.
   [[nodiscard]] int krylov_iterations() const;
+  // A patch whose neck lies between a quarter and half the width of its lobes is solved both per
+  // lobe and whole, the results blended with this weight of the whole patch's (0 otherwise;
+  // linear in the neck's ratio, so that the forces do not jump where a widening neck stops being
+  // one: src/wheel_rail/cropped_patch.hpp); the whole patch's flexibilities then (else nullptr).
+  [[nodiscard]] double whole_patch_weight() const { return whole_weight_; }
+  [[nodiscard]] const Flexibility* whole_patch_flexibility() const;
 
  private:
   struct Lobe;
+  [[nodiscard]] FastSimResult solve_lobes(const Creepage& creepage, double mu) const;
   std::vector<Lobe> lobes_;
+  std::vector<Lobe> whole_;  // the whole patch, when blended (at most one)
+  double whole_weight_ = 0.0;
   std::size_t patch_elements_ = 0;
 };
 

@@ -87,6 +87,10 @@ struct WheelsetTablePatch {
   // creepages at its own centre, the forces summed (the patch's flexibility above is then its most
   // loaded lobe's, for the record). Empty for a patch of one lobe.
   std::vector<WheelsetTableLobe> lobes;
+  // A patch whose neck is between a quarter and half its lobes' width (NhFastSimPerLobe::
+  // whole_patch_weight): the lobes' forces blended with the whole patch's (FastSim on the runtime
+  // patch with `flexibility`, then the whole patch's) with this weight in (0, 1); 0 otherwise.
+  double whole_patch_weight = 0.0;
 };
 
 enum class WheelsetTableNodeStatus {

@@ -56,6 +56,8 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
   };
   check_runtime(p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
   if (p.lobes.size() == 1) fail("a patch of one lobe keeps no lobes (two or more, or none)");
+  if (!(p.whole_patch_weight >= 0.0 && p.whole_patch_weight < 1.0) || (p.whole_patch_weight > 0.0 && p.lobes.empty()))
+    fail("the whole patch's weight must lie in [0, 1), and be 0 without lobes");
   for (const WheelsetTableLobe& l : p.lobes) {
     if (!std::isfinite(l.pressure_centre_x1_m) || !std::isfinite(l.pressure_centre_x2_m))
       fail("a lobe's centre of pressure must be finite");
@@ -266,6 +268,12 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
               forces.F1_N += f.F1_N;
               forces.F2_N += f.F2_N;
               forces.M3_Nm += f.M3_Nm + (x1 - x1c) * f.F2_N - (x2 - x2c) * f.F1_N;
+            }
+            if (const double blend = p.whole_patch_weight; blend > 0.0) {  // a widening neck: blended
+              const TangentialForces whole = runtime.whole->forces(at(x1c, x2c), p.flexibility, friction_coefficient);
+              forces.F1_N = (1.0 - blend) * forces.F1_N + blend * whole.F1_N;
+              forces.F2_N = (1.0 - blend) * forces.F2_N + blend * whole.F2_N;
+              forces.M3_Nm = (1.0 - blend) * forces.M3_Nm + blend * whole.M3_Nm;
             }
           }
           forces.F2_N *= s2;

@@ -74,6 +74,10 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   // patch): each lobe's flexibilities and coarse copy, its share of the runtime elements.
   if (NhFastSimPerLobe::has_several_lobes(patch.patch)) {
     const NhFastSimPerLobe per_lobe(patch.patch, nh_fastsim);
+    if (const Flexibility* whole = per_lobe.whole_patch_flexibility()) {
+      t.whole_patch_weight = per_lobe.whole_patch_weight();
+      t.flexibility = *whole;
+    }
     const double fine_elements = static_cast<double>(patch.patch.elements().count());
     for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
       const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);

@@ -64,7 +64,8 @@ json patch_json(const WheelsetTablePatch& p) {
               {"flexibility_m_per_Pa", flexibility_json(p.flexibility)},
               {"runtime_mesh", mesh_json(p.runtime_mesh)},
               {"runtime_pressure_Pa", p.runtime_pressure_Pa},
-              {"lobes", lobes}};
+              {"lobes", lobes},
+              {"whole_patch_weight", p.whole_patch_weight}};
 }
 
 json node_json(const WheelsetTableNode& n) {
@@ -159,6 +160,7 @@ WheelsetTablePatch read_patch(StrictJsonReader r, int version) {
       l.finish();
       p.lobes.push_back(std::move(lobe));
     }
+    p.whole_patch_weight = r.number("whole_patch_weight");
   }
   r.finish();
   return p;

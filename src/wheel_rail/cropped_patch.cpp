@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace railcontact::detail {
 
@@ -96,24 +97,35 @@ bool has_several_lobes(const ContactPatch& patch) {
 
 namespace {
 
-// The strip of the neck in `width` (elements per strip, strips in order), or -1 without one.
-int neck_strip(const std::vector<int>& width) {
+// The narrowest neck in `width` (elements per strip, strips in order): its strip and ratio (-1 and
+// +infinity without a valley).
+struct Neck {
+  int strip = -1;
+  double ratio = std::numeric_limits<double>::infinity();
+};
+Neck narrowest_neck(const std::vector<int>& width) {
   const int n = static_cast<int>(width.size());
   std::vector<int> below(static_cast<std::size_t>(n), 0), above(static_cast<std::size_t>(n), 0);
   for (int i = 1; i < n; ++i) below[i] = std::max(below[i - 1], width[i - 1]);
   for (int i = n - 2; i >= 0; --i) above[i] = std::max(above[i + 1], width[i + 1]);
-  int neck = -1;
-  double narrowest = kNeckWidthFraction;
+  Neck neck;
   for (int i = 1; i + 1 < n; ++i) {
     const int sides = std::min(below[i], above[i]);
-    if (width[i] <= 0 || sides <= 0) continue;
+    if (width[i] <= 0 || sides <= 0 || width[i] >= sides) continue;
     const double ratio = static_cast<double>(width[i]) / sides;
-    if (ratio <= narrowest) {
-      narrowest = ratio;
-      neck = i;
-    }
+    if (ratio <= neck.ratio) neck = {i, ratio};
   }
   return neck;
+}
+
+// Elements per strip of a patch, from its strip runs.
+std::vector<int> strip_widths(const ContactPatch& patch) {
+  const std::vector<StripRun>& runs = patch.runs();  // strip by strip
+  if (runs.empty()) return {};
+  const int first = runs.front().i2;
+  std::vector<int> width(static_cast<std::size_t>(runs.back().i2 - first + 1), 0);
+  for (const StripRun& r : runs) width[static_cast<std::size_t>(r.i2 - first)] += r.length();
+  return width;
 }
 
 ContactRegion region_of(const Mesh& mesh, const std::vector<double>& pressure_Pa, std::vector<std::size_t> elements) {
@@ -132,41 +144,36 @@ ContactRegion region_of(const Mesh& mesh, const std::vector<double>& pressure_Pa
   return r;
 }
 
-void split_region(const Mesh& mesh, const std::vector<double>& pressure_Pa, ContactRegion region,
+void split_region(const Mesh& mesh, const std::vector<double>& pressure_Pa, ContactRegion region, double fraction,
                   std::vector<ContactRegion>& out) {
   const auto row = [&](std::size_t k) { return static_cast<int>(k / static_cast<std::size_t>(mesh.n1)); };
   const int first = row(region.elements.front()), last = row(region.elements.back());  // increasing indices
   std::vector<int> width(static_cast<std::size_t>(last - first + 1), 0);
   for (std::size_t k : region.elements) ++width[static_cast<std::size_t>(row(k) - first)];
-  const int neck = neck_strip(width);
-  if (neck < 0) {
+  const Neck neck = narrowest_neck(width);
+  if (neck.ratio > fraction) {
     out.push_back(std::move(region));
     return;
   }
   std::vector<std::size_t> lower, upper;
-  for (std::size_t k : region.elements) (row(k) - first <= neck ? lower : upper).push_back(k);
-  split_region(mesh, pressure_Pa, region_of(mesh, pressure_Pa, std::move(lower)), out);
-  split_region(mesh, pressure_Pa, region_of(mesh, pressure_Pa, std::move(upper)), out);
+  for (std::size_t k : region.elements) (row(k) - first <= neck.strip ? lower : upper).push_back(k);
+  split_region(mesh, pressure_Pa, region_of(mesh, pressure_Pa, std::move(lower)), fraction, out);
+  split_region(mesh, pressure_Pa, region_of(mesh, pressure_Pa, std::move(upper)), fraction, out);
 }
 
 }  // namespace
 
-bool has_neck(const ContactPatch& patch) {
-  const std::vector<StripRun>& runs = patch.runs();  // strip by strip
-  if (runs.empty()) return false;
-  const int first = runs.front().i2;
-  std::vector<int> width(static_cast<std::size_t>(runs.back().i2 - first + 1), 0);
-  for (const StripRun& r : runs) width[static_cast<std::size_t>(r.i2 - first)] += r.length();
-  return neck_strip(width) >= 0;
-}
+double neck_ratio(const ContactPatch& patch) { return narrowest_neck(strip_widths(patch)).ratio; }
+
+bool has_neck(const ContactPatch& patch) { return neck_ratio(patch) <= kNeckWidthFraction; }
 
 std::vector<ContactRegion> split_at_necks(const Mesh& mesh, const std::vector<double>& pressure_Pa,
-                                          std::vector<ContactRegion> regions) {
+                                          std::vector<ContactRegion> regions, double fraction) {
   std::vector<ContactRegion> out;
   double total = 0.0;
   for (ContactRegion& r : regions) {
     total += r.normal_force_N;
-    split_region(mesh, pressure_Pa, std::move(r), out);
+    split_region(mesh, pressure_Pa, std::move(r), fraction, out);
   }
   for (ContactRegion& r : out) r.load_fraction = total > 0.0 ? r.normal_force_N / total : 0.0;
   std::stable_sort(out.begin(), out.end(),

@@ -39,18 +39,23 @@ bool has_several_lobes(const ContactPatch& patch);
 
 // Necks: a patch of one connected lobe may still be two lobes joined by a narrow neck, such as the
 // tread and the flange root of S1002 on UIC60 at y = −5.25 mm, 98.1 kN (lobes 96 and 62 elements
-// wide joined by a neck of 5, at 0.17 mm elements). A strip (row of constant x2) is a neck when it
-// is at most kNeckWidthFraction as wide as the widest strip on each side of it; the narrowest
-// (relative to those) is the cut. The lobes on either side then take flexibilities of their own
-// (NhFastSimPerLobe), as if the neck were a gap.
+// wide joined by a neck of 5, at 0.17 mm elements). A strip (row of constant x2) is a neck of ratio
+// r when it is r times as wide as the narrower of the widest strips on either side of it (r < 1: a
+// valley in the strip widths; a patch whose widths rise and then fall has none). Up to
+// kNeckWidthFraction the patch counts as two lobes cut at its narrowest neck (NhFastSimPerLobe);
+// from kNeckBlendEnd on as one; in between NhFastSimPerLobe blends the two linearly in r, so that
+// the forces do not jump where a widening neck stops being one.
 inline constexpr double kNeckWidthFraction = 0.25;
-// Whether the patch's strips have a neck (from its strip runs).
+inline constexpr double kNeckBlendEnd = 0.5;
+// The smallest neck ratio of the patch's strips (from its strip runs); +infinity without a valley.
+double neck_ratio(const ContactPatch& patch);
+// Whether the patch has a neck of ratio at most kNeckWidthFraction.
 bool has_neck(const ContactPatch& patch);
-// The regions split at their necks, recursively (the neck strip goes with the strips below it);
-// each part's normal force, load fraction and centre of pressure recomputed, sorted by decreasing
-// normal force. pressure_Pa: one value per mesh element.
+// The regions split at their necks of ratio at most `fraction`, recursively (the neck strip goes
+// with the strips below it); each part's normal force, load fraction and centre of pressure
+// recomputed, sorted by decreasing normal force. pressure_Pa: one value per mesh element.
 std::vector<ContactRegion> split_at_necks(const Mesh& mesh, const std::vector<double>& pressure_Pa,
-                                          std::vector<ContactRegion> regions);
+                                          std::vector<ContactRegion> regions, double fraction = kNeckWidthFraction);
 
 // The semi-axes (a, b) of the equivalent ellipse of a set of mesh elements (classical FastSim,
 // Eq 9, on a non-elliptical patch): the axis ratio of their bounding box, their area kept

@@ -54,20 +54,33 @@ NhFastSimPerLobe::NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOpt
   Mesh source = patch.mesh();
   source.x1_first_m -= patch.x1_shift_m();
   source.x2_first_m -= patch.x2_shift_m();
-  if (!has_several_lobes(patch)) {
+  const auto whole_patch = [&] {
     Lobe lobe(patch, options, source, indices);
     lobe.to_patch.resize(patch_elements_);
     for (std::size_t e = 0; e < patch_elements_; ++e) lobe.to_patch[e] = e;
-    lobes_.push_back(std::move(lobe));
+    return lobe;
+  };
+  // Lobes apart (a gap between them): cut also at their necks up to kNeckWidthFraction. One
+  // connected patch: cut at its narrowest neck below kNeckBlendEnd, and above kNeckWidthFraction
+  // blended with the whole patch, linearly in the neck's ratio.
+  const bool apart = detail::has_several_lobes(patch);
+  const double ratio = apart ? 0.0 : detail::neck_ratio(patch);
+  if (!apart && ratio >= detail::kNeckBlendEnd) {
+    lobes_.push_back(whole_patch());
     return;
   }
+  if (ratio > detail::kNeckWidthFraction) {
+    whole_weight_ = (ratio - detail::kNeckWidthFraction) / (detail::kNeckBlendEnd - detail::kNeckWidthFraction);
+    whole_.push_back(whole_patch());
+  }
+  const double cut = apart ? detail::kNeckWidthFraction : detail::kNeckBlendEnd;
   std::vector<double> pressure(source.size(), 0.0);
   std::vector<std::size_t> slot(source.size(), patch_elements_);  // mesh index -> element of the patch
   for (std::size_t e = 0; e < patch_elements_; ++e) {
     pressure[indices[e]] = patch.pressure_Pa()[e];
     slot[indices[e]] = e;
   }
-  for (const ContactRegion& region : detail::split_at_necks(source, pressure, contact_regions(source, pressure))) {
+  for (const ContactRegion& region : detail::split_at_necks(source, pressure, contact_regions(source, pressure), cut)) {
     ContactPatch part = detail::cropped_patch(source, pressure, region.elements, patch.material());
     NhFastSimOptions part_options = options;
     if (options.flexibility_coarsening == 0 && part.elements().count() >= kMinimumElementsForK2) {
@@ -99,6 +112,25 @@ NhFastSimPerLobe::~NhFastSimPerLobe() = default;
 
 FastSimResult NhFastSimPerLobe::solve(const Creepage& creepage, double mu) const {
   if (lobes_.size() == 1) return lobes_.front().solve(creepage, mu);
+  FastSimResult r = solve_lobes(creepage, mu);
+  if (whole_.empty()) return r;
+  // A neck between kNeckWidthFraction and kNeckBlendEnd: the per-lobe and the whole-patch
+  // solutions blended (slip flags: the heavier one's).
+  const FastSimResult whole = whole_.front().solve(creepage, mu);
+  const double w = whole_weight_;
+  r.forces.F1_N = (1.0 - w) * r.forces.F1_N + w * whole.forces.F1_N;
+  r.forces.F2_N = (1.0 - w) * r.forces.F2_N + w * whole.forces.F2_N;
+  r.forces.M3_Nm = (1.0 - w) * r.forces.M3_Nm + w * whole.forces.M3_Nm;
+  for (std::size_t e = 0; e < patch_elements_; ++e) {
+    r.p1_Pa[e] = (1.0 - w) * r.p1_Pa[e] + w * whole.p1_Pa[e];
+    r.p2_Pa[e] = (1.0 - w) * r.p2_Pa[e] + w * whole.p2_Pa[e];
+    if (w >= 0.5) r.slip[e] = whole.slip[e];
+  }
+  r.adhesion_fraction = (1.0 - w) * r.adhesion_fraction + w * whole.adhesion_fraction;
+  return r;
+}
+
+FastSimResult NhFastSimPerLobe::solve_lobes(const Creepage& creepage, double mu) const {
   FastSimResult r;
   r.p1_Pa.assign(patch_elements_, 0.0);
   r.p2_Pa.assign(patch_elements_, 0.0);
@@ -126,7 +158,7 @@ FastSimResult NhFastSimPerLobe::solve(const Creepage& creepage, double mu) const
 }
 
 bool NhFastSimPerLobe::has_several_lobes(const ContactPatch& patch) {
-  return detail::has_several_lobes(patch) || detail::has_neck(patch);
+  return detail::has_several_lobes(patch) || detail::neck_ratio(patch) < detail::kNeckBlendEnd;
 }
 
 std::size_t NhFastSimPerLobe::lobe_count() const { return lobes_.size(); }
@@ -143,6 +175,12 @@ const Flexibility& NhFastSimPerLobe::flexibility() const {
   return main.nh ? main.nh->flexibility() : main.fallback_flexibility;
 }
 
+const Flexibility* NhFastSimPerLobe::whole_patch_flexibility() const {
+  if (whole_.empty()) return nullptr;
+  const Lobe& whole = whole_.front();
+  return whole.nh ? &whole.nh->flexibility() : &whole.fallback_flexibility;
+}
+
 int NhFastSimPerLobe::coarsening() const {
   const Lobe& main = lobes_.front();
   return main.nh ? main.nh->coarsening() : 0;
@@ -151,6 +189,7 @@ int NhFastSimPerLobe::coarsening() const {
 int NhFastSimPerLobe::krylov_iterations() const {
   int n = 0;
   for (const Lobe& lobe : lobes_) n += lobe.nh ? lobe.nh->krylov_iterations() : 0;
+  for (const Lobe& lobe : whole_) n += lobe.nh ? lobe.nh->krylov_iterations() : 0;
   return n;
 }
 
