@@ -313,6 +313,17 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   text.replace(text.find(key), key.size(), key + "-");
   EXPECT_NE(message(text).find("nodes[0] wheel 0 patch 0: the normal force must lie in [0, 1e7] N"), std::string::npos)
       << message(text);
+  // Implausible runtime patches (a fuzzer's: elements of 3e99 m, a pressure of 1e306 Pa overflowed
+  // FastSim's forces to NaN).
+  nlohmann::json huge = nlohmann::json::parse(wheelset_table_json(table()));
+  huge["nodes"][1]["wheels"][0][0]["runtime_mesh"]["dx2_m"] = 3.3e99;
+  EXPECT_NE(message(huge.dump()).find("nodes[1] wheel 0 patch 0: the runtime mesh's elements must be at most 0.05 m long"),
+            std::string::npos)
+      << message(huge.dump());
+  huge = nlohmann::json::parse(wheelset_table_json(table()));
+  huge["nodes"][1]["wheels"][1][0]["runtime_pressure_Pa"][3] = 1e306;
+  EXPECT_NE(message(huge.dump()).find("the runtime pressures must lie in [0, 1e11] Pa"), std::string::npos)
+      << message(huge.dump());
   std::string unknown = wheelset_table_json(table());
   unknown.replace(unknown.find("\"area_m2\""), 9, "\"area_mm2\"");
   EXPECT_NE(message(unknown).find("missing key 'nodes[0].wheels[0][0].area_m2'"), std::string::npos) << message(unknown);

@@ -48,11 +48,19 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
     if (!p.lobes.empty()) fail("a patch without elements in contact has no lobes");
     return;
   }
+  // Plausible runtime patches only: a fuzzed table with elements of 3e99 m and a pressure of 1e306 Pa
+  // made FastSim's forces overflow to NaN (fuzz/crashes/wheelset_table/). A coarse element is at
+  // most a few millimetres, a pressure at most a few GPa, a flexibility about 1e-14 m/Pa.
   const auto check_runtime = [&](const Flexibility& L, const Mesh& mesh, const std::vector<double>& pressure_Pa) {
     for (double l : {L.L1, L.L2, L.L3})
-      if (!(l > 0.0 && l < 1e-6)) fail("the flexibilities must lie in (0, 1e-6) m/Pa");
+      if (!(l >= 1e-18 && l < 1e-6)) fail("the flexibilities must lie in [1e-18, 1e-6) m/Pa");
     validate(mesh, 1u << 20);
+    if (!(mesh.dx1_m <= 0.05 && mesh.dx2_m <= 0.05)) fail("the runtime mesh's elements must be at most 0.05 m long");
+    if (!(std::abs(mesh.x1_first_m) <= 1.0 && std::abs(mesh.x2_first_m) <= 1.0))
+      fail("the runtime mesh must start within 1 m of the centre of pressure");
     if (pressure_Pa.size() != mesh.size()) fail("the runtime pressure needs one value per mesh element");
+    for (double p3 : pressure_Pa)
+      if (!(p3 >= 0.0 && p3 <= 1e11)) fail("the runtime pressures must lie in [0, 1e11] Pa");
   };
   check_runtime(p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
   if (p.lobes.size() == 1) fail("a patch of one lobe keeps no lobes (two or more, or none)");
