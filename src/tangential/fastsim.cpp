@@ -12,7 +12,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstddef>
 #include <new>
 #include <numeric>
@@ -87,55 +86,16 @@ struct MarchRecord {
   std::size_t slipping = 0;
 };
 
-// Coefficients of the adhesion increments (Eq 2-3): xi/L1, eta/L2 (Pa/m), phi/L3 (Pa/m^2); and
-// the weights of the flexibility-weighted slip direction (limit_onto_bound): with L_min the
-// smaller and L_mean the mean of L1 and L2, sigma = L_min / L_mean, rho_i = L_min / L_i, all in
-// (0, 1].
+// Coefficients of the adhesion increments (Eq 2-3): xi/L1, eta/L2 (Pa/m), phi/L3 (Pa/m^2).
 struct MarchCoefficients {
   double xi_over_L1, eta_over_L2, phi_over_L3;
-  double sigma, rho1, rho2;
 };
-
-// Eq 7-8: a trial traction h = (p1, p2) over the bound (lanes `slip`, |h| > limit) is brought
-// back onto |p| = limit.
-//  - radial (Eq 8): p = limit h / |h|.
-//  - flexibility-weighted: FastSim's elastic law u_i = L_i p_i and Coulomb's law (the traction
-//    opposite to the slip, which is the displacement short of adhesion, L (h - p)) ask for
-//    p parallel to L (h - p), |p| = limit, i.e. p_i = lambda L_i h_i / (1 + lambda L_i) with the
-//    lambda > 0 that puts p on the bound. lambda from the same condition with L1 = L2 = L_mean,
-//    lambda L_mean = limit / (|h| - limit), gives, after scaling by (1 + 1/(lambda L_1))
-//    (1 + 1/(lambda L_2)) / (1 + 1/(lambda L_mean)) and by sigma (which keep the direction and
-//    every factor in (0, 1]),
-//      p parallel to v = (h1 (sigma w + (1 - w) rho2), h2 (sigma w + (1 - w) rho1)),  w = limit / |h|,
-//    scaled onto the bound: radial at the onset of slip (w -> 1) and for L1 = L2, parallel to
-//    (L1 h1, L2 h2) in deep slip (w -> 0), which is the rigid slip's direction for pure
-//    creepage. Within 0.15 % of mu F3 of the exact lambda on the S1002/UIC60 flange patches
-//    (docs/FASTSIM.md "The slip direction").
-template <bool kWeighted, class Slip>
-void limit_onto_bound(Lanes& p1, Lanes& p2, const Lanes& norm2, const Lanes& limit, const Slip& slip,
-                      const MarchCoefficients& k) {
-  if constexpr (kWeighted) {
-    // |h| v = h (|h| rho' + limit (sigma - rho')), rho' = (rho2, rho1): one division, as the radial
-    // limiting has. Its square is floored so that a bound below ~1e-150 Pa cannot give 0 / 0.
-    const Lanes h_norm = stdx::sqrt(norm2);
-    const Lanes m1 = p1 * (h_norm * k.rho2 + limit * (k.sigma - k.rho2));
-    const Lanes m2 = p2 * (h_norm * k.rho1 + limit * (k.sigma - k.rho1));
-    const Lanes scale = limit / stdx::sqrt(stdx::max(m1 * m1 + m2 * m2, Lanes(std::numeric_limits<double>::min())));
-    stdx::where(slip, p1) = m1 * scale;
-    stdx::where(slip, p2) = m2 * scale;
-  } else {
-    const Lanes w = limit / stdx::sqrt(norm2);
-    stdx::where(slip, p1) *= w;
-    stdx::where(slip, p2) *= w;
-  }
-}
 
 // The march of every run (Eq 2-3 increments, Eq 7-8 limit), forces summed per Eq 13:
 // F1 = S sum p1, F2 = S sum p2, M3 = S sum (x1 p2 - x2 p1).
 // kRecord: the tractions and slip flags of every element into record (and the slipping count);
 // kCount: only the count of slipping elements into record->slipping (the adhesion fraction).
-// kWeighted: the flexibility-weighted limiting (else radial).
-template <bool kSpin, bool kWeighted, bool kRecord, bool kCount = kRecord>
+template <bool kSpin, bool kRecord, bool kCount = kRecord>
 TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record) {
   Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
   const double* step_m = layout.step_m.data();
@@ -159,14 +119,12 @@ TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficie
       } else {
         p2 += k.eta_over_L2 * step;
       }
-      // Eq 7-8: |p| <= mu p3e, else p is brought back onto the bound.
+      // Eq 7-8: |p| <= mu p3e, else scale p onto the bound.
       const Lanes norm2 = p1 * p1 + p2 * p2;
       const auto slip = norm2 > limit * limit;
-      if constexpr (kWeighted) {
-        if (stdx::any_of(slip)) limit_onto_bound<kWeighted>(p1, p2, norm2, limit, slip, k);
-      } else {
-        limit_onto_bound<kWeighted>(p1, p2, norm2, limit, slip, k);
-      }
+      const Lanes scale = limit / stdx::sqrt(norm2);  // used in the slipping lanes only
+      stdx::where(slip, p1) *= scale;
+      stdx::where(slip, p2) *= scale;
       if constexpr (kRecord) {  // scatter to patch order
         alignas(kAlignment) double q1[kLanes], q2[kLanes];
         p1.copy_to(q1, stdx::vector_aligned);
@@ -204,17 +162,7 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
     return fmt::format("fastsim: the creepages xi = {}, eta = {}, phi = {} 1/m must be finite", creepage.xi,
                        creepage.eta, creepage.phi);
   });
-  // Beyond L_max / L_min = 1e6 (no physical patch) the weighted limiting keeps the radial direction.
-  const double L_min = std::min(flexibility.L1, flexibility.L2);
-  const double L_max = std::max(flexibility.L1, flexibility.L2);
-  if (L_max > 1e6 * L_min) return {creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3, 1.0, 1.0, 1.0};
-  const double L_mean = 0.5 * (flexibility.L1 + flexibility.L2);
-  return {creepage.xi / flexibility.L1,
-          creepage.eta / flexibility.L2,
-          creepage.phi / flexibility.L3,
-          L_min / L_mean,
-          L_min / flexibility.L1,
-          L_min / flexibility.L2};
+  return {creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3};
 }
 
 // The march squares the tractions (Eq 8): they must stay far below sqrt(DBL_MAX) ~ 1.3e154 Pa, or
@@ -234,21 +182,6 @@ void require_marchable(const MarchCoefficients& k, double reach_m, const Creepag
                        creepage.xi, creepage.eta, creepage.phi, flexibility.L1, flexibility.L2, flexibility.L3,
                        bound_Pa);
   });
-}
-
-// The march for these creepages and this bound: with or without spin, radial or
-// flexibility-weighted limiting (the same when L1 = L2, then radial, which is cheaper).
-template <bool kRecord, bool kCount = kRecord>
-TangentialForces march_for(const detail::FastSimLayout& layout, const Creepage& creepage, const MarchCoefficients& k,
-                           double mu, MarchRecord* record) {
-  const bool spin = creepage.phi != 0.0;
-  const bool weighted = layout.bound.slip_direction == SlipDirection::flexibility_weighted && k.rho1 != k.rho2;
-  if (spin) {
-    return weighted ? march<true, true, kRecord, kCount>(layout, k, mu, record)
-                    : march<true, false, kRecord, kCount>(layout, k, mu, record);
-  }
-  return weighted ? march<false, true, kRecord, kCount>(layout, k, mu, record)
-                  : march<false, false, kRecord, kCount>(layout, k, mu, record);
 }
 
 // With marchable input every step of the march is finite: a non-finite force is a bug (internal).
@@ -326,7 +259,8 @@ const Eigen::Matrix3d& FastSim::adhesion_force_matrix() const { return layout_->
 TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
   const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
   require_marchable(k, layout_->reach_m, creepage, flexibility);
-  const TangentialForces forces = march_for<false>(*layout_, creepage, k, mu, nullptr);
+  const TangentialForces forces = creepage.phi != 0.0 ? march<true, false>(*layout_, k, mu, nullptr)
+                                                      : march<false, false>(*layout_, k, mu, nullptr);
   require_finite_forces(forces);
   return forces;
 }
@@ -336,7 +270,8 @@ FastSimResult FastSim::forces_and_adhesion(const Creepage& creepage, const Flexi
   require_marchable(k, layout_->reach_m, creepage, flexibility);
   MarchRecord count;
   FastSimResult result;
-  result.forces = march_for<false, true>(*layout_, creepage, k, mu, &count);
+  result.forces = creepage.phi != 0.0 ? march<true, false, true>(*layout_, k, mu, &count)
+                                      : march<false, false, true>(*layout_, k, mu, &count);
   require_finite_forces(result.forces);
   const std::size_t n = layout_->element_count;
   result.adhesion_fraction = static_cast<double>(n - count.slipping) / static_cast<double>(n);
@@ -349,7 +284,8 @@ FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexib
   const std::size_t n = layout_->element_count;
   MarchRecord record{std::vector<double>(n + 1), std::vector<double>(n + 1), std::vector<std::uint8_t>(n + 1), 0};
   FastSimResult result;
-  result.forces = march_for<true>(*layout_, creepage, k, mu, &record);
+  result.forces = creepage.phi != 0.0 ? march<true, true>(*layout_, k, mu, &record)
+                                      : march<false, true>(*layout_, k, mu, &record);
   require_finite_forces(result.forces);  // the tractions sum to the forces: finite with them
   record.p1_Pa.pop_back();  // drop the padding sink
   record.p2_Pa.pop_back();
