@@ -117,6 +117,13 @@ void read_rest(Section friction, Section material, Section mesh, Section solvers
                               solvers.location("flexibility_coarsening"), *f, kMaximumCoarsening));
     c.options.nh_fastsim.flexibility_coarsening = static_cast<int>(*f);
   }
+  if (const std::optional<std::string> d = solvers.optional_string("slip_direction")) {
+    try {
+      c.options.nh_fastsim.bound.slip_direction = parse_slip_direction(*d);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: [solvers] slip_direction: {}", solvers.location("slip_direction"), e.what()));
+    }
+  }
   solvers.finish();
 }
 

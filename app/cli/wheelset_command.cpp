@@ -37,6 +37,7 @@ struct WheelsetArguments {
   std::vector<std::string> solvers;
   bool json = false;
   int flexibility_coarsening = 0;
+  std::string slip_direction;  // --slip-direction (radial, flexibility-weighted)
   std::string sweep_y;  // FROM:TO:STEP in mm
   std::string table;    // a wheelset table to evaluate from (docs/WHEELSET_TABLE.md)
   std::string out = "railcontact-out/wheelset";
@@ -103,6 +104,13 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
     });
     c.options.nh_fastsim.flexibility_coarsening = a.flexibility_coarsening;
   }
+  if (given("--slip-direction")) {
+    try {
+      c.options.nh_fastsim.bound.slip_direction = parse_slip_direction(a.slip_direction);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--slip-direction: {}", e.what()));
+    }
+  }
   if (!a.solvers.empty()) {
     c.options.solvers.clear();
     for (const std::string& name : a.solvers) c.options.solvers.push_back(parse_tangential_solver(name));
@@ -153,6 +161,9 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
     require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
             "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
+    require(options.nh_fastsim.bound.slip_direction == SlipDirection::radial,
+            "--table evaluates with the radial slip direction of its build: leave out --slip-direction "
+            "flexibility-weighted (and [solvers] slip_direction), or evaluate on the fly");
     const WheelsetTable table = load_wheelset_table(a.table);
     table.check_track(wheelset.track());
     r = table.evaluate(state, *options.loads, options.friction_coefficient);
@@ -180,6 +191,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
           {"forward_speed_m_per_s", r.state.velocity.forward_speed_m_per_s}}},
         {"case", c.source},
         {"friction_coefficient", options.friction_coefficient},
+        {"nh_fastsim_slip_direction", slip_direction_name(options.nh_fastsim.bound.slip_direction)},
         {"element_size_m", options.element_size_m},
         {"by_load", options.loads.has_value()},
         {"solver", solver_name(options.solvers.front())},
@@ -247,6 +259,9 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_flag("--json", args->json, "print one JSON object");
   sub->add_option("--flexibility-coarsening", args->flexibility_coarsening,
                   "nH-FastSim: K2 on the patch coarsened by this factor (0: automatic, 1: the patch itself)");
+  sub->add_option("--slip-direction", args->slip_direction,
+                  "nH-FastSim's slipping traction: radial (Eq 8, default) or flexibility-weighted (for flange "
+                  "contact, docs/FASTSIM.md)");
   sub->add_option("--sweep-y", args->sweep_y,
                   "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
   sub->add_option("--out", args->out, "output directory of a sweep");

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
@@ -107,9 +108,10 @@ CreepageCoefficients creepage_coefficients(const Eigen::Matrix3d& creepage_matri
 //     default, that parabola skewed towards the trailing edge (TractionBound below);
 //  2. the run is marched from the leading edge: the leading element gets the adhesion traction
 //     of Eq 2-3 at its centre, each following element the previous element's traction plus the
-//     increment of Eq 2-3 between the two centres; the sum is limited to |p| <= mu p3e by
-//     scaling (Eq 7-8), and the limited traction is the start of the next increment (Kalker's
-//     FASTSIM). Elements where the limit is active slip.
+//     increment of Eq 2-3 between the two centres; a sum over the bound is brought back onto
+//     |p| = mu p3e (Eq 7-8: scaled, or optionally turned towards the slip of FastSim's elastic
+//     law, SlipDirection below), and the limited traction is the start of the next increment
+//     (Kalker's FASTSIM). Elements where the limit is active slip.
 // For pure creepage (phi = 0) this equals element-wise clipping of Eq 2-3; with spin it does not.
 
 
@@ -125,9 +127,25 @@ namespace railcontact {
 // 0.45-0.5) minimises the largest creep-force error against the exact solver on Hertzian ellipses
 // a/b = 0.1 ... 10: 3.0 % instead of 6.2 % with the parabola (docs/FASTSIM.md "Traction bound").
 // The shape is concave for skew in [0, 1], the accepted range.
+//
+// A traction h over the bound (|h| > mu p3e) slips, and the traction is brought back onto the bound
+// in the direction SlipDirection chooses (docs/FASTSIM.md "The slip direction"):
+//  - radial: h scaled onto the bound (Eq 8, Kalker's FASTSIM and the paper);
+//  - flexibility_weighted (opt-in): opposite to the slip of FastSim's own elastic law
+//    u_i = L_i p_i, i.e. p parallel to L (h - p) with L = diag(L1, L2) (Coulomb's law in that
+//    law), in closed form. The same as radial when L1 = L2; in deep slip the traction follows the
+//    rigid slip, where the radial one follows (xi/L1, eta/L2). With nH-FastSim on the flange at
+//    y = -7 mm it takes the F1 error from -3.2 to -0.6 % of mu F3; it costs 2-3x the march time
+//    in slip, which is why it is not yet the default (docs/FASTSIM.md "The slip direction").
+enum class SlipDirection { radial, flexibility_weighted };
+// "radial", "flexibility-weighted"; parse_slip_direction throws invalid_input for other names.
+const char* slip_direction_name(SlipDirection direction);
+SlipDirection parse_slip_direction(const std::string& name);
 struct TractionBound {
   double skew = 0.45;
-  static constexpr TractionBound parabolic() { return {0.0}; }  // Eq 1
+  SlipDirection slip_direction = SlipDirection::radial;
+  // The paper's nH-FastSim and Kalker's FastSim: the parabola of Eq 1, limited by Eq 8.
+  static constexpr TractionBound parabolic() { return {0.0, SlipDirection::radial}; }
 };
 
 struct FastSimResult {

@@ -233,6 +233,13 @@ std::vector<WheelsetTableNode> parse_wheelset_table_nodes(const std::string& tex
 }  // namespace detail
 
 std::string wheelset_table_json(const WheelsetTable& table) {
+  // The file keeps the bound's skew only: a table evaluated with another slip direction would
+  // not read back the same.
+  require(table.bound().slip_direction == SlipDirection::radial, [&] {
+    return fmt::format("wheelset table: the slip direction {} is not stored in a table file (format {}); build the "
+                       "table with the radial one",
+                       slip_direction_name(table.bound().slip_direction), kFormatVersion);
+  });
   const WheelsetTableMetadata& m = table.metadata();
   json nodes = json::array();
   for (const WheelsetTableNode& n : table.nodes()) nodes.push_back(node_json(n));
