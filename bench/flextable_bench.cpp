@@ -5,6 +5,8 @@
 //   BM_TableLookup           interpolation of the table for the patch (lookup_for_patch)
 //   BM_CachedPatchStep       (b) FastSim only on the cached patch (Patch::forces)
 //   BM_CachedPatchWithLookup (b) lookup + FastSim: a step whose y, Fz moved within the patch
+//   BM_CachedPatchStepFlexibilityWeighted  (b) with the opt-in flexibility-weighted slip
+//                            direction (TractionBound::slip_direction) instead of Eq 8
 //   BM_FullStep              (a) normal solve + FastSim preparation + lookup + FastSim
 //   BM_OnTheFlyNhFastSim     on the same patch: K2's force rows + flexibilities + FastSim
 //   BM_Exact                 on the same patch: solve_rolling_exact
@@ -80,6 +82,15 @@ void BM_CachedPatchStep(benchmark::State& state) {
   measure(state, [](const Setup& s) { benchmark::DoNotOptimize(s.patch.forces(s.creepage, kMu)); });
 }
 BENCHMARK(BM_CachedPatchStep)->Unit(benchmark::kMicrosecond);
+
+void BM_CachedPatchStepFlexibilityWeighted(benchmark::State& state) {
+  const Setup& s0 = setup();
+  const FastSim weighted(s0.patch.wheel_rail_patch().patch, TractionBound{TractionBound{}.skew,
+                                                                        SlipDirection::flexibility_weighted});
+  const Flexibility L = s0.patch.nh_fastsim().flexibility();
+  measure(state, [&](const Setup& s) { benchmark::DoNotOptimize(weighted.forces(s.creepage, L, kMu)); });
+}
+BENCHMARK(BM_CachedPatchStepFlexibilityWeighted)->Unit(benchmark::kMicrosecond);
 
 void BM_CachedPatchWithLookup(benchmark::State& state) {
   measure(state, [](const Setup& s) {
