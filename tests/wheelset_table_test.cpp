@@ -327,6 +327,18 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   std::string unknown = wheelset_table_json(table());
   unknown.replace(unknown.find("\"area_m2\""), 9, "\"area_mm2\"");
   EXPECT_NE(message(unknown).find("missing key 'nodes[0].wheels[0][0].area_m2'"), std::string::npos) << message(unknown);
+  // Format 3 names the slip direction; format 1-2 files evaluate with the radial one (Eq 8).
+  nlohmann::json slip = nlohmann::json::parse(wheelset_table_json(table()));
+  EXPECT_EQ(slip["format_version"], 3);
+  EXPECT_EQ(slip["slip_direction"], slip_direction_name(table().bound().slip_direction));
+  slip["slip_direction"] = "sideways";
+  EXPECT_NE(message(slip.dump()).find("slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted)"),
+            std::string::npos)
+      << message(slip.dump());
+  slip.erase("slip_direction");
+  EXPECT_NE(message(slip.dump()).find("slip_direction"), std::string::npos) << message(slip.dump());
+  slip["format_version"] = 2;
+  EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").bound().slip_direction, SlipDirection::radial);
 }
 
 }  // namespace

@@ -356,8 +356,8 @@ TEST(WheelsetCli, RefusesBadCaseFiles) {
 }
 
 // --slip-direction and [solvers] slip_direction reach nH-FastSim: on the flange the
-// flexibility-weighted F1 is the library's (and moves by ~2 % of mu F3 from the radial one);
-// Kalker's FastSim does not change.
+// flexibility-weighted F1 (the wheelset's default) is the library's and moves by ~2 % of mu F3
+// from the radial one; Kalker's FastSim does not change.
 TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
   const test::ScratchDirectory dir("railcontact_wheelset_slip");
   const auto flange_json = [](const std::string& extra) {
@@ -365,20 +365,20 @@ TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out)["wheels"][0]["patches"][0];
   };
-  const nlohmann::json radial = flange_json("");
-  const nlohmann::json weighted = flange_json(" --slip-direction flexibility-weighted");
+  const nlohmann::json radial = flange_json(" --slip-direction radial");
+  const nlohmann::json weighted = flange_json("");
+  EXPECT_EQ(WheelsetOptions{}.nh_fastsim.bound.slip_direction, SlipDirection::flexibility_weighted);
   const std::filesystem::path case_path = dir.path() / "flange.toml";
-  std::ofstream(case_path) << "[solvers]\nslip_direction = \"flexibility-weighted\"\n";
+  std::ofstream(case_path) << "[solvers]\nslip_direction = \"radial\"\n";
   const nlohmann::json from_case = flange_json(" " + case_path.string());
+  EXPECT_EQ(from_case["nh-fastsim"]["F1_N"].get<double>(), radial["nh-fastsim"]["F1_N"].get<double>());
   const double F3 = radial["normal_force_N"].get<double>();
   const double F1_radial = radial["nh-fastsim"]["F1_N"].get<double>();
   const double F1_weighted = weighted["nh-fastsim"]["F1_N"].get<double>();
   EXPECT_GT(std::abs(F1_weighted - F1_radial), 0.01 * 0.3 * F3);
-  EXPECT_EQ(from_case["nh-fastsim"]["F1_N"].get<double>(), F1_weighted);
   // Kalker's FastSim keeps Eq 8 (with nh-fastsim first, the load balance moves the state).
-  const CommandResult kalker = run_cli("wheelset --y -7 --element-size 0.4 --solver fastsim --json");
-  const CommandResult kalker_weighted =
-      run_cli("wheelset --y -7 --element-size 0.4 --solver fastsim --json --slip-direction flexibility-weighted");
+  const CommandResult kalker = run_cli("wheelset --y -7 --element-size 0.4 --solver fastsim --json --slip-direction radial");
+  const CommandResult kalker_weighted = run_cli("wheelset --y -7 --element-size 0.4 --solver fastsim --json");
   const nlohmann::json kalker_json = nlohmann::json::parse(kalker.out);
   const nlohmann::json kalker_weighted_json = nlohmann::json::parse(kalker_weighted.out);
   EXPECT_EQ(kalker_json["wheels"], kalker_weighted_json["wheels"]);
@@ -387,7 +387,6 @@ TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
 
   WheelsetOptions options;
   options.element_size_m = 0.4e-3;
-  options.nh_fastsim.bound.slip_direction = SlipDirection::flexibility_weighted;
   Wheelset wheelset(default_wheelset_track(), options);
   WheelsetState state;
   state.position.lateral_displacement_m = -7e-3;

@@ -161,10 +161,14 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
     require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
             "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
-    require(options.nh_fastsim.bound.slip_direction == SlipDirection::radial,
-            "--table evaluates with the radial slip direction of its build: leave out --slip-direction "
-            "flexibility-weighted (and [solvers] slip_direction), or evaluate on the fly");
     const WheelsetTable table = load_wheelset_table(a.table);
+    // The table evaluates with the slip direction it was built with (its file says which).
+    require(sub.count("--slip-direction") == 0 || options.nh_fastsim.bound.slip_direction == table.bound().slip_direction,
+            [&] {
+              return fmt::format("--slip-direction {} differs from the table's {} ({}): leave it out",
+                                 slip_direction_name(options.nh_fastsim.bound.slip_direction),
+                                 slip_direction_name(table.bound().slip_direction), a.table);
+            });
     table.check_track(wheelset.track());
     r = table.evaluate(state, *options.loads, options.friction_coefficient);
   } else {

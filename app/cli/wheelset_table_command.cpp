@@ -60,11 +60,6 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
   const bool rank0 = study::MpiWorld::rank() == 0;
   WheelsetCase c;
   if (!a.case_file.empty()) c = read_wheelset_case(a.case_file);
-  require(c.options.nh_fastsim.bound.slip_direction == SlipDirection::radial, [&] {
-    return fmt::format("wheelset-table build: {}: [solvers] slip_direction = \"{}\" is not stored in a table file; "
-                       "tables use the radial one (leave the key out)",
-                       a.case_file, slip_direction_name(c.options.nh_fastsim.bound.slip_direction));
-  });
   WheelsetTableGrid grid;
   grid.y_m = range_values(a.y_mm, "--y", 1e-3);
   grid.yaw_rad = range_values(a.yaw_mrad, "--yaw", 1e-3);

@@ -131,12 +131,13 @@ namespace railcontact {
 // A traction h over the bound (|h| > mu p3e) slips, and the traction is brought back onto the bound
 // in the direction SlipDirection chooses (docs/FASTSIM.md "The slip direction"):
 //  - radial: h scaled onto the bound (Eq 8, Kalker's FASTSIM and the paper);
-//  - flexibility_weighted (opt-in): opposite to the slip of FastSim's own elastic law
-//    u_i = L_i p_i, i.e. p parallel to L (h - p) with L = diag(L1, L2) (Coulomb's law in that
-//    law), in closed form. The same as radial when L1 = L2; in deep slip the traction follows the
-//    rigid slip, where the radial one follows (xi/L1, eta/L2). With nH-FastSim on the flange at
-//    y = -7 mm it takes the F1 error from -3.2 to -0.6 % of mu F3; it costs 2-3x the march time
-//    in slip, which is why it is not yet the default (docs/FASTSIM.md "The slip direction").
+//  - flexibility_weighted (the wheelset's default, WheelsetOptions::nh_fastsim): opposite to the
+//    slip of FastSim's own elastic law u_i = L_i p_i, i.e. p parallel to L (h - p) with
+//    L = diag(L1, L2) (Coulomb's law in that law), in closed form. The same as radial when L1 = L2;
+//    in deep slip the traction follows the rigid slip, where the radial one follows (xi/L1, eta/L2).
+//    With nH-FastSim on the flange at y = -7 mm it takes the F1 error from -3.2 to -0.6 % of mu F3;
+//    it costs ~3x the march time in slip, and raises the paper's Fig 5 errors by 0.05-0.09 points
+//    on single patches, which keep radial (docs/FASTSIM.md "The slip direction").
 enum class SlipDirection { radial, flexibility_weighted };
 // "radial", "flexibility-weighted"; parse_slip_direction throws invalid_input for other names.
 const char* slip_direction_name(SlipDirection direction);

@@ -22,7 +22,7 @@ constexpr const char* kKind = "wheelset table";
 constexpr const char* kFormat = "railcontact wheelset table";
 // Version 2 (2026-11-25): each patch's "lobes" (a patch of several lobes); version 1 files read as
 // patches without lobes.
-constexpr int kFormatVersion = 2;
+constexpr int kFormatVersion = 3;  // 3: slip_direction (1-2: the radial one)
 // The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
 // At most this many nodes (as a build makes) and elements per runtime mesh.
@@ -233,13 +233,6 @@ std::vector<WheelsetTableNode> parse_wheelset_table_nodes(const std::string& tex
 }  // namespace detail
 
 std::string wheelset_table_json(const WheelsetTable& table) {
-  // The file keeps the bound's skew only: a table evaluated with another slip direction would
-  // not read back the same.
-  require(table.bound().slip_direction == SlipDirection::radial, [&] {
-    return fmt::format("wheelset table: the slip direction {} is not stored in a table file (format {}); build the "
-                       "table with the radial one",
-                       slip_direction_name(table.bound().slip_direction), kFormatVersion);
-  });
   const WheelsetTableMetadata& m = table.metadata();
   json nodes = json::array();
   for (const WheelsetTableNode& n : table.nodes()) nodes.push_back(node_json(n));
@@ -260,6 +253,7 @@ std::string wheelset_table_json(const WheelsetTable& table) {
                     {"flexibility_coarsening", m.flexibility_coarsening},
                     {"collocation_offset", m.collocation_offset},
                     {"traction_bound_skew", table.bound().skew},
+                    {"slip_direction", slip_direction_name(table.bound().slip_direction)},
                     {"runtime_elements", m.runtime_elements},
                     {"nominal_rolling_radius_m", table.nominal_rolling_radius_m()},
                     {"y_m", table.grid().y_m},
@@ -288,7 +282,15 @@ WheelsetTable parse_wheelset_table(const std::string& text, const std::string& s
     material.poisson_ratio = m.number("poisson_ratio");
     m.finish();
   }
-  const TractionBound bound{r.number("traction_bound_skew")};
+  TractionBound bound{r.number("traction_bound_skew"), SlipDirection::radial};
+  if (format_version >= 3) {
+    const std::string direction = r.string("slip_direction");
+    try {
+      bound.slip_direction = parse_slip_direction(direction);
+    } catch (const Error& e) {
+      r.fail(fmt::format("slip_direction: {}", e.what()));
+    }
+  }
   const double nominal_rolling_radius_m = r.number("nominal_rolling_radius_m");
   WheelsetTableGrid grid;
   grid.y_m = r.numbers("y_m");
