@@ -6,7 +6,8 @@
 //   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance)
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
 //   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
-//   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp): y within
+//   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp; ...Radial:
+//                              with Eq 8's slip direction instead of the default): y within
 //                              ±0.5 mm of the argument in 1 µm steps, 98.1 kN per wheel, 2 mrad of
 //                              yaw; the table (0.2 mm elements, y in 0.1 mm steps over ±0.5 mm,
 //                              90/100/110 kN) is built before the timing
@@ -110,11 +111,13 @@ void BM_WheelsetByLoad(benchmark::State& state) {
   report(state, r);
 }
 
-void BM_WheelsetTable(benchmark::State& state) {
+void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction) {
   const double y0 = static_cast<double>(state.range(0)) * 1e-6;
   std::vector<double> ys;
   for (int k = -5; k <= 5; ++k) ys.push_back(y0 + k * 0.1e-3);
-  const WheelsetTable table = build_wheelset_table(track(), {ys, {0.0}, {90e3, 100e3, 110e3}});
+  WheelsetTableOptions options;
+  options.wheelset.nh_fastsim.bound.slip_direction = slip_direction;
+  const WheelsetTable table = build_wheelset_table(track(), {ys, {0.0}, {90e3, 100e3, 110e3}}, options);
   WheelsetState s;
   s.position.yaw_rad = 2e-3;
   const WheelLoads loads{98.1e3, 98.1e3, false};
@@ -128,12 +131,17 @@ void BM_WheelsetTable(benchmark::State& state) {
   report(state, r);
 }
 
+// The wheelset's default (the flexibility-weighted slip direction), and Eq 8's radial one.
+void BM_WheelsetTable(benchmark::State& state) { wheelset_table_step(state, SlipDirection::flexibility_weighted); }
+void BM_WheelsetTableRadial(benchmark::State& state) { wheelset_table_step(state, SlipDirection::radial); }
+
 BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6300)->Arg(-6400)->Arg(-6500)->Arg(-6600)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetTable)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WheelsetTableRadial)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 
