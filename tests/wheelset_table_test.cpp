@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <tuple>
@@ -354,6 +355,29 @@ using test::scratch_directory;
 
 // `railcontact wheelset-table build` writes the table the library builds, and `railcontact
 // wheelset --table FILE --json` gives the library's lookup to the last digit.
+// A table evaluates with the slip direction it was built with: format 3 names it, format 1-2 files
+// use Eq 8's radial one; the JSON says which, and an explicit --slip-direction must agree.
+TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
+  const std::string v3 = std::string(RAILCONTACT_SOURCE_DIR) + "/tests/data/wheelset_table_v3_weighted.json";
+  nlohmann::json old_format = nlohmann::json::parse(std::ifstream(v3));
+  old_format["format_version"] = 2;
+  old_format.erase("slip_direction");
+  const std::filesystem::path dir = scratch_directory("wheelset_table_slip");
+  const std::string v2 = (dir / "v2.json").string();
+  std::ofstream(v2) << old_format.dump();
+  const auto evaluate = [](const std::string& file, const std::string& extra) {
+    const CommandResult r = run_cli("wheelset --table " + file + " --y -5.3 --load 100 --json" + extra);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json weighted = evaluate(v3, ""), radial = evaluate(v2, "");
+  EXPECT_EQ(weighted["nh_fastsim_slip_direction"], "flexibility-weighted");
+  EXPECT_EQ(radial["nh_fastsim_slip_direction"], "radial");
+  EXPECT_EQ(evaluate(v3, " --slip-direction flexibility-weighted")["wheels"], weighted["wheels"]);
+  EXPECT_NE(weighted["wheels"][0]["force_track_N"], radial["wheels"][0]["force_track_N"]);
+  EXPECT_EQ(run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --slip-direction radial").exit_code, 2);
+}
+
 TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
   const std::filesystem::path dir = scratch_directory("wheelset_table_cli");
   const std::string file = (dir / "table.json").string();

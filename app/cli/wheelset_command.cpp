@@ -155,6 +155,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     return 0;
   }
   WheelsetResult r;
+  SlipDirection slip_direction = options.nh_fastsim.bound.slip_direction;  // the one used
   if (!a.table.empty()) {
     // From a wheelset table: both wheels carry their loads (nh-fastsim on the table's patches).
     require(a.sweep_y.empty(), "--table and --sweep-y cannot be combined");
@@ -170,6 +171,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
                                  slip_direction_name(table.bound().slip_direction), a.table);
             });
     table.check_track(wheelset.track());
+    slip_direction = table.bound().slip_direction;
     r = table.evaluate(state, *options.loads, options.friction_coefficient);
   } else {
     r = wheelset.evaluate(state);
@@ -195,7 +197,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
           {"forward_speed_m_per_s", r.state.velocity.forward_speed_m_per_s}}},
         {"case", c.source},
         {"friction_coefficient", options.friction_coefficient},
-        {"nh_fastsim_slip_direction", slip_direction_name(options.nh_fastsim.bound.slip_direction)},
+        {"nh_fastsim_slip_direction", slip_direction_name(slip_direction)},
         {"element_size_m", options.element_size_m},
         {"by_load", options.loads.has_value()},
         {"solver", solver_name(options.solvers.front())},
