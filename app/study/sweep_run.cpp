@@ -93,6 +93,7 @@ Recipe make_recipe(const SweepFile& s, const WheelsetTrack& track) {
         {"youngs_modulus_Pa", o.material.youngs_modulus_Pa},
         {"poisson_ratio", o.material.poisson_ratio},
         {"flexibility_coarsening", o.nh_fastsim.flexibility_coarsening},
+        {"nh_fastsim_slip_direction", slip_direction_name(o.nh_fastsim.bound.slip_direction)},
         {"warm_start", "none: every case starts cold (results independent of the order, threads and ranks)"}}},
       {"kind", s.grid ? "grid" : "list"},
       {"axes", axes},
