@@ -5,8 +5,8 @@
 //   BM_TableLookup           interpolation of the table for the patch (lookup_for_patch)
 //   BM_CachedPatchStep       (b) FastSim only on the cached patch (Patch::forces)
 //   BM_CachedPatchWithLookup (b) lookup + FastSim: a step whose y, Fz moved within the patch
-//   BM_CachedPatchStepFlexibilityWeighted  (b) with the opt-in flexibility-weighted slip
-//                            direction (TractionBound::slip_direction) instead of Eq 8
+//   BM_CachedPatchStepFlexibilityWeighted  (b) with the flexibility-weighted slip direction
+//                            (TractionBound::slip_direction; the wheelset's default) instead of Eq 8
 //   BM_FullStep              (a) normal solve + FastSim preparation + lookup + FastSim
 //   BM_OnTheFlyNhFastSim     on the same patch: K2's force rows + flexibilities + FastSim
 //   BM_Exact                 on the same patch: solve_rolling_exact

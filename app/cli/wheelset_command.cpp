@@ -266,8 +266,8 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--flexibility-coarsening", args->flexibility_coarsening,
                   "nH-FastSim: K2 on the patch coarsened by this factor (0: automatic, 1: the patch itself)");
   sub->add_option("--slip-direction", args->slip_direction,
-                  "nH-FastSim's slipping traction: radial (Eq 8, default) or flexibility-weighted (for flange "
-                  "contact, docs/FASTSIM.md)");
+                  "nH-FastSim's slipping traction: flexibility-weighted (default; within 3 % on the flange too) "
+                  "or radial (Eq 8, the paper's); docs/FASTSIM.md \"The slip direction\"");
   sub->add_option("--sweep-y", args->sweep_y,
                   "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
   sub->add_option("--out", args->out, "output directory of a sweep");

@@ -12,8 +12,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstddef>
+#include <limits>
 #include <new>
 #include <numeric>
 #include <string>
@@ -88,7 +88,7 @@ struct MarchRecord {
 };
 
 // Coefficients of the adhesion increments (Eq 2-3): xi/L1, eta/L2 (Pa/m), phi/L3 (Pa/m^2); and
-// the weights of the flexibility-weighted slip direction (limit_onto_bound): with L_min the
+// the weights of the flexibility-weighted slip direction (limit_weighted): with L_min the
 // smaller and L_mean the mean of L1 and L2, sigma = L_min / L_mean, rho_i = L_min / L_i, all in
 // (0, 1].
 struct MarchCoefficients {
@@ -110,16 +110,19 @@ struct MarchCoefficients {
 //    scaled onto the bound: radial at the onset of slip (w -> 1) and for L1 = L2, parallel to
 //    (L1 h1, L2 h2) in deep slip (w -> 0), which is the rigid slip's direction for pure
 //    creepage. Within 0.15 % of mu F3 of the exact lambda on the S1002/UIC60 flange patches
-//    (docs/FASTSIM.md "The slip direction").
-// The flexibility-weighted limiting on one native vector of lanes (fixed_size lanes split in
-// halves: the whole group's temporaries would not fit the vector registers).
+//    (docs/FASTSIM.md "The slip direction"). Computed as |h| v = h (|h| rho' + limit (sigma - rho')),
+//    rho' = (rho2, rho1): one division, as Eq 8 has; |v|^2 is floored so that a bound below
+//    ~1e-150 Pa cannot give 0 / 0.
+// limit_weighted works on one native vector of lanes (the march splits its lanes in halves: the
+// whole group's temporaries would not fit the vector registers).
 using Native = stdx::native_simd<double>;
 inline void limit_weighted(Native& p1, Native& p2, const Native& norm2, const Native& limit,
                            const typename Native::mask_type& slip, const MarchCoefficients& k) {
   const Native h_norm = stdx::sqrt(norm2);
   const Native m1 = p1 * (h_norm * k.rho2 + limit * (k.sigma - k.rho2));
   const Native m2 = p2 * (h_norm * k.rho1 + limit * (k.sigma - k.rho1));
-  const Native scale = limit / stdx::sqrt(stdx::max(m1 * m1 + m2 * m2, Native(std::numeric_limits<double>::min())));
+  const Native floor(std::numeric_limits<double>::min());
+  const Native scale = limit / stdx::sqrt(stdx::max(m1 * m1 + m2 * m2, floor));
   stdx::where(slip, p1) = m1 * scale;
   stdx::where(slip, p2) = m2 * scale;
 }
@@ -214,14 +217,14 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
   // Beyond L_max / L_min = 1e6 (no physical patch) the weighted limiting keeps the radial direction.
   const double L_min = std::min(flexibility.L1, flexibility.L2);
   const double L_max = std::max(flexibility.L1, flexibility.L2);
-  if (L_max > 1e6 * L_min) return {creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3, 1.0, 1.0, 1.0};
-  const double L_mean = 0.5 * (flexibility.L1 + flexibility.L2);
-  return {creepage.xi / flexibility.L1,
-          creepage.eta / flexibility.L2,
-          creepage.phi / flexibility.L3,
-          L_min / L_mean,
-          L_min / flexibility.L1,
-          L_min / flexibility.L2};
+  MarchCoefficients k{creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3,
+                      1.0, 1.0, 1.0};
+  if (L_max <= 1e6 * L_min) {
+    k.sigma = L_min / (0.5 * (flexibility.L1 + flexibility.L2));
+    k.rho1 = L_min / flexibility.L1;
+    k.rho2 = L_min / flexibility.L2;
+  }
+  return k;
 }
 
 // The march squares the tractions (Eq 8): they must stay far below sqrt(DBL_MAX) ~ 1.3e154 Pa, or
