@@ -45,10 +45,11 @@ BENCHMARK(BM_NhFastSimWithFlexibilities)->Arg(700)->Arg(2800)->Arg(11000)->Unit(
 // As `railcontact run` computes it: flexibilities from K2 of the automatically coarsened patch.
 void BM_NhFastSimWithDefaultFlexibilities(benchmark::State& state) {
   const ContactPatch p = patch(static_cast<int>(state.range(0)));
-  const int factor = NhFastSim::automatic_coarsening(p);
+  const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(p);
   for (auto _ : state) benchmark::DoNotOptimize(NhFastSim(p).forces(kCombined, kMu));
   state.counters["elements"] = static_cast<double>(p.elements().count());
-  state.counters["coarsening"] = factor;
+  state.counters["blocks_along"] = blocks.along;
+  state.counters["blocks_across"] = blocks.across;
 }
 BENCHMARK(BM_NhFastSimWithDefaultFlexibilities)->Arg(700)->Arg(2800)->Arg(11000)->Unit(benchmark::kMillisecond);
 

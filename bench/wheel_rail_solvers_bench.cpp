@@ -53,7 +53,9 @@ void BM_NhFastSimOnTheFly(benchmark::State& state) {
   const Case& c = comparison_case(static_cast<int>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
   count_elements(state, c);
-  state.counters["coarsening"] = NhFastSim::automatic_coarsening(c.patch.patch);
+  const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(c.patch.patch);
+  state.counters["blocks_along"] = blocks.along;
+  state.counters["blocks_across"] = blocks.across;
 }
 BENCHMARK(BM_NhFastSimOnTheFly)->Arg(3000)->Arg(4700)->Arg(11000)->Unit(benchmark::kMicrosecond);
 
@@ -95,14 +97,14 @@ BENCHMARK(BM_NhFastSimStage_FastSimSetUp)->Arg(4700)->Unit(benchmark::kMicroseco
 
 void BM_NhFastSimStage_Coarsening(benchmark::State& state) {
   const Case& c = comparison_case(static_cast<int>(state.range(0)));
-  const int factor = NhFastSim::automatic_coarsening(c.patch.patch);
-  for (auto _ : state) benchmark::DoNotOptimize(coarsened(c.patch.patch, factor));
+  const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(c.patch.patch);
+  for (auto _ : state) benchmark::DoNotOptimize(coarsened(c.patch.patch, blocks));
   count_elements(state, c);
 }
 BENCHMARK(BM_NhFastSimStage_Coarsening)->Arg(4700)->Unit(benchmark::kMicrosecond);
 
 ContactPatch coarse_patch(const Case& c) {
-  return coarsened(c.patch.patch, NhFastSim::automatic_coarsening(c.patch.patch));
+  return coarsened(c.patch.patch, NhFastSim::automatic_coarse_blocks(c.patch.patch));
 }
 
 void BM_NhFastSimStage_OperatorSetUp(benchmark::State& state) {

@@ -189,12 +189,23 @@ class ContactPatch {
   double x1_shift_m_ = 0.0, x2_shift_m_ = 0.0;
 };
 
-// The patch on a mesh `factor` times coarser along both axes: each block of factor x factor
-// elements becomes one element, in contact when at least half of its elements are, carrying the
-// block's normal force (so the load and, nearly, the centre of pressure are kept). Used for
-// cheaper nH-FastSim flexibilities: K2 and FastSim's adhesion terms depend only on the shape.
-// factor in [1, kMaximumCoarsening].
+// The blocks of fine elements that make one coarse element: `along` elements along x1 (the rolling
+// direction) times `across` elements along x2, each in [1, kMaximumCoarsening + 1].
+struct CoarseBlocks {
+  int along = 1;
+  int across = 1;
+  bool operator==(const CoarseBlocks&) const = default;
+};
+
+// The patch on a coarser mesh: each block of blocks.along x blocks.across elements (counted from
+// the mesh's first element) becomes one element, in contact when at least half of its elements
+// are, carrying the block's normal force (so the load and, nearly, the centre of pressure are
+// kept). The coarse mesh is cropped to the bounding box of its elements in contact (the FFTs of K2
+// then cover the patch only). Used for cheaper nH-FastSim flexibilities: K2 and FastSim's adhesion
+// terms depend only on the shape.
 inline constexpr int kMaximumCoarsening = 8;
+ContactPatch coarsened(const ContactPatch& patch, CoarseBlocks blocks);
+// Square blocks of factor x factor elements, factor in [1, kMaximumCoarsening].
 ContactPatch coarsened(const ContactPatch& patch, int factor);
 
 // Hertzian pressure p0 sqrt(1 - (x1/a)^2 - (x2/b)^2) on an elliptical patch (elements whose

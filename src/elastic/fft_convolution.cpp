@@ -123,6 +123,25 @@ void RealFft2d::inverse(const std::complex<double>* spectrum, double* real) {
   fftw_execute_dft_c2r(plans_->inverse, rows, real);  // destroys rows, which is scratch
 }
 
+void RealFft2d::forward_wrapped(const double* real, std::complex<double>* spectrum) const {
+  // New-array execution of the row plan on arrays of the planned size and (fftw_malloc) alignment.
+  const auto h = static_cast<std::size_t>(n1_ / 2 + 1);
+  const auto n1 = static_cast<std::size_t>(n1_);
+  const auto rows = static_cast<std::size_t>(rows_);
+  FftwArray<std::complex<double>> half_rows(spectrum_size());  // zero-filled: the zero rows' transforms
+  fftw_execute_dft_r2c(plans_->forward, const_cast<double*>(real), reinterpret_cast<fftw_complex*>(half_rows.data()));
+  const std::size_t last = static_cast<std::size_t>(n2_) - rows;  // the first of the last `rows` rows
+  if (last > 0) {
+    FftwArray<double> moved(real_size());
+    std::copy_n(real + last * n1, rows * n1, moved.data());
+    FftwArray<std::complex<double>> moved_rows(spectrum_size());
+    fftw_execute_dft_r2c(plans_->forward, moved.data(), reinterpret_cast<fftw_complex*>(moved_rows.data()));
+    std::copy_n(moved_rows.data(), rows * h, half_rows.data() + last * h);  // overlapping rows: equal
+  }
+  fftw_execute_dft(plans_->forward_columns, reinterpret_cast<fftw_complex*>(half_rows.data()),
+                   reinterpret_cast<fftw_complex*>(spectrum));
+}
+
 int smooth_length(int minimum) {
   for (int n = std::max(minimum, 1);; ++n) {
     int m = n;
@@ -138,11 +157,12 @@ int fft_friendly_length(int minimum) {
   // inverse, half the rows non-zero, as in every convolution here; RealFft2d's column-by-column
   // spectrum) are faster than at every longer length: the cheapest choice for any minimum up to
   // 512 (measured on square transforms, docs/DEPENDENCIES.md "Padded lengths"). The smallest
-  // 7-smooth length was up to 3x slower (54 against 56, 60 against 64, 126 against 128). 40, 8 %
-  // faster than 42 there, is left out: FFTW plans it in 0.9 ms against 0.33 ms, which was half of
-  // nH-FastSim's first solve in a process (its coarse K2 transforms at 40 or 42), and in that
-  // operator's product the two were within the noise.
-  static constexpr int kFastLengths[] = {16,  20,  32,  36,  42,  48,  50,  56,  64,  72,  80,  84,  100, 112,
+  // 7-smooth length was up to 3x slower (54 against 56, 60 against 64, 126 against 128). 36 and 40,
+  // faster than 42 there, are left out: FFTW plans them in 0.42 and 0.9 ms against 0.22 ms, which
+  // was half of nH-FastSim's first solve in a process (its coarse K2 transforms along the rolling
+  // direction at 36 to 42), and with the 32 across of its coarse patch 36 and 42 transform equally
+  // fast (docs/BENCHMARKS.md, issue #15).
+  static constexpr int kFastLengths[] = {16,  20,  32,  42,  48,  50,  56,  64,  72,  80,  84,  100, 112,
                                          120, 128, 140, 144, 160, 200, 224, 256, 320, 336, 384, 400, 448, 512};
   if (minimum <= 16 || minimum > 512) return smooth_length(minimum);
   return *std::lower_bound(std::begin(kFastLengths), std::end(kFastLengths), minimum);
@@ -165,7 +185,6 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const d
   allocate_buffers();
   auto spectra = std::make_shared<KernelSpectra>(static_cast<std::size_t>(components * components));
   double* real = outputs_[0].data();  // scratch until the first product
-  RealFft2d kernel_fft(N1, N2, N2);  // the kernels fill every row
   const auto scaled = [normalisation](double value) { return value * normalisation; };
   for (int k = 0; k < components; ++k) {
     for (int l = 0; l < components; ++l) {
@@ -186,7 +205,7 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const d
         std::transform(row + (n1 - 1), row + w1, out, scaled);
         std::transform(row, row + (n1 - 1), out + (N1 - (n1 - 1)), scaled);
       }
-      kernel_fft.forward(real, spectrum.data());
+      fft_.forward_wrapped(real, spectrum.data());  // rows n2 .. N2 - n2 - 1 are zero
     }
   }
   kernel_spectra_ = std::move(spectra);
@@ -220,29 +239,47 @@ void FftConvolution::clear_inputs() {
     for (int i2 = 0; i2 < n2_; ++i2) std::fill_n(in.data() + static_cast<std::size_t>(i2) * stride, n1_, 0.0);
 }
 
+namespace {
+
+// out = K P (accumulate: out += K P) on interleaved (re, im) spectra of `count` values; conjugate:
+// K's conjugate (the transposed kernel's spectrum). Written out on (re, im) pairs: std::complex's
+// operator* guards against NaN (C99 Annex G) and does not vectorise. One loop per case, without a
+// branch inside, so that the compiler vectorises it.
+template <bool kAccumulate, bool kConjugate>
+void multiply_spectra(const double* __restrict K, const double* __restrict P, double* __restrict out,
+                      std::size_t count) {
+  for (std::size_t q = 0; q < 2 * count; q += 2) {
+    const double kr = K[q], ki = kConjugate ? -K[q + 1] : K[q + 1], pr = P[q], pi = P[q + 1];
+    const double re = kr * pr - ki * pi, im = kr * pi + ki * pr;
+    if constexpr (kAccumulate) {
+      out[q] += re;
+      out[q + 1] += im;
+    } else {
+      out[q] = re;
+      out[q + 1] = im;
+    }
+  }
+}
+
+}  // namespace
+
 void FftConvolution::convolve(bool transpose) {
   for (int l = 0; l < components_; ++l)
     fft_.forward(inputs_[static_cast<std::size_t>(l)].data(), input_spectra_[static_cast<std::size_t>(l)].data());
   const std::size_t ns = fft_.spectrum_size();
-  std::complex<double>* acc = sum_.data();
+  double* acc = reinterpret_cast<double*>(sum_.data());
   for (int k = 0; k < components_; ++k) {
-    // Products written out on (re, im) pairs: std::complex's operator* guards against NaN
-    // (C99 Annex G) and does not vectorise. The transposed kernel's spectrum is conj(K).
-    const double sign = transpose ? -1.0 : 1.0;
-    double* a = reinterpret_cast<double*>(acc);
     for (int l = 0; l < components_; ++l) {
       const auto* K = reinterpret_cast<const double*>(
           (*kernel_spectra_)[static_cast<std::size_t>(transpose ? l * components_ + k : k * components_ + l)].data());
       const auto* P = reinterpret_cast<const double*>(input_spectra_[static_cast<std::size_t>(l)].data());
-      const bool first = l == 0;
-      for (std::size_t q = 0; q < 2 * ns; q += 2) {
-        const double kr = K[q], ki = sign * K[q + 1], pr = P[q], pi = P[q + 1];
-        const double re = kr * pr - ki * pi, im = kr * pi + ki * pr;
-        a[q] = first ? re : a[q] + re;
-        a[q + 1] = first ? im : a[q + 1] + im;
+      if (l == 0) {
+        transpose ? multiply_spectra<false, true>(K, P, acc, ns) : multiply_spectra<false, false>(K, P, acc, ns);
+      } else {
+        transpose ? multiply_spectra<true, true>(K, P, acc, ns) : multiply_spectra<true, false>(K, P, acc, ns);
       }
     }
-    fft_.inverse(acc, outputs_[static_cast<std::size_t>(k)].data());
+    fft_.inverse(sum_.data(), outputs_[static_cast<std::size_t>(k)].data());
   }
 }
 

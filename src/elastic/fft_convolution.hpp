@@ -60,6 +60,11 @@ class RealFft2d {
   // spectrum (column by column) -> the first `rows` rows of real, unnormalised; spectrum is not
   // modified.
   void inverse(const std::complex<double>* spectrum, double* real);
+  // A field whose rows [rows, n2 - rows) are zero and the others possibly not (a kernel in
+  // wrap-around order) -> spectrum, with this transform's own plans: its first and its last `rows`
+  // rows in two passes of the row transform (a kernel then needs no plans of its own: planning is
+  // most of a small convolution's first set-up in a process).
+  void forward_wrapped(const double* real, std::complex<double>* spectrum) const;
 
   struct Plans;  // fft_convolution.cpp
 

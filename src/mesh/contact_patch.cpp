@@ -1,5 +1,6 @@
 #include "railcontact/contact_patch.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -65,37 +66,63 @@ ContactPatch coarsened(const ContactPatch& patch, int factor) {
   require(factor >= 1 && factor <= kMaximumCoarsening, [&] {
     return fmt::format("coarsened patch: the factor must lie in [1, {}] (got {})", kMaximumCoarsening, factor);
   });
-  if (factor == 1) return patch;
+  return coarsened(patch, CoarseBlocks{factor, factor});
+}
+
+ContactPatch coarsened(const ContactPatch& patch, CoarseBlocks blocks) {
+  const int f1 = blocks.along, f2 = blocks.across;
+  require(f1 >= 1 && f1 <= kMaximumCoarsening + 1 && f2 >= 1 && f2 <= kMaximumCoarsening + 1, [&] {
+    return fmt::format("coarsened patch: the blocks {} x {} must each lie in [1, {}]", f1, f2, kMaximumCoarsening + 1);
+  });
+  if (f1 == 1 && f2 == 1) return patch;
   const Mesh& fine = patch.mesh();
-  Mesh coarse;
-  coarse.n1 = (fine.n1 + factor - 1) / factor;
-  coarse.n2 = (fine.n2 + factor - 1) / factor;
-  coarse.dx1_m = factor * fine.dx1_m;
-  coarse.dx2_m = factor * fine.dx2_m;
-  coarse.x1_first_m = fine.x1_first_m + 0.5 * (factor - 1) * fine.dx1_m;
-  coarse.x2_first_m = fine.x2_first_m + 0.5 * (factor - 1) * fine.dx2_m;
-  std::vector<double> block_force(coarse.size(), 0.0);
-  std::vector<int> block_count(coarse.size(), 0);
+  const int n1 = (fine.n1 + f1 - 1) / f1;
+  const int n2 = (fine.n2 + f2 - 1) / f2;
+  std::vector<double> block_force(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), 0.0);
+  std::vector<int> block_count(block_force.size(), 0);
   for (const StripRun& run : patch.runs()) {  // strip by strip (no index division per element)
-    const std::size_t row = static_cast<std::size_t>(run.i2 / factor) * coarse.n1;
+    const std::size_t row = static_cast<std::size_t>(run.i2 / f2) * static_cast<std::size_t>(n1);
     for (int i1 = run.i1_trailing; i1 <= run.i1_leading; ++i1) {
-      const std::size_t k = row + static_cast<std::size_t>(i1 / factor);
+      const std::size_t k = row + static_cast<std::size_t>(i1 / f1);
       block_force[k] += patch.pressure_Pa()[run.first + static_cast<std::size_t>(i1 - run.i1_trailing)];
       block_count[k] += 1;
     }
   }
-  std::vector<double> pressure(coarse.size(), 0.0);
+  // The blocks in contact (at least half of their elements) and their bounding box.
   double kept = 0.0, total = 0.0;
-  for (std::size_t k = 0; k < coarse.size(); ++k) {
-    total += block_force[k];
-    if (2 * block_count[k] >= factor * factor) {
-      pressure[k] = block_force[k] / (factor * factor);  // same force on the coarse element
+  int lo1 = n1, hi1 = -1, lo2 = n2, hi2 = -1;
+  for (int i2 = 0; i2 < n2; ++i2) {
+    for (int i1 = 0; i1 < n1; ++i1) {
+      const std::size_t k = static_cast<std::size_t>(i2) * static_cast<std::size_t>(n1) + static_cast<std::size_t>(i1);
+      total += block_force[k];
+      if (2 * block_count[k] < f1 * f2) continue;
       kept += block_force[k];
+      lo1 = std::min(lo1, i1);
+      hi1 = std::max(hi1, i1);
+      lo2 = std::min(lo2, i2);
+      hi2 = std::max(hi2, i2);
     }
   }
-  require(kept > 0.0,
-          [&] { return "coarsened patch: the patch is too small to coarsen by " + std::to_string(factor); });
-  for (double& p : pressure) p *= total / kept;
+  require(kept > 0.0, [&] {
+    return fmt::format("coarsened patch: the patch is too small to coarsen in blocks of {} x {}", f1, f2);
+  });
+  Mesh coarse;
+  coarse.n1 = hi1 - lo1 + 1;
+  coarse.n2 = hi2 - lo2 + 1;
+  coarse.dx1_m = f1 * fine.dx1_m;
+  coarse.dx2_m = f2 * fine.dx2_m;
+  coarse.x1_first_m = fine.x1_first_m + 0.5 * (f1 - 1) * fine.dx1_m + lo1 * coarse.dx1_m;
+  coarse.x2_first_m = fine.x2_first_m + 0.5 * (f2 - 1) * fine.dx2_m + lo2 * coarse.dx2_m;
+  // Each kept block carries its force (pressure averaged over the whole block), scaled so that the
+  // coarse patch carries the whole load.
+  std::vector<double> pressure(coarse.size(), 0.0);
+  const double scale = total / kept / (f1 * f2);
+  for (int i2 = lo2; i2 <= hi2; ++i2) {
+    for (int i1 = lo1; i1 <= hi1; ++i1) {
+      const std::size_t k = static_cast<std::size_t>(i2) * static_cast<std::size_t>(n1) + static_cast<std::size_t>(i1);
+      if (2 * block_count[k] >= f1 * f2) pressure[coarse.index(i1 - lo1, i2 - lo2)] = block_force[k] * scale;
+    }
+  }
   return ContactPatch(coarse, pressure, patch.material());
 }
 

@@ -53,27 +53,35 @@ int NhFastSim::automatic_coarsening(const ContactPatch& patch) {
   return factor;
 }
 
+CoarseBlocks NhFastSim::automatic_coarse_blocks(const ContactPatch& patch) {
+  const int factor = automatic_coarsening(patch);
+  return {factor, factor >= 3 ? factor + 1 : factor};
+}
+
 NhFastSim::NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Eigen::Matrix3d> K2,
-                     int coarsening, int krylov_iterations)
+                     CoarseBlocks coarse_blocks, int krylov_iterations)
     : fastsim_(std::move(fastsim)),
       flexibilities_(flexibilities),
       creepage_matrix_(std::move(K2)),
-      coarsening_(coarsening),
+      coarse_blocks_(coarse_blocks),
       krylov_iterations_(krylov_iterations) {}
 
 NhFastSim::NhFastSim(const ContactPatch& patch, const NhFastSimOptions& options)
-    : NhFastSim(FastSim(patch, options.bound), {}, std::nullopt, 0, 0) {
+    : NhFastSim(FastSim(patch, options.bound), {}, std::nullopt, {0, 0}, 0) {
   validate(options);
-  coarsening_ = options.flexibility_coarsening > 0 ? options.flexibility_coarsening : automatic_coarsening(patch);
+  coarse_blocks_ = options.flexibility_coarsening > 0
+                       ? CoarseBlocks{options.flexibility_coarsening, options.flexibility_coarsening}
+                       : automatic_coarse_blocks(patch);
   // Steps 1-3: K2 and FastSim's full-adhesion forces (S D B, which does not depend on the bound)
   // on the same, possibly coarsened, patch.
-  const ContactPatch coarse = coarsening_ > 1 ? coarsened(patch, coarsening_) : ContactPatch{};
-  const ContactPatch& flexibility_patch = coarsening_ > 1 ? coarse : patch;
+  const bool coarse_patch = coarse_blocks_ != CoarseBlocks{1, 1};
+  const ContactPatch coarse = coarse_patch ? coarsened(patch, coarse_blocks_) : ContactPatch{};
+  const ContactPatch& flexibility_patch = coarse_patch ? coarse : patch;
   const AdhesionSolution K2 = solve_full_adhesion(flexibility_patch.elements(), flexibility_patch.material(),
                                                   adhesion_options(options), kAdhesionTuning);
   const Eigen::Matrix3d& k = K2.creepage_matrix;
-  flexibilities_.flexibility = coarsening_ > 1 ? nh_fastsim_flexibility(FastSim(coarse), k, options.match)
-                                               : nh_fastsim_flexibility(fastsim_, k, options.match);
+  flexibilities_.flexibility = coarse_patch ? nh_fastsim_flexibility(FastSim(coarse), k, options.match)
+                                            : nh_fastsim_flexibility(fastsim_, k, options.match);
   flexibilities_.f11_N = -k(0, 0);
   flexibilities_.f22_N = -k(1, 1);
   flexibilities_.f23_Nm = -k(1, 2);
@@ -82,7 +90,7 @@ NhFastSim::NhFastSim(const ContactPatch& patch, const NhFastSimOptions& options)
 }
 
 NhFastSim::NhFastSim(const ContactPatch& patch, const NhFastSimFlexibilities& given, const NhFastSimOptions& options)
-    : NhFastSim(FastSim(patch, options.bound), given, std::nullopt, 0, 0) {
+    : NhFastSim(FastSim(patch, options.bound), given, std::nullopt, {0, 0}, 0) {
   const Flexibility& L = given.flexibility;
   require(std::isfinite(L.L1) && std::isfinite(L.L2) && std::isfinite(L.L3) && L.L1 > 0 && L.L2 > 0 && L.L3 > 0, [&] {
     return fmt::format("nH-FastSim: the given flexibilities L1 = {:g}, L2 = {:g}, L3 = {:g} m/Pa must be positive and "

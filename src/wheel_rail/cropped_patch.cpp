@@ -38,17 +38,19 @@ ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure
 }
 
 ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa,
-                                 const std::vector<std::size_t>& elements, const Material& material, int block) {
+                                 const std::vector<std::size_t>& elements, const Material& material,
+                                 CoarseBlocks blocks) {
   const IndexBox box = bounding_box(mesh, elements);
   // Global element indices: centres at k dx from the reference point.
   const auto global1 = [&](int i1) { return static_cast<long>(std::lround(mesh.x1(i1) / mesh.dx1_m)); };
   const auto global2 = [&](int i2) { return static_cast<long>(std::lround(mesh.x2(i2) / mesh.dx2_m)); };
-  const auto floor_to = [&](long k) { return k >= 0 ? k - k % block : k - ((k % block) + block) % block; };
-  const long first1 = floor_to(global1(box.lo1)), first2 = floor_to(global2(box.lo2));
+  const auto floor_to = [](long k, long block) { return k >= 0 ? k - k % block : k - ((k % block) + block) % block; };
+  const long b1 = blocks.along, b2 = blocks.across;
+  const long first1 = floor_to(global1(box.lo1), b1), first2 = floor_to(global2(box.lo2), b2);
   const long last1 = global1(box.hi1), last2 = global2(box.hi2);
   Mesh crop = mesh;
-  crop.n1 = static_cast<int>((last1 - first1) / block + 1) * block;
-  crop.n2 = static_cast<int>((last2 - first2) / block + 1) * block;
+  crop.n1 = static_cast<int>(((last1 - first1) / b1 + 1) * b1);
+  crop.n2 = static_cast<int>(((last2 - first2) / b2 + 1) * b2);
   crop.x1_first_m = static_cast<double>(first1) * mesh.dx1_m;
   crop.x2_first_m = static_cast<double>(first2) * mesh.dx2_m;
   std::vector<double> p(crop.size(), 0.0);

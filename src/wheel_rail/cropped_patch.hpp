@@ -24,11 +24,13 @@ ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure
 
 // The same with the crop aligned to a block grid: the mesh's element centres must lie at integer
 // multiples of the element size from a reference point (as a wheelset patch's mesh does), and the
-// crop starts at a multiple of `block` elements from it and spans whole blocks. A patch coarsened by
-// `block` (coarsened()) then has its blocks fixed to the reference point, not to the patch's corner,
-// so the coarse patch changes continuously as elements enter (docs/WHEELSET.md §6).
+// crop starts at a multiple of the block's length from it along each axis and spans whole blocks. A
+// patch coarsened in these blocks (coarsened()) then has its blocks fixed to the reference point, not
+// to the patch's corner, so the coarse patch changes continuously as elements enter
+// (docs/WHEELSET.md §6).
 ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa,
-                                 const std::vector<std::size_t>& elements, const Material& material, int block);
+                                 const std::vector<std::size_t>& elements, const Material& material,
+                                 CoarseBlocks blocks);
 
 // Whether a patch's elements form more than one 4-neighbour connected lobe (as contact_regions
 // counts them), from its strip runs: runs of adjacent strips touch where their element ranges

@@ -82,15 +82,13 @@ NhFastSimPerLobe::NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOpt
   }
   for (const ContactRegion& region : detail::split_at_necks(source, pressure, contact_regions(source, pressure), cut)) {
     ContactPatch part = detail::cropped_patch(source, pressure, region.elements, patch.material());
-    NhFastSimOptions part_options = options;
     if (options.flexibility_coarsening == 0 && part.elements().count() >= kMinimumElementsForK2) {
-      const int block = NhFastSim::automatic_coarsening(part);
-      if (block > 1) {
-        part = detail::block_aligned_patch(source, pressure, region.elements, patch.material(), block);
-        part_options.flexibility_coarsening = block;
-      }
+      // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
+      const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(part);
+      if (blocks != CoarseBlocks{1, 1})
+        part = detail::block_aligned_patch(source, pressure, region.elements, patch.material(), blocks);
     }
-    Lobe lobe(std::move(part), part_options, source, region.elements);
+    Lobe lobe(std::move(part), options, source, region.elements);
     lobe.x1_centre_m = region.x1_centre_m + patch.x1_shift_m();
     lobe.x2_centre_m = region.x2_centre_m + patch.x2_shift_m();
     const ContactPatch& p = lobe.part;

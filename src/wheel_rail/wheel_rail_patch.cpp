@@ -270,8 +270,9 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
   // instead of with the patch's corner, which jumps by an element as elements enter (flexibility
   // tables: docs/FLEXTABLE.md §4). The elements and pressures are those of the plain crop.
   r.patch = detail::cropped_patch(mesh, main.normal.pressure_Pa, elements, options.material);
-  const int block = NhFastSim::automatic_coarsening(r.patch);
-  if (block > 1) r.patch = detail::block_aligned_patch(mesh, main.normal.pressure_Pa, elements, options.material, block);
+  const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(r.patch);
+  if (blocks != CoarseBlocks{1, 1})
+    r.patch = detail::block_aligned_patch(mesh, main.normal.pressure_Pa, elements, options.material, blocks);
   r.pressure_centre_x1_m = -r.patch.x1_shift_m();
   r.pressure_centre_x2_m = -r.patch.x2_shift_m();
   // The tangent-plane point O + x2 X2 with X2 = (−cos γ, sin γ) in the rail profile frame.

@@ -383,15 +383,13 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
     // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
     // corner, which jumps by an element as elements enter): the forces then change continuously.
-    WheelsetOptions solve_options = options;
     if (std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) != options.solvers.end() &&
         contact.elements().count() >= kMinimumElementsForK2) {
-      const int block = options.nh_fastsim.flexibility_coarsening > 0 ? options.nh_fastsim.flexibility_coarsening
-                                                                      : NhFastSim::automatic_coarsening(contact);
-      if (block > 1) {
-        contact = detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, block);
-        solve_options.nh_fastsim.flexibility_coarsening = block;
-      }
+      // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
+      const int factor = options.nh_fastsim.flexibility_coarsening;
+      const CoarseBlocks blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(contact);
+      if (blocks != CoarseBlocks{1, 1})
+        contact = detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, blocks);
     }
     // The patch's origin moved to the centre of pressure (x1c, x2c from the reference point):
     // the rigid slip (ξ − φ x2, η + φ x1) gives the creepages there.
@@ -408,7 +406,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     for (TangentialSolver s : options.solvers) {
       PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobed
                                 ? solve_nh_fastsim_per_lobe(contact, at_centre, options)
-                                : solve_tangential(s, contact, at_centre, solve_options, ab[0], ab[1]);
+                                : solve_tangential(s, contact, at_centre, options, ab[0], ab[1]);
       r.forces.F2_N *= s2;
       r.forces.M3_Nm *= s2;
       for (double& p2 : r.p2_Pa) p2 *= s2;
