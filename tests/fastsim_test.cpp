@@ -612,6 +612,92 @@ TEST(FastSimInput, RejectsBadInput) {
 namespace railcontact {
 namespace {
 
+// Blocks longer across than along (the automatic coarsening's from factor 3): the load is kept, the
+// coarse mesh is cropped to its elements in contact, square blocks are the factor's coarsening, and
+// the flexibilities stay close to the patch's own.
+TEST(NhFastSim, CoarseBlocksLongerAcrossKeepTheLoadAndCropToTheContact) {
+  const double a = 6e-3, b = 4e-3;
+  const ContactPatch fine = hertzian_patch(elliptical_contact_with_count(a, b, 2800, EllipseMeshLayout::rolling_resolved),
+                                           a, b, 98100.0, Material{2.1e11, 0.3});
+  const ContactPatch coarse = coarsened(fine, CoarseBlocks{3, 4});
+  const Mesh& m = coarse.mesh();
+  EXPECT_DOUBLE_EQ(m.dx1_m, 3 * fine.mesh().dx1_m);
+  EXPECT_DOUBLE_EQ(m.dx2_m, 4 * fine.mesh().dx2_m);
+  EXPECT_NEAR(static_cast<double>(coarse.elements().count()) / fine.elements().count(), 1.0 / 12.0, 0.01);
+  EXPECT_NEAR(coarse.normal_force_N(), fine.normal_force_N(), 1e-9 * fine.normal_force_N());
+  // Cropped: the first and last row and column of the coarse mesh each hold an element in contact.
+  bool first1 = false, last1 = false, first2 = false, last2 = false;
+  for (std::size_t k : coarse.elements().indices()) {
+    const auto i1 = static_cast<int>(k % static_cast<std::size_t>(m.n1));
+    const auto i2 = static_cast<int>(k / static_cast<std::size_t>(m.n1));
+    first1 |= i1 == 0;
+    last1 |= i1 == m.n1 - 1;
+    first2 |= i2 == 0;
+    last2 |= i2 == m.n2 - 1;
+  }
+  EXPECT_TRUE(first1 && last1 && first2 && last2) << m.n1 << " x " << m.n2;
+  // The element centres keep their positions: the coarse patch's extent along x1 and x2 is the
+  // fine patch's to within a block.
+  const auto extent = [](const ContactPatch& p, bool along) {
+    double lo = 1e9, hi = -1e9;
+    for (std::size_t e = 0; e < p.elements().count(); ++e) {
+      const double x = along ? p.x1(e) : p.x2(e);
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    return std::pair{lo, hi};
+  };
+  EXPECT_NEAR(extent(coarse, true).first, extent(fine, true).first, 3 * fine.mesh().dx1_m);
+  EXPECT_NEAR(extent(coarse, false).second, extent(fine, false).second, 4 * fine.mesh().dx2_m);
+  // Square blocks are the factor's coarsening.
+  const ContactPatch square = coarsened(fine, 2), blocks = coarsened(fine, CoarseBlocks{2, 2});
+  EXPECT_EQ(square.elements().indices(), blocks.elements().indices());
+  EXPECT_EQ(square.pressure_Pa(), blocks.pressure_Pa());
+  // The flexibilities from the 3 x 4 blocks against the patch's own (as the 2 x 2 test below).
+  NhFastSimOptions options;
+  options.flexibility_coarsening = 1;
+  const Flexibility L = NhFastSim(fine, options).flexibility();
+  AdhesionOptions adhesion;
+  adhesion.part = CreepageMatrixPart::force_rows;
+  adhesion.tolerance = 1e-6;
+  const Flexibility Lc =
+      nh_fastsim_flexibility(FastSim(coarse), solve_full_adhesion(coarse.elements(), coarse.material(), adhesion).creepage_matrix);
+  EXPECT_NEAR(Lc.L1 / L.L1, 1.0, 0.02);
+  EXPECT_NEAR(Lc.L2 / L.L2, 1.0, 0.02);
+  EXPECT_NEAR(Lc.L3 / L.L3, 1.0, 0.05);
+  EXPECT_THROW(coarsened(fine, CoarseBlocks{0, 2}), Error);
+  EXPECT_THROW(coarsened(fine, CoarseBlocks{2, kMaximumCoarsening + 2}), Error);
+}
+
+// The automatic coarsening: the patch itself below 400 elements, square blocks of 2 below the
+// factor 3, and from factor 3 one element more across than along; NhFastSim reports what it used.
+TEST(NhFastSim, AutomaticBlocksAreOneElementLongerAcrossFromFactorThree) {
+  const double a = 6e-3, b = 4e-3;
+  const auto patch = [&](int elements) {
+    return hertzian_patch(elliptical_contact_with_count(a, b, elements, EllipseMeshLayout::rolling_resolved), a, b,
+                          98100.0, Material{2.1e11, 0.3});
+  };
+  struct Expected {
+    int elements;
+    CoarseBlocks blocks;
+  };
+  for (const Expected& c : {Expected{300, {1, 1}}, Expected{1000, {2, 2}}, Expected{2800, {3, 4}},
+                            Expected{4700, {4, 5}}, Expected{11000, {6, 7}}}) {
+    const ContactPatch p = patch(c.elements);
+    const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(p);
+    EXPECT_EQ(blocks.along, NhFastSim::automatic_coarsening(p)) << c.elements;
+    EXPECT_EQ(blocks, c.blocks) << c.elements << ": " << blocks.along << " x " << blocks.across;
+    if (c.elements > 3000) continue;  // the solves below are the slow part
+    const NhFastSim nh(p);
+    EXPECT_EQ(nh.coarse_blocks(), c.blocks) << c.elements;
+    EXPECT_EQ(nh.coarsening(), c.blocks.along);
+  }
+  // An explicit factor gives square blocks.
+  NhFastSimOptions options;
+  options.flexibility_coarsening = 3;
+  EXPECT_EQ(NhFastSim(patch(2800), options).coarse_blocks(), (CoarseBlocks{3, 3}));
+}
+
 TEST(NhFastSim, FlexibilitiesFromTheCoarsenedPatchAreCloseToTheFinePatchs) {
   const double a = 6e-3, b = 4e-3;
   const ContactPatch fine = hertzian_patch(elliptical_contact_with_count(a, b, 2800, EllipseMeshLayout::rolling_resolved),

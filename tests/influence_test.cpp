@@ -186,6 +186,18 @@ TEST(InfluenceOperator, FftEqualsDenseSteadyRolling) {
   }
 }
 
+// Small meshes transform at odd lengths (2 n - 1 itself when it is 7-smooth): the kernel's first and
+// last rows then overlap in RealFft2d::forward_wrapped, which must still give the kernel spectra.
+TEST(InfluenceOperator, FftEqualsDenseOnSmallMeshesWhereTheKernelRowsOverlap) {
+  for (auto [n1, n2] : {std::pair{5, 4}, {3, 2}, {8, 8}, {2, 5}}) {
+    const Mesh mesh = Mesh::covering(-2e-3, 2e-3, -1e-3, 1e-3, n1, n2);
+    InfluenceOperator normal = make_normal_operator(mesh, kSteel);
+    expect_fft_equals_dense(normal, 3);
+    InfluenceOperator rolling = make_steady_rolling_operator(mesh, kSteel, 0.0);
+    expect_fft_equals_dense(rolling, 5);
+  }
+}
+
 // The kernel tables are tabulated from mirrored corner antiderivatives (odd/even in X and Y);
 // every quadrant is checked against the direct per-element coefficients.
 TEST(InfluenceOperator, NormalKernelMatchesDirectCoefficientsInEveryQuadrant) {
