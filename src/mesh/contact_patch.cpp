@@ -80,12 +80,19 @@ ContactPatch coarsened(const ContactPatch& patch, CoarseBlocks blocks) {
   const int n2 = (fine.n2 + f2 - 1) / f2;
   std::vector<double> block_force(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), 0.0);
   std::vector<int> block_count(block_force.size(), 0);
-  for (const StripRun& run : patch.runs()) {  // strip by strip (no index division per element)
+  // Strip by strip, and along a strip block by block: one index division and one update of the
+  // block's sums per block, not per element.
+  for (const StripRun& run : patch.runs()) {
     const std::size_t row = static_cast<std::size_t>(run.i2 / f2) * static_cast<std::size_t>(n1);
-    for (int i1 = run.i1_trailing; i1 <= run.i1_leading; ++i1) {
-      const std::size_t k = row + static_cast<std::size_t>(i1 / f1);
-      block_force[k] += patch.pressure_Pa()[run.first + static_cast<std::size_t>(i1 - run.i1_trailing)];
-      block_count[k] += 1;
+    const double* p3 = patch.pressure_Pa().data() + run.first;  // p3[i1 - run.i1_trailing]
+    for (int i1 = run.i1_trailing; i1 <= run.i1_leading;) {
+      const int block = i1 / f1;
+      const int end = std::min(run.i1_leading + 1, (block + 1) * f1);
+      double force = 0.0;
+      for (int i = i1; i < end; ++i) force += p3[i - run.i1_trailing];
+      block_force[row + static_cast<std::size_t>(block)] += force;
+      block_count[row + static_cast<std::size_t>(block)] += end - i1;
+      i1 = end;
     }
   }
   // The blocks in contact (at least half of their elements) and their bounding box.

@@ -297,8 +297,8 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   layout->element_count = patch.elements().count();
   layout->element_area_m2 = patch.mesh().element_area_m2();
   layout->bound_pressure_Pa = fastsim_detail::traction_bound_Pa(patch, bound.skew);
-  layout->adhesion_force_matrix = fastsim_detail::adhesion_force_matrix(patch);
   const std::vector<double> step = fastsim_detail::march_steps_m(patch);
+  layout->adhesion_force_matrix = fastsim_detail::adhesion_force_matrix(patch, step);
 
   // Runs, longest first (stable: ties keep the patch order).
   const std::vector<StripRun>& runs = patch.runs();

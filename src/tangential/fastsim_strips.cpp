@@ -20,12 +20,12 @@ std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew) {
   const std::vector<double>& p3 = patch.pressure_Pa();
   std::vector<double> bound(p3.size(), 0.0);
   for (const StripRun& run : patch.runs()) {
-    const double length_m = run.x1_leading_m - run.x1_trailing_m;  // x_l - x_t
+    const double inverse_length = 1.0 / (run.x1_leading_m - run.x1_trailing_m);  // 1 / (x_l - x_t)
     const std::size_t end = run.first + static_cast<std::size_t>(run.length());
     double strip_force = 0.0, shape_sum = 0.0;  // per unit strip area: sum p3, sum of the bound's shape
     for (std::size_t e = run.first; e < end; ++e) {
       const double x1 = mesh.x1(run.i1_trailing + static_cast<int>(e - run.first));  // = patch.x1(e)
-      const double t = (run.x1_leading_m - x1) / length_m;  // 0 at the leading edge, 1 at the trailing
+      const double t = (run.x1_leading_m - x1) * inverse_length;  // 0 at the leading edge, 1 at the trailing
       bound[e] = t * (1.0 - t) * (1.0 + skew * t);  // shape, > 0 at every centre inside the run
       shape_sum += bound[e];
       strip_force += p3[e];
@@ -36,9 +36,8 @@ std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew) {
   return bound;
 }
 
-Eigen::Matrix3d adhesion_force_matrix(const ContactPatch& patch) {
+Eigen::Matrix3d adhesion_force_matrix(const ContactPatch& patch, const std::vector<double>& step) {
   const Mesh& mesh = patch.mesh();
-  const std::vector<double> step = march_steps_m(patch);
   // Columns: unit xi, unit eta, unit phi (with L = 1); rows F1, F2, M3 / S.
   Eigen::Matrix3d DB = Eigen::Matrix3d::Zero();
   for (const StripRun& run : patch.runs()) {

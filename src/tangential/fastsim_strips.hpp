@@ -36,7 +36,8 @@ std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew);
 
 // S D B of Eq 19: the forces (F1, F2, M3) of FastSim's full-adhesion traction with unit
 // flexibilities L1 = L2 = L3 = 1, column j for unit creepage j (xi, eta, phi), computed with the
-// marching increments above. FastSim without slip gives F = (S D B) diag(1/L1, 1/L2, 1/L3) c.
-Eigen::Matrix3d adhesion_force_matrix(const ContactPatch& patch);
+// marching increments above (step = march_steps_m(patch)). FastSim without slip gives
+// F = (S D B) diag(1/L1, 1/L2, 1/L3) c.
+Eigen::Matrix3d adhesion_force_matrix(const ContactPatch& patch, const std::vector<double>& step);
 
 }  // namespace railcontact::fastsim_detail

@@ -33,13 +33,20 @@ class SteadyRollingPreconditioner {
   void march_transpose(const double* r, double* u) const;
 
  private:
-  static constexpr std::int32_t kOutside = -1;
   std::size_t count_;
   void apply_stencil(const double* u, double* z) const;  // z = (c0 - Laplacian) u
-  std::vector<std::uint8_t> ahead_in_contact_;        // the next element along +X1 is in contact
-  std::vector<std::int32_t> left_, right_, down_, up_;  // neighbours in contact, or kOutside
+  std::vector<std::uint8_t> ahead_in_contact_;  // the next element along +X1 is in contact
+  // The stencil without branches (so that it vectorises): u is copied to padded_ = [0, u, 0], the
+  // neighbours along X1 (e - 1, e + 1 when in contact) are weighted by 1 or 0, those along X2 are
+  // read at their index in padded_ (0, the zero, when not in contact).
+  std::vector<double> has_left_, has_right_;
+  std::vector<std::uint32_t> down_, up_;
+  // The marches run along strips; two independent halves of the elements (split at the start of a
+  // strip run) are marched in lock-step, so that four dependency chains (two halves, two
+  // components) overlap instead of two.
+  std::size_t split_ = 0;
   double dx1_, inv_dx1_sq_, inv_dx2_sq_, c0_;
-  mutable std::vector<double> work_;
+  mutable std::vector<double> work_, padded_;
 };
 
 }  // namespace railcontact
