@@ -404,7 +404,7 @@ void add_flextable_command(CLI::App& app, Action& action) {
   b->add_option("--rail", build->rail, "rail profile file (default: the shipped UIC60 1:40)");
   b->add_option("--elements", build->elements, "about this many elements in contact")->capture_default_str();
   b->add_option("--flexibility-coarsening", build->flexibility_coarsening,
-                "nH-FastSim's K2 on the patch coarsened by this factor (0: automatic, as `run`; 1: the patch itself)")
+                "nH-FastSim's K2 on the patch coarsened in square blocks of this factor (0: automatic, as `run`; 1: the patch itself)")
       ->capture_default_str();
   b->add_option("--threads", build->threads,
                 "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any number");

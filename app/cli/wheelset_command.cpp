@@ -264,7 +264,7 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--solver", args->solvers, "tangential solver(s): nh-fastsim, fastsim, exact, exact-regularised");
   sub->add_flag("--json", args->json, "print one JSON object");
   sub->add_option("--flexibility-coarsening", args->flexibility_coarsening,
-                  "nH-FastSim: K2 on the patch coarsened by this factor (0: automatic, 1: the patch itself)");
+                  "nH-FastSim: K2 on the patch coarsened in square blocks of this factor (0: automatic, 1: the patch itself)");
   sub->add_option("--slip-direction", args->slip_direction,
                   "nH-FastSim's slipping traction: flexibility-weighted (default; within 3 % on the flange too) "
                   "or radial (Eq 8, the paper's); docs/FASTSIM.md \"The slip direction\"");

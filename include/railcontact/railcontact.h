@@ -117,8 +117,9 @@ typedef struct rc_settings {
   double jacobian_step_spin_per_m; /* ... and of phi (1/m), [1e-8, 1]; default 1e-4 */
   int method;                   /* rc_method; default RC_METHOD_NH_FASTSIM */
   int mesh_mode;                /* rc_mesh_mode; default RC_MESH_ELEMENTS_IN_CONTACT */
-  int flexibility_coarsening;   /* nh-fastsim: K2 on the patch coarsened by this factor, 1..8;
-                                   0 automatic (default) */
+  int flexibility_coarsening;   /* nh-fastsim: K2 on the patch coarsened in square blocks of this
+                                   factor, 1..8; 0 automatic (default: f along the rolling
+                                   direction, f + 1 across from f = 3) */
   int max_newton_iterations;    /* exact solvers, >= 1; default 100 */
   int max_krylov_iterations;    /* exact solvers, >= 1; default 300 */
   int normal_max_iterations;    /* grid geometry, >= 1; default 1000 */
