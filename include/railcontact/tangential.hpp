@@ -268,10 +268,10 @@ class NhFastSim {
   // 0.1 points; below 1000 elements FastSim's own discretisation error dominates).
   static int automatic_coarsening(const ContactPatch& patch);
   // The blocks of the automatic coarsening: automatic_coarsening(patch) = f elements along the
-  // rolling direction and, from f = 3, f + 1 across (f below): the study of docs/FASTSIM.md
-  // "Flexibilities on a coarser patch" found the paper's Fig 5 errors lower or the same with the
-  // lateral direction one element coarser, and K2 then costs 35 % less (power-of-two transforms
-  // across at ~4700 elements).
+  // rolling direction and, from f = 3, f + 1 across (f below). With the lateral direction one
+  // element coarser the paper's Fig 5 errors are lower (rms at every size from 2000 elements, the
+  // largest at most sizes; docs/FASTSIM.md "Blocks one element longer across"), and K2 costs 40 %
+  // less at ~4700 elements (a power-of-two transform length across).
   static CoarseBlocks automatic_coarse_blocks(const ContactPatch& patch);
 
   // Creep forces and the spin moment on the wheel (Kalker's sign convention). Throws Error unless
