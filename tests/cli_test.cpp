@@ -86,6 +86,15 @@ TEST(CliRun, CaseFileJsonHasTheDocumentedShape) {
   EXPECT_NEAR(j["results"]["nh-fastsim"]["F1"].get<double>(), exact, 0.05 * std::fabs(exact));
 }
 
+// The built-in default case (S1002/UIC60, ~2970 elements) coarsens automatically in 3 x 4 blocks
+// (factor 3 along the rolling direction, one more across): the run names them.
+TEST(CliRun, NamesTheAutomaticCoarseBlocks) {
+  const CommandResult r = run_cli("run --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["results"]["nh-fastsim"]["flexibility_source"],
+            "K2 of the patch coarsened in blocks of 3 elements along x1 by 4 across");
+}
+
 INSTANTIATE_TEST_SUITE_P(Run, CliBadInput,
                          ::testing::Values(std::pair{"run /nonexistent/case.toml", "cannot read"},
                                            std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/unknown_key.toml",

@@ -53,8 +53,9 @@ struct Case {
                                   SolverKind::exact_regularised};
   RollingOptions rolling;
   // nH-FastSim flexibilities (and the normalisation's f11, f22) from K2 of the patch coarsened
-  // by this factor (1: the patch itself; 2: about 4x cheaper, docs/VALIDATION.md §3); 0: automatic,
-  // NhFastSim::automatic_coarsening() (a coarse patch of >= 250 elements; 2 from 400).
+  // in square blocks of this factor (1: the patch itself; 2: about 4x cheaper, docs/VALIDATION.md
+  // §3); 0: automatic, NhFastSim::automatic_coarse_blocks() (factor f for a coarse patch of >= 250
+  // elements, 2 from 400; f x (f + 1) blocks from f = 3).
   int flexibility_coarsening = 0;
   // nh-fastsim's traction bound (tangential.hpp TractionBound): 0 = the paper's parabola (Eq 1).
   // The classical `fastsim` always uses the parabola.

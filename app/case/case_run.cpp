@@ -245,9 +245,14 @@ SolverRun run_nh_fastsim(const NhFastSimSetUp& setup, bool tabled, const Creepag
     return run;
   }
   run.flexibility = nh.flexibility();
-  run.flexibility_source = tabled ? "table"
-                           : nh.coarsening() > 1 ? fmt::format("K2 of the patch coarsened by {}", nh.coarsening())
-                                                 : "K2";
+  const CoarseBlocks blocks = nh.coarse_blocks();
+  run.flexibility_source =
+      tabled                            ? std::string("table")
+      : blocks == CoarseBlocks{1, 1}    ? std::string("K2")
+      : blocks.along == blocks.across   ? fmt::format("K2 of the patch coarsened by {}", blocks.along)
+                                        : fmt::format("K2 of the patch coarsened in blocks of {} elements along x1 by {} "
+                                                      "across",
+                                                      blocks.along, blocks.across);
   run.flexibility_time_s = setup.time_s;  // K2 counts: it is nH-FastSim's
   run.iterations = nh.krylov_iterations();
   take_fastsim_result(nh.solve(creepage, mu), run);
