@@ -269,8 +269,8 @@ class NhFastSim {
   static int automatic_coarsening(const ContactPatch& patch);
   // The blocks of the automatic coarsening: automatic_coarsening(patch) = f elements along the
   // rolling direction and, from f = 3, f + 1 across (f below). With the lateral direction one
-  // element coarser the paper's Fig 5 errors are lower (rms at every size from 2000 elements, the
-  // largest at most sizes; docs/FASTSIM.md "Blocks one element longer across"), and K2 costs 40 %
+  // element coarser the paper's Fig 5 errors are lower at most sizes from 2000 elements (their rms
+  // nearly everywhere; docs/FASTSIM.md "Blocks one element longer across"), and K2 costs 40 %
   // less at ~4700 elements (a power-of-two transform length across).
   static CoarseBlocks automatic_coarse_blocks(const ContactPatch& patch);
 
