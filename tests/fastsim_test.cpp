@@ -556,6 +556,27 @@ TEST(FastSimSigns, KalkerConventionInTheLinearRegime) {
   }
 }
 
+// Without slip FastSim's forces are linear in the creepages: F = (S D B) diag(1/L1, 1/L2, 1/L3) c
+// (Eq 19). S D B is summed once at set-up; the march integrates the same increments element by
+// element, so the two agree to rounding, on an ellipse and on a two-lobe patch.
+TEST(FastSimAdhesion, ForcesWithoutSlipEqualTheAdhesionForceMatrix) {
+  for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), two_lobe_patch()}) {
+    const FastSim fastsim(patch);
+    const Flexibility L{5e-13, 6e-13, 4e-13};  // m/Pa, about Kalker's for these patches
+    const Eigen::Matrix3d& SDB = fastsim.adhesion_force_matrix();
+    EXPECT_EQ(SDB(0, 0), SDB(1, 1));
+    for (const Creepage& c : {Creepage{2e-6, -3e-6, 0}, Creepage{-1e-6, 2e-6, 4e-4}}) {
+      const TangentialForces f = fastsim.forces(c, L, 1e3);  // mu large: no element slips
+      const Eigen::Vector3d expected = SDB * Eigen::Vector3d(c.xi / L.L1, c.eta / L.L2, c.phi / L.L3);
+      const double scale = expected.head<2>().norm();
+      EXPECT_GT(scale, 1.0);
+      EXPECT_NEAR(f.F1_N, expected(0), 1e-12 * scale);
+      EXPECT_NEAR(f.F2_N, expected(1), 1e-12 * scale);
+      EXPECT_NEAR(f.M3_Nm, expected(2), 1e-12 * scale * 0.01);
+    }
+  }
+}
+
 // Mirror X2 -> -X2 of a patch symmetric in x2 maps (xi, eta, phi) to (xi, -eta, -phi) and
 // (F1, F2, M3) to (F1, -F2, -M3).
 TEST(FastSimSymmetry, MirrorInX2FlipsLateralForceAndMoment) {

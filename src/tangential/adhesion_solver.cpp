@@ -76,7 +76,7 @@ void require_finite_solution(const AdhesionSolution& s, CreepageMatrixPart part)
 
 // GMRES's restart length. Eigen's GMRES allocates and zeroes its Householder basis, 2N x
 // (restart + 1) doubles, on every solve: 290 kB with the default 60 on a coarse patch of 300
-// elements. Loose solves (nH-FastSim's 1e-3) take 4-12 iterations per right-hand side, so a
+// elements. Loose solves (nH-FastSim's 3e-3) take 4-12 iterations per right-hand side, so a
 // restart of 20 changes no result there; tight solves keep 60 (a restart slows GMRES down).
 int restart_for(double tolerance) { return tolerance >= 1e-4 ? 20 : 60; }
 
@@ -149,7 +149,7 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
   KrylovOptions krylov;
   krylov.tolerance = options.tolerance;
   krylov.max_iterations = options.max_iterations;
-  // nH-FastSim's loose tolerance (1e-3): GMRES's residual estimate is exact to far better than
+  // nH-FastSim's loose tolerance (3e-3): GMRES's residual estimate is exact to far better than
   // that; its recomputation would be one more product per row (~10 % of K2 on a coarse patch).
   krylov.recompute_residual = options.tolerance < 1e-6;
   krylov.gmres_restart = restart_for(options.tolerance);

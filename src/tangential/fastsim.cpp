@@ -151,7 +151,7 @@ TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficie
       const Lanes limit = mu * Lanes(bound_Pa + s, stdx::vector_aligned);  // mu p3e
       p1 += c1 * step;
       if constexpr (kSpin) {
-        // dp2 = (eta/L2) step + (phi/L3) (x1^2 - x1_upstream^2)/2   (Eq 3; fastsim_detail::spin_step_m2)
+        // dp2 = (eta/L2) step + (phi/L3) (x1^2 - x1_upstream^2)/2   (Eq 3; fastsim_strips.hpp)
         p2 += k.eta_over_L2 * step + k.phi_over_L3 * (step * (x1 - 0.5 * step));
       } else {
         p2 += k.eta_over_L2 * step;
@@ -270,6 +270,37 @@ void require_finite_forces(const TangentialForces& f) {
                           f.F1_N, f.F2_N, f.M3_Nm));
 }
 
+// S D B of Eq 19: (F1, F2, M3) of the full-adhesion traction with unit flexibilities, column j
+// for unit creepage j, from the march's own increments (fastsim_strips.hpp) over the slot layout,
+// a run per lane. The padding slots come before each run's leading element with step 0: they add
+// nothing. Unit xi and unit eta march the same p (p1 for xi, p2 for eta), so (S D B)_11 = _22.
+Eigen::Matrix3d marched_adhesion_force_matrix(const detail::FastSimLayout& layout) {
+  Lanes db11 = 0.0, db31 = 0.0, db32 = 0.0, db13 = 0.0, db23 = 0.0, db33 = 0.0;
+  for (std::size_t b = 0; b < layout.blocks; ++b) {
+    const Lanes x2(&layout.lane_x2_m[b * kLanes], stdx::vector_aligned);
+    Lanes p = 0.0, p1_phi = 0.0, p2_phi = 0.0;  // per unit xi (or eta), per unit phi
+    const std::size_t end = layout.block_first_slot[b] + layout.block_steps[b] * kLanes;
+    for (std::size_t s = layout.block_first_slot[b]; s < end; s += kLanes) {
+      const Lanes step(layout.step_m.data() + s, stdx::vector_aligned);
+      const Lanes x1(layout.x1_m.data() + s, stdx::vector_aligned);
+      p += step;
+      p1_phi -= x2 * step;
+      p2_phi += step * (x1 - 0.5 * step);  // (x1^2 - x1_upstream^2)/2
+      db11 += p;
+      db31 -= x2 * p;
+      db32 += x1 * p;
+      db13 += p1_phi;
+      db23 += p2_phi;
+      db33 += x1 * p2_phi - x2 * p1_phi;
+    }
+  }
+  Eigen::Matrix3d DB;
+  DB << stdx::reduce(db11), 0.0, stdx::reduce(db13),  //
+      0.0, stdx::reduce(db11), stdx::reduce(db23),    //
+      stdx::reduce(db31), stdx::reduce(db32), stdx::reduce(db33);
+  return layout.element_area_m2 * DB;
+}
+
 }  // namespace
 
 const char* slip_direction_name(SlipDirection direction) {
@@ -298,7 +329,6 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   layout->element_area_m2 = patch.mesh().element_area_m2();
   layout->bound_pressure_Pa = fastsim_detail::traction_bound_Pa(patch, bound.skew);
   const std::vector<double> step = fastsim_detail::march_steps_m(patch);
-  layout->adhesion_force_matrix = fastsim_detail::adhesion_force_matrix(patch, step);
 
   // Runs, longest first (stable: ties keep the patch order).
   const std::vector<StripRun>& runs = patch.runs();
@@ -340,6 +370,7 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
     layout->reach_m = std::max({layout->reach_m, std::fabs(mesh.x1(run.i1_trailing)) + 0.5 * mesh.dx1_m,
                                 std::fabs(mesh.x1(run.i1_leading)) + 0.5 * mesh.dx1_m,
                                 std::fabs(mesh.x2(run.i2)) + 0.5 * mesh.dx2_m});
+  layout->adhesion_force_matrix = marched_adhesion_force_matrix(*layout);
   layout_ = std::move(layout);
 }
 

@@ -1,4 +1,4 @@
-// FastSim's per-patch strip geometry: march steps, traction bound (Eq 1 and its skewed form), S D B (Eq 19).
+// FastSim's per-patch strip geometry: march steps, traction bound (Eq 1 and its skewed form).
 #include "tangential/fastsim_strips.hpp"
 
 #include <cstddef>
@@ -34,32 +34,6 @@ std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew) {
     for (std::size_t e = run.first; e < end; ++e) bound[e] *= height_Pa;
   }
   return bound;
-}
-
-Eigen::Matrix3d adhesion_force_matrix(const ContactPatch& patch, const std::vector<double>& step) {
-  const Mesh& mesh = patch.mesh();
-  // Columns: unit xi, unit eta, unit phi (with L = 1); rows F1, F2, M3 / S.
-  Eigen::Matrix3d DB = Eigen::Matrix3d::Zero();
-  for (const StripRun& run : patch.runs()) {
-    const double x2 = mesh.x2(run.i2);  // = patch.x2(run.first), without a division
-    double p1_xi = 0.0, p2_eta = 0.0, p1_phi = 0.0, p2_phi = 0.0;
-    for (std::size_t k = static_cast<std::size_t>(run.length()); k-- > 0;) {  // leading -> trailing
-      const std::size_t e = run.first + k;
-      const double x1 = mesh.x1(run.i1_trailing + static_cast<int>(k));  // = patch.x1(e)
-      p1_xi += step[e];
-      p2_eta += step[e];
-      p1_phi += -x2 * step[e];
-      p2_phi += spin_step_m2(step[e], x1);
-      DB(0, 0) += p1_xi;
-      DB(2, 0) += -x2 * p1_xi;
-      DB(1, 1) += p2_eta;
-      DB(2, 1) += x1 * p2_eta;
-      DB(0, 2) += p1_phi;
-      DB(1, 2) += p2_phi;
-      DB(2, 2) += x1 * p2_phi - x2 * p1_phi;
-    }
-  }
-  return patch.mesh().element_area_m2() * DB;
 }
 
 }  // namespace railcontact::fastsim_detail

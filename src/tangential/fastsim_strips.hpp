@@ -1,7 +1,7 @@
 #pragma once
-// The per-patch geometry of FastSim's strip marching (paper Eq 1-3, METHOD.md §7), shared by the
-// marching kernel (fastsim.cpp) and the flexibility matching (flexibility.cpp) so that both use
-// exactly the same discrete increments.
+// The per-patch geometry of FastSim's strip marching (paper Eq 1-3, METHOD.md §7): the march
+// (fastsim.cpp) and S D B of Eq 19 (FastSim::adhesion_force_matrix, the flexibility matching's
+// input) use exactly these discrete increments.
 //
 // Each strip run is marched from its leading edge (largest x1) towards its trailing edge. The
 // march visits the element centres; the "upstream point" of an element is the previous centre
@@ -11,17 +11,13 @@
 // of element e are exactly
 //   dp1 = (xi/L1 - phi x2_e / L3) step_e                                    (from Eq 2)
 //   dp2 = (eta/L2) step_e + (phi/L3) (x1_e^2 - x1_upstream^2) / 2           (from Eq 3)
-// with (x1_e^2 - x1_upstream^2)/2 = step_e (x1_e - step_e/2) (spin_step_m2 below). Summed from
+// with (x1_e^2 - x1_upstream^2)/2 = step_e (x1_e - step_e/2). Summed from
 // the leading edge (where Eq 2-3 vanish) they telescope to Eq 2-3 at the element centre.
-#include <Eigen/Core>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
 
 namespace railcontact::fastsim_detail {
-
-// (x1_e^2 - x1_upstream^2) / 2 for an element at x1_m reached by step_m (m^2).
-inline double spin_step_m2(double step_m, double x1_m) { return step_m * (x1_m - 0.5 * step_m); }
 
 // step_e (m) per contact element, in the order of patch.elements().indices().
 std::vector<double> march_steps_m(const ContactPatch& patch);
@@ -33,11 +29,5 @@ std::vector<double> march_steps_m(const ContactPatch& patch);
 // paper's parabola p3e = h' (1 - 4 ((x1 - x_c) / (x_l - x_t))^2) of Eq 1 (4 t (1 - t) = 1 - 4 u^2
 // with u = (x1 - x_c) / (x_l - x_t) = 1/2 - t).
 std::vector<double> traction_bound_Pa(const ContactPatch& patch, double skew);
-
-// S D B of Eq 19: the forces (F1, F2, M3) of FastSim's full-adhesion traction with unit
-// flexibilities L1 = L2 = L3 = 1, column j for unit creepage j (xi, eta, phi), computed with the
-// marching increments above (step = march_steps_m(patch)). FastSim without slip gives
-// F = (S D B) diag(1/L1, 1/L2, 1/L3) c.
-Eigen::Matrix3d adhesion_force_matrix(const ContactPatch& patch, const std::vector<double>& step);
 
 }  // namespace railcontact::fastsim_detail
