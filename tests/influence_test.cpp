@@ -172,6 +172,9 @@ void expect_fft_equals_dense(InfluenceOperator& op, unsigned seed) {
   if (op.components() == 2) EXPECT_GT((yt_dense - y_dense).norm(), 1e-3 * y_dense.norm());  // not symmetric
 }
 
+// RealFft2d computes the inverse along x1 of small transforms (at most 64 x 64 points) with its
+// forward plan, of larger ones with FFTW's c2r: the 23 x 31 mesh transforms at 48 x 64 (the
+// former), the 37 x 29 one at 80 x 64 (the latter), the small meshes below at odd lengths.
 TEST(InfluenceOperator, FftEqualsDenseNormal) {
   const Mesh mesh = Mesh::covering(-3e-3, 3e-3, -5e-3, 4e-3, 23, 31);
   InfluenceOperator op = make_normal_operator(mesh, kSteel);

@@ -28,7 +28,8 @@ template class FftwArray<double>;
 template class FftwArray<std::complex<double>>;
 
 struct RealFft2d::Plans {
-  Plans(int n1, int n2, int rows) : n1(n1), n2(n2), rows(rows) {
+  Plans(int size1, int size2, int planned_rows)
+      : n1(size1), n2(size2), rows(planned_rows), inverse_by_forward(size1 * size2 <= kInverseByForwardUpTo) {
     // Planned on scratch arrays (FFTW_ESTIMATE does not touch them), executed on others of the
     // same size and alignment. FFTW's row-major layout: n2 rows of n1 contiguous values; the half
     // spectrum between the passes has n2 rows of h = n1 / 2 + 1, the spectrum h columns of n2.
@@ -43,14 +44,16 @@ struct RealFft2d::Plans {
     // Along x1: the rows that can be non-zero (forward) or are wanted (inverse).
     forward =
         fftw_plan_many_dft_r2c(1, length1, rows, real.data(), nullptr, 1, n1, rows_data, nullptr, 1, h, FFTW_ESTIMATE);
-    inverse =
-        fftw_plan_many_dft_c2r(1, length1, rows, rows_data, nullptr, 1, h, real.data(), nullptr, 1, n1, FFTW_ESTIMATE);
+    if (!inverse_by_forward)
+      inverse =
+          fftw_plan_many_dft_c2r(1, length1, rows, rows_data, nullptr, 1, h, real.data(), nullptr, 1, n1, FFTW_ESTIMATE);
     // Along x2: every column, from the strided rows to contiguous columns and back.
     forward_columns = fftw_plan_many_dft(1, length2, h, rows_data, nullptr, h, 1, columns_data, nullptr, 1, n2,
                                          FFTW_FORWARD, FFTW_ESTIMATE);
     inverse_columns = fftw_plan_many_dft(1, length2, h, columns_data, nullptr, 1, n2, rows_data, nullptr, h, 1,
                                          FFTW_BACKWARD, FFTW_ESTIMATE);
-    check(forward != nullptr && forward_columns != nullptr && inverse_columns != nullptr && inverse != nullptr);
+    check(forward != nullptr && forward_columns != nullptr && inverse_columns != nullptr &&
+          (inverse_by_forward || inverse != nullptr));
   }
   ~Plans() { destroy(); }
   Plans(const Plans&) = delete;
@@ -64,11 +67,17 @@ struct RealFft2d::Plans {
     for (fftw_plan plan : {forward, forward_columns, inverse_columns, inverse})
       if (plan != nullptr) fftw_destroy_plan(plan);
   }
+  // Transforms of up to this many points compute the inverse along x1 with the forward plan
+  // (RealFft2d::inverse): FFTW plans a real transform of length 42 in ~0.1 ms, most of a small
+  // convolution's first use in a process, while the extra passes cost ~0.3 µs per inverse
+  // (docs/DEPENDENCIES.md "The inverse through the forward transform").
+  static constexpr int kInverseByForwardUpTo = 64 * 64;
   int n1, n2, rows;
+  bool inverse_by_forward;
   fftw_plan forward = nullptr;          // r2c along x1 on the first `rows` rows
   fftw_plan forward_columns = nullptr;  // c2c along x2, every column: strided rows -> contiguous columns
   fftw_plan inverse_columns = nullptr;  // its inverse: contiguous columns -> strided rows
-  fftw_plan inverse = nullptr;          // c2r along x1 on the first `rows` rows
+  fftw_plan inverse = nullptr;          // c2r along x1 on the first `rows` rows (not made if inverse_by_forward)
 };
 
 namespace {
@@ -105,6 +114,7 @@ RealFft2d::RealFft2d(int n1, int n2, int rows) : n1_(n1), n2_(n2), rows_(rows) {
   plans_ = plans_for(n1, n2, rows);
   forward_rows_ = FftwArray<std::complex<double>>(spectrum_size());  // zero-filled
   inverse_rows_ = FftwArray<std::complex<double>>(spectrum_size());
+  if (plans_->inverse_by_forward) hartley_rows_ = FftwArray<double>(real_size());
 }
 
 void RealFft2d::forward(const double* real, std::complex<double>* spectrum) {
@@ -120,7 +130,40 @@ void RealFft2d::inverse(const std::complex<double>* spectrum, double* real) {
   auto* rows = reinterpret_cast<fftw_complex*>(inverse_rows_.data());
   fftw_execute_dft(plans_->inverse_columns, reinterpret_cast<fftw_complex*>(const_cast<std::complex<double>*>(spectrum)),
                    rows);
+  if (plans_->inverse_by_forward) {
+    inverse_rows_through_forward(real);
+    return;
+  }
   fftw_execute_dft_c2r(plans_->inverse, rows, real);  // destroys rows, which is scratch
+}
+
+void RealFft2d::inverse_rows_through_forward(double* real) {
+  // The unnormalised real inverse of a Hermitian row Y (Y[N - k] = conj Y[k], N = n1_),
+  //   y[n] = sum_k Y[k] e^(+2 pi i k n / N) = sum_k (A[k] cos - B[k] sin)(2 pi k n / N),
+  // with A = Re Y even and B = Im Y odd in k, from the forward real transform W of the real row
+  // s = A + B: Re W[n] = sum_k A[k] cos (B odd drops out) and Im W[n] = -sum_k B[k] sin (A even
+  // drops out), so y[n] = Re W[n] + Im W[n] (Hartley's cas = cos + sin, read backwards). Like
+  // FFTW's c2r, the imaginary parts of Y[0] and Y[N/2] (zero for a Hermitian row) are ignored.
+  const auto N = static_cast<std::size_t>(n1_);
+  const std::size_t h = N / 2 + 1;
+  const auto* Y = reinterpret_cast<const double*>(inverse_rows_.data());  // (re, im) pairs, h per row
+  double* s = hartley_rows_.data();
+  for (std::size_t r = 0; r < static_cast<std::size_t>(rows_); ++r) {
+    const double* y_row = Y + 2 * h * r;
+    double* s_row = s + N * r;
+    for (std::size_t k = 0; k < h; ++k) s_row[k] = y_row[2 * k] + y_row[2 * k + 1];
+    for (std::size_t k = h; k < N; ++k) s_row[k] = y_row[2 * (N - k)] - y_row[2 * (N - k) + 1];
+    s_row[0] = y_row[0];
+    if (N % 2 == 0) s_row[N / 2] = y_row[N];
+  }
+  // W into the half rows, which are read.
+  fftw_execute_dft_r2c(plans_->forward, s, reinterpret_cast<fftw_complex*>(inverse_rows_.data()));
+  const auto* W = reinterpret_cast<const double*>(inverse_rows_.data());
+  for (std::size_t r = 0; r < static_cast<std::size_t>(rows_); ++r) {
+    const double* w_row = W + 2 * h * r;
+    double* out = real + N * r;
+    for (std::size_t n = 0; n < h; ++n) out[n] = w_row[2 * n] + w_row[2 * n + 1];
+  }
 }
 
 void RealFft2d::forward_wrapped(const double* real, std::complex<double>* spectrum) const {

@@ -58,7 +58,10 @@ class RealFft2d {
   // is not modified.
   void forward(const double* real, std::complex<double>* spectrum);
   // spectrum (column by column) -> the first `rows` rows of real, unnormalised; spectrum is not
-  // modified.
+  // modified. Of each row only the first n1 / 2 + 1 values are sure to be written (all that a
+  // convolution of a grid of at most that many elements along x1 reads): small transforms
+  // compute the inverse along x1 with the forward plan, which gives those (Plans in
+  // fft_convolution.cpp).
   void inverse(const std::complex<double>* spectrum, double* real);
   // A field whose rows [rows, n2 - rows) are zero and the others possibly not (a kernel in
   // wrap-around order) -> spectrum, with this transform's own plans: its first and its last `rows`
@@ -71,9 +74,13 @@ class RealFft2d {
  private:
   int n1_, n2_, rows_;
   std::shared_ptr<const Plans> plans_;
+  void inverse_rows_through_forward(double* real);
+
   // Row-major half spectra (n2 rows of n1 / 2 + 1) between the two passes: the forward one's
   // padding rows are zeroed once and never written; the inverse one is overwritten by each call.
   FftwArray<std::complex<double>> forward_rows_, inverse_rows_;
+  FftwArray<double> hartley_rows_;  // the inverse through the forward plan: its real rows
+
 };
 
 // Smallest n >= minimum whose prime factors are 2, 3, 5, 7.
