@@ -70,7 +70,7 @@ struct RealFft2d::Plans {
   // Transforms of up to this many points compute the inverse along x1 with the forward plan
   // (RealFft2d::inverse): FFTW plans a real transform of length 42 in ~0.1 ms, most of a small
   // convolution's first use in a process, while the extra passes cost ~0.3 µs per inverse
-  // (docs/DEPENDENCIES.md "The inverse through the forward transform").
+  // (docs/FFT.md "The inverse of small transforms through the forward plan").
   static constexpr int kInverseByForwardUpTo = 64 * 64;
   int n1, n2, rows;
   bool inverse_by_forward;
