@@ -55,8 +55,8 @@ class CBatch:
             "youngs_modulus_Pa", "poisson_ratio", "friction_coefficient", "mesh_value", "bound_skew",
             "collocation_offset", "tolerance", "krylov_tolerance", "regularisation", "normal_tolerance",
             "jacobian_step_creepage", "jacobian_step_spin_per_m")] + [(name, ctypes.c_int) for name in (
-                "method", "mesh_mode", "flexibility_coarsening", "max_newton_iterations", "max_krylov_iterations",
-                "normal_max_iterations")]
+                "method", "mesh_mode", "flexibility_coarsening", "slip_direction", "max_newton_iterations",
+                "max_krylov_iterations", "normal_max_iterations")]
 
     class Patch(ctypes.Structure):  # rc_patch
         _fields_ = [(name, ctypes.c_double) for name in (

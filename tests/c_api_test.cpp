@@ -110,6 +110,46 @@ TEST(CApi, EllipseEqualsTheCppApiForEveryMethod) {
   }
 }
 
+// rc_settings.slip_direction reaches NhFastSim's bound: radial by default, flexibility-weighted on
+// request, each equal to the C++ call to the last bit, and the two differ in deep slip with spin
+// (where the weighting turns the slipping traction).
+TEST(CApi, SlipDirectionReachesNhFastSim) {
+  const ContactPatch patch = cpp_ellipse(kA, kB, kF3, kElements);
+  const Creepage c{3e-3, -2e-3, 2.0};
+  const rc_creepage cc{c.xi, c.eta, c.phi};
+  rc_settings s;
+  rc_settings_default(&s);
+  EXPECT_EQ(s.slip_direction, RC_SLIP_RADIAL);
+  rc_forces forces[2]{};
+  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED}) {
+    Solver solver;
+    rc_settings_default(&s);
+    s.mesh_value = kElements;
+    s.slip_direction = direction;
+    ASSERT_EQ(rc_solver_set_settings(solver.h, &s), RC_OK) << solver.error();
+    ASSERT_EQ(rc_solver_set_ellipse(solver.h, kA, kB, kF3), RC_OK) << solver.error();
+    rc_forces& f = forces[direction];
+    ASSERT_EQ(rc_solver_solve(solver.h, &cc, &f), RC_OK) << solver.error();
+    NhFastSimOptions options;
+    options.bound.slip_direction =
+        direction == RC_SLIP_RADIAL ? SlipDirection::radial : SlipDirection::flexibility_weighted;
+    const TangentialForces expected = NhFastSim(patch, options).forces(c, kMu);
+    EXPECT_EQ(f.F1_N, expected.F1_N) << direction;
+    EXPECT_EQ(f.F2_N, expected.F2_N) << direction;
+    EXPECT_EQ(f.M3_Nm, expected.M3_Nm) << direction;
+  }
+  EXPECT_GT(std::fabs(forces[1].F1_N - forces[0].F1_N), 1e-3 * kMu * kF3);
+
+  Solver solver;
+  rc_settings_default(&s);
+  s.slip_direction = 2;
+  EXPECT_EQ(rc_solver_set_settings(solver.h, &s), RC_INVALID_INPUT);
+  EXPECT_NE(solver.error().find("rc_settings.slip_direction = 2 is not an rc_slip_direction (0 radial, 1 "
+                                "flexibility-weighted)"),
+            std::string::npos)
+      << solver.error();
+}
+
 TEST(CApi, NormalResultsOfAnEllipseAndOfHertz) {
   const HertzContact h = hertz_from_curvatures(5.0, 8.0, kF3, kSteel);
   Solver s;

@@ -355,6 +355,40 @@ TEST(CApiWheelset, TwoHandlesOnTwoThreadsEqualSerial) {
   }
 }
 
+// rc_wheelset_options.slip_direction: flexibility-weighted by default (the C++ wheelset's), radial
+// on request; each equals railcontact::Wheelset with that slip direction, and on the flange
+// (y = -7 mm, deep slip with spin) the two differ.
+TEST(CApiWheelset, SlipDirectionEqualsTheCppWheelset) {
+  rc_wheelset_options o;
+  rc_wheelset_options_default(&o);
+  EXPECT_EQ(o.slip_direction, RC_SLIP_FLEXIBILITY_WEIGHTED);
+  double right[2][3] = {};  // the right wheel's force (track axes), per slip direction
+  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED}) {
+    CWheelset c(true, 0);
+    ASSERT_EQ(rc_wheelset_get_options(c.h, &o), RC_OK);
+    o.slip_direction = direction;
+    ASSERT_EQ(rc_wheelset_set_options(c.h, &o), RC_OK) << c.error();
+    WheelsetOptions options = coarse(true);
+    options.nh_fastsim.bound.slip_direction =
+        direction == RC_SLIP_RADIAL ? SlipDirection::radial : SlipDirection::flexibility_weighted;
+    Wheelset cpp(track(), options);
+    const rc_wheelset_state s = c_state(-7e-3);
+    rc_wheelset_result r;
+    ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_OK) << c.error();
+    const WheelsetResult e = cpp.evaluate(cpp_state(s));
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(r.force_track_N[i], e.force_track_N[i]) << direction;
+    for (int i = 0; i < 3; ++i) right[direction][i] = r.wheel_force_track_N[RC_WHEEL_RIGHT][i];
+  }
+  EXPECT_GT(std::hypot(right[1][0] - right[0][0], right[1][1] - right[0][1]), 100.0);  // N
+
+  CWheelset c(true, 1);
+  ASSERT_EQ(rc_wheelset_get_options(c.h, &o), RC_OK);
+  o.slip_direction = -1;
+  EXPECT_EQ(rc_wheelset_set_options(c.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_options.slip_direction = -1 is not an rc_slip_direction"), std::string::npos)
+      << c.error();
+}
+
 TEST(CApiWheelset, BadInputGivesStatusAndMessage) {
   CWheelset c(true, 1);
   rc_wheelset_state s = c_state(kNaN);

@@ -13,6 +13,7 @@ namespace {
 using railcontact::test::CommandResult;
 using railcontact::test::count_lines;
 using railcontact::test::run_cli;
+using railcontact::test::ScratchDirectory;
 
 TEST(Cli, CoefficientsJsonIsOneObjectWithTheDocumentedKeys) {
   const CommandResult r = run_cli("coefficients --a-over-b 1 --nu 0.25 --elements 1500 --json");
@@ -89,14 +90,46 @@ TEST(CliRun, CaseFileJsonHasTheDocumentedShape) {
 // The built-in default case (S1002/UIC60, ~2970 elements) coarsens automatically in 3 x 4 blocks
 // (factor 3 along the rolling direction, one more across): the run names them.
 TEST(CliRun, NamesTheAutomaticCoarseBlocks) {
-  const CommandResult r = run_cli("run --json");
+  const ScratchDirectory dir("run_blocks");  // not the shared default railcontact-out/ (tests run in parallel)
+  const CommandResult r = run_cli("run --json --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["results"]["nh-fastsim"]["flexibility_source"],
             "K2 of the patch coarsened in blocks of 3 elements along x1 by 4 across");
 }
 
+// --slip-direction reaches nh-fastsim (and only it): the JSON names it, and with the default case's
+// partial slip with spin the flexibility-weighted traction moves nh-fastsim's forces, not fastsim's.
+TEST(CliRun, SlipDirectionOption) {
+  const ScratchDirectory dir("run_slip");  // not the shared default railcontact-out/ (tests run in parallel)
+  const std::string out = " --out " + dir.string();
+  const CommandResult radial = run_cli("run --json" + out);
+  const CommandResult weighted = run_cli("run --json --slip-direction flexibility-weighted" + out);
+  ASSERT_EQ(radial.exit_code, 0) << radial.err;
+  ASSERT_EQ(weighted.exit_code, 0) << weighted.err;
+  const nlohmann::json a = nlohmann::json::parse(radial.out)["results"];
+  const nlohmann::json b = nlohmann::json::parse(weighted.out)["results"];
+  EXPECT_EQ(a["nh-fastsim"]["slip_direction"], "radial");
+  EXPECT_EQ(b["nh-fastsim"]["slip_direction"], "flexibility-weighted");
+  EXPECT_NE(a["nh-fastsim"]["F1"].get<double>(), b["nh-fastsim"]["F1"].get<double>());
+  EXPECT_EQ(a["fastsim"]["F1"].get<double>(), b["fastsim"]["F1"].get<double>());
+  EXPECT_EQ(a["exact"]["F1"].get<double>(), b["exact"]["F1"].get<double>());
+  // The report: the nh-fastsim flexibilities' line names a non-default slip direction, and only there.
+  for (const bool weighted_run : {false, true}) {
+    const CommandResult text = run_cli((weighted_run ? "run --slip-direction flexibility-weighted" : "run") + out);
+    ASSERT_EQ(text.exit_code, 0) << text.err;
+    const std::size_t at = text.out.find("nh-fastsim flexibilities:");
+    ASSERT_NE(at, std::string::npos) << text.out;
+    const std::string line = text.out.substr(at, text.out.find('\n', at) - at);
+    EXPECT_EQ(line.find("Kalker"), std::string::npos) << line;
+    EXPECT_EQ(line.find("; slip direction flexibility-weighted") != std::string::npos, weighted_run) << line;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(Run, CliBadInput,
                          ::testing::Values(std::pair{"run /nonexistent/case.toml", "cannot read"},
+                                           std::pair{"run --slip-direction sideways",
+                                                     "--slip-direction: unknown slip direction 'sideways' (radial, "
+                                                     "flexibility-weighted)"},
                                            std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/unknown_key.toml",
                                                      "unknown key 'mue'"},
                                            std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/bad_solver.toml",

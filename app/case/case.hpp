@@ -60,6 +60,9 @@ struct Case {
   // nh-fastsim's traction bound (tangential.hpp TractionBound): 0 = the paper's parabola (Eq 1).
   // The classical `fastsim` always uses the parabola.
   double bound_skew = TractionBound{}.skew;
+  // nh-fastsim's slipping traction (docs/FASTSIM.md "The slip direction"): Eq 8 by default, as the
+  // paper; flexibility-weighted for flange patches ([solvers] slip_direction, --slip-direction).
+  SlipDirection slip_direction = SlipDirection::radial;
 };
 
 // Reads and validates a case file. Throws railcontact::Error naming the file, the line and the

@@ -187,8 +187,8 @@ void read_solver_list(Section& solvers, Case& c) {
 }
 
 // [solvers] (optional): the solvers to run and their options: the collocation offset alpha, the
-// regularisation, the tolerance, nH-FastSim's flexibility coarsening and its bound skew (0: the
-// paper's parabola, Eq 1).
+// regularisation, the tolerance, nH-FastSim's flexibility coarsening, its bound skew (0: the
+// paper's parabola, Eq 1) and its slip direction.
 void read_solvers(Section solvers, Case& c) {
   read_solver_list(solvers, c);
   if (const std::optional<double> alpha = solvers.optional_number("alpha")) {
@@ -210,6 +210,13 @@ void read_solvers(Section solvers, Case& c) {
       throw Error(fmt::format("{}: [solvers] bound_skew must lie in [0, 1] (0: the paper's parabola, Eq 1)",
                               solvers.location("bound_skew")));
     c.bound_skew = *skew;
+  }
+  if (const std::optional<std::string> d = solvers.optional_string("slip_direction")) {
+    try {
+      c.slip_direction = parse_slip_direction(*d);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: [solvers] slip_direction: {}", solvers.location("slip_direction"), e.what()));
+    }
   }
   solvers.finish();
 }

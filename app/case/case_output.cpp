@@ -76,6 +76,10 @@ std::string case_result_json(const CaseResult& r) {
       j["flexibility_time_s"] = run.flexibility_time_s;
       j["flexibility_source"] = run.flexibility_source;
     }
+    if (run.kind == SolverKind::nh_fastsim) {
+      j["traction_bound_skew"] = r.input.bound_skew;
+      j["slip_direction"] = slip_direction_name(r.input.slip_direction);
+    }
     if (run.kind == SolverKind::exact || run.kind == SolverKind::exact_regularised) j["krylov_iterations"] = run.krylov_iterations;
     if (exact != nullptr && magnitude(exact->forces) > 0)
       j["rel_error_F"] = std::fabs(magnitude(run.forces) - magnitude(exact->forces)) / magnitude(exact->forces);
@@ -149,6 +153,8 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
                  run.iterations);
     else
       fmt::print(out, " (Eq 9, Kalker's coefficients)");
+    if (run.kind == SolverKind::nh_fastsim && r.input.slip_direction != SlipDirection::radial)
+      fmt::print(out, "; slip direction {} (docs/FASTSIM.md)", slip_direction_name(r.input.slip_direction));
   }
   fmt::print(out, "\n");
   if (const auto& v = r.flexibility_table_values) {

@@ -197,7 +197,7 @@ NhFastSimSetUp set_up_nh_fastsim(const Case& input, CaseResult& result, std::ost
   const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
   const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
   NhFastSimOptions nh_options;
-  nh_options.bound = TractionBound{input.bound_skew};
+  nh_options.bound = TractionBound{input.bound_skew, input.slip_direction};
   nh_options.flexibility_coarsening = input.flexibility_coarsening;
   nh_options.collocation_offset = input.rolling.collocation_offset;
   NhFastSimSetUp setup;

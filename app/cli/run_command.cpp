@@ -1,4 +1,4 @@
-// `railcontact run [CASE.toml] [--json] [--out DIR] [--flextable FILE]`: the main job.
+// `railcontact run [CASE.toml] [--json] [--out DIR] [--flextable FILE] [--slip-direction NAME]`: the main job.
 #include <fmt/core.h>
 
 #include <iostream>
@@ -10,7 +10,9 @@
 #include "case/case.hpp"
 #include "case/case_output.hpp"
 #include "case/case_run.hpp"
+#include "railcontact/error.hpp"
 #include "railcontact/flexibility_table.hpp"
+#include "railcontact/tangential.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -19,12 +21,20 @@ struct RunArguments {
   std::string case_file;
   std::string out;
   std::string flextable;
+  std::string slip_direction;  // --slip-direction (radial, flexibility-weighted): overrides the case file's
   bool json = false;
 };
 
 int run(const RunArguments& args) {
   const bool built_in = args.case_file.empty();
-  const Case input = built_in ? default_case() : read_case_file(args.case_file);
+  Case input = built_in ? default_case() : read_case_file(args.case_file);
+  if (!args.slip_direction.empty()) {
+    try {
+      input.slip_direction = parse_slip_direction(args.slip_direction);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--slip-direction: {}", e.what()));
+    }
+  }
   CaseRunOptions options;
   if (!args.flextable.empty())
     options.flexibility_table = std::make_shared<const FlexibilityTable>(load_flexibility_table(args.flextable));
@@ -58,6 +68,9 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--flextable", args->flextable,
                   "flexibility table (flextable build): nh-fastsim takes L1-L3 and the normalisation's f11, f22 from it "
                   "instead of K2 (wheel-rail cases)");
+  cmd->add_option("--slip-direction", args->slip_direction,
+                  "nh-fastsim's slipping traction: radial (Eq 8, the default) or flexibility-weighted (for flange "
+                  "patches; docs/FASTSIM.md \"The slip direction\"); overrides the case file's [solvers] slip_direction");
   cmd->callback([args, &action] { action = [args] { return run(*args); }; });
 }
 

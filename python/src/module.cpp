@@ -97,7 +97,7 @@ class Solver {
     RC_FIELD(bound_skew); RC_FIELD(collocation_offset); RC_FIELD(tolerance); RC_FIELD(krylov_tolerance);
     RC_FIELD(regularisation); RC_FIELD(normal_tolerance); RC_FIELD(jacobian_step_creepage);
     RC_FIELD(jacobian_step_spin_per_m); RC_FIELD(method); RC_FIELD(mesh_mode); RC_FIELD(flexibility_coarsening);
-    RC_FIELD(max_newton_iterations); RC_FIELD(max_krylov_iterations); RC_FIELD(normal_max_iterations);
+    RC_FIELD(slip_direction); RC_FIELD(max_newton_iterations); RC_FIELD(max_krylov_iterations); RC_FIELD(normal_max_iterations);
 #undef RC_FIELD
     return d;
   }
@@ -114,7 +114,7 @@ class Solver {
       RC_DOUBLE(bound_skew) RC_DOUBLE(collocation_offset) RC_DOUBLE(tolerance) RC_DOUBLE(krylov_tolerance)
       RC_DOUBLE(regularisation) RC_DOUBLE(normal_tolerance) RC_DOUBLE(jacobian_step_creepage)
       RC_DOUBLE(jacobian_step_spin_per_m) RC_INT(method) RC_INT(mesh_mode) RC_INT(flexibility_coarsening)
-      RC_INT(max_newton_iterations) RC_INT(max_krylov_iterations) RC_INT(normal_max_iterations)
+      RC_INT(slip_direction) RC_INT(max_newton_iterations) RC_INT(max_krylov_iterations) RC_INT(normal_max_iterations)
 #undef RC_DOUBLE
 #undef RC_INT
       raise(RC_INVALID_INPUT, "unknown setting '" + key + "'");
@@ -542,7 +542,7 @@ class WheelsetHandle {
 #define RC_FIELD(name) d[#name] = o.name
     RC_FIELD(youngs_modulus_Pa); RC_FIELD(poisson_ratio); RC_FIELD(friction_coefficient); RC_FIELD(element_size_m);
     RC_FIELD(right_load_N); RC_FIELD(left_load_N); RC_FIELD(normal_mode); RC_FIELD(balance_roll);
-    RC_FIELD(tangential_in_balance); RC_FIELD(allow_wheel_lift); RC_FIELD(warm_start);
+    RC_FIELD(tangential_in_balance); RC_FIELD(allow_wheel_lift); RC_FIELD(warm_start); RC_FIELD(slip_direction);
 #undef RC_FIELD
     py::list solvers;
     for (int k = 0; k < o.solver_count; ++k) solvers.append(o.solvers[k]);
@@ -560,7 +560,7 @@ class WheelsetHandle {
 #define RC_INT(name) if (key == #name) { o.name = value.cast<int>(); continue; }
       RC_DOUBLE(youngs_modulus_Pa) RC_DOUBLE(poisson_ratio) RC_DOUBLE(friction_coefficient) RC_DOUBLE(element_size_m)
       RC_DOUBLE(right_load_N) RC_DOUBLE(left_load_N) RC_INT(normal_mode) RC_INT(balance_roll)
-      RC_INT(tangential_in_balance) RC_INT(allow_wheel_lift) RC_INT(warm_start)
+      RC_INT(tangential_in_balance) RC_INT(allow_wheel_lift) RC_INT(warm_start) RC_INT(slip_direction)
 #undef RC_DOUBLE
 #undef RC_INT
       if (key == "solvers") {

@@ -215,6 +215,23 @@ def test_the_c_api_gives_the_same_numbers():
     assert (r.F1_N, r.F2_N, r.M3_Nm) == (forces.F1, forces.F2, forces.M3)
 
 
+def test_slip_direction():
+    """slip_direction reaches nH-FastSim: radial (Eq 8) by default; flexibility-weighted turns the
+    slipping traction in deep slip with spin; anything else is refused, naming the setting."""
+    radial = railcontact.Solver(elements=600)
+    weighted = railcontact.Solver(elements=600, slip_direction="flexibility-weighted")
+    assert radial.settings["slip_direction"] == railcontact.SLIP_DIRECTIONS["radial"] == 0
+    assert weighted.settings["slip_direction"] == railcontact.SLIP_DIRECTIONS["flexibility-weighted"] == 1
+    for solver in (radial, weighted):
+        solver.set_ellipse(6e-3, 4e-3, F3)
+    a, b = radial.solve(3e-3, -2e-3, 2.0), weighted.solve(3e-3, -2e-3, 2.0)
+    assert abs(a.F1_N - b.F1_N) > 1e-3 * MU * F3
+    small = radial.solve(1e-6)
+    assert small.adhesion_fraction == 1.0 and small.F1_N == weighted.solve(1e-6).F1_N  # no slip: the same march
+    with pytest.raises(railcontact.InvalidInputError, match="slip_direction = 'weighted' is not one of"):
+        railcontact.Solver(slip_direction="weighted")
+
+
 def test_solvers_on_threads_equal_serial():
     def run(index, out):
         solver = railcontact.Solver("exact", elements=300 + 100 * index)

@@ -41,7 +41,7 @@ def test_default_wheelset_carries_the_loads(wheelset):
 
 class _Options(ctypes.Structure):
     _fields_ = ([(n, ctypes.c_double) for n in ("E", "nu", "mu", "element", "right", "left")]
-                + [(n, ctypes.c_int) for n in ("mode", "balance", "tangential", "lift", "warm", "count")]
+                + [(n, ctypes.c_int) for n in ("mode", "balance", "tangential", "lift", "warm", "slip", "count")]
                 + [("solvers", ctypes.c_int * 4)])
 
 
@@ -154,6 +154,18 @@ def test_two_wheelsets_on_two_threads_equal_serial():
         t.join()
     for a, b in zip(out, serial):
         assert np.array_equal(a, b)
+
+
+def test_slip_direction_on_the_flange():
+    """The wheelset's default is the flexibility-weighted slip direction; "radial" gives Eq 8: on the
+    flange (y = -7 mm, deep slip with spin) the right wheel's force differs by more than 100 N."""
+    weighted = railcontact.Wheelset(element_size=COARSE, warm_start=False)
+    radial = railcontact.Wheelset(element_size=COARSE, warm_start=False, slip_direction="radial")
+    a = weighted.evaluate(y=-7e-3).right.force_track_N
+    b = radial.evaluate(y=-7e-3).right.force_track_N
+    assert math.hypot(a[0] - b[0], a[1] - b[1]) > 100.0
+    with pytest.raises(railcontact.InvalidInputError, match="slip_direction = 'sideways' is not one of radial"):
+        railcontact.Wheelset(element_size=COARSE, slip_direction="sideways")
 
 
 def test_exceptions(wheelset):

@@ -119,6 +119,7 @@ rc_status rc_settings_default(rc_settings* s) {
   s->method = RC_METHOD_NH_FASTSIM;
   s->mesh_mode = RC_MESH_ELEMENTS_IN_CONTACT;
   s->flexibility_coarsening = 0;
+  s->slip_direction = RC_SLIP_RADIAL;  // NhFastSimOptions' (TractionBound's) default
   s->max_newton_iterations = rolling.max_newton_iterations;
   s->max_krylov_iterations = rolling.max_krylov_iterations;
   s->normal_max_iterations = normal.max_iterations;

@@ -99,6 +99,10 @@ rc_status last_error(const Handle* handle, char* buffer, std::size_t size, std::
 // Checks rc_settings field by field (messages name the field, its value and its range).
 void validate_settings(const rc_settings& settings);
 
+// An rc_slip_direction value of the structure's slip_direction field; throws an invalid_input
+// Error naming the field, the value and the allowed ones otherwise.
+SlipDirection slip_direction_of(int value, const char* structure = "rc_settings");
+
 // A contact patch prepared for one method: immutable once built, so one may serve several threads
 // (FastSim, NhFastSim and the exact solvers only read it).
 struct PreparedPatch {

@@ -151,6 +151,7 @@ void prepare_method(const rc_settings& s, PreparedPatch& p, const NhFastSimFlexi
     case RC_METHOD_NH_FASTSIM: {
       NhFastSimOptions o;
       o.bound.skew = s.bound_skew;
+      o.bound.slip_direction = slip_direction_of(s.slip_direction);
       o.flexibility_coarsening = s.flexibility_coarsening;
       o.collocation_offset = s.collocation_offset;
       if (given != nullptr)
@@ -169,6 +170,16 @@ void prepare_method(const rc_settings& s, PreparedPatch& p, const NhFastSimFlexi
 }
 
 }  // namespace
+
+SlipDirection slip_direction_of(int value, const char* structure) {
+  switch (value) {
+    case RC_SLIP_RADIAL: return SlipDirection::radial;
+    case RC_SLIP_FLEXIBILITY_WEIGHTED: return SlipDirection::flexibility_weighted;
+    default: break;
+  }
+  throw Error(fmt::format("{}.slip_direction = {} is not an rc_slip_direction (0 radial, 1 flexibility-weighted)",
+                          structure, value));
+}
 
 void validate_settings(const rc_settings& s) {
   check_range(s.youngs_modulus_Pa, kMinimumYoungsModulus_Pa, kMaximumYoungsModulus_Pa, false, "youngs_modulus_Pa",
@@ -191,6 +202,7 @@ void validate_settings(const rc_settings& s) {
   }
   check_range(s.bound_skew, 0.0, 1.0, false, "bound_skew", "");
   check_int(s.flexibility_coarsening, 0, kMaximumCoarsening, "flexibility_coarsening");
+  slip_direction_of(s.slip_direction);
   check_range(s.collocation_offset, kMinimumCollocationOffset, 1.0, false, "collocation_offset", "");
   check_range(s.normal_tolerance, 0.0, 1e-2, true, "normal_tolerance", "");
   check_int(s.normal_max_iterations, 1, 1000000, "normal_max_iterations");
@@ -229,7 +241,7 @@ void SinglePatchSolver::set_settings(const rc_settings& s) {
   const bool same_preparation =
       s.youngs_modulus_Pa == o.youngs_modulus_Pa && s.poisson_ratio == o.poisson_ratio && s.method == o.method &&
       s.mesh_mode == o.mesh_mode && s.mesh_value == o.mesh_value && s.bound_skew == o.bound_skew &&
-      s.flexibility_coarsening == o.flexibility_coarsening && s.collocation_offset == o.collocation_offset &&
+      s.slip_direction == o.slip_direction && s.flexibility_coarsening == o.flexibility_coarsening && s.collocation_offset == o.collocation_offset &&
       s.normal_tolerance == o.normal_tolerance && s.normal_max_iterations == o.normal_max_iterations;
   settings_ = s;
   if (!same_preparation) {

@@ -71,6 +71,7 @@ rc::WheelsetOptions options_of(const rc_wheelset_options& o) {
     return fmt::format("rc_wheelset_options.solver_count = {} must lie in [1, 4]", o.solver_count);
   });
   rc::WheelsetOptions options;
+  options.nh_fastsim.bound.slip_direction = rc::c_api::slip_direction_of(o.slip_direction, s);
   options.material = rc::Material{o.youngs_modulus_Pa, o.poisson_ratio};
   options.friction_coefficient = o.friction_coefficient;
   options.element_size_m = o.element_size_m;
@@ -326,6 +327,9 @@ rc_status rc_wheelset_options_default(rc_wheelset_options* o) {
   o->tangential_in_balance = d.tangential_forces_in_vertical_balance ? 1 : 0;
   o->allow_wheel_lift = d.allow_wheel_lift ? 1 : 0;
   o->warm_start = 1;
+  o->slip_direction = d.nh_fastsim.bound.slip_direction == rc::SlipDirection::flexibility_weighted
+                          ? RC_SLIP_FLEXIBILITY_WEIGHTED
+                          : RC_SLIP_RADIAL;
   o->solver_count = 1;
   o->solvers[0] = RC_METHOD_NH_FASTSIM;
   return RC_OK;

@@ -1,6 +1,6 @@
 /* ABI check of railcontact/railcontact.h (ctest c_api.abi_c, c_api.abi_cxx): compiled with
    gcc -std=c11 -Wall -Wextra -pedantic -Werror and as C++ with g++. The layouts below are the ABI
-   of RC_ABI_VERSION 1: a change that breaks one of them must raise RAILCONTACT_ABI_VERSION in
+   of RC_ABI_VERSION 2: a change that breaks one of them must raise RAILCONTACT_ABI_VERSION in
    CMakeLists.txt (and these numbers). x86-64 / AArch64 (LP64) layouts. */
 #include <stddef.h>
 
@@ -12,15 +12,16 @@
 #define RC_STATIC_ASSERT _Static_assert
 #endif
 
-RC_STATIC_ASSERT(RC_ABI_VERSION == 1, "the layouts below are those of ABI version 1");
+RC_STATIC_ASSERT(RC_ABI_VERSION == 2, "the layouts below are those of ABI version 2");
 RC_STATIC_ASSERT(sizeof(rc_status) == sizeof(int), "enumerations are int-sized");
 RC_STATIC_ASSERT(sizeof(rc_method) == sizeof(int), "enumerations are int-sized");
 RC_STATIC_ASSERT(RC_OK == 0 && RC_INVALID_INPUT == 1 && RC_INTERNAL == 6 && RC_CANCELLED == 9, "status values");
 RC_STATIC_ASSERT(RC_METHOD_EXACT_REGULARISED == 3 && RC_MESH_ELEMENT_SIZE == 2 && RC_GEOMETRY_GRID == 2,
                  "enumeration values");
-RC_STATIC_ASSERT(sizeof(rc_settings) == 12 * 8 + 6 * 4, "rc_settings: 12 doubles, 6 ints");
+RC_STATIC_ASSERT(sizeof(rc_settings) == 12 * 8 + 7 * 4 + 4, "rc_settings: 12 doubles, 7 ints, 4 bytes padding");
 RC_STATIC_ASSERT(offsetof(rc_settings, method) == 96, "rc_settings.method");
-RC_STATIC_ASSERT(offsetof(rc_settings, normal_max_iterations) == 116, "rc_settings.normal_max_iterations");
+RC_STATIC_ASSERT(offsetof(rc_settings, slip_direction) == 108, "rc_settings.slip_direction");
+RC_STATIC_ASSERT(offsetof(rc_settings, normal_max_iterations) == 120, "rc_settings.normal_max_iterations");
 RC_STATIC_ASSERT(sizeof(rc_patch) == 7 * 8 + sizeof(void*) + 4 * 4, "rc_patch");
 RC_STATIC_ASSERT(offsetof(rc_patch, grid_h_m) == 56 && offsetof(rc_patch, kind) == 64, "rc_patch fields");
 RC_STATIC_ASSERT(sizeof(rc_creepage) == 3 * 8, "rc_creepage");
@@ -29,11 +30,14 @@ RC_STATIC_ASSERT(sizeof(rc_normal_result) == 12 * 8 + 4 * 4, "rc_normal_result")
 RC_STATIC_ASSERT(offsetof(rc_normal_result, n1) == 96, "rc_normal_result.n1");
 RC_STATIC_ASSERT(sizeof(rc_flextable_values) == 10 * 8, "rc_flextable_values");
 RC_STATIC_ASSERT(sizeof(rc_flextable_info) == 6 * 8 + 4 * 4, "rc_flextable_info");
+RC_STATIC_ASSERT(RC_SLIP_RADIAL == 0 && RC_SLIP_FLEXIBILITY_WEIGHTED == 1, "slip direction values");
 RC_STATIC_ASSERT(RC_WHEEL_LEFT == 1 && RC_WHEELSET_BY_POSITION == 1 && RC_ROTATION_GIVEN == 1,
                  "wheelset enumeration values");
 RC_STATIC_ASSERT(sizeof(rc_track_parameters) == 6 * 8, "rc_track_parameters");
-RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 10 * 4, "rc_wheelset_options: 6 doubles, 10 ints");
-RC_STATIC_ASSERT(offsetof(rc_wheelset_options, normal_mode) == 48 && offsetof(rc_wheelset_options, solvers) == 72,
+RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 11 * 4 + 4,
+                 "rc_wheelset_options: 6 doubles, 11 ints, 4 bytes padding");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_options, normal_mode) == 48 &&
+                     offsetof(rc_wheelset_options, slip_direction) == 68 && offsetof(rc_wheelset_options, solvers) == 76,
                  "rc_wheelset_options fields");
 RC_STATIC_ASSERT(sizeof(rc_wheelset_state) == 11 * 8 + 2 * 4, "rc_wheelset_state: 11 doubles, 2 ints");
 RC_STATIC_ASSERT(offsetof(rc_wheelset_state, rotation) == 88, "rc_wheelset_state.rotation");
