@@ -76,6 +76,20 @@ TEST(FlextableCli, BuildWritesATableThatRunUses) {
   const CommandResult text = run_cli("run " + (dir / "case.toml").string() + " --flextable " + table);
   ASSERT_EQ(text.exit_code, 0) << text.err;
   EXPECT_NE(text.out.find("from the flexibility table " + table), std::string::npos) << text.out;
+  EXPECT_EQ(text.err.find("older nH-FastSim recipe"), std::string::npos) << text.err;
+  // The same table as a format-3 file (no recipe recorded): used, with a note on stderr.
+  nlohmann::json old_format = nlohmann::json::parse(std::ifstream(table));
+  old_format["format_version"] = 3;
+  old_format.erase("nh_fastsim_recipe");
+  const std::string old_table = (dir / "old.json").string();
+  std::ofstream(old_table) << old_format.dump();
+  const CommandResult old_run = run_cli("run " + (dir / "case.toml").string() + " --flextable " + old_table + " --json");
+  ASSERT_EQ(old_run.exit_code, 0) << old_run.err;
+  EXPECT_NE(old_run.err.find("note: " + old_table + ": the table was built with an older nH-FastSim recipe (1 or 2, "
+                             "not recorded; this railcontact: 3)"),
+            std::string::npos)
+      << old_run.err;
+  EXPECT_EQ(nlohmann::json::parse(old_run.out)["results"]["nh-fastsim"]["F1"], j["results"]["nh-fastsim"]["F1"]);
   const CommandResult without = run_cli("run " + (dir / "case.toml").string() + " --json");
   ASSERT_EQ(without.exit_code, 0) << without.err;
   EXPECT_EQ(nlohmann::json::parse(without.out)["results"]["nh-fastsim"]["flexibility_source"],

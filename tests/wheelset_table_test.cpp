@@ -329,8 +329,18 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   unknown.replace(unknown.find("\"area_m2\""), 9, "\"area_mm2\"");
   EXPECT_NE(message(unknown).find("missing key 'nodes[0].wheels[0][0].area_m2'"), std::string::npos) << message(unknown);
   // Format 3 names the slip direction; format 1-2 files evaluate with the radial one (Eq 8).
+  // Format 4 records the nH-FastSim recipe; older files load with recipe 0 (not recorded).
   nlohmann::json slip = nlohmann::json::parse(wheelset_table_json(table()));
-  EXPECT_EQ(slip["format_version"], 3);
+  EXPECT_EQ(slip["format_version"], 4);
+  EXPECT_EQ(slip["nh_fastsim_recipe"], kNhFastSimRecipe);
+  EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").metadata().nh_fastsim_recipe, kNhFastSimRecipe);
+  nlohmann::json newer = slip;
+  newer["nh_fastsim_recipe"] = kNhFastSimRecipe + 1;
+  EXPECT_NE(message(newer.dump()).find("nh_fastsim_recipe = 4 must lie in [0, 3]"), std::string::npos)
+      << message(newer.dump());
+  slip.erase("nh_fastsim_recipe");
+  slip["format_version"] = 3;
+  EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").metadata().nh_fastsim_recipe, 0);
   EXPECT_EQ(slip["slip_direction"], slip_direction_name(table().bound().slip_direction));
   slip["slip_direction"] = "sideways";
   EXPECT_NE(message(slip.dump()).find("slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted)"),
@@ -371,6 +381,10 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
     return nlohmann::json::parse(r.out);
   };
   const nlohmann::json weighted = evaluate(v3, ""), radial = evaluate(v2, "");
+  // A table of an older nH-FastSim recipe (format 3: not recorded) is used, with a note.
+  const CommandResult noted = run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json");
+  EXPECT_NE(noted.err.find("note: " + v3 + ": the table was built with an older nH-FastSim recipe"), std::string::npos)
+      << noted.err;
   EXPECT_EQ(weighted["nh_fastsim_slip_direction"], "flexibility-weighted");
   EXPECT_EQ(radial["nh_fastsim_slip_direction"], "radial");
   EXPECT_EQ(evaluate(v3, " --slip-direction flexibility-weighted")["wheels"], weighted["wheels"]);

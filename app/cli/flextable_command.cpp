@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/note_on_success.hpp"
 #include "cli/flextable_shards.hpp"
 #include "cli/table_file_output.hpp"
 #include "railcontact/error.hpp"
@@ -267,6 +268,8 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
 
 int run_check(const CheckArguments& args) {
   const FlexibilityTable table = load_flexibility_table(args.table);
+  const std::string recipe_note = older_nh_fastsim_recipe_note(table.metadata().nh_fastsim_recipe);
+  const NoteOnSuccess note(recipe_note.empty() ? recipe_note : args.table + ": " + recipe_note);
   const WheelRailPair pair = pair_of(args.wheel, args.rail);
   study::FlexibilityTableCheckOptions options;
   options.y_m = args.y_m;

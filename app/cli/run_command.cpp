@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/note_on_success.hpp"
 #include "case/case.hpp"
 #include "case/case_output.hpp"
 #include "case/case_run.hpp"
@@ -38,6 +39,10 @@ int run(const RunArguments& args) {
   CaseRunOptions options;
   if (!args.flextable.empty())
     options.flexibility_table = std::make_shared<const FlexibilityTable>(load_flexibility_table(args.flextable));
+  const std::string recipe_note =
+      options.flexibility_table ? older_nh_fastsim_recipe_note(options.flexibility_table->metadata().nh_fastsim_recipe)
+                                : std::string();
+  const NoteOnSuccess note(recipe_note.empty() ? recipe_note : args.flextable + ": " + recipe_note);
   // The built-in case always writes its outputs (default railcontact-out/). The directory is locked
   // (and its leftovers of an interrupted run removed) before the computation: a directory in use
   // by another run is refused at once.

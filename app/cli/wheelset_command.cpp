@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "cli/note_on_success.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/version.h"
 #include "railcontact/wheelset_table.hpp"
@@ -156,6 +157,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
   }
   WheelsetResult r;
   SlipDirection slip_direction = options.nh_fastsim.bound.slip_direction;  // the one used
+  NoteOnSuccess recipe_note;  // a table of an older nH-FastSim recipe: said once the output is written
   if (!a.table.empty()) {
     // From a wheelset table: both wheels carry their loads (nh-fastsim on the table's patches).
     require(a.sweep_y.empty(), "--table and --sweep-y cannot be combined");
@@ -163,6 +165,8 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
             "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
     const WheelsetTable table = load_wheelset_table(a.table);
+    if (const std::string text = older_nh_fastsim_recipe_note(table.metadata().nh_fastsim_recipe); !text.empty())
+      recipe_note.set(a.table + ": " + text);
     // The table evaluates with the slip direction it was built with (its file says which).
     require(sub.count("--slip-direction") == 0 || options.nh_fastsim.bound.slip_direction == table.bound().slip_direction,
             [&] {

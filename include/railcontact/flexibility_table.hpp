@@ -91,9 +91,17 @@ struct FlexibilityTableMetadata {
   int flexibility_coarsening = 0;   // NhFastSimOptions::flexibility_coarsening (0: automatic)
   // WheelRailPatchOptions::reference of the build (format version 3; older tables: first touch).
   ContactReference contact_reference = ContactReference::smooth;
+  // kNhFastSimRecipe of the build (format version 4; 0 for older tables: recipe 1 or 2).
+  int nh_fastsim_recipe = kNhFastSimRecipe;
   std::string railcontact_version;
   std::string created_utc;        // ISO 8601, e.g. 2024-05-01T12:00:00Z
 };
+
+// For a flexibility or wheelset table built with an older nH-FastSim recipe than this library's
+// (its metadata's nh_fastsim_recipe < kNhFastSimRecipe; 0: not recorded), what a command tells
+// its user: the table still works, but its flexibilities are not today's on-the-fly ones. Empty
+// for a table of the current recipe.
+std::string older_nh_fastsim_recipe_note(int nh_fastsim_recipe);
 
 // Interpolated values at (y, Fz): the fields of FlexibilityTableNode, with the flexibilities and
 // creepage coefficients for the patch area area_m2.

@@ -247,13 +247,21 @@ struct NhFastSimFlexibilities {
 // nH-FastSim prepared for one contact patch: the whole method in one place. On the fly (the first
 // constructor) it
 //   1. coarsens the patch for the adhesion solve (NhFastSimOptions::flexibility_coarsening),
-//   2. solves the two force rows of K2 on it by adjoint GMRES solves to 1e-3 (Eq 18; K2 to ~5e-4,
-//      far below the flexibilities' discretisation error of ~1 %),
+//   2. solves the two force rows of K2 on it by adjoint GMRES solves to 3e-3 (Eq 18; the entries
+//      the match uses to ~3e-3, below the flexibilities' discretisation error of ~1 %),
 //   3. matches FastSim's full-adhesion forces on that patch to K2 term by term (Eq 19-20): L1-L3,
 //   4. prepares FastSim with the traction bound on the patch itself (Eq 1 or the skewed bound),
 // and each evaluation is FastSim's march (Eq 2-8). The second constructor takes flexibilities
 // computed elsewhere (a flexibility table) and skips 1-3. Immutable after construction;
 // evaluations are thread-safe; copies share the prepared FastSim.
+// The version of the recipe steps 1-3 above take by default (automatic coarse blocks, K2's
+// solves), recorded in flexibility and wheelset tables so that a table built with an older one
+// can be told apart: its flexibilities are not the ones computed on the fly today.
+//   1: square blocks f x f, K2 to GMRES 1e-3 (until 2026-11-26);
+//   2: blocks f x (f + 1) from f = 3 (2026-11-26; docs/FASTSIM.md "Blocks one element longer across");
+//   3: K2 to GMRES 3e-3 (2026-11-26; docs/FASTSIM.md "K2's solves").
+inline constexpr int kNhFastSimRecipe = 3;
+
 class NhFastSim {
  public:
   // Throws Error for bad options or when the adhesion solve or the match fails (Error kinds

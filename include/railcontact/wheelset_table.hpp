@@ -137,6 +137,8 @@ struct WheelsetTableMetadata {
   int flexibility_coarsening = 0;   // NhFastSimOptions::flexibility_coarsening (0: automatic)
   double collocation_offset = 0.0;  // NhFastSimOptions::collocation_offset
   int runtime_elements = 0;
+  // kNhFastSimRecipe of the build (format version 4; 0 for older tables: recipe 1 or 2).
+  int nh_fastsim_recipe = kNhFastSimRecipe;
   std::string railcontact_version;
   std::string created_utc;
 };

@@ -193,6 +193,16 @@ void FlexibilityTable::check_material(const Material& material, double collocati
   });
 }
 
+std::string older_nh_fastsim_recipe_note(int nh_fastsim_recipe) {
+  if (nh_fastsim_recipe >= kNhFastSimRecipe) return {};
+  return fmt::format(
+      "the table was built with an older nH-FastSim recipe ({}; this railcontact: {}): its flexibilities differ from "
+      "the ones computed on the fly by up to a few per cent (docs/FLEXTABLE.md \"Tables of older recipes\"); rebuild "
+      "it for today's",
+      nh_fastsim_recipe == 0 ? std::string("1 or 2, not recorded") : std::to_string(nh_fastsim_recipe),
+      kNhFastSimRecipe);
+}
+
 void FlexibilityTable::check_recipe(int flexibility_coarsening, double collocation_offset) const {
   require(flexibility_coarsening == metadata_.flexibility_coarsening, [&] {
     const auto described = [](int f) { return f == 0 ? std::string("0 (automatic)") : std::to_string(f); };

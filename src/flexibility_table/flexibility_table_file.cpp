@@ -34,8 +34,9 @@ json parse_json(const std::string& text, const std::string& source) {
 
 constexpr const char* kFormat = "railcontact flexibility table";
 // Version 2 records the recipe's flexibility coarsening; version-1 tables (built on the full patch,
-// coarsening 1) are still read.
-constexpr int kFormatVersion = 3;
+// coarsening 1) are still read. Version 3 records the contact reference, version 4 the nH-FastSim
+// recipe (kNhFastSimRecipe).
+constexpr int kFormatVersion = 4;
 // The largest table file read (a 100 × 20 grid is about 1 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 256u << 20;  // 256 MiB
 
@@ -106,8 +107,9 @@ int read_format_version(StrictJsonReader& r, const json& root) {
 }
 
 // The recipe of the table: version, profiles (file and hash), track, material, mesh size,
-// collocation offset, flexibility coarsening (format version 2), the match of the flexibilities
-// (term by term) and the contact reference (format version 3).
+// collocation offset, flexibility coarsening (format version 2), the nH-FastSim recipe (format
+// version 4), the match of the flexibilities (term by term) and the contact reference (format
+// version 3).
 FlexibilityTableMetadata read_metadata(StrictJsonReader& r, int version) {
   FlexibilityTableMetadata m;
   m.railcontact_version = r.string("railcontact_version");
@@ -135,6 +137,14 @@ FlexibilityTableMetadata read_metadata(StrictJsonReader& r, int version) {
     if (coarsening > static_cast<std::size_t>(kMaximumCoarsening))
       r.fail(fmt::format("flexibility_coarsening {} must lie in [0, {}]", coarsening, kMaximumCoarsening));
     m.flexibility_coarsening = static_cast<int>(coarsening);
+  }
+  m.nh_fastsim_recipe = 0;  // format versions 1 to 3: recipe 1 or 2, not recorded
+  if (version >= 4) {
+    const std::size_t recipe = r.count("nh_fastsim_recipe");
+    if (recipe > static_cast<std::size_t>(kNhFastSimRecipe))
+      r.fail(fmt::format("nh_fastsim_recipe {} must lie in [0, {}] (0: not recorded; a newer railcontact's table?)", recipe,
+                         kNhFastSimRecipe));
+    m.nh_fastsim_recipe = static_cast<int>(recipe);
   }
   if (r.string("flexibility_match") != "term-by-term") r.fail("flexibility_match must be \"term-by-term\"");
   m.contact_reference = ContactReference::first_touch;  // format versions 1 and 2
@@ -207,6 +217,7 @@ std::string flexibility_table_json(const FlexibilityTable& table) {
       {"target_elements", m.target_elements},
       {"collocation_offset", m.collocation_offset},
       {"flexibility_coarsening", m.flexibility_coarsening},
+      {"nh_fastsim_recipe", m.nh_fastsim_recipe},
       {"flexibility_match", "term-by-term"},
       {"contact_reference", contact_reference_name(m.contact_reference)},
       {"y_m", table.y_m()},

@@ -22,7 +22,7 @@ constexpr const char* kKind = "wheelset table";
 constexpr const char* kFormat = "railcontact wheelset table";
 // Version 2 (2026-11-25): each patch's "lobes" (a patch of several lobes); version 1 files read as
 // patches without lobes.
-constexpr int kFormatVersion = 3;  // 3: slip_direction (1-2: the radial one)
+constexpr int kFormatVersion = 4;  // 3: slip_direction (1-2: the radial one); 4: nh_fastsim_recipe
 // The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
 // At most this many nodes (as a build makes) and elements per runtime mesh.
@@ -193,7 +193,7 @@ WheelsetTableNode read_node(StrictJsonReader r, int version) {
   return n;
 }
 
-WheelsetTableMetadata read_metadata(StrictJsonReader& r) {
+WheelsetTableMetadata read_metadata(StrictJsonReader& r, int format_version) {
   WheelsetTableMetadata m;
   m.railcontact_version = r.string("railcontact_version");
   m.created_utc = r.string("created_utc");
@@ -210,6 +210,8 @@ WheelsetTableMetadata read_metadata(StrictJsonReader& r) {
   m.flexibility_coarsening = read_int(r, "flexibility_coarsening", 0, kMaximumCoarsening);
   m.collocation_offset = r.number("collocation_offset");
   m.runtime_elements = read_int(r, "runtime_elements", 1, 1 << 20);
+  // Format versions 1 to 3: recipe 1 or 2, not recorded.
+  m.nh_fastsim_recipe = format_version >= 4 ? read_int(r, "nh_fastsim_recipe", 0, kNhFastSimRecipe) : 0;
   return m;
 }
 
@@ -255,6 +257,7 @@ std::string wheelset_table_json(const WheelsetTable& table) {
                     {"traction_bound_skew", table.bound().skew},
                     {"slip_direction", slip_direction_name(table.bound().slip_direction)},
                     {"runtime_elements", m.runtime_elements},
+                    {"nh_fastsim_recipe", m.nh_fastsim_recipe},
                     {"nominal_rolling_radius_m", table.nominal_rolling_radius_m()},
                     {"y_m", table.grid().y_m},
                     {"yaw_rad", table.grid().yaw_rad},
@@ -274,7 +277,7 @@ WheelsetTable parse_wheelset_table(const std::string& text, const std::string& s
     r.fail(fmt::format("format_version {} is not supported (this railcontact reads versions 1 to {})",
                        detail::quoted_json_value(version), kFormatVersion));
   const int format_version = version.get<int>();
-  WheelsetTableMetadata metadata = read_metadata(r);
+  WheelsetTableMetadata metadata = read_metadata(r, format_version);
   Material material;
   {
     StrictJsonReader m = r.child("material");
