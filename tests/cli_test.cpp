@@ -130,6 +130,8 @@ INSTANTIATE_TEST_SUITE_P(Run, CliBadInput,
                                            std::pair{"run --slip-direction sideways",
                                                      "--slip-direction: unknown slip direction 'sideways' (radial, "
                                                      "flexibility-weighted)"},
+                                           std::pair{"run --slip-direction ''",
+                                                     "--slip-direction: unknown slip direction ''"},
                                            std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/unknown_key.toml",
                                                      "unknown key 'mue'"},
                                            std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/bad_solver.toml",

@@ -22,16 +22,16 @@ struct RunArguments {
   std::string case_file;
   std::string out;
   std::string flextable;
-  std::string slip_direction;  // --slip-direction (radial, flexibility-weighted): overrides the case file's
+  std::optional<std::string> slip_direction;  // --slip-direction (radial, flexibility-weighted): overrides the case file's
   bool json = false;
 };
 
 int run(const RunArguments& args) {
   const bool built_in = args.case_file.empty();
   Case input = built_in ? default_case() : read_case_file(args.case_file);
-  if (!args.slip_direction.empty()) {
+  if (args.slip_direction) {
     try {
-      input.slip_direction = parse_slip_direction(args.slip_direction);
+      input.slip_direction = parse_slip_direction(*args.slip_direction);
     } catch (const Error& e) {
       throw Error(fmt::format("--slip-direction: {}", e.what()));
     }
@@ -73,9 +73,10 @@ void add_run_command(CLI::App& app, Action& action) {
   cmd->add_option("--flextable", args->flextable,
                   "flexibility table (flextable build): nh-fastsim takes L1-L3 and the normalisation's f11, f22 from it "
                   "instead of K2 (wheel-rail cases)");
-  cmd->add_option("--slip-direction", args->slip_direction,
-                  "nh-fastsim's slipping traction: radial (Eq 8, the default) or flexibility-weighted (for flange "
-                  "patches; docs/FASTSIM.md \"The slip direction\"); overrides the case file's [solvers] slip_direction");
+  cmd->add_option_function<std::string>(
+      "--slip-direction", [args](const std::string& name) { args->slip_direction = name; },
+      "nh-fastsim's slipping traction: radial (Eq 8, the default) or flexibility-weighted (for flange patches; "
+      "docs/FASTSIM.md \"The slip direction\"); overrides the case file's [solvers] slip_direction");
   cmd->callback([args, &action] { action = [args] { return run(*args); }; });
 }
 

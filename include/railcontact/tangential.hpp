@@ -244,6 +244,15 @@ struct NhFastSimFlexibilities {
   double f11_N = 0.0, f22_N = 0.0, f23_Nm = 0.0;
 };
 
+// The version of the recipe by which NhFastSim's first constructor (below) computes the
+// flexibilities by default (automatic coarse blocks, K2's solves), recorded in flexibility and
+// wheelset tables so that a table built with an older one can be told apart: its flexibilities
+// are not the ones computed on the fly today.
+//   1: square blocks f x f, K2 to GMRES 1e-3 (until 2026-11-26);
+//   2: blocks f x (f + 1) from f = 3 (2026-11-26; docs/FASTSIM.md "Blocks one element longer across");
+//   3: K2 to GMRES 3e-3 (2026-11-26; docs/FASTSIM.md "K2's solves").
+inline constexpr int kNhFastSimRecipe = 3;
+
 // nH-FastSim prepared for one contact patch: the whole method in one place. On the fly (the first
 // constructor) it
 //   1. coarsens the patch for the adhesion solve (NhFastSimOptions::flexibility_coarsening),
@@ -254,14 +263,6 @@ struct NhFastSimFlexibilities {
 // and each evaluation is FastSim's march (Eq 2-8). The second constructor takes flexibilities
 // computed elsewhere (a flexibility table) and skips 1-3. Immutable after construction;
 // evaluations are thread-safe; copies share the prepared FastSim.
-// The version of the recipe steps 1-3 above take by default (automatic coarse blocks, K2's
-// solves), recorded in flexibility and wheelset tables so that a table built with an older one
-// can be told apart: its flexibilities are not the ones computed on the fly today.
-//   1: square blocks f x f, K2 to GMRES 1e-3 (until 2026-11-26);
-//   2: blocks f x (f + 1) from f = 3 (2026-11-26; docs/FASTSIM.md "Blocks one element longer across");
-//   3: K2 to GMRES 3e-3 (2026-11-26; docs/FASTSIM.md "K2's solves").
-inline constexpr int kNhFastSimRecipe = 3;
-
 class NhFastSim {
  public:
   // Throws Error for bad options or when the adhesion solve or the match fails (Error kinds

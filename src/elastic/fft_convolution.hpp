@@ -74,13 +74,12 @@ class RealFft2d {
  private:
   int n1_, n2_, rows_;
   std::shared_ptr<const Plans> plans_;
-  void inverse_rows_through_forward(double* real);
-
   // Row-major half spectra (n2 rows of n1 / 2 + 1) between the two passes: the forward one's
   // padding rows are zeroed once and never written; the inverse one is overwritten by each call.
   FftwArray<std::complex<double>> forward_rows_, inverse_rows_;
   FftwArray<double> hartley_rows_;  // the inverse through the forward plan: its real rows
 
+  void inverse_rows_through_forward(double* real);
 };
 
 // Smallest n >= minimum whose prime factors are 2, 3, 5, 7.

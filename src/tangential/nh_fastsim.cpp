@@ -17,7 +17,7 @@ namespace {
 // K2 for the flexibilities: the two force rows by adjoint solves when the term-by-term match
 // needs no more (2 solves instead of 3), to GMRES tolerance 3e-3: the entries the match uses (C11,
 // C22, C23) to within 2.9e-3 relative of a 1e-9 solve on 72 coarse S1002/UIC60 patches and 15
-// ellipses (6.5e-4 and 7.7e-4 at 1e-3), far below K2's discretisation error (~1 %) and the change
+// ellipses (6.5e-4 and 7.6e-4 at 1e-3; build/bench/k2_tolerance), far below K2's discretisation error (~1 %) and the change
 // from coarsening the patch (1-3 %), with 13 % fewer GMRES iterations than 1e-3 (13.1 against 15.0
 // per patch) and 65 % fewer than 1e-9 (docs/FASTSIM.md "K2's solves").
 AdhesionOptions adhesion_options(const NhFastSimOptions& options) {
