@@ -405,19 +405,21 @@ _STATE_LIBRARY_NAMES = {"y_m": "y", "z_m": "z", "roll_rad": "roll", "yaw_rad": "
                         "extra longitudinal creepage": "extra_creepage", "forward speed": "speed"}
 
 
+_STATE_COLUMN = {name: k for k, name in enumerate(WHEELSET_STATE_COLUMNS)}
+_OPTIONAL_STATE_COLUMNS = ("wheel_angular_velocity", "extra_creepage")  # None: not given
+
+
 def _state_row(**values):
     """A checked state row (WHEELSET_STATE_COLUMNS) from evaluate()'s arguments; those not given
     take their defaults. wheel_angular_velocity and extra_creepage exclude each other."""
-    _check.at_most_one(wheel_angular_velocity=values.get("wheel_angular_velocity"),
-                       extra_creepage=values.get("extra_creepage"))
-    row = np.array(_STATE_DEFAULTS, dtype=float)
-    for k, name in enumerate(WHEELSET_STATE_COLUMNS):
-        value = values.get(name)
-        if value is not None:
-            row[k] = _check.number(name, value)
-        elif name not in ("wheel_angular_velocity", "extra_creepage") and name in values:
-            raise TypeError(f"{name} must be a real number (got None)")
-    return row
+    if values.get("wheel_angular_velocity") is not None and values.get("extra_creepage") is not None:
+        _check.at_most_one(wheel_angular_velocity=values["wheel_angular_velocity"],
+                           extra_creepage=values["extra_creepage"])
+    row = list(_STATE_DEFAULTS)
+    for name, value in values.items():
+        if value is not None or name not in _OPTIONAL_STATE_COLUMNS:
+            row[_STATE_COLUMN[name]] = _check.number(name, value)
+    return np.array(row)
 
 
 @dataclass(frozen=True)

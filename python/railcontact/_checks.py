@@ -13,7 +13,6 @@ import math
 import numbers
 import os
 import re
-from contextlib import contextmanager
 
 import numpy as np
 
@@ -26,8 +25,9 @@ def _got(value):
 
 def number(name, value):
     """A finite real number (float); an int or a NumPy number is fine, a bool is not."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a real number ({_got(value)})")
+    if type(value) is not float and type(value) is not int:  # the common cases first: a simulation's step
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+            raise TypeError(f"{name} must be a real number ({_got(value)})")
     value = float(value)
     if not math.isfinite(value):
         raise InvalidInputError(f"{name} = {value} must be finite")
@@ -132,16 +132,25 @@ def exactly_one(**given):
         raise InvalidInputError(f"give one of {', '.join(given)}")
 
 
-@contextmanager
-def library_names(names):
-    """Puts the argument's name in front of the library's InvalidInputError: names maps the
-    library's field names (rc_settings.friction_coefficient) to the arguments (mu)."""
-    try:
-        yield
-    except InvalidInputError as e:
-        message = str(e)
-        found = [arg for field, arg in names.items() if re.search(rf"\b{re.escape(field)}\b", message)]
+class library_names:
+    """with library_names(names): puts the argument's name in front of the library's
+    InvalidInputError. names maps the library's names of the fields (friction_coefficient,
+    "Young's modulus") to the arguments (mu, youngs_modulus)."""
+
+    __slots__ = ("names",)
+
+    def __init__(self, names):
+        self.names = names
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, error, traceback):
+        if kind is None or not issubclass(kind, InvalidInputError):
+            return False
+        message = str(error)
+        found = [arg for field, arg in self.names.items() if re.search(rf"\b{re.escape(field)}\b", message)]
         found = [arg for arg in dict.fromkeys(found) if not re.search(rf"\b{re.escape(arg)}\b", message)]
-        if not found:
-            raise
-        raise InvalidInputError(f"{', '.join(found)}: {message}") from None
+        if found:
+            raise InvalidInputError(f"{', '.join(found)}: {message}") from None
+        return False
