@@ -574,8 +574,9 @@ class Wheelset:
             raise InvalidInputError(f"{', '.join(paths)}: give wheel= and rail=, or right_wheel=, left_wheel=, "
                                     "right_rail= and left_rail=, or no profiles (the default S1002/UIC60 set-up)")
         if not paths and dimensions:
-            raise InvalidInputError(f"{', '.join(k for k in given if given[k] is not None)}: track dimensions need profile files (wheel=, rail=); "
-                                    "the default set-up has its own")
+            named = ", ".join(k for k in given if given[k] is not None)
+            raise InvalidInputError(f"{named}: track dimensions need profile files (wheel=, rail=); the default set-up "
+                                    "has its own")
         self._core = _core.Wheelset()
         with _check.library_names(self._LIBRARY_NAMES):
             self._core.set_options(options)
