@@ -22,7 +22,10 @@
  * Handles: rc_solver (a contact patch with its prepared solver, the settings, the last results),
  * rc_flextable (a flexibility table with its profile pair) and rc_wheelset (both wheels of a
  * wheelset on their rails, docs/WHEELSET.md). Each in the same style: rc_<handle>_create /
- * _destroy / _last_error and rc_<handle>_<verb>.
+ * _destroy / _last_error and rc_<handle>_<verb>. Handles are not validated, like the pointers of
+ * malloc and free: a handle used after its _destroy, destroyed twice, or not made by _create is
+ * undefined behaviour (a crash at best). rc_<handle>_destroy(NULL) does nothing and returns RC_OK:
+ * set a handle's variable to NULL after destroying it.
  */
 #ifndef RAILCONTACT_H
 #define RAILCONTACT_H

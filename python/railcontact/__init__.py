@@ -11,8 +11,10 @@ into the wheel; forces on the wheel, Kalker's convention (F1 = -G c^2 C11 xi at 
     result = solver.solve(xi=1e-3, eta=0.0, phi=0.0, tractions=True)
     result.F1_N, result.tractions.p1_Pa      # N; 2-D array (n2, n1) in Pa
 
-A Solver is used by one thread at a time; solves release the GIL, so Solvers on different
-threads run in parallel. Errors raise the classes of railcontact._errors (InvalidInputError is a
+Every object may be shared between threads: each call holds the object's lock, so one call on an
+object runs at a time, and solves release the GIL, so Solvers on different threads run in
+parallel. Arguments are checked (railcontact._checks): a wrong type is a TypeError, a bad value an
+InvalidInputError, each naming the argument. Errors raise the classes of railcontact._errors (InvalidInputError is a
 ValueError, RailcontactIOError an OSError, ...).
 """
 from dataclasses import dataclass
@@ -20,6 +22,7 @@ from typing import Optional
 
 import numpy as np
 
+from . import _checks as _check
 from . import _core
 from ._errors import (CancelledError, InternalError, InvalidInputError, NoContactError, NotConvergedError,
                       RailcontactError, RailcontactIOError, SeveralPatchesError)
@@ -109,16 +112,7 @@ class FlexibilityTableValues:
 
 
 def _slip_direction(name):
-    if not isinstance(name, str) or name not in SLIP_DIRECTIONS:
-        raise InvalidInputError(f"slip_direction = {name!r} is not one of {', '.join(SLIP_DIRECTIONS)}")
-    return SLIP_DIRECTIONS[name]
-
-
-def _finite(name, value):
-    value = float(value)
-    if not np.isfinite(value):
-        raise InvalidInputError(f"{name} = {value} must be finite")
-    return value
+    return SLIP_DIRECTIONS[_check.choice("slip_direction", name, SLIP_DIRECTIONS)]
 
 
 class Solver:
@@ -147,10 +141,17 @@ class Solver:
                  "normal_max_iterations": "normal_max_iterations", "jacobian_step_creepage": "jacobian_step_creepage",
                  "jacobian_step_spin": "jacobian_step_spin_per_m"}
 
+    _INTEGERS = ("flexibility_coarsening", "max_newton_iterations", "max_krylov_iterations", "normal_max_iterations",
+                 "elements_across")
+    _MESHES = ("elements", "elements_across", "element_size")
+    #: the library's names of the keywords, for its messages
+    _LIBRARY_NAMES = {**{field: key for key, field in _KEYWORDS.items()}, "method": "method",
+                      "slip_direction": "slip_direction"}
+
     def __init__(self, method: str = "nh-fastsim", **settings):
+        _check.choice("method", method, METHODS)
         self._core = _core.Solver()
-        self._patch = None  # the ellipse or Hertz patch set, for batch(patches=None)
-        self._normal = None  # the NormalResult of the patch set, made at its first use
+        self._normal = (-1, None)  # (serial number of the patch set, its NormalResult)
         self.configure(method=method, **settings)
 
     def configure(self, method: Optional[str] = None, **settings):
@@ -158,24 +159,25 @@ class Solver:
         the method discards the prepared patch; set it again."""
         values = {}
         if method is not None:
-            if method not in METHODS:
-                raise InvalidInputError(f"unknown method {method!r}; one of {', '.join(METHODS)}")
-            values["method"] = METHODS[method]
-        meshes = [k for k in ("elements", "elements_across", "element_size") if k in settings]
-        if len(meshes) > 1:
-            raise InvalidInputError(f"give one of elements, elements_across, element_size (got {', '.join(meshes)})")
-        for mode, key in enumerate(("elements", "elements_across", "element_size")):
+            values["method"] = METHODS[_check.choice("method", method, METHODS)]
+        for key in settings:
+            if key not in self._KEYWORDS and key not in self._MESHES and key != "slip_direction":
+                raise TypeError(f"unknown setting {key!r}; one of {', '.join([*self._KEYWORDS, *self._MESHES])}, "
+                                "slip_direction")
+        _check.at_most_one(**{k: settings.get(k) for k in self._MESHES})
+        names = dict(self._LIBRARY_NAMES)
+        for mode, key in enumerate(self._MESHES):
             if key in settings:
                 values["mesh_mode"] = mode
-                values["mesh_value"] = settings.pop(key)
+                value = settings.pop(key)
+                values["mesh_value"] = (_check.integer if key in self._INTEGERS else _check.number)(key, value)
+                names["mesh_value"] = key
         if "slip_direction" in settings:
             values["slip_direction"] = _slip_direction(settings.pop("slip_direction"))
         for key, value in settings.items():
-            if key not in self._KEYWORDS:
-                raise InvalidInputError(f"unknown setting {key!r}")
-            values[self._KEYWORDS[key]] = value
-        self._normal = None  # a changed material, mesh or method discards the patch
-        self._core.set_settings(values)
+            values[self._KEYWORDS[key]] = (_check.integer if key in self._INTEGERS else _check.number)(key, value)
+        with _check.library_names(names):
+            self._core.set_settings(values)
 
     @property
     def settings(self) -> dict:
@@ -191,23 +193,19 @@ class Solver:
         """Elliptical patch with semi-axes a (along X1) and b (m), Hertzian pressure under the
         normal force F3 (N), or, with approach= instead (m, > 0), under the load whose Hertzian
         approach that is. Prepares the method (nh-fastsim: K2, the costly part)."""
-        self._patch = self._normal = None
         force, approach = _normal_input(normal_force, approach)
-        self._core.set_ellipse(float(a), float(b), force, approach)
-        if approach is None:  # batch(patches=None) takes this patch (not one set by its approach)
-            self._patch = (np.array([[a, b, normal_force]], dtype=float), _GEOMETRIES["ellipse"])
-        return self.normal
+        with _check.library_names({"a_m": "a", "b_m": "b", **_PATCH_LIBRARY_NAMES}):
+            return self._set_normal(self._core.set_ellipse(_check.number("a", a), _check.number("b", b), force,
+                                                           approach))
 
     def set_hertz(self, A: float, B: float, normal_force: Optional[float] = None, *,
                   approach: Optional[float] = None) -> NormalResult:
         """Hertz's patch for the undeformed distance h = A x1^2 + B x2^2 (A, B in 1/m) under F3 (N),
         or at the approach (penetration) approach= (m, > 0), F3 following."""
-        self._patch = self._normal = None
         force, approach = _normal_input(normal_force, approach)
-        self._core.set_hertz(float(A), float(B), force, approach)
-        if approach is None:  # batch(patches=None) takes this patch (not one set by its approach)
-            self._patch = (np.array([[A, B, normal_force]], dtype=float), _GEOMETRIES["hertz"])
-        return self.normal
+        with _check.library_names({"A_per_m": "A", "B_per_m": "B", **_PATCH_LIBRARY_NAMES}):
+            return self._set_normal(self._core.set_hertz(_check.number("A", A), _check.number("B", B), force,
+                                                         approach))
 
     def set_grid(self, h, dx1: float, dx2: float, normal_force: Optional[float] = None, *,
                  approach: Optional[float] = None) -> NormalResult:
@@ -217,77 +215,104 @@ class Solver:
         with the approach prescribed (h measured at the bodies' position, negative where they
         overlap: approach=0 is the position-driven problem) and F3 follows (NoContactError when no
         element touches). The normal problem must give one patch."""
-        self._patch = self._normal = None
         force, approach = _normal_input(normal_force, approach)
-        self._core.set_grid(np.ascontiguousarray(h, dtype=float), float(dx1), float(dx2), force, approach)
-        return self.normal
+        h = _check.array("h", h, (None, None))
+        with _check.library_names({"grid_dx1_m": "dx1", "grid_dx2_m": "dx2", "grid_h_m": "h", "grid_n1": "h",
+                                   "grid_n2": "h", **_PATCH_LIBRARY_NAMES}):
+            return self._set_normal(self._core.set_grid(h, _check.number("dx1", dx1), _check.number("dx2", dx2),
+                                                        force, approach))
 
     def set_flextable_patch(self, table: "FlexibilityTable", y: float, vertical_load: float) -> NormalResult:
         """The wheel-rail patch of the table's profile pair at wheelset lateral displacement y (m)
         and vertical wheel load Fz (N); nh-fastsim takes its flexibilities from the table."""
-        self._patch = self._normal = None
-        self._core.set_flextable_patch(table._core, float(y), float(vertical_load))
-        return self.normal
+        if not isinstance(table, FlexibilityTable):
+            raise TypeError(f"table must be a railcontact.FlexibilityTable (got {type(table).__name__})")
+        y, vertical_load = _check.number("y", y), _check.number("vertical_load", vertical_load)
+        with _check.library_names({"y_m": "y", "vertical_load_N": "vertical_load", "Fz": "vertical_load"}):
+            return self._set_normal(self._core.set_flextable_patch(table._core, y, vertical_load))
+
+    def _set_normal(self, serial_and_normal):
+        serial, normal = serial_and_normal
+        result = NormalResult(**normal)
+        self._normal = (serial, result)
+        return result
+
+    def _normal_of(self, known, serial, normal):
+        """The NormalResult of the patch with this serial number: `known` (serial number,
+        NormalResult), read before the call, when it is that patch's, else made from the core's
+        dict. self._normal is one tuple, replaced whole: safe between threads."""
+        if serial == known[0]:
+            return known[1]
+        result = NormalResult(**normal)
+        self._normal = (serial, result)
+        return result
 
     @property
     def normal(self) -> NormalResult:
         """The normal results of the patch set (made once per patch: solve() returns it with every
         result at no cost)."""
-        if self._normal is None:
-            self._normal = NormalResult(**self._core.normal())
-        return self._normal
+        known = self._normal
+        return self._normal_of(known, *self._core.normal())
 
     def solve(self, xi: float = 0.0, eta: float = 0.0, phi: float = 0.0, *, tractions: bool = False,
               jacobian: bool = False) -> Result:
         """Creep forces for creepages xi, eta (-) and spin phi (1/m) on the patch set; with
         tractions=True the traction fields, with jacobian=True d(F1, F2, M3)/d(xi, eta, phi) by
         central differences (6 more solves)."""
-        if jacobian:
-            (F1, F2, M3, adhesion), J = self._core.jacobian(float(xi), float(eta), float(phi))
-        else:
-            F1, F2, M3, adhesion = self._core.solve(float(xi), float(eta), float(phi))
-            J = None
-        fields = Tractions(**self._core.tractions()) if tractions else None
-        return Result(F1, F2, M3, adhesion, self.normal, fields, J)
+        xi, eta, phi = _check.number("xi", xi), _check.number("eta", eta), _check.number("phi", phi)
+        tractions, jacobian = _check.flag("tractions", tractions), _check.flag("jacobian", jacobian)
+        known = self._normal  # serial numbers start at 1: 0 asks for the normal results
+        (F1, F2, M3, adhesion), J, fields, serial, normal = self._core.solve(xi, eta, phi, tractions, jacobian,
+                                                                            max(known[0], 0))
+        return Result(F1, F2, M3, adhesion, self._normal_of(known, serial, normal),
+                      Tractions(**fields) if tractions else None, J)
 
-    def batch(self, creepages, *, patches=None, geometry: str = "ellipse", threads: int = 0,
+    def batch(self, creepages, *, patches=None, geometry: Optional[str] = None, threads: int = 0,
               jacobian: bool = False, errors: str = "raise"):
         """Many states at once on `threads` threads (0: all hardware threads); the numbers equal
         those of a loop of solve().
 
         creepages: array (N, 3) of xi, eta (-), phi (1/m).
         patches: None (the patch set, given as an ellipse or Hertz patch the same way) or an array
-        (N, 3) or (1, 3) of [a, b, F3] (geometry "ellipse") or [A, B, F3] (geometry "hertz").
+        (N, 3) or (1, 3) of [a, b, F3] (geometry "ellipse", the default) or [A, B, F3] (geometry
+        "hertz"); geometry goes with patches only.
         Returns an array (N, 4) of F1 (N), F2 (N), M3 (N m), adhesion fraction; with jacobian=True
         also an array (N, 3, 3). errors="raise" raises the first failed state's error;
         errors="nan" gives NaN rows for failed states instead.
         """
-        c = np.ascontiguousarray(creepages, dtype=float)
-        if c.ndim == 1 and c.shape[0] == 3:
-            c = c.reshape(1, 3)
+        c = _check.array("creepages", creepages, (None, 3), finite=False)  # a NaN row is a failed state
+        kind = _GEOMETRIES["ellipse"]
         if patches is None:
-            if self._patch is None:
-                raise InvalidInputError("batch without patches= uses the patch of set_ellipse or set_hertz given "
-                                        "its normal force; none set")
-            p, kind = self._patch
+            if geometry is not None:
+                raise InvalidInputError("geometry and patches=None contradict each other: geometry describes the "
+                                        "rows of patches; without patches the patch set is used")
+            p = None
         else:
-            if geometry not in _GEOMETRIES:
-                raise InvalidInputError(f"geometry must be 'ellipse' or 'hertz' (got {geometry!r})")
-            p, kind = np.ascontiguousarray(np.atleast_2d(patches), dtype=float), _GEOMETRIES[geometry]
-        if errors not in ("raise", "nan"):
-            raise InvalidInputError(f"errors must be 'raise' or 'nan' (got {errors!r})")
-        forces, statuses, J, (status, message) = self._core.batch(p, kind, c, int(threads), bool(jacobian))
+            p = _check.array("patches", patches, (None, 3), finite=False)
+            if p.shape[0] not in (1, c.shape[0]):
+                raise InvalidInputError(f"patches must be an array of shape (1, 3) or (N, 3) with N = {c.shape[0]}, "
+                                        f"the rows of creepages (got shape {p.shape})")
+            if geometry is not None:
+                kind = _GEOMETRIES[_check.choice("geometry", geometry, _GEOMETRIES)]
+        threads = _check.integer("threads", threads, minimum=0)
+        jacobian = _check.flag("jacobian", jacobian)
+        _check.choice("errors", errors, ("raise", "nan"))
+        forces, statuses, J, (status, message) = self._core.batch(p, kind, c, threads, jacobian)
         if status != 0 and errors == "raise":
             _raise(status, message)
         return (forces, J) if jacobian else forces
 
 
+#: the library's names of a patch's normal force and approach, for its messages
+_PATCH_LIBRARY_NAMES = {"normal_force_N": "normal_force", "normal force": "normal_force", "approach_m": "approach",
+                        "approach": "approach"}
+
+
 def _normal_input(normal_force, approach):
-    if (normal_force is None) == (approach is None):
-        raise InvalidInputError("give either normal_force (N) or approach (m)")
+    _check.exactly_one(normal_force=normal_force, approach=approach)
     if approach is None:
-        return float(normal_force), None
-    return 0.0, float(approach)
+        return _check.number("normal_force", normal_force), None
+    return 0.0, _check.number("approach", approach)
 
 
 def _raise(status, message):
@@ -307,8 +332,10 @@ class FlexibilityTable:
     def load(cls, path, setup=None) -> "FlexibilityTable":
         """Reads a table file (JSON) for the profiles of a wheel-rail set-up file (None: the shipped
         S1002/UIC60 set-up)."""
+        path = _check.path("path", path)
+        setup = None if setup is None else _check.path("setup", setup)
         table = cls()
-        table._core.load(str(path), None if setup is None else str(setup))
+        table._core.load(path, setup)
         return table
 
     @classmethod
@@ -317,15 +344,23 @@ class FlexibilityTable:
         """Builds the table over lateral displacements y (m, increasing) and vertical loads (N,
         increasing) with about `elements` elements in contact per patch. progress(done, total) is
         called after each node; returning False stops the build (CancelledError)."""
+        y, loads = _check.grid("y", y), _check.grid("loads", loads)
+        setup = None if setup is None else _check.path("setup", setup)
+        elements = _check.integer("elements", elements, minimum=1)
+        youngs_modulus = _check.number("youngs_modulus", youngs_modulus)
+        poisson_ratio = _check.number("poisson_ratio", poisson_ratio)
+        progress = _check.callback("progress", progress)
         table = cls()
-        table._core.build(None if setup is None else str(setup), np.ascontiguousarray(y, dtype=float),
-                          np.ascontiguousarray(np.atleast_1d(loads), dtype=float), int(elements),
-                          float(youngs_modulus), float(poisson_ratio), progress)
+        with _check.library_names({"y_m": "y", "loads_N": "loads", "target_elements": "elements",
+                                   "youngs_modulus_Pa": "youngs_modulus", "poisson_ratio": "poisson_ratio",
+                                   "Young's modulus": "youngs_modulus", "Poisson's ratio": "poisson_ratio",
+                                   "load": "loads"}):
+            table._core.build(setup, y, loads, elements, youngs_modulus, poisson_ratio, progress)
         return table
 
     def save(self, path):
         """Writes the table file (JSON, docs/FLEXTABLE.md §3)."""
-        self._core.save(str(path))
+        self._core.save(_check.path("path", path))
 
     @property
     def info(self) -> dict:
@@ -334,7 +369,9 @@ class FlexibilityTable:
 
     def lookup(self, y: float, vertical_load: float) -> FlexibilityTableValues:
         """The interpolated values at wheelset lateral displacement y (m) and vertical load Fz (N)."""
-        return FlexibilityTableValues(**self._core.lookup(float(y), float(vertical_load)))
+        y, vertical_load = _check.number("y", y), _check.number("vertical_load", vertical_load)
+        with _check.library_names({"y_m": "y", "Fz": "vertical_load", "load": "vertical_load"}):
+            return FlexibilityTableValues(**self._core.lookup(y, vertical_load))
 
 
 def creep_forces(a: float, b: float, normal_force: float, xi: float = 0.0, eta: float = 0.0, phi: float = 0.0,
@@ -342,6 +379,8 @@ def creep_forces(a: float, b: float, normal_force: float, xi: float = 0.0, eta: 
     """One-shot creep forces on an elliptical patch: semi-axes a (along X1), b (m), normal force
     F3 (N), creepages xi, eta (-), spin phi (1/m). Keywords as for Solver."""
     solver = Solver(method, **settings)
+    if normal_force is None:
+        raise TypeError("normal_force must be a real number (got None)")
     solver.set_ellipse(a, b, normal_force)
     return solver.solve(xi, eta, phi, tractions=tractions)
 
@@ -355,6 +394,32 @@ _STATE_DEFAULTS = (0.0, 0.0, 0.0, 0.0, 20.0, 0.0, 0.0, 0.0, 0.0, float("nan"), 0
 _TRACK_KEYWORDS = {"gauge": "track_gauge_m", "measuring_depth": "gauge_measuring_depth_m",
                    "flange_back_distance": "flange_back_distance_m", "flange_back_y": "flange_back_y_m",
                    "taping_line_distance": "taping_line_from_flange_back_m", "nominal_radius": "nominal_rolling_radius_m"}
+
+
+#: the library's names of the state's fields (rc_wheelset_state), for its messages
+_STATE_LIBRARY_NAMES = {"y_m": "y", "z_m": "z", "roll_rad": "roll", "yaw_rad": "yaw", "forward_speed_m_per_s": "speed",
+                        "lateral_velocity_m_per_s": "lateral_velocity",
+                        "vertical_velocity_m_per_s": "vertical_velocity", "roll_rate_rad_per_s": "roll_rate",
+                        "yaw_rate_rad_per_s": "yaw_rate", "wheel_angular_velocity_rad_per_s": "wheel_angular_velocity",
+                        "extra_longitudinal_creepage": "extra_creepage",
+                        "extra longitudinal creepage": "extra_creepage", "forward speed": "speed"}
+
+
+_STATE_COLUMN = {name: k for k, name in enumerate(WHEELSET_STATE_COLUMNS)}
+_OPTIONAL_STATE_COLUMNS = ("wheel_angular_velocity", "extra_creepage")  # None: not given
+
+
+def _state_row(**values):
+    """A checked state row (WHEELSET_STATE_COLUMNS) from evaluate()'s arguments; those not given
+    take their defaults. wheel_angular_velocity and extra_creepage exclude each other."""
+    if values.get("wheel_angular_velocity") is not None and values.get("extra_creepage") is not None:
+        _check.at_most_one(wheel_angular_velocity=values["wheel_angular_velocity"],
+                           extra_creepage=values["extra_creepage"])
+    row = list(_STATE_DEFAULTS)
+    for name, value in values.items():
+        if value is not None or name not in _OPTIONAL_STATE_COLUMNS:
+            row[_STATE_COLUMN[name]] = _check.number(name, value)
+    return np.array(row)
 
 
 @dataclass(frozen=True)
@@ -454,8 +519,19 @@ class Wheelset:
     wheel); warm_start [True] (each evaluation starts from the previous one's pressures; False:
     every evaluation from a cold start, as in batch()); slip_direction ["flexibility-weighted"]
     (nh-fastsim's slipping traction, within 3 % of the exact solver on the flange; "radial": Eq 8).
-    A Wheelset is used by one thread at a time; evaluations release the GIL.
+    A Wheelset may be shared between threads (one call at a time); evaluations release the GIL.
     """
+
+    #: the library's names of the options and dimensions, for its messages
+    _LIBRARY_NAMES = {"friction_coefficient": "mu", "friction coefficient": "mu", "youngs_modulus_Pa": "youngs_modulus",
+                      "Young's modulus": "youngs_modulus", "poisson_ratio": "poisson_ratio",
+                      "Poisson's ratio": "poisson_ratio", "element_size_m": "element_size",
+                      "element size": "element_size", "right_load_N": "loads", "left_load_N": "loads",
+                      "vertical load": "loads", "solvers": "solvers", "slip_direction": "slip_direction",
+                      "track_gauge_m": "gauge", "gauge_measuring_depth_m": "measuring_depth",
+                      "flange_back_distance_m": "flange_back_distance", "flange_back_y_m": "flange_back_y",
+                      "taping_line_from_flange_back_m": "taping_line_distance",
+                      "nominal_rolling_radius_m": "nominal_radius"}
 
     def __init__(self, wheel=None, rail=None, *, right_wheel=None, left_wheel=None, right_rail=None,
                  left_rail=None, gauge=None, measuring_depth=None, flange_back_distance=None, flange_back_y=None,
@@ -464,40 +540,50 @@ class Wheelset:
                  loads=(98100.0, 98100.0), balance_roll: bool = False, tangential_in_balance: bool = True,
                  allow_wheel_lift: bool = False, warm_start: bool = True,
                  slip_direction: str = "flexibility-weighted"):
-        self._core = _core.Wheelset()
         if isinstance(solvers, str):
             solvers = (solvers,)
-        self._solvers = tuple(solvers)
-        for name in self._solvers:
-            if name not in METHODS:
-                raise InvalidInputError(f"unknown solver {name!r}; one of {', '.join(METHODS)}")
-        options = {"friction_coefficient": mu, "youngs_modulus_Pa": youngs_modulus, "poisson_ratio": poisson_ratio,
-                   "element_size_m": element_size, "solvers": [METHODS[n] for n in self._solvers],
-                   "normal_mode": 1 if loads is None else 0, "balance_roll": int(bool(balance_roll)),
-                   "tangential_in_balance": int(bool(tangential_in_balance)),
-                   "allow_wheel_lift": int(bool(allow_wheel_lift)), "warm_start": int(bool(warm_start)),
+        if not isinstance(solvers, (tuple, list)) or not solvers:
+            raise TypeError(f"solvers must be a solver name or a non-empty tuple of them (got {solvers!r})")
+        self._solvers = tuple(_check.choice("solvers", name, METHODS) for name in solvers)
+        options = {"friction_coefficient": _check.number("mu", mu),
+                   "youngs_modulus_Pa": _check.number("youngs_modulus", youngs_modulus),
+                   "poisson_ratio": _check.number("poisson_ratio", poisson_ratio),
+                   "element_size_m": _check.number("element_size", element_size),
+                   "solvers": [METHODS[n] for n in self._solvers],
+                   "normal_mode": 1 if loads is None else 0,
+                   "balance_roll": int(_check.flag("balance_roll", balance_roll)),
+                   "tangential_in_balance": int(_check.flag("tangential_in_balance", tangential_in_balance)),
+                   "allow_wheel_lift": int(_check.flag("allow_wheel_lift", allow_wheel_lift)),
+                   "warm_start": int(_check.flag("warm_start", warm_start)),
                    "slip_direction": _slip_direction(slip_direction)}
-        if loads is not None:
-            right, left = np.broadcast_to(np.asarray(loads, dtype=float), (2,))
-            options["right_load_N"], options["left_load_N"] = float(right), float(left)
-        self._core.set_options(options)
+        if loads is not None:  # one load for both wheels, or (right, left)
+            pair = _check.grid("loads", loads)
+            if pair.size not in (1, 2):
+                raise InvalidInputError(f"loads must be one load or (right, left) in N (got {pair.size} values)")
+            options["right_load_N"], options["left_load_N"] = float(pair[0]), float(pair[-1])
         given = {"gauge": gauge, "measuring_depth": measuring_depth, "flange_back_distance": flange_back_distance,
                  "flange_back_y": flange_back_y, "taping_line_distance": taping_line_distance,
                  "nominal_radius": nominal_radius}
-        dimensions = {_TRACK_KEYWORDS[key]: float(value) for key, value in given.items() if value is not None}
-        two, four = (wheel, rail), (right_wheel, left_wheel, right_rail, left_rail)
-        if all(p is None for p in two + four):
-            if dimensions:
-                raise InvalidInputError("track dimensions need profile files (wheel=, rail=); the default set-up "
-                                        "has its own")
-            self._core.set_default_track()
-        elif all(p is not None for p in two) and all(p is None for p in four):
-            self._core.set_track([str(wheel), str(rail)], dimensions)
-        elif all(p is not None for p in four) and all(p is None for p in two):
-            self._core.set_track([str(p) for p in four], dimensions)
-        else:
-            raise InvalidInputError("give wheel= and rail=, or right_wheel=, left_wheel=, right_rail= and "
-                                    "left_rail=, or no profiles (the default S1002/UIC60 set-up)")
+        dimensions = {_TRACK_KEYWORDS[key]: _check.number(key, value) for key, value in given.items()
+                      if value is not None}
+        profiles = {"wheel": wheel, "rail": rail, "right_wheel": right_wheel, "left_wheel": left_wheel,
+                    "right_rail": right_rail, "left_rail": left_rail}
+        paths = {key: _check.path(key, value) for key, value in profiles.items() if value is not None}
+        two, four = ("wheel", "rail"), ("right_wheel", "left_wheel", "right_rail", "left_rail")
+        if paths and not (set(paths) == set(two) or set(paths) == set(four)):
+            raise InvalidInputError(f"{', '.join(paths)}: give wheel= and rail=, or right_wheel=, left_wheel=, "
+                                    "right_rail= and left_rail=, or no profiles (the default S1002/UIC60 set-up)")
+        if not paths and dimensions:
+            named = ", ".join(k for k in given if given[k] is not None)
+            raise InvalidInputError(f"{named}: track dimensions need profile files (wheel=, rail=); the default set-up "
+                                    "has its own")
+        self._core = _core.Wheelset()
+        with _check.library_names(self._LIBRARY_NAMES):
+            self._core.set_options(options)
+            if not paths:
+                self._core.set_default_track()
+            else:
+                self._core.set_track([paths[key] for key in (two if len(paths) == 2 else four)], dimensions)
 
     @property
     def track(self) -> dict:
@@ -517,7 +603,7 @@ class Wheelset:
     def evaluate(self, y: float = 0.0, z: float = 0.0, roll: float = 0.0, yaw: float = 0.0, *, speed: float = 20.0,
                  lateral_velocity: float = 0.0, vertical_velocity: float = 0.0, roll_rate: float = 0.0,
                  yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
-                 extra_creepage: float = 0.0) -> WheelsetResult:
+                 extra_creepage: Optional[float] = None) -> WheelsetResult:
         """Evaluates one state of the wheelset.
 
         Position: y lateral displacement of the centre (m, + to the left), z vertical displacement
@@ -525,15 +611,15 @@ class Wheelset:
         yaw (rad, + the axle's left end moves backwards). Velocity: speed V (m/s, > 0),
         lateral_velocity, vertical_velocity (m/s), roll_rate, yaw_rate (rad/s),
         wheel_angular_velocity (rad/s about the axle, + rolling forward; None: pure rolling at the
-        nominal radius with extra_creepage xi0, < 0 traction, > 0 braking).
+        nominal radius with extra_creepage xi0 (None: 0), < 0 traction, > 0 braking; the two
+        exclude each other).
         Returns a WheelsetResult (wheels[0] right, wheels[1] left, each with its patches).
         """
-        row = [y, z, roll, yaw, speed, lateral_velocity, vertical_velocity, roll_rate, yaw_rate,
-               float("nan") if wheel_angular_velocity is None else wheel_angular_velocity, extra_creepage]
-        names = WHEELSET_STATE_COLUMNS
-        values = [_finite(names[k], v) if k != 9 or wheel_angular_velocity is not None else float(v)
-                  for k, v in enumerate(row)]
-        return _wheelset_result(self._core.evaluate(np.array(values, dtype=float)), self._solvers)
+        row = _state_row(y=y, z=z, roll=roll, yaw=yaw, speed=speed, lateral_velocity=lateral_velocity,
+                         vertical_velocity=vertical_velocity, roll_rate=roll_rate, yaw_rate=yaw_rate,
+                         wheel_angular_velocity=wheel_angular_velocity, extra_creepage=extra_creepage)
+        with _check.library_names(_STATE_LIBRARY_NAMES):
+            return _wheelset_result(self._core.evaluate(row), self._solvers)
 
     def reset_warm_start(self) -> None:
         """Forgets the warm start (the previous evaluation's pressures and the normal solvers'
@@ -554,16 +640,15 @@ class Wheelset:
         Returns a list of N WheelsetResult; errors="raise" raises the first failed state's error,
         errors="none" gives None for failed states instead.
         """
-        s = np.asarray(states, dtype=float)
-        if s.ndim == 1:
-            s = s.reshape(1, -1)
-        if s.ndim != 2 or not 1 <= s.shape[1] <= len(WHEELSET_STATE_COLUMNS):
-            raise InvalidInputError(f"states must be an array of shape (N, k), 1 <= k <= 11 (got {s.shape})")
-        if errors not in ("raise", "none"):
-            raise InvalidInputError(f"errors must be 'raise' or 'none' (got {errors!r})")
+        s = _check.array("states", states, (None, None), finite=False)  # NaN: pure rolling, or a failed state
+        if not 1 <= s.shape[1] <= len(WHEELSET_STATE_COLUMNS):
+            raise InvalidInputError(f"states must be an array of shape (N, k), 1 <= k <= 11 (got shape {s.shape})")
+        threads = _check.integer("threads", threads, minimum=0)
+        _check.choice("errors", errors, ("raise", "none"))
         full = np.tile(np.array(_STATE_DEFAULTS), (s.shape[0], 1))
         full[:, :s.shape[1]] = s
-        results, statuses, (status, message) = self._core.batch(np.ascontiguousarray(full), int(threads))
+        with _check.library_names(_STATE_LIBRARY_NAMES):
+            results, statuses, (status, message) = self._core.batch(np.ascontiguousarray(full), threads)
         if status != 0 and errors == "raise":
             _raise(status, message)
         return [None if r is None else _wheelset_result(r, self._solvers) for r in results]
@@ -575,39 +660,37 @@ class Wheelset:
         yaw (rad; one value serves every yaw by turning the contact point) and loads (N per wheel),
         each strictly increasing; about 0.2-0.5 s per node. progress(done, total) is called after
         each node; returning False cancels (CancelledError). Replaces a table the wheelset had."""
-        grids = [np.ascontiguousarray(np.atleast_1d(np.asarray(v, dtype=float))) for v in (y, yaw, loads)]
-        for name, g in zip(("y", "yaw", "loads"), grids):
-            if g.ndim != 1 or g.size == 0:
-                raise InvalidInputError(f"{name} must be a non-empty list of numbers")
-        self._core.build_table(*grids, progress)
+        grids = [_check.grid(name, value) for name, value in (("y", y), ("yaw", yaw), ("loads", loads))]
+        progress = _check.callback("progress", progress)
+        with _check.library_names({"y_m": "y", "yaw_rad": "yaw", "loads_N": "loads", "wheel load": "loads"}):
+            self._core.build_table(*grids, progress)
 
     def load_table(self, path) -> None:
         """Loads a table file (`railcontact wheelset-table build`, save_table), checked against this
         wheelset's track (its four profile files and dimensions)."""
-        self._core.load_table(str(path))
+        self._core.load_table(_check.path("path", path))
 
     def save_table(self, path) -> None:
         """Writes this wheelset's table (JSON)."""
-        self._core.save_table(str(path))
-
-    def _table_row(self, y, yaw, speed, lateral_velocity, yaw_rate, wheel_angular_velocity, extra_creepage):
-        return np.array([y, 0.0, 0.0, yaw, speed, lateral_velocity, 0.0, 0.0, yaw_rate,
-                         float("nan") if wheel_angular_velocity is None else wheel_angular_velocity, extra_creepage],
-                        dtype=float)
+        self._core.save_table(_check.path("path", path))
 
     def evaluate_table(self, y: float = 0.0, yaw: float = 0.0, *, speed: float = 20.0, lateral_velocity: float = 0.0,
                        yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
-                       extra_creepage: float = 0.0) -> WheelsetResult:
+                       extra_creepage: Optional[float] = None) -> WheelsetResult:
         """A state from the table (arguments as in evaluate(); each wheel carries its load of the
         options, nh-fastsim only). Raises InvalidInputError outside the table's grid."""
-        row = self._table_row(y, yaw, speed, lateral_velocity, yaw_rate, wheel_angular_velocity, extra_creepage)
-        return _wheelset_result(self._core.evaluate_table(row), ("nh-fastsim",))
+        row = _state_row(y=y, yaw=yaw, speed=speed, lateral_velocity=lateral_velocity, yaw_rate=yaw_rate,
+                         wheel_angular_velocity=wheel_angular_velocity, extra_creepage=extra_creepage)
+        with _check.library_names(_STATE_LIBRARY_NAMES):
+            return _wheelset_result(self._core.evaluate_table(row), ("nh-fastsim",))
 
     def table_forces(self, y: float, yaw: float, *, speed: float, lateral_velocity: float = 0.0,
                      yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
-                     extra_creepage: float = 0.0) -> np.ndarray:
+                     extra_creepage: Optional[float] = None) -> np.ndarray:
         """The fast path of a simulation step: from the table, the array [Fx, Fy, Fz of the right
         wheel, Fx, Fy, Fz of the left wheel (N, track frame: x forward, y left, z up), Mz (N m) about
         the wheelset centre], without result objects."""
-        row = self._table_row(y, yaw, speed, lateral_velocity, yaw_rate, wheel_angular_velocity, extra_creepage)
-        return self._core.table_forces(row)
+        row = _state_row(y=y, yaw=yaw, speed=speed, lateral_velocity=lateral_velocity, yaw_rate=yaw_rate,
+                         wheel_angular_velocity=wheel_angular_velocity, extra_creepage=extra_creepage)
+        with _check.library_names(_STATE_LIBRARY_NAMES):
+            return self._core.table_forces(row)

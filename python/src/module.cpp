@@ -1,17 +1,29 @@
 // railcontact._core: the Python extension of the package railcontact (docs/PYTHON.md), a thin
 // pybind11 layer over the C API (railcontact/railcontact.h). The package's Python code
-// (python/railcontact/__init__.py) builds the result classes and holds the docstrings. Every solve
-// and every wheelset evaluation releases the GIL; a failed call raises the exception class of its
-// status (railcontact._errors).
+// (python/railcontact/__init__.py) builds the result classes, checks the arguments and holds the
+// docstrings. A failed call raises the exception class of its status (railcontact._errors).
+//
+// Threads: a C handle is used by one thread at a time (docs/C_API.md "Threads"), but Python code
+// may share one object between threads. Each object wrapping a handle therefore has its own
+// HandleLock, held by every call that touches the handle, and every such call runs with the GIL
+// released, so that other threads run meanwhile. The lock is taken only with the GIL released:
+// a thread waiting for it holds no GIL, so its holder may take the GIL back (a progress
+// callback) without a deadlock. A call reads its results and its error message under the lock
+// and builds the Python objects after it.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <mutex>
 #include <optional>
+#include <shared_mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "railcontact/railcontact.h"
@@ -73,7 +85,82 @@ py::tuple forces_tuple(const rc_forces& f) { return py::make_tuple(f.F1_N, f.F2_
 
 using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
+// A call's status with the handle's message, read under the handle's lock and raised after it.
+struct Outcome {
+  rc_status status = RC_OK;
+  std::string message;
+  void raise_if_failed() const {
+    if (status != RC_OK) raise(status, message);
+  }
+};
+
+// The lock of one object wrapping a C handle (see the top of this file). exclusive(f) runs f with
+// the GIL released, holding the lock; f touches no Python object (a progress callback takes the
+// GIL itself). A call from a progress callback into the object whose build it reports on would
+// wait for itself: it raises InvalidInputError instead.
+class HandleLock {
+ public:
+  template <class F>
+  auto exclusive(const char* object, F&& f) {
+    refuse_reentry(object);
+    py::gil_scoped_release release;
+    std::unique_lock<std::shared_mutex> lock(mutex_);
+    const Owner owner(owner_);
+    return f();
+  }
+
+  // For another object's call that only reads this one (a solver's patch from a flexibility
+  // table): with the GIL released, under that object's lock. Several readers share it.
+  std::shared_lock<std::shared_mutex> shared() { return std::shared_lock<std::shared_mutex>(mutex_); }
+
+  // With the GIL held: raises when this thread holds the lock already.
+  void refuse_reentry(const char* object) const {
+    if (owner_.load() == std::this_thread::get_id())
+      raise(RC_INVALID_INPUT, std::string("this ") + object +
+                                  " is busy with a call on this thread (a progress callback cannot use the object "
+                                  "whose build it reports on)");
+  }
+
+ private:
+  struct Owner {
+    std::atomic<std::thread::id>& id;
+    explicit Owner(std::atomic<std::thread::id>& owner) : id(owner) { id = std::this_thread::get_id(); }
+    ~Owner() { id = std::thread::id(); }
+    Owner(const Owner&) = delete;
+    Owner& operator=(const Owner&) = delete;
+  };
+  std::shared_mutex mutex_;
+  std::atomic<std::thread::id> owner_{};
+};
+
+// A number of a settings or options dict (the package checks the types; this keeps a wrong type
+// from the private module a TypeError too).
+double number_of(const std::string& key, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)))
+    throw py::type_error("'" + key + "' must be a number (got " + std::string(py::str(py::type::of(value).attr("__name__"))) + ")");
+  return value.cast<double>();
+}
+
 class FlexTable;
+
+// The settings of rc_settings by name: the dict of Solver.settings and of set_settings.
+#define RC_SETTINGS_DOUBLES(X)                                                                                         \
+  X(youngs_modulus_Pa) X(poisson_ratio) X(friction_coefficient) X(mesh_value) X(bound_skew) X(collocation_offset)       \
+  X(tolerance) X(krylov_tolerance) X(regularisation) X(normal_tolerance) X(jacobian_step_creepage)                     \
+  X(jacobian_step_spin_per_m)
+#define RC_SETTINGS_INTS(X)                                                                                            \
+  X(method) X(mesh_mode) X(flexibility_coarsening) X(slip_direction) X(max_newton_iterations) X(max_krylov_iterations) \
+  X(normal_max_iterations)
+
+// Sets the field `key` of s to value; false for an unknown key.
+bool assign_setting(rc_settings& s, const std::string& key, double value) {
+#define RC_DOUBLE(name) if (key == #name) { s.name = value; return true; }
+#define RC_INT(name) if (key == #name) { s.name = static_cast<int>(value); return true; }
+  RC_SETTINGS_DOUBLES(RC_DOUBLE) RC_SETTINGS_INTS(RC_INT)
+#undef RC_DOUBLE
+#undef RC_INT
+  return false;
+}
 
 class Solver {
  public:
@@ -84,72 +171,68 @@ class Solver {
   Solver(const Solver&) = delete;
   Solver& operator=(const Solver&) = delete;
 
-  void check(rc_status status) const {
-    if (status != RC_OK) raise(status, last_error(handle_, rc_solver_last_error));
-  }
-
-  py::dict settings() const {
+  py::dict settings() {
     rc_settings s;
-    rc_solver_get_settings(handle_, &s);
+    lock_.exclusive("Solver", [&] { rc_solver_get_settings(handle_, &s); });
     py::dict d;
-#define RC_FIELD(name) d[#name] = s.name
-    RC_FIELD(youngs_modulus_Pa); RC_FIELD(poisson_ratio); RC_FIELD(friction_coefficient); RC_FIELD(mesh_value);
-    RC_FIELD(bound_skew); RC_FIELD(collocation_offset); RC_FIELD(tolerance); RC_FIELD(krylov_tolerance);
-    RC_FIELD(regularisation); RC_FIELD(normal_tolerance); RC_FIELD(jacobian_step_creepage);
-    RC_FIELD(jacobian_step_spin_per_m); RC_FIELD(method); RC_FIELD(mesh_mode); RC_FIELD(flexibility_coarsening);
-    RC_FIELD(slip_direction); RC_FIELD(max_newton_iterations); RC_FIELD(max_krylov_iterations); RC_FIELD(normal_max_iterations);
+#define RC_FIELD(name) d[#name] = s.name;
+    RC_SETTINGS_DOUBLES(RC_FIELD) RC_SETTINGS_INTS(RC_FIELD)
 #undef RC_FIELD
     return d;
   }
 
   void set_settings(const py::dict& d) {
-    rc_settings s;
-    rc_solver_get_settings(handle_, &s);
+    std::vector<std::pair<std::string, double>> values;
     for (const auto& item : d) {
       const std::string key = py::str(item.first);
-      const py::handle value = item.second;
-#define RC_DOUBLE(name) if (key == #name) { s.name = value.cast<double>(); continue; }
-#define RC_INT(name) if (key == #name) { s.name = value.cast<int>(); continue; }
-      RC_DOUBLE(youngs_modulus_Pa) RC_DOUBLE(poisson_ratio) RC_DOUBLE(friction_coefficient) RC_DOUBLE(mesh_value)
-      RC_DOUBLE(bound_skew) RC_DOUBLE(collocation_offset) RC_DOUBLE(tolerance) RC_DOUBLE(krylov_tolerance)
-      RC_DOUBLE(regularisation) RC_DOUBLE(normal_tolerance) RC_DOUBLE(jacobian_step_creepage)
-      RC_DOUBLE(jacobian_step_spin_per_m) RC_INT(method) RC_INT(mesh_mode) RC_INT(flexibility_coarsening)
-      RC_INT(slip_direction) RC_INT(max_newton_iterations) RC_INT(max_krylov_iterations) RC_INT(normal_max_iterations)
-#undef RC_DOUBLE
-#undef RC_INT
-      raise(RC_INVALID_INPUT, "unknown setting '" + key + "'");
+      rc_settings probe{};
+      if (!assign_setting(probe, key, 0.0)) raise(RC_INVALID_INPUT, "unknown setting '" + key + "'");
+      values.emplace_back(key, number_of(key, item.second));
     }
-    check(rc_solver_set_settings(handle_, &s));
+    lock_.exclusive("Solver", [&] {
+      rc_settings s;
+      rc_solver_get_settings(handle_, &s);
+      for (const auto& [key, value] : values) assign_setting(s, key, value);
+      ++serial_;  // a changed material, mesh or method discards the patch
+      return outcome(rc_solver_set_settings(handle_, &s));
+    }).raise_if_failed();
   }
 
-  // approach: none for the patch's normal force, else the approach prescribed (m).
-  void set_patch(const rc_patch& patch, std::optional<double> approach) {
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = approach ? rc_solver_set_patch_at_approach(handle_, &patch, *approach)
-                        : rc_solver_set_patch(handle_, &patch);
-    }
-    check(status);
+  // approach: none for the patch's normal force, else the approach prescribed (m). Returns the
+  // patch's serial number and its normal results.
+  py::tuple set_patch(const rc_patch& patch, std::optional<double> approach) {
+    rc_normal_result n{};
+    std::uint64_t serial = 0;
+    lock_.exclusive("Solver", [&] {
+      serial = ++serial_;
+      batch_patch_.reset();
+      rc_status status = approach ? rc_solver_set_patch_at_approach(handle_, &patch, *approach)
+                                  : rc_solver_set_patch(handle_, &patch);
+      if (status == RC_OK) status = rc_solver_normal_result(handle_, &n);
+      if (status == RC_OK && !approach && (patch.kind == RC_GEOMETRY_ELLIPSE || patch.kind == RC_GEOMETRY_HERTZ))
+        batch_patch_ = patch;
+      return outcome(status);
+    }).raise_if_failed();
+    return py::make_tuple(serial, normal_dict(n));
   }
 
-  void set_ellipse(double a, double b, double F3, std::optional<double> approach) {
+  py::tuple set_ellipse(double a, double b, double F3, std::optional<double> approach) {
     rc_patch p{};
     p.kind = RC_GEOMETRY_ELLIPSE;
     p.a_m = a;
     p.b_m = b;
     p.normal_force_N = F3;
-    set_patch(p, approach);
+    return set_patch(p, approach);
   }
-  void set_hertz(double A, double B, double F3, std::optional<double> approach) {
+  py::tuple set_hertz(double A, double B, double F3, std::optional<double> approach) {
     rc_patch p{};
     p.kind = RC_GEOMETRY_HERTZ;
     p.A_per_m = A;
     p.B_per_m = B;
     p.normal_force_N = F3;
-    set_patch(p, approach);
+    return set_patch(p, approach);
   }
-  void set_grid(const DoubleArray& h, double dx1, double dx2, double F3, std::optional<double> approach) {
+  py::tuple set_grid(const DoubleArray& h, double dx1, double dx2, double F3, std::optional<double> approach) {
     if (h.ndim() != 2) raise(RC_INVALID_INPUT, "h must be a 2-D array of shape (n2, n1): rows along X2, columns along X1");
     rc_patch p{};
     p.kind = RC_GEOMETRY_GRID;
@@ -159,106 +242,126 @@ class Solver {
     p.grid_dx2_m = dx2;
     p.grid_h_m = h.data();
     p.normal_force_N = F3;
-    set_patch(p, approach);
+    return set_patch(p, approach);
   }
-  void set_flextable_patch(const FlexTable& table, double y, double Fz);
+  py::tuple set_flextable_patch(FlexTable& table, double y, double Fz);
 
-  py::dict normal() const {
+  // The patch's serial number and its normal results.
+  py::tuple normal() {
     rc_normal_result n{};
-    check(rc_solver_normal_result(handle_, &n));
-    return normal_dict(n);
+    std::uint64_t serial = 0;
+    lock_.exclusive("Solver", [&] {
+      serial = serial_;
+      return outcome(rc_solver_normal_result(handle_, &n));
+    }).raise_if_failed();
+    return py::make_tuple(serial, normal_dict(n));
   }
 
-  py::tuple solve(double xi, double eta, double phi) {
+  // One solve, with the traction fields and the Jacobian when asked for, all of the same patch:
+  // (forces, J or None, tractions dict or None, the patch's serial number, its normal results or
+  // None when known_serial is that number).
+  py::tuple solve(double xi, double eta, double phi, bool with_tractions, bool with_jacobian, std::uint64_t known_serial) {
     const rc_creepage c{xi, eta, phi};
     rc_forces f{};
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_solver_solve(handle_, &c, &f);
-    }
-    check(status);
-    return forces_tuple(f);
-  }
-
-  py::tuple jacobian(double xi, double eta, double phi) {
-    const rc_creepage c{xi, eta, phi};
-    rc_forces f{};
-    py::array_t<double> J({3, 3});
-    double* j = J.mutable_data();
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_solver_jacobian(handle_, &c, &f, j);
-    }
-    check(status);
-    return py::make_tuple(forces_tuple(f), J);
-  }
-
-  py::dict tractions() const {
+    double J[9] = {};
     int n1 = 0, n2 = 0;
-    std::size_t count = 0;
-    check(rc_solver_traction_size(handle_, &n1, &n2, &count));
-    py::array_t<double> p1({n2, n1}), p2({n2, n1}), p3({n2, n1});
-    py::array_t<int> slip({n2, n1});
-    check(rc_solver_tractions(handle_, count, p1.mutable_data(), p2.mutable_data(), p3.mutable_data(),
-                              slip.mutable_data()));
-    py::dict d;
-    d["p1_Pa"] = p1;
-    d["p2_Pa"] = p2;
-    d["p3_Pa"] = p3;
-    d["slip"] = slip;
-    return d;
+    std::vector<double> p1, p2, p3;
+    std::vector<int> slip;
+    rc_normal_result n{};
+    std::uint64_t serial = 0;
+    lock_.exclusive("Solver", [&] {
+      rc_status status = with_jacobian ? rc_solver_jacobian(handle_, &c, &f, J) : rc_solver_solve(handle_, &c, &f);
+      if (status == RC_OK && with_tractions) {
+        std::size_t count = 0;
+        status = rc_solver_traction_size(handle_, &n1, &n2, &count);
+        if (status == RC_OK) {
+          p1.resize(count);
+          p2.resize(count);
+          p3.resize(count);
+          slip.resize(count);
+          status = rc_solver_tractions(handle_, count, p1.data(), p2.data(), p3.data(), slip.data());
+        }
+      }
+      serial = serial_;
+      if (status == RC_OK && serial != known_serial) status = rc_solver_normal_result(handle_, &n);
+      return outcome(status);
+    }).raise_if_failed();
+    py::object jacobian = py::none(), tractions = py::none(), normal = py::none();
+    if (with_jacobian) {
+      py::array_t<double> a({3, 3});
+      std::memcpy(a.mutable_data(), J, sizeof J);
+      jacobian = a;
+    }
+    if (with_tractions) {
+      const auto field = [&](const auto& v) {
+        py::array_t<typename std::decay_t<decltype(v)>::value_type> a({n2, n1});
+        if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof v[0]);
+        return a;
+      };
+      py::dict d;
+      d["p1_Pa"] = field(p1);
+      d["p2_Pa"] = field(p2);
+      d["p3_Pa"] = field(p3);
+      d["slip"] = field(slip);
+      tractions = d;
+    }
+    if (serial != known_serial) normal = normal_dict(n);
+    return py::make_tuple(forces_tuple(f), jacobian, tractions, serial, normal);
   }
 
-  // patches: (m, 3) rows [a, b, F3] (ellipse) or [A, B, F3] (hertz), m = 1 or N; creepages (N, 3).
-  // Returns forces (N, 4), statuses (N,), jacobians (N, 3, 3) or None, the first error message.
-  py::tuple batch(const DoubleArray& patches, int kind, const DoubleArray& creepages, int threads, bool with_jacobian) {
+  // patches: (m, 3) rows [a, b, F3] (ellipse) or [A, B, F3] (hertz), m = 1 or N, or None for the
+  // patch set (an ellipse or Hertz patch given its force); creepages (N, 3). Returns forces
+  // (N, 4), statuses (N,), jacobians (N, 3, 3) or None, the first error (status, message).
+  py::tuple batch(const std::optional<DoubleArray>& patches, int kind, const DoubleArray& creepages, int threads,
+                  bool with_jacobian) {
     if (creepages.ndim() != 2 || creepages.shape(1) != 3)
       raise(RC_INVALID_INPUT, "creepages must be an array of shape (N, 3): xi, eta, phi (1/m)");
-    if (patches.ndim() != 2 || patches.shape(1) != 3)
-      raise(RC_INVALID_INPUT, "patches must be an array of shape (N, 3) or (1, 3)");
-    if (kind != RC_GEOMETRY_ELLIPSE && kind != RC_GEOMETRY_HERTZ)
-      raise(RC_INVALID_INPUT, "a batch takes ellipse or hertz patches");
     const std::size_t count = static_cast<std::size_t>(creepages.shape(0));
-    const std::size_t patch_count = static_cast<std::size_t>(patches.shape(0));
-    std::vector<rc_patch> ps(patch_count);
-    for (std::size_t k = 0; k < patch_count; ++k) {
-      rc_patch& p = ps[k];
-      p = rc_patch{};
-      p.kind = kind;
-      const double* row = patches.data() + 3 * k;
-      if (kind == RC_GEOMETRY_ELLIPSE) {
-        p.a_m = row[0];
-        p.b_m = row[1];
-      } else {
-        p.A_per_m = row[0];
-        p.B_per_m = row[1];
+    std::vector<rc_patch> ps;
+    if (patches) {
+      if (patches->ndim() != 2 || patches->shape(1) != 3 ||
+          (patches->shape(0) != 1 && static_cast<std::size_t>(patches->shape(0)) != count))
+        raise(RC_INVALID_INPUT, "patches must be an array of shape (N, 3) or (1, 3), N the number of creepages");
+      if (kind != RC_GEOMETRY_ELLIPSE && kind != RC_GEOMETRY_HERTZ)
+        raise(RC_INVALID_INPUT, "a batch takes ellipse or hertz patches");
+      ps.resize(static_cast<std::size_t>(patches->shape(0)));
+      for (std::size_t k = 0; k < ps.size(); ++k) {
+        rc_patch& p = ps[k];
+        p = rc_patch{};
+        p.kind = kind;
+        const double* row = patches->data() + 3 * k;
+        if (kind == RC_GEOMETRY_ELLIPSE) {
+          p.a_m = row[0];
+          p.b_m = row[1];
+        } else {
+          p.A_per_m = row[0];
+          p.B_per_m = row[1];
+        }
+        p.normal_force_N = row[2];
       }
-      p.normal_force_N = row[2];
     }
     std::vector<rc_creepage> cs(count);
-    std::memcpy(cs.data(), creepages.data(), count * sizeof(rc_creepage));
+    if (count > 0) std::memcpy(cs.data(), creepages.data(), count * sizeof(rc_creepage));
     std::vector<rc_forces> forces(count);
     py::array_t<int> statuses(static_cast<py::ssize_t>(count));
     std::optional<py::array_t<double>> jacobians;
     if (with_jacobian) jacobians.emplace(std::vector<py::ssize_t>{static_cast<py::ssize_t>(count), 3, 3});
     double* j = jacobians ? jacobians->mutable_data() : nullptr;
     int* st = statuses.mutable_data();
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = count == 0 ? RC_OK
-                          : rc_batch_creep_forces(handle_, count, ps.data(), patch_count, cs.data(), threads,
-                                                  forces.data(), nullptr, j, st);
-    }
-    std::string message;
-    if (status != RC_OK) {
-      message = last_error(handle_, rc_solver_last_error);
+    const Outcome result = lock_.exclusive("Solver", [&] {
+      if (!patches && !batch_patch_)
+        return Outcome{RC_INVALID_INPUT, "batch without patches= uses the patch of set_ellipse or set_hertz given "
+                                         "its normal force; none set"};
+      if (!patches) ps.assign(1, *batch_patch_);
+      if (count == 0) return Outcome{};
+      return outcome(rc_batch_creep_forces(handle_, count, ps.data(), ps.size(), cs.data(), threads, forces.data(),
+                                           nullptr, j, st));
+    });
+    if (result.status != RC_OK) {
       // A failure of the call itself (not of a state) raises at once.
       bool any_state_failed = false;
       for (std::size_t k = 0; k < count; ++k) any_state_failed = any_state_failed || st[k] != RC_OK;
-      if (!any_state_failed) raise(status, message);
+      if (!any_state_failed) result.raise_if_failed();
     }
     py::array_t<double> out({static_cast<py::ssize_t>(count), py::ssize_t{4}});
     double* o = out.mutable_data();
@@ -270,18 +373,25 @@ class Solver {
       o[4 * k + 3] = ok ? forces[k].adhesion_fraction : NAN;
     }
     return py::make_tuple(out, statuses, jacobians ? py::object(*jacobians) : py::object(py::none()),
-                          py::make_tuple(static_cast<int>(status), message));
+                          py::make_tuple(static_cast<int>(result.status), result.message));
   }
 
-  rc_solver* handle() const { return handle_; }
-
  private:
+  // Under the lock: the status with the solver's message.
+  Outcome outcome(rc_status status) const {
+    return status == RC_OK ? Outcome{} : Outcome{status, last_error(handle_, rc_solver_last_error)};
+  }
+
+  HandleLock lock_;
   rc_solver* handle_ = nullptr;
+  std::uint64_t serial_ = 0;             // counts the patches set (and settings that may discard one)
+  std::optional<rc_patch> batch_patch_;  // the ellipse or Hertz patch given its force, for batch()
 };
 
 // A Python progress callback for a table build: progress(done, total) after each node; returning
 // False stops the build (the C API then returns RC_CANCELLED); an exception it raises is kept and
-// raised again after the build.
+// raised again after the build. Called on the building thread, which holds the object's lock
+// but not the GIL.
 struct ProgressCallback {
   py::object callback;
   std::optional<py::error_already_set> error;
@@ -307,45 +417,33 @@ class FlexTable {
   FlexTable(const FlexTable&) = delete;
   FlexTable& operator=(const FlexTable&) = delete;
 
-  void check(rc_status status) const {
-    if (status != RC_OK) raise(status, last_error(handle_, rc_flextable_last_error));
-  }
-
   void load(const std::string& path, const std::optional<std::string>& setup) {
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_flextable_load(handle_, path.c_str(), setup ? setup->c_str() : nullptr);
-    }
-    check(status);
+    lock_.exclusive("FlexibilityTable", [&] {
+      return outcome(rc_flextable_load(handle_, path.c_str(), setup ? setup->c_str() : nullptr));
+    }).raise_if_failed();
   }
 
-  void save(const std::string& path) const {
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_flextable_save(handle_, path.c_str());
-    }
-    check(status);
+  void save(const std::string& path) {
+    lock_.exclusive("FlexibilityTable", [&] { return outcome(rc_flextable_save(handle_, path.c_str())); })
+        .raise_if_failed();
   }
 
   void build(const std::optional<std::string>& setup, const DoubleArray& y, const DoubleArray& loads,
              int target_elements, double E, double nu, const py::object& progress) {
     ProgressCallback context{progress, std::nullopt};
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_flextable_build(handle_, setup ? setup->c_str() : nullptr, y.data(), static_cast<std::size_t>(y.size()),
-                                  loads.data(), static_cast<std::size_t>(loads.size()), target_elements, E, nu,
-                                  progress.is_none() ? nullptr : &ProgressCallback::call, &context);
-    }
+    const Outcome result = lock_.exclusive("FlexibilityTable", [&] {
+      return outcome(rc_flextable_build(handle_, setup ? setup->c_str() : nullptr, y.data(),
+                                        static_cast<std::size_t>(y.size()), loads.data(),
+                                        static_cast<std::size_t>(loads.size()), target_elements, E, nu,
+                                        progress.is_none() ? nullptr : &ProgressCallback::call, &context));
+    });
     if (context.error) throw std::move(*context.error);
-    check(status);
+    result.raise_if_failed();
   }
 
-  py::dict info() const {
+  py::dict info() {
     rc_flextable_info i{};
-    check(rc_flextable_info_get(handle_, &i));
+    lock_.exclusive("FlexibilityTable", [&] { return outcome(rc_flextable_info_get(handle_, &i)); }).raise_if_failed();
     py::dict d;
     d["y_min_m"] = i.y_min_m;
     d["y_max_m"] = i.y_max_m;
@@ -359,9 +457,10 @@ class FlexTable {
     return d;
   }
 
-  py::dict lookup(double y, double Fz) const {
+  py::dict lookup(double y, double Fz) {
     rc_flextable_values v{};
-    check(rc_flextable_lookup(handle_, y, Fz, &v));
+    lock_.exclusive("FlexibilityTable", [&] { return outcome(rc_flextable_lookup(handle_, y, Fz, &v)); })
+        .raise_if_failed();
     py::dict d;
     d["L1_m_per_Pa"] = v.L1_m_per_Pa;
     d["L2_m_per_Pa"] = v.L2_m_per_Pa;
@@ -376,21 +475,30 @@ class FlexTable {
     return d;
   }
 
-  const rc_flextable* handle() const { return handle_; }
-
  private:
+  friend class Solver;
+  Outcome outcome(rc_status status) const {
+    return status == RC_OK ? Outcome{} : Outcome{status, last_error(handle_, rc_flextable_last_error)};
+  }
+
+  HandleLock lock_;
   rc_flextable* handle_ = nullptr;
 };
 
-void Solver::set_flextable_patch(const FlexTable& table, double y, double Fz) {
-  rc_status status;
-  {
-    py::gil_scoped_release release;
-    status = rc_solver_set_patch_flextable(handle_, table.handle(), y, Fz);
-  }
-  check(status);
+py::tuple Solver::set_flextable_patch(FlexTable& table, double y, double Fz) {
+  table.lock_.refuse_reentry("FlexibilityTable");
+  rc_normal_result n{};
+  std::uint64_t serial = 0;
+  lock_.exclusive("Solver", [&] {
+    const auto reading = table.lock_.shared();  // solvers on several threads may read one table
+    serial = ++serial_;
+    batch_patch_.reset();
+    rc_status status = rc_solver_set_patch_flextable(handle_, table.handle_, y, Fz);
+    if (status == RC_OK) status = rc_solver_normal_result(handle_, &n);
+    return outcome(status);
+  }).raise_if_failed();
+  return py::make_tuple(serial, normal_dict(n));
 }
-
 py::array_t<double> vector3(const double v[3]) {
   py::array_t<double> a(3);
   std::memcpy(a.mutable_data(), v, 3 * sizeof(double));
@@ -472,7 +580,7 @@ rc_track_parameters track_parameters(const py::dict& d) {
   rc_track_parameters_default(&t);
   for (const auto& item : d) {
     const std::string key = py::str(item.first);
-    const double value = item.second.cast<double>();
+    const double value = number_of(key, item.second);
     if (key == "track_gauge_m") t.track_gauge_m = value;
     else if (key == "gauge_measuring_depth_m") t.gauge_measuring_depth_m = value;
     else if (key == "flange_back_distance_m") t.flange_back_distance_m = value;
@@ -484,6 +592,20 @@ rc_track_parameters track_parameters(const py::dict& d) {
   return t;
 }
 
+#define RC_WHEELSET_DOUBLES(X) \
+  X(youngs_modulus_Pa) X(poisson_ratio) X(friction_coefficient) X(element_size_m) X(right_load_N) X(left_load_N)
+#define RC_WHEELSET_INTS(X) \
+  X(normal_mode) X(balance_roll) X(tangential_in_balance) X(allow_wheel_lift) X(warm_start) X(slip_direction)
+
+bool assign_option(rc_wheelset_options& o, const std::string& key, double value) {
+#define RC_DOUBLE(name) if (key == #name) { o.name = value; return true; }
+#define RC_INT(name) if (key == #name) { o.name = static_cast<int>(value); return true; }
+  RC_WHEELSET_DOUBLES(RC_DOUBLE) RC_WHEELSET_INTS(RC_INT)
+#undef RC_DOUBLE
+#undef RC_INT
+  return false;
+}
+
 class WheelsetHandle {
  public:
   WheelsetHandle() {
@@ -493,37 +615,25 @@ class WheelsetHandle {
   WheelsetHandle(const WheelsetHandle&) = delete;
   WheelsetHandle& operator=(const WheelsetHandle&) = delete;
 
-  void check(rc_status status) const {
-    if (status != RC_OK) raise(status, last_error(handle_, rc_wheelset_last_error));
-  }
-
   void set_default_track() {
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_wheelset_set_default_track(handle_);
-    }
-    check(status);
+    lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_set_default_track(handle_)); }).raise_if_failed();
   }
 
   // paths: 2 (wheel, rail) or 4 (right wheel, left wheel, right rail, left rail).
   void set_track(const std::vector<std::string>& paths, const py::dict& dimensions) {
     const rc_track_parameters t = track_parameters(dimensions);
     if (paths.size() != 2 && paths.size() != 4) raise(RC_INVALID_INPUT, "2 or 4 profile paths are needed");
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = paths.size() == 2 ? rc_wheelset_set_track(handle_, paths[0].c_str(), paths[1].c_str(), &t)
-                                 : rc_wheelset_set_track_profiles(handle_, paths[0].c_str(), paths[1].c_str(),
-                                                                  paths[2].c_str(), paths[3].c_str(), &t);
-    }
-    check(status);
+    lock_.exclusive("Wheelset", [&] {
+      return outcome(paths.size() == 2 ? rc_wheelset_set_track(handle_, paths[0].c_str(), paths[1].c_str(), &t)
+                                       : rc_wheelset_set_track_profiles(handle_, paths[0].c_str(), paths[1].c_str(),
+                                                                        paths[2].c_str(), paths[3].c_str(), &t));
+    }).raise_if_failed();
   }
 
-  py::dict track() const {
+  py::dict track() {
     rc_track_parameters t{};
     double height = 0.0;
-    check(rc_wheelset_get_track(handle_, &t, &height));
+    lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_get_track(handle_, &t, &height)); }).raise_if_failed();
     py::dict d;
     d["track_gauge_m"] = t.track_gauge_m;
     d["gauge_measuring_depth_m"] = t.gauge_measuring_depth_m;
@@ -535,14 +645,12 @@ class WheelsetHandle {
     return d;
   }
 
-  py::dict options() const {
+  py::dict options() {
     rc_wheelset_options o;
-    rc_wheelset_get_options(handle_, &o);
+    lock_.exclusive("Wheelset", [&] { rc_wheelset_get_options(handle_, &o); });
     py::dict d;
-#define RC_FIELD(name) d[#name] = o.name
-    RC_FIELD(youngs_modulus_Pa); RC_FIELD(poisson_ratio); RC_FIELD(friction_coefficient); RC_FIELD(element_size_m);
-    RC_FIELD(right_load_N); RC_FIELD(left_load_N); RC_FIELD(normal_mode); RC_FIELD(balance_roll);
-    RC_FIELD(tangential_in_balance); RC_FIELD(allow_wheel_lift); RC_FIELD(warm_start); RC_FIELD(slip_direction);
+#define RC_FIELD(name) d[#name] = o.name;
+    RC_WHEELSET_DOUBLES(RC_FIELD) RC_WHEELSET_INTS(RC_FIELD)
 #undef RC_FIELD
     py::list solvers;
     for (int k = 0; k < o.solver_count; ++k) solvers.append(o.solvers[k]);
@@ -551,45 +659,41 @@ class WheelsetHandle {
   }
 
   void set_options(const py::dict& d) {
-    rc_wheelset_options o;
-    rc_wheelset_get_options(handle_, &o);
+    std::vector<std::pair<std::string, double>> values;
+    std::optional<std::vector<int>> solvers;
     for (const auto& item : d) {
       const std::string key = py::str(item.first);
-      const py::handle value = item.second;
-#define RC_DOUBLE(name) if (key == #name) { o.name = value.cast<double>(); continue; }
-#define RC_INT(name) if (key == #name) { o.name = value.cast<int>(); continue; }
-      RC_DOUBLE(youngs_modulus_Pa) RC_DOUBLE(poisson_ratio) RC_DOUBLE(friction_coefficient) RC_DOUBLE(element_size_m)
-      RC_DOUBLE(right_load_N) RC_DOUBLE(left_load_N) RC_INT(normal_mode) RC_INT(balance_roll)
-      RC_INT(tangential_in_balance) RC_INT(allow_wheel_lift) RC_INT(warm_start) RC_INT(slip_direction)
-#undef RC_DOUBLE
-#undef RC_INT
       if (key == "solvers") {
-        const auto solvers = value.cast<std::vector<int>>();
-        if (solvers.empty() || solvers.size() > 4) raise(RC_INVALID_INPUT, "solvers: 1 to 4 tangential solvers");
-        o.solver_count = static_cast<int>(solvers.size());
-        for (std::size_t k = 0; k < solvers.size(); ++k) o.solvers[k] = solvers[k];
+        try {
+          solvers = item.second.cast<std::vector<int>>();
+        } catch (const py::cast_error&) {
+          throw py::type_error("'solvers' must be a list of rc_method numbers");
+        }
+        if (solvers->empty() || solvers->size() > 4) raise(RC_INVALID_INPUT, "solvers: 1 to 4 tangential solvers");
         continue;
       }
-      raise(RC_INVALID_INPUT, "unknown wheelset option '" + key + "'");
+      rc_wheelset_options probe{};
+      if (!assign_option(probe, key, 0.0)) raise(RC_INVALID_INPUT, "unknown wheelset option '" + key + "'");
+      values.emplace_back(key, number_of(key, item.second));
     }
-    check(rc_wheelset_set_options(handle_, &o));
+    lock_.exclusive("Wheelset", [&] {
+      rc_wheelset_options o;
+      rc_wheelset_get_options(handle_, &o);
+      for (const auto& [key, value] : values) assign_option(o, key, value);
+      if (solvers) {
+        o.solver_count = static_cast<int>(solvers->size());
+        for (std::size_t k = 0; k < solvers->size(); ++k) o.solvers[k] = (*solvers)[k];
+      }
+      return outcome(rc_wheelset_set_options(handle_, &o));
+    }).raise_if_failed();
   }
 
-  void reset_warm_start() { check(rc_wheelset_reset_warm_start(handle_)); }
-
-  py::dict evaluate(const DoubleArray& row) {
-    if (row.ndim() != 1 || row.shape(0) != kStateColumns)
-      raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
-    const rc_wheelset_state s = wheelset_state(row.data());
-    rc_wheelset_result r{};
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_wheelset_evaluate(handle_, &s, &r);
-    }
-    check(status);
-    return result_with_patches(r);
+  void reset_warm_start() {
+    lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_reset_warm_start(handle_)); }).raise_if_failed();
   }
+
+  py::dict evaluate(const DoubleArray& row) { return evaluate_row(row, false); }
+  py::dict evaluate_table(const DoubleArray& row) { return evaluate_row(row, true); }
 
   // states (N, 11). Returns a list of result dicts (None for a failed state), the statuses, and
   // the first failure (status, message).
@@ -603,29 +707,27 @@ class WheelsetHandle {
     std::vector<int> statuses(count, RC_OK);
     std::size_t per_wheel = 4;
     std::vector<rc_wheelset_patch> patches;
-    rc_status status = RC_OK;
-    for (int attempt = 0; attempt < 2; ++attempt) {
-      patches.assign(2 * count * per_wheel, rc_wheelset_patch{});
-      {
-        py::gil_scoped_release release;
+    const Outcome result = lock_.exclusive("Wheelset", [&] {
+      rc_status status = RC_OK;
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        patches.assign(2 * count * per_wheel, rc_wheelset_patch{});
         status = count == 0 ? RC_OK
                             : rc_wheelset_batch_evaluate(handle_, count, cs.data(), threads, results.data(), per_wheel,
                                                          patches.data(), statuses.data());
+        std::size_t needed = 0;
+        for (std::size_t k = 0; k < count; ++k)
+          if (statuses[k] == RC_BUFFER_TOO_SMALL)
+            needed = std::max({needed, static_cast<std::size_t>(results[k].patch_count[0]),
+                               static_cast<std::size_t>(results[k].patch_count[1])});
+        if (needed == 0) break;
+        per_wheel = needed;  // again with room for every patch
       }
-      std::size_t needed = 0;
-      for (std::size_t k = 0; k < count; ++k)
-        if (statuses[k] == RC_BUFFER_TOO_SMALL)
-          needed = std::max({needed, static_cast<std::size_t>(results[k].patch_count[0]),
-                             static_cast<std::size_t>(results[k].patch_count[1])});
-      if (needed == 0) break;
-      per_wheel = needed;  // again with room for every patch
-    }
-    std::string message;
-    if (status != RC_OK) {
-      message = last_error(handle_, rc_wheelset_last_error);
+      return outcome(status);
+    });
+    if (result.status != RC_OK) {
       bool any_state_failed = false;
       for (std::size_t k = 0; k < count; ++k) any_state_failed = any_state_failed || statuses[k] != RC_OK;
-      if (!any_state_failed) raise(status, message);
+      if (!any_state_failed) result.raise_if_failed();
     }
     py::list out;
     for (std::size_t k = 0; k < count; ++k) {
@@ -634,41 +736,30 @@ class WheelsetHandle {
       else
         out.append(wheelset_result_dict(results[k], patches.data() + 2 * k * per_wheel, per_wheel));
     }
-    return py::make_tuple(out, statuses, py::make_tuple(static_cast<int>(status), message));
+    return py::make_tuple(out, statuses, py::make_tuple(static_cast<int>(result.status), result.message));
   }
 
   // The wheelset table (docs/WHEELSET_TABLE.md).
   void build_table(const DoubleArray& y, const DoubleArray& yaw, const DoubleArray& loads, const py::object& progress) {
     ProgressCallback context{progress, std::nullopt};
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_wheelset_table_build(handle_, y.data(), static_cast<std::size_t>(y.size()), yaw.data(),
-                                       static_cast<std::size_t>(yaw.size()), loads.data(),
-                                       static_cast<std::size_t>(loads.size()), progress.is_none() ? nullptr : &ProgressCallback::call,
-                                       &context);
-    }
+    const Outcome result = lock_.exclusive("Wheelset", [&] {
+      return outcome(rc_wheelset_table_build(handle_, y.data(), static_cast<std::size_t>(y.size()), yaw.data(),
+                                             static_cast<std::size_t>(yaw.size()), loads.data(),
+                                             static_cast<std::size_t>(loads.size()),
+                                             progress.is_none() ? nullptr : &ProgressCallback::call, &context));
+    });
     if (context.error) throw std::move(*context.error);
-    check(status);
+    result.raise_if_failed();
   }
 
   void load_table(const std::string& path) {
-    rc_status status;
-    {
-      py::gil_scoped_release release;
-      status = rc_wheelset_table_load(handle_, path.c_str());
-    }
-    check(status);
+    lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_table_load(handle_, path.c_str())); })
+        .raise_if_failed();
   }
 
-  void save_table(const std::string& path) const { check(rc_wheelset_table_save(handle_, path.c_str())); }
-
-  py::dict evaluate_table(const DoubleArray& row) {
-    if (row.ndim() != 1 || row.shape(0) != kStateColumns) raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
-    const rc_wheelset_state s = wheelset_state(row.data());
-    rc_wheelset_result r{};
-    check(rc_wheelset_evaluate_table(handle_, &s, &r));
-    return result_with_patches(r);
+  void save_table(const std::string& path) {
+    lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_table_save(handle_, path.c_str())); })
+        .raise_if_failed();
   }
 
   // The fast path of a simulation step: [Fx, Fy, Fz of the right wheel, of the left wheel (track
@@ -677,18 +768,22 @@ class WheelsetHandle {
     if (row.ndim() != 1 || row.shape(0) != kStateColumns) raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
     const rc_wheelset_state s = wheelset_state(row.data());
     rc_wheelset_result r{};
-    check(rc_wheelset_evaluate_table(handle_, &s, &r));
+    rc_wheelset_patch patch[2][8];
+    lock_.exclusive("Wheelset", [&] {
+      rc_status status = rc_wheelset_evaluate_table(handle_, &s, &r);
+      for (int w = 0; w < 2 && status == RC_OK; ++w) status = rc_wheelset_patches(handle_, w, 8, patch[w]);
+      return outcome(status);
+    }).raise_if_failed();
     py::array_t<double> out(7);
     double* f = out.mutable_data();
     double yaw_moment = 0.0;
     for (int w = 0; w < 2; ++w) {
       for (int i = 0; i < 3; ++i) f[3 * w + i] = r.wheel_force_track_N[w][i];
-      rc_wheelset_patch patch[8];
       const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(r.patch_count[w]), 8);
-      check(rc_wheelset_patches(handle_, w, 8, patch));
       for (std::size_t j = 0; j < n; ++j) {
-        const double rx = patch[j].reference_point_track_m[0], ry = patch[j].reference_point_track_m[1] - s.y_m;
-        yaw_moment += rx * patch[j].force_track_N[0][1] - ry * patch[j].force_track_N[0][0];
+        const rc_wheelset_patch& p = patch[w][j];
+        const double rx = p.reference_point_track_m[0], ry = p.reference_point_track_m[1] - s.y_m;
+        yaw_moment += rx * p.force_track_N[0][1] - ry * p.force_track_N[0][0];
       }
     }
     f[6] = yaw_moment;
@@ -696,17 +791,30 @@ class WheelsetHandle {
   }
 
  private:
-  // The totals of the last evaluation with both wheels' patches, as a dict.
-  py::dict result_with_patches(const rc_wheelset_result& r) const {
+  Outcome outcome(rc_status status) const {
+    return status == RC_OK ? Outcome{} : Outcome{status, last_error(handle_, rc_wheelset_last_error)};
+  }
+
+  // One state, on the fly or from the table, with both wheels' patches read under the same lock.
+  py::dict evaluate_row(const DoubleArray& row, bool from_table) {
+    if (row.ndim() != 1 || row.shape(0) != kStateColumns) raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
+    const rc_wheelset_state s = wheelset_state(row.data());
+    rc_wheelset_result r{};
     std::vector<rc_wheelset_patch> patches;
     std::size_t per_wheel = 0;
-    for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
-    patches.resize(2 * per_wheel);
-    for (int w = 0; w < 2; ++w)
-      check(rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel));
+    lock_.exclusive("Wheelset", [&] {
+      rc_status status = from_table ? rc_wheelset_evaluate_table(handle_, &s, &r) : rc_wheelset_evaluate(handle_, &s, &r);
+      if (status != RC_OK) return outcome(status);
+      for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
+      patches.resize(2 * per_wheel);
+      for (int w = 0; w < 2 && status == RC_OK; ++w)
+        status = rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel);
+      return outcome(status);
+    }).raise_if_failed();
     return wheelset_result_dict(r, patches.data(), per_wheel);
   }
 
+  HandleLock lock_;
   rc_wheelset* handle_ = nullptr;
 };
 
@@ -728,8 +836,6 @@ PYBIND11_MODULE(_core, m) {
       .def("set_flextable_patch", &Solver::set_flextable_patch)
       .def("normal", &Solver::normal)
       .def("solve", &Solver::solve)
-      .def("jacobian", &Solver::jacobian)
-      .def("tractions", &Solver::tractions)
       .def("batch", &Solver::batch);
 
   py::class_<WheelsetHandle>(m, "Wheelset")

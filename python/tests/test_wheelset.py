@@ -57,9 +57,9 @@ class _Result(ctypes.Structure):
                 ("patch_count", ctypes.c_int * 2), ("load_iterations", ctypes.c_int * 2)]
 
 
-def test_same_numbers_as_the_c_api():
+def test_same_numbers_as_the_c_api(c_library):
     """The shared library's rc_wheelset, called through ctypes, against the module."""
-    lib = ctypes.CDLL(os.environ["RAILCONTACT_LIBRARY"])
+    lib = c_library
     handle = ctypes.c_void_p()
     assert lib.rc_wheelset_create(ctypes.byref(handle)) == 0
     lib.rc_wheelset_set_default_track.argtypes = [ctypes.c_void_p]
@@ -176,9 +176,9 @@ def test_exceptions(wheelset):
     with pytest.raises(railcontact.RailcontactIOError, match="no-such-wheel.prw") as e:
         railcontact.Wheelset(wheel="/tmp/no-such-wheel.prw", rail="/tmp/no-such-rail.prr")
     assert isinstance(e.value, OSError)
-    with pytest.raises(railcontact.InvalidInputError, match="unknown solver"):
+    with pytest.raises(railcontact.InvalidInputError, match="solvers = 'fastest' is not one of"):
         railcontact.Wheelset(solvers=("fastest",))
-    with pytest.raises(railcontact.InvalidInputError, match="friction_coefficient"):
+    with pytest.raises(railcontact.InvalidInputError, match="mu = inf must be finite"):
         railcontact.Wheelset(mu=float("inf"))
     with pytest.raises(railcontact.InvalidInputError, match="give wheel= and rail="):
         railcontact.Wheelset(wheel="w.prw")
@@ -211,7 +211,7 @@ def test_single_patch_at_an_approach():
     assert solver.set_grid(h, dx, dx, normal.normal_force_N).approach_m == pytest.approx(0.0, abs=1e-9)
     with pytest.raises(railcontact.NoContactError):
         solver.set_grid(h, dx, dx, approach=-1e-3)
-    with pytest.raises(railcontact.InvalidInputError, match="either normal_force"):
+    with pytest.raises(railcontact.InvalidInputError, match="give one of normal_force, approach"):
         solver.set_hertz(0.6, 1.4)
 
 

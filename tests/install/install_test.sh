@@ -1,7 +1,8 @@
 #!/bin/sh
 # ctest install.package: installs the build into a scratch prefix under the build directory and
 # builds and runs, against the *installed* package only,
-#   - a C program through pkg-config (railcontact.pc) and gcc,
+#   - C programs through pkg-config (railcontact.pc, nothing else on the search path) and gcc,
+#     run without LD_LIBRARY_PATH (the rpath of the .pc's Libs),
 #   - a C++ program through find_package(railcontact) in a tiny CMake project,
 #   - a Fortran program through iso_c_binding (when gfortran is installed),
 #   - `import railcontact` from the installed Python package (when it was built).
@@ -29,11 +30,19 @@ echo "SONAME $soname"
 case "$soname" in librailcontact.so.[0-9]*) ;; *) echo "unexpected SONAME $soname"; exit 1 ;; esac
 
 echo "== C through pkg-config"
-export PKG_CONFIG_PATH="$libdir/pkgconfig"
+# Only railcontact.pc on the search path: the C API requires no other package (no eigen3.pc).
+export PKG_CONFIG_LIBDIR="$libdir/pkgconfig"
+unset PKG_CONFIG_PATH
 pkg-config --modversion railcontact
+test -z "$(pkg-config --print-requires railcontact)" || { echo "railcontact.pc requires other packages"; exit 1; }
 gcc -std=c11 -Wall -Wextra -pedantic -Werror "$source/tests/install/example.c" \
   $(pkg-config --cflags --libs railcontact) -lm -o "$work/example_c"
-LD_LIBRARY_PATH="$libdir" "$work/example_c"
+gcc -std=c11 -Wall -Wextra -pedantic -Werror "$source/tests/install/destroy_null.c" \
+  $(pkg-config --cflags --libs railcontact) -o "$work/destroy_null"
+# The programs run as built, without LD_LIBRARY_PATH: railcontact.pc's Libs carry the rpath.
+env -u LD_LIBRARY_PATH "$work/example_c"
+env -u LD_LIBRARY_PATH "$work/destroy_null"
+unset PKG_CONFIG_LIBDIR
 
 echo "== C++ through find_package(railcontact)"
 "$cmake" -S "$source/tests/install/cxx" -B "$work/cxx" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
