@@ -149,7 +149,7 @@ TEST(CaseFile, SolverNamedTwice) {
 }
 
 // The semi-axes and the curvatures give the ellipse two ways: any semi-axis with any curvature is
-// an error naming both keys (with a, b and A, A was ignored).
+// an error naming both keys (with a, b and A, one of them would be ignored).
 TEST(CaseFile, EllipseSemiAxesAndCurvaturesTogether) {
   std::string e = error_of(replaced(kValid, "b = 0.004", "b = 0.004\nA = 1.087"));
   EXPECT_NE(e.find("case.toml:6: [geometry] a and A both give the ellipse"), std::string::npos) << e;

@@ -302,7 +302,7 @@ TEST(OutputDirectory, AFailedWriteNamesTheFileAndTheReason) {
 }
 
 // A figure that cannot be written fails the run (a figure is an output the user asked for) with one
-// line naming it and the reason, without the script's traceback (which went to stdout, exit 0).
+// line naming it and the reason, without the script's traceback.
 // The CSV and JSON of 100 elements fit in the file-size limit, the PNG does not.
 TEST(OutputDirectory, AFigureThatCannotBeWrittenFailsTheRunInOneLine) {
   const ScratchDirectory dir("outdir_figure_error");

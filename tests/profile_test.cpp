@@ -264,7 +264,7 @@ TEST(ProfileReaders, DecimalCommasAreNamedWithTheirLine) {
 
 // An undercut profile (the gauge face overhangs: y goes back along the points) is not a graph
 // z(y), which the contact search takes: the part under the overhang is missing from it (a flange
-// contact there gave "the load Fz = 98100 N is too large"). validate names the overhang, as
+// contact there would fail with a message about the load). validate names the overhang, as
 // tests/data/bad_inputs/uic60_undercut.prr is made: the gauge face below z = 20 mm leans back
 // under the head by 0.15 mm per mm. The shipped profiles, whose y is monotonic, pass, and so does
 // an overhang of measurement noise (ProfileLimits::max_lateral_retreat_m).

@@ -34,7 +34,7 @@ std::string quoted(const std::string& text) {
   return out + "'";
 }
 
-// The runner's output (stdout and stderr of the script): kept, never shown as it is.
+// The runner's output (stdout and stderr of the script; its last 32-64 KiB): never shown as it is.
 struct Finished {
   int exit_code = -1;  // -1: did not exit normally
   std::string output;
@@ -46,8 +46,10 @@ Finished run_captured(const std::string& command) {
   if (pipe == nullptr) return f;
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    if (f.output.size() < (1u << 20)) f.output.append(buffer.data(), n);
+  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+    f.output.append(buffer.data(), n);
+    if (f.output.size() > (1u << 16)) f.output.erase(0, f.output.size() - (1u << 15));  // the end says why
+  }
   const int status = ::pclose(pipe);
   if (status != -1 && WIFEXITED(status)) f.exit_code = WEXITSTATUS(status);
   return f;
@@ -55,10 +57,11 @@ Finished run_captured(const std::string& command) {
 
 // The last non-empty line of the output, split at tabs.
 std::vector<std::string> last_line_fields(const std::string& output) {
-  std::size_t end = output.find_last_not_of("\r\n");
+  const std::size_t end = output.find_last_not_of("\r\n");
   if (end == std::string::npos) return {};
-  const std::size_t begin = output.rfind('\n', end);
-  const std::string line = output.substr(begin == std::string::npos ? 0 : begin + 1, end + 1 - (begin == std::string::npos ? 0 : begin + 1));
+  const std::size_t newline = output.rfind('\n', end);
+  const std::size_t begin = newline == std::string::npos ? 0 : newline + 1;
+  const std::string line = output.substr(begin, end + 1 - begin);
   std::vector<std::string> fields;
   std::size_t pos = 0;
   while (true) {
