@@ -141,6 +141,24 @@ TEST(CaseFile, WheelRailContactReference) {
             "case.toml:5: [geometry] contact_reference must be \"smooth\" or \"first-touch\" (got \"centre\")");
 }
 
+// A solver named twice would run twice and print two rows: one error naming the key, the
+// solver and the line of the second mention.
+TEST(CaseFile, SolverNamedTwice) {
+  const std::string e = error_of(replaced(kValid, "run = [\"exact\", \"nh-fastsim\"]", "run = [\"fastsim\", \"fastsim\"]"));
+  EXPECT_NE(e.find("case.toml:20: [solvers] run names 'fastsim' twice"), std::string::npos) << e;
+}
+
+// The semi-axes and the curvatures give the ellipse two ways: any semi-axis with any curvature is
+// an error naming both keys (with a, b and A, one of them would be ignored).
+TEST(CaseFile, EllipseSemiAxesAndCurvaturesTogether) {
+  std::string e = error_of(replaced(kValid, "b = 0.004", "b = 0.004\nA = 1.087"));
+  EXPECT_NE(e.find("case.toml:6: [geometry] a and A both give the ellipse"), std::string::npos) << e;
+  e = error_of(replaced(kValid, "a = 0.006\nb = 0.004", "a = 0.006\nA = 1.087\nB = 1.667"));
+  EXPECT_NE(e.find("[geometry] a and A both give the ellipse"), std::string::npos) << e;
+  e = error_of(replaced(kValid, "a = 0.006\nb = 0.004", "b = 0.004\nA = 1.087\nB = 1.667"));
+  EXPECT_NE(e.find("[geometry] b and A both give the ellipse"), std::string::npos) << e;
+}
+
 TEST(CaseFile, MissingFile) { EXPECT_THROW(read_case_file("/nonexistent/case.toml"), Error); }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -261,3 +262,76 @@ TEST(OutputDirectory, FlextableBuildChecksAReadOnlyDirectoryFirst) {
 }
 
 }  // namespace
+
+// A write that fails for want of room (simulated portably by a file-size limit: `ulimit -f` with
+// SIGXFSZ ignored makes write(2) fail with EFBIG, as a full disk fails with ENOSPC) names the file
+// the user asked for, DIR/NAME or the table FILE, never the staged or temporary file, with the
+// reason, in one line on stderr and nothing on stdout.
+const std::string kFileSizeLimit = "trap '' XFSZ; ulimit -f 16; exec ";
+
+// progress: the command reports its progress on stderr before the error line (flextable build).
+void expect_one_write_error(const CommandResult& r, const std::string& expected, bool progress = false) {
+  EXPECT_EQ(r.exit_code, 3) << r.err;  // io
+  const std::string line = "railcontact: error: " + expected;
+  if (progress) {
+    EXPECT_NE(r.err.find("\n" + line), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("railcontact: error:"), r.err.rfind("railcontact: error:")) << r.err;
+    EXPECT_EQ(r.err.back(), '\n');
+    EXPECT_EQ(r.err.find('\n', r.err.rfind("railcontact: error:")), r.err.size() - 1) << r.err;
+  } else {
+    EXPECT_EQ(r.err.rfind(line, 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(r.err.find(".staging-"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(".tmp-"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(OutputDirectory, AFailedWriteNamesTheFileAndTheReason) {
+  const ScratchDirectory dir("outdir_write_error");
+  const fs::path out = dir / "patch";
+  expect_one_write_error(run_cli("patch --elements 3000 --out " + out.string(), kFileSizeLimit),
+                         "cannot write " + (out / "pressure.csv").string() + ": File too large");
+  EXPECT_EQ(staging_directories(out), 0);
+  const fs::path table = dir / "t.json";
+  expect_one_write_error(
+      run_cli("flextable build --out " + table.string() + " --y-from 0 --y-to 0.001 --y-step 0.001 --elements 3000",
+              "trap '' XFSZ; ulimit -f 1; exec "),
+      "cannot write the flexibility table " + table.string() + ": File too large", true);
+  EXPECT_FALSE(fs::exists(table));
+}
+
+// A figure that cannot be written fails the run (a figure is an output the user asked for) with one
+// line naming it and the reason, without the script's traceback.
+// The CSV and JSON of 100 elements fit in the file-size limit, the PNG does not.
+TEST(OutputDirectory, AFigureThatCannotBeWrittenFailsTheRunInOneLine) {
+  const ScratchDirectory dir("outdir_figure_error");
+  const fs::path out = dir / "patch";
+  const CommandResult r = run_cli("patch --elements 100 --out " + out.string(), kFileSizeLimit);
+  if (r.err.find("cannot import matplotlib") != std::string::npos) GTEST_SKIP() << "no matplotlib: " << r.err;
+  expect_one_write_error(r, "cannot write the figure " + (out / "pressure.png").string() + ": File too large");
+  EXPECT_EQ(r.err.find("Traceback"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out / "pressure.csv"));  // DIR keeps the last complete run's outputs: none
+}
+
+// A figure script that fails otherwise (a bug) warns with its error in one line; its traceback
+// never reaches stdout, and the results are written.
+TEST(OutputDirectory, AFailingFigureScriptWarnsInOneLine) {
+  const ScratchDirectory dir("outdir_figure_bug");
+  const fs::path scripts = dir / "scripts";
+  fs::create_directories(scripts);
+  fs::copy_file(fs::path(RAILCONTACT_SOURCE_DIR) / "scripts" / "figure_runner.py", scripts / "figure_runner.py");
+  write(scripts / "plot_patch.py", "import sys\nprint('drawing')\n{}['dx1_m']\n");
+  const fs::path out = dir / "patch";
+  const CommandResult r =
+      run_cli("patch --elements 100 --out " + out.string(), "RAILCONTACT_SCRIPTS=" + scripts.string() + " ");
+  if (r.err.find("cannot import matplotlib") != std::string::npos) GTEST_SKIP() << "no matplotlib: " << r.err;
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the figure script plot_patch.py failed (KeyError: 'dx1_m'); CSV files written, "
+                       "figures skipped\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.out.find("Traceback"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("drawing"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(out / "pressure.csv"));
+}

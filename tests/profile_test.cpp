@@ -240,6 +240,56 @@ TEST(Profile, MirroringAndValidation) {
   EXPECT_THROW(validate(p), Error);
 }
 
+// Decimal commas ("0,5 1,25", "12,5;3,4") would be read as twice as many numbers, every reader
+// taking the wrong columns: each reader refuses them naming the line, while a single comma-separated
+// pair "12,5" (y = 12, z = 5) and decimal points with commas as separators pass.
+TEST(ProfileReaders, DecimalCommasAreNamedWithTheirLine) {
+  const TempDir dir;
+  const auto text = dir.file("comma.txt", "# y z\n-30,5 12,25\n-20,0 1,5\n-10,0 0,25\n0,0 0,0\n10,0 0,25\n");
+  expect_error_containing([&] { (void)read_profile(text); }, {"comma.txt:2:", "decimal commas (-30,5)", "(-30.5)"});
+  const auto semicolons = dir.file("semicolons.txt", "-30.5 12.25\n-20;1\n12,5;3,4\n0 0\n10 0.25\n");
+  expect_error_containing([&] { (void)read_profile(semicolons); }, {"semicolons.txt:3:", "decimal commas (12,5)"});
+  const std::string head = "spline.begin\n units.len.f = 1000\n point.begin\n";
+  const auto simpack = dir.file("comma.prr", head + "-30,5 12,25\n-20,0 1,5\n-10,0 0,25\n0,0 0,0\n point.end\n");
+  expect_error_containing([&] { (void)read_profile(simpack); }, {"comma.prr:4:", "decimal commas"});
+  const auto miniprof = dir.file("comma.ban", "ColumnDef=X,Y\n\n-30,5\t12,25\n-20,0\t1,5\n-10,0\t0,25\n0,0\t0,0\n");
+  expect_error_containing([&] { (void)read_profile(miniprof); }, {"comma.ban:3:", "decimal commas"});
+  // Comma-separated pairs and decimal points are read as before (15 mm wide).
+  const Profile pairs = read_profile(dir.file("pairs.txt", "0,2\n5,3\n10,4\n15,5\n"));
+  EXPECT_DOUBLE_EQ(pairs.y_m[1], 5 * kMm);
+  EXPECT_DOUBLE_EQ(pairs.z_m[1], 3 * kMm);
+  const Profile points = read_profile(dir.file("points.txt", "0.5, 2\n5.5, 3\n10.5,4\n15.5;5\n"));
+  EXPECT_DOUBLE_EQ(points.y_m[3], 15.5 * kMm);
+}
+
+// An undercut profile (the gauge face overhangs: y goes back along the points) is not a graph
+// z(y), which the contact search takes: the part under the overhang is missing from it (a flange
+// contact there would fail with a message about the load). validate names the overhang, as
+// tests/data/bad_inputs/uic60_undercut.prr is made: the gauge face below z = 20 mm leans back
+// under the head by 0.15 mm per mm. The shipped profiles, whose y is monotonic, pass, and so does
+// an overhang of measurement noise (ProfileLimits::max_lateral_retreat_m).
+TEST(Profile, UndercutProfileNamesTheOverhang) {
+  const Profile rail = read_profile(kProfiles / "MBench_UIC60_v3.prr");
+  EXPECT_NO_THROW(validate(read_profile(kProfiles / "MBench_S1002_v3.prw")));
+  Profile undercut = rail;
+  undercut.source = "undercut";
+  const double y20 = -43.251229 * kMm;
+  for (std::size_t i = 0; i < undercut.size(); ++i)
+    if (undercut.y_m[i] < -40 * kMm && undercut.z_m[i] > 20 * kMm) undercut.y_m[i] = y20 + 0.15 * (undercut.z_m[i] - 20 * kMm);
+  expect_error_containing([&] { validate(undercut); },
+                          {"profile undercut: the profile is undercut: between point 1 (y = -40.4746 mm", "overhangs by 2.7",
+                           "z(y)"});
+  // A ripple of 0.015 mm amplitude and 1 mm wavelength on the gauge face, steeper than its lean: y
+  // goes back by up to 0.03 mm, within the allowed 0.05 mm.
+  Profile noisy = rail;
+  bool goes_back = false;
+  for (std::size_t i = 0; i < noisy.size(); ++i)
+    if (noisy.y_m[i] < -42.5 * kMm) noisy.y_m[i] += 0.015 * kMm * std::sin(2 * M_PI * noisy.z_m[i] / kMm);
+  for (std::size_t i = 0; i + 1 < noisy.size(); ++i) goes_back = goes_back || noisy.y_m[i + 1] < noisy.y_m[i];
+  EXPECT_TRUE(goes_back);
+  EXPECT_NO_THROW(validate(noisy));
+}
+
 // Points on the lower half of a circle of radius R (z down: z = R - sqrt(R^2 - y^2), curvature
 // +1/R), rounded like the shipped files (1e-6 mm).
 Profile circle_profile(double radius_m, double half_width_m, double spacing_m) {

@@ -34,9 +34,16 @@ toml::table parse_toml(std::string_view text, const std::string& source) {
   return parse_toml_sections(text, source, kSections);
 }
 
-// [geometry] type = "ellipse": the semi-axes a, b (m) or the curvatures A, B (1/m), not both.
+// [geometry] type = "ellipse": the semi-axes a, b (m) or the curvatures A, B (1/m), not both: a
+// semi-axis and a curvature together give the ellipse two ways, and one of them would be ignored.
 void read_ellipse(Section& geometry, Case& c) {
   c.geometry = GeometryKind::ellipse;
+  for (const char* axis : {"a", "b"})
+    for (const char* curvature : {"A", "B"})
+      if (geometry.has(axis) && geometry.has(curvature))
+        throw Error(fmt::format("{}: [geometry] {} and {} both give the ellipse (the semi-axes a, b in m or the "
+                                "curvatures A, B in 1/m): give one pair, not both",
+                                geometry.location(curvature), axis, curvature));
   c.ellipse.a_m = geometry.optional_positive("a");
   c.ellipse.b_m = geometry.optional_positive("b");
   c.ellipse.A_per_m = geometry.optional_positive("A");
@@ -182,6 +189,9 @@ void read_solver_list(Section& solvers, Case& c) {
     else
       throw Error(fmt::format("{}: [solvers] unknown solver '{}' (nh-fastsim, fastsim, exact, exact-regularised)",
                               solvers.location_of(item), printable_excerpt(solver)));
+    if (std::find(c.solvers.begin(), c.solvers.end(), kind) != c.solvers.end())
+      throw Error(fmt::format("{}: [solvers] run names '{}' twice; name each solver once", solvers.location_of(item),
+                              solver));
     c.solvers.push_back(kind);
   }
 }

@@ -1,5 +1,6 @@
 #include "case/case_output.hpp"
 
+#include <cerrno>
 #include <cmath>
 #include <fstream>
 #include <string>
@@ -11,6 +12,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/version.h"
 #include "study/figures.hpp"
+#include "study/output_directory.hpp"
 
 namespace railcontact {
 namespace {
@@ -181,12 +183,12 @@ void write_case_outputs(const CaseResult& r, study::OutputDirectory& output, std
   const std::filesystem::path& dir = output.staging();
   auto open = [&](const std::string& name) {
     std::ofstream file(dir / name);
-    if (!file) throw Error(ErrorKind::io, "cannot write " + (output.directory() / name).string());
+    if (!file) throw study::write_error(dir / name, errno);
     return file;
   };
   auto close = [&](std::ofstream& file, const std::string& name) {
     file.close();
-    if (!file) throw Error(ErrorKind::io, "cannot write " + (output.directory() / name).string());
+    if (!file) throw study::write_error(dir / name, errno);
   };
   {
     std::ofstream json = open("result.json");

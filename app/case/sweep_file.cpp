@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iterator>
 
+#include "case/count_text.hpp"
 #include "case/toml_section.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/text_file.hpp"
@@ -64,8 +65,8 @@ std::vector<double> axis_values(const toml::node& node, const std::string& key, 
     throw Error(fmt::format("{}: {} step = {} must be positive (from > to runs downwards)", s.location("step"), what, step));
   const double count = std::floor(std::abs(to - from) / step + 1e-9) + 1.0;
   if (count > kMaximumAxisValues)
-    throw Error(fmt::format("{}: {} from {} to {} in steps of {} gives {:.0f} values; at most {:g}",
-                            where(source, node.source()), what, from, to, step, count, kMaximumAxisValues));
+    throw Error(fmt::format("{}: {} from {} to {} in steps of {} gives {} values; at most {:g}",
+                            where(source, node.source()), what, from, to, step, count_text(count), kMaximumAxisValues));
   const double direction = to < from ? -1.0 : 1.0;
   for (int k = 0; k < static_cast<int>(count); ++k) {
     const double v = from + direction * k * step;
@@ -91,6 +92,17 @@ void check_key(const std::string& key, const SweepFile& f, const toml::node& nod
     throw Error(fmt::format("{}: {} extra_longitudinal_creepage cannot be swept with [velocity] "
                             "wheel_angular_velocity_rad_per_s given",
                             where(f.source, node.source()), section));
+}
+
+// wheel_load_N sets both wheel loads: with right_wheel_N or left_wheel_N in the same table, one
+// wheel's load would be given two ways.
+void check_conflicting_keys(const toml::table& table, const std::string& source, const std::string& section) {
+  if (!table.contains("wheel_load_N")) return;
+  for (const char* key : {"right_wheel_N", "left_wheel_N"})
+    if (const toml::node* node = table.get(key))
+      throw Error(fmt::format("{}: {} wheel_load_N and {} both give the {} wheel's load (wheel_load_N: both wheels); "
+                              "give one of them",
+                              where(source, node->source()), section, key, key[0] == 'r' ? "right" : "left"));
 }
 
 void check_value(const std::string& key, double value, const std::string& location) {
@@ -182,6 +194,7 @@ SweepFile parse_sweep_file(std::string_view text, const std::string& source, con
       throw Error(fmt::format("{}: [grid] holds no axis; give at least one key ({}) with a list or a range",
                               where(source, grid->source()), allowed_keys()));
     for (const auto& [key, node] : *table) check_key(std::string(key.str()), f, node, "[grid]");
+    check_conflicting_keys(*table, source, "[grid]");
     double product = 1;
     std::string sizes;
     for (const char* key : kSweepKeys) {
@@ -194,9 +207,9 @@ SweepFile parse_sweep_file(std::string_view text, const std::string& source, con
       f.axes.push_back(std::move(axis));
     }
     if (product > kMaximumSweepCases)
-      throw Error(fmt::format("{}: the grid holds {:.0f} cases ({}); a sweep may hold at most {:.0f} (split it into "
+      throw Error(fmt::format("{}: the grid holds {} cases ({}); a sweep may hold at most {:.0f} (split it into "
                               "several sweep files or use coarser steps)",
-                              where(source, grid->source()), product, sizes, kMaximumSweepCases));
+                              where(source, grid->source()), count_text(product), sizes, kMaximumSweepCases));
     f.grid = true;
   } else {
     const toml::array* list = cases->as_array();
@@ -207,6 +220,7 @@ SweepFile parse_sweep_file(std::string_view text, const std::string& source, con
       throw Error(fmt::format("{}: {} cases; a sweep may hold at most {:.0f}", source, list->size(), kMaximumSweepCases));
     for (const toml::node& item : *list) {
       const toml::table& t = *item.as_table();
+      check_conflicting_keys(t, source, "[[case]]");
       std::vector<std::pair<std::string, double>> values;
       for (const auto& [key, node] : t) {
         const std::string k(key.str());

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <set>
 
 #include "case/toml_section.hpp"
@@ -104,11 +105,16 @@ void read_rest(Section friction, Section material, Section mesh, Section solvers
     for (const toml::node& item : *list) {
       const auto* name = item.as_string();
       if (name == nullptr) throw Error(fmt::format("{}: [solvers] run holds a non-string", solvers.location_of(item)));
+      TangentialSolver solver{};
       try {
-        c.options.solvers.push_back(parse_tangential_solver(name->get()));
+        solver = parse_tangential_solver(name->get());
       } catch (const Error& e) {
         throw Error(fmt::format("{}: [solvers] {}", solvers.location_of(item), e.what()));
       }
+      if (std::find(c.options.solvers.begin(), c.options.solvers.end(), solver) != c.options.solvers.end())
+        throw Error(fmt::format("{}: [solvers] run names '{}' twice; name each solver once", solvers.location_of(item),
+                                name->get()));
+      c.options.solvers.push_back(solver);
     }
   }
   if (const std::optional<double> f = solvers.optional_number("flexibility_coarsening")) {

@@ -1,6 +1,7 @@
 // `railcontact patch`: the wheel–rail normal contact at one wheelset position (docs/WHEEL_RAIL.md).
 #include <fmt/core.h>
 
+#include <cerrno>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -96,7 +97,17 @@ int run_patch(const PatchArguments& args) {
   options.target_elements = args.elements;
   options.layout = args.layout == "square" ? PatchMeshLayout::square : PatchMeshLayout::rolling_resolved;
   options.reference = parse_contact_reference(args.reference);
-  const WheelRailPatch patch = solve_wheel_rail_patch(pair, args.y_m, options);
+  const WheelRailPatch patch = [&] {
+    try {
+      return solve_wheel_rail_patch(pair, args.y_m, options);
+    } catch (const Error& e) {
+      // Refused before the work: named by the options that give it.
+      const std::string_view message = e.what();
+      if (!message.starts_with(kWheelRailElementsTooSmall)) throw;
+      throw Error(fmt::format("--elements {} with --load {:g} N:{}", args.elements, args.load_N,
+                              message.substr(kWheelRailElementsTooSmall.size())));
+    }
+  }();
   const double time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   nlohmann::json json = study::patch_json(patch);
@@ -109,9 +120,9 @@ int run_patch(const PatchArguments& args) {
     study::write_pressure_csv(dir / "pressure.csv", patch.patch);
     std::ofstream file(dir / "patch.json");
     if (!(file << json.dump(2) << '\n'))
-      throw Error(ErrorKind::io, "cannot write " + (output->directory() / "patch.json").string());
+      throw study::write_error(dir / "patch.json", errno);
     file.close();
-    if (!file) throw Error(ErrorKind::io, "cannot write " + (output->directory() / "patch.json").string());
+    if (!file) throw study::write_error(dir / "patch.json", errno);
     study::draw_figures("plot_patch.py", dir, std::cerr);
     output->commit();
   }

@@ -57,6 +57,14 @@ void write_table_atomically(const std::filesystem::path& out, const std::string&
   ::close(fd);
   try {
     write(temporary);
+  } catch (const Error& e) {
+    // The writer names the temporary file; the user asked for `out`, and the reason is the errno
+    // of the write that failed (a full disk: "No space left on device").
+    const int error = errno;
+    ::unlink(temporary.c_str());
+    if (e.kind() != ErrorKind::io) throw;
+    throw Error(ErrorKind::io, fmt::format("cannot write the {} {}: {}", what, out.string(),
+                                           error != 0 ? std::strerror(error) : "the write failed"));
   } catch (...) {
     ::unlink(temporary.c_str());
     throw;

@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <fmt/ostream.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -114,7 +115,12 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
   }
   if (!a.solvers.empty()) {
     c.options.solvers.clear();
-    for (const std::string& name : a.solvers) c.options.solvers.push_back(parse_tangential_solver(name));
+    for (const std::string& name : a.solvers) {
+      const TangentialSolver solver = parse_tangential_solver(name);
+      require(std::find(c.options.solvers.begin(), c.options.solvers.end(), solver) == c.options.solvers.end(),
+              [&] { return fmt::format("--solver {} is given twice; name each solver once", name); });
+      c.options.solvers.push_back(solver);
+    }
   }
   return c;
 }

@@ -13,6 +13,7 @@
 
 #include "case/wheelset_case.hpp"
 #include "cli/commands.hpp"
+#include "case/count_text.hpp"
 #include "cli/table_file_output.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset_table.hpp"
@@ -46,7 +47,7 @@ std::vector<double> range_values(const std::string& text, const char* option, do
                                option, text);
           });
   const double count = std::floor((to - from) / step + 1e-9) + 1.0;
-  require(count <= 20000.0, [&] { return fmt::format("{} '{}' gives {:.0f} values; at most 20000", option, text, count); });
+  require(count <= 20000.0, [&] { return fmt::format("{} '{}' gives {} values; at most 20000", option, text, count_text(count)); });
   std::vector<double> values;
   for (int k = 0; k < static_cast<int>(count); ++k) values.push_back((from + k * step) * scale);
   return values;

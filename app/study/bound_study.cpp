@@ -8,6 +8,7 @@
 #include "study/mpi_cases.hpp"
 #include "study/output_directory.hpp"
 
+#include <cerrno>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -150,7 +151,7 @@ void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
   OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   const std::filesystem::path& dir = output.staging();
   std::ofstream csv(dir / "bound_sweep.csv");
-  if (!csv) throw Error(ErrorKind::io, "cannot write " + (dir / "bound_sweep.csv").string());
+  if (!csv) throw write_error(dir / "bound_sweep.csv", errno);
   csv << "patch,parameter,skew,worst_rel_error\n";
   std::string rows;
   std::array<double, kSkews.size()> ellipse_worst{}, wheel_rail_worst{};

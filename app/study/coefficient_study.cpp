@@ -1,6 +1,7 @@
 // The coefficient study (paper §3): Table 1, Fig 3 (collocation offset), Fig 4 (mesh size).
 #include "study/coefficient_study.hpp"
 
+#include <cerrno>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -72,7 +73,7 @@ struct TableStatistics {
 
 std::ofstream open_csv(const std::filesystem::path& path) {
   std::ofstream file(path);
-  if (!file) throw Error(ErrorKind::io, "cannot write " + path.string());
+  if (!file) throw write_error(path, errno);
   return file;
 }
 
@@ -246,7 +247,7 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   write_fig4(dir / "fig4.csv", options.fine_elements, progress);
 
   std::ofstream md(dir / "summary.md");
-  if (!md) throw Error(ErrorKind::io, "cannot write " + (dir / "summary.md").string());
+  if (!md) throw write_error(dir / "summary.md", errno);
   md << "# Creepage coefficients from the full-adhesion steady-state solution (paper §3)\n\n"
         "Relative errors of C11, C22, C23 from K2 (Eq 18) against Kalker's table (57 entries: 19 a/b x 3 nu; "
         "the nu = 0.5 rows solved at nu = 0.5 - 1e-9). Kalker's table has three significant digits: the "
@@ -260,7 +261,7 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print(md, "\nStudy run time: {:.1f} s.\n", total);
   md.close();
-  if (!md) throw Error(ErrorKind::io, "cannot write " + (dir / "summary.md").string());
+  if (!md) throw write_error(dir / "summary.md", errno);
   if (options.figures) draw_figures("plot_coefficient_study.py", dir, progress);
   output.commit();
   fmt::print(progress, "Wrote {}\n", options.output_directory.string());

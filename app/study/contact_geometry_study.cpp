@@ -4,12 +4,14 @@
 #include <fmt/core.h>
 #include <fmt/ostream.h>
 
+#include <cerrno>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <string>
 
 #include "railcontact/error.hpp"
+#include "study/output_directory.hpp"
 #include "study/figures.hpp"
 
 namespace railcontact::study {
@@ -19,13 +21,13 @@ constexpr double kMm = 1e-3;
 
 std::ofstream open_csv(const std::filesystem::path& path) {
   std::ofstream csv(path);
-  if (!csv) throw Error(ErrorKind::io, fmt::format("cannot write {}", path.string()));
+  if (!csv) throw write_error(path, errno);
   return csv;
 }
 
 void close_csv(std::ofstream& csv, const std::filesystem::path& path) {
   csv.close();
-  if (csv.fail()) throw Error(ErrorKind::io, fmt::format("cannot write {}", path.string()));
+  if (csv.fail()) throw write_error(path, errno);
 }
 
 }  // namespace

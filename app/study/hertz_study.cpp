@@ -1,6 +1,7 @@
 // Creep curves on Hertzian ellipses: nH-FastSim, FastSim (Eq 9), exact and regularised exact.
 #include "study/hertz_study.hpp"
 
+#include <cerrno>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -206,7 +207,7 @@ void run_hertz_study(const HertzStudyOptions& requested, std::ostream& progress)
   options.output_directory = output.staging();
   const std::filesystem::path& dir = options.output_directory;
   std::ofstream csv(dir / "creep_curves.csv");
-  if (!csv) throw Error(ErrorKind::io, "cannot write " + (dir / "creep_curves.csv").string());
+  if (!csv) throw write_error(dir / "creep_curves.csv", errno);
   csv << "a_over_b,family,creepage_normalised,xi,eta,phi,solver,F1,F2,M3,F_over_muF3,adhesion_fraction,time_s\n";
   Tallies tallies;
   const auto start = Clock::now();

@@ -92,6 +92,18 @@ class BlockInterrupts {
 
 }  // namespace
 
+std::filesystem::path named_for_user(const std::filesystem::path& path) {
+  std::filesystem::path named;
+  for (const std::filesystem::path& part : path)
+    if (part.string().rfind(kStagingPrefix, 0) != 0) named /= part;
+  return named;
+}
+
+Error write_error(const std::filesystem::path& path, int error) {
+  return Error(ErrorKind::io, fmt::format("cannot write {}: {}", named_for_user(path).string(),
+                                          error != 0 ? std::strerror(error) : "the write failed"));
+}
+
 OutputDirectory::OutputDirectory(std::filesystem::path directory, std::ostream* log) : directory_(std::move(directory)) {
   if (directory_.empty()) directory_ = ".";
   std::error_code ec;

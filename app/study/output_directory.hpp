@@ -17,7 +17,18 @@
 #include <ostream>
 #include <string>
 
+#include "railcontact/error.hpp"
+
 namespace railcontact::study {
+
+// A path inside a staging directory (DIR/.staging-<pid>/name) as the user knows it (DIR/name);
+// any other path as it is. Messages name the file the user asked for, not the staged one.
+std::filesystem::path named_for_user(const std::filesystem::path& path);
+
+// Error(io) "cannot write FILE: REASON" for a file that could not be written: FILE named_for_user,
+// REASON strerror(error), the errno of the failed call ("No space left on device"); error 0 (a
+// stream that failed without one) gives "the write failed".
+Error write_error(const std::filesystem::path& path, int error);
 
 class OutputDirectory {
  public:

@@ -2,6 +2,7 @@
 // steady-state solution on S1002/UIC60 patches (METHOD.md §9).
 #include "study/paper_study.hpp"
 
+#include <cerrno>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -106,7 +107,7 @@ constexpr std::array<double, 5> kLevels{0.1, 0.25, 0.5, 0.75, 1.0};
 
 std::ofstream open_csv(const std::filesystem::path& path, const char* header) {
   std::ofstream f(path);
-  if (!f) throw Error(ErrorKind::io, "cannot write " + path.string());
+  if (!f) throw write_error(path, errno);
   f << header;
   return f;
 }

@@ -3,21 +3,23 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <cerrno>
 #include <cmath>
 #include <fstream>
 
 #include "railcontact/error.hpp"
+#include "study/output_directory.hpp"
 
 namespace railcontact::study {
 
 void write_pressure_csv(const std::filesystem::path& path, const ContactPatch& patch) {
   std::ofstream csv(path);
-  if (!csv) throw Error(ErrorKind::io, "cannot write " + path.string());
+  if (!csv) throw write_error(path, errno);
   csv << "x1_m,x2_m,pressure_Pa\n";
   for (std::size_t e = 0; e < patch.elements().count(); ++e)
     fmt::print(csv, "{:.9e},{:.9e},{:.9e}\n", patch.x1(e), patch.x2(e), patch.pressure_Pa()[e]);
   csv.close();  // a full disk shows here
-  if (!csv) throw Error(ErrorKind::io, "cannot write " + path.string());
+  if (!csv) throw write_error(path, errno);
 }
 
 nlohmann::json patch_json(const WheelRailPatch& p) {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <cerrno>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -105,7 +106,7 @@ Row solve_row(const WheelRailPair& pair, double y_m, const PatchStudyOptions& op
 
 void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) {
   std::ofstream csv(path);
-  if (!csv) throw Error(ErrorKind::io, "cannot write " + path.string());
+  if (!csv) throw write_error(path, errno);
   csv << "y_m,status,patches,contact_angle_rad,rolling_radius_m,spin_per_m,normal_force_N,area_m2,"
          "elements_in_contact,extent_x1_m,extent_x2_m,max_pressure_Pa,approach_m,iterations,"
          "y_rail_m,y_wheel_m,y_track_m,pressure_centre_x2_m,centre_y_rail_m,centre_y_wheel_m,centre_contact_angle_rad,"
@@ -130,7 +131,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
     fmt::print(csv, "{:.9g},{:.9g},{},{},{},{:.6f},{}\n", m.dx1_m, m.dx2_m, m.n1, m.n2, p.mesh_passes, r.solve_time_s,
                r.patch_file);
   }
-  if (!csv) throw Error(ErrorKind::io, "cannot write " + path.string());
+  if (!csv) throw write_error(path, errno);
 }
 
 std::string ratio_text(double value, double reference) {
@@ -140,7 +141,7 @@ std::string ratio_text(double value, double reference) {
 void write_summary(const std::filesystem::path& path, const PatchStudyOptions& o, const std::vector<Row>& rows,
                    const std::string& wheel, const std::string& rail, double total_s) {
   std::ofstream md(path);
-  if (!md) throw Error(ErrorKind::io, "cannot write " + path.string());
+  if (!md) throw write_error(path, errno);
   md << "# Wheel–rail normal contact over the wheelset displacement (METHOD.md §9)\n\n";
   fmt::print(md, "Wheel `{}` on rail `{}`; vertical load Fz = {} N, F3 = Fz / cos γ; E = 2.1e11 Pa, ν = 0.3; "
                  "about {} elements in contact (rolling-resolved mesh); y from {} to {} mm in steps of {} mm. "

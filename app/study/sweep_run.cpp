@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
+#include <cerrno>
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -212,14 +213,14 @@ void write_outputs(OutputDirectory& dir, const std::string& metadata, const std:
     failed += r.failed;
   }
   csv.close();
-  if (csv.fail()) throw Error(ErrorKind::io, fmt::format("cannot write {}", csv_path.string()));
+  if (csv.fail()) throw write_error(csv_path, errno);
   nlohmann::json j = nlohmann::json::parse(metadata);
   j["failed_cases"] = failed;
   const std::filesystem::path json_path = dir.path("sweep.json");
   std::ofstream json(json_path, std::ios::binary);
   json << j.dump(2) << "\n";
   json.close();
-  if (json.fail()) throw Error(ErrorKind::io, fmt::format("cannot write {}", json_path.string()));
+  if (json.fail()) throw write_error(json_path, errno);
   draw_figures("plot_sweep.py", dir.staging(), log);
 }
 

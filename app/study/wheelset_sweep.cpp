@@ -4,11 +4,13 @@
 #include <fmt/core.h>
 #include <fmt/ostream.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 
 #include "railcontact/error.hpp"
+#include "study/output_directory.hpp"
 #include "study/figures.hpp"
 
 namespace railcontact::study {
@@ -30,7 +32,7 @@ WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& 
 
   const std::filesystem::path csv_path = out.path("wheelset_sweep.csv");
   std::ofstream csv(csv_path);
-  if (!csv) throw Error(ErrorKind::io, fmt::format("cannot write {}", csv_path.string()));
+  if (!csv) throw write_error(csv_path, errno);
   const std::vector<TangentialSolver>& solvers = wheelset.options().solvers;
   fmt::print(csv,
              "y_mm,vertical_displacement_mm,roll_mrad,side,patch,patches,reference_x_mm,reference_y_mm,reference_z_mm,"
@@ -80,7 +82,7 @@ WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& 
     }
   }
   csv.close();
-  if (csv.fail()) throw Error(ErrorKind::io, fmt::format("cannot write {}", csv_path.string()));
+  if (csv.fail()) throw write_error(csv_path, errno);
   draw_figures("plot_wheelset_sweep.py", out.staging(), log);
   return result;
 }

@@ -99,13 +99,18 @@ struct ProfileLimits {
   static constexpr double max_length_m = 1.0;
   // The self-intersection check compares the segments that overlap laterally, at most this often.
   static constexpr std::size_t max_crossing_comparisons = 20000000;
+  // The contact search takes a profile as a graph z(y), each y once: the points may go back
+  // laterally (an undercut gauge face or flange, which overhangs) by at most this much, the noise of
+  // a measured near-vertical flank; a larger undercut would drop the overhang from the graph.
+  static constexpr double max_lateral_retreat_m = 0.05e-3;
 };
 
 // Throws Error unless the profile is a plausible wheel or rail profile: as many y as z, 4 to
 // ProfileLimits::max_points finite points spanning 10 to 400 mm laterally and at most 200 mm
 // vertically (else the message suggests a wrong length unit), consecutive points distinct and at
 // most 10 mm apart, no reversal of direction (more than 150 degrees) at a point, a polyline at
-// most 1 m long that does not cross itself. The message names the points at fault.
+// most 1 m long that does not cross itself, and no undercut: y monotonic along the points within
+// max_lateral_retreat_m. The message names the points at fault.
 void validate(const Profile& profile);
 
 // Smoothing of the point list (docs/GEOMETRY.md §5).

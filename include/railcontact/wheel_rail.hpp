@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <optional>
 #include <vector>
 
@@ -72,6 +73,11 @@ enum class PatchMeshLayout {
 // (y = −3, 0, 3 mm at 98.1 kN, against 3000 elements).
 inline constexpr int kMinimumWheelRailElements = 100;
 inline constexpr int kMaximumWheelRailElements = 200000;
+// On the smooth reference the patch is meshed with elements of at least
+// kMinimumTangentPlaneElement_m (0.001 mm, railcontact/wheelset_geometry.hpp): a target_elements
+// whose elements would be smaller at the given load (a light load, a small patch) is refused
+// before any solve, from the Hertzian estimate, with a message that begins with this text.
+inline constexpr std::string_view kWheelRailElementsTooSmall = "wheel-rail patch: elements too small:";
 
 // The reference of a wheel–rail patch: the origin of its contact frame and its contact angle γ,
 // from which F3 = Fz / cos γ, the spin and the rolling radius follow (docs/WHEEL_RAIL.md §6).

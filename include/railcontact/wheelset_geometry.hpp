@@ -124,6 +124,9 @@ struct TangentPlaneArea {
 };
 
 // Both wheel–rail pairs of a wheelset on the track. Immutable after construction, thread-safe.
+// The smallest element size of WheelsetTrack::potential_contact_area (0.001 mm).
+inline constexpr double kMinimumTangentPlaneElement_m = 1e-6;
+
 class WheelsetTrack {
  public:
   // Throws Error (naming the profile) when a profile is not a plausible, correctly oriented wheel or
@@ -174,7 +177,8 @@ class WheelsetTrack {
   [[nodiscard]] std::vector<double> undeformed_distance_m(const WheelsetPosition& position,
                                                           const InterpenetrationRegion& region,
                                                           const Mesh& mesh) const;
-  // A mesh of square elements of the given size around the region's overlap (h < 0) with a border
+  // A mesh of square elements of the given size (in [kMinimumTangentPlaneElement_m, 10 mm]) around
+  // the region's overlap (h < 0) with a border
   // of border_elements, grown until the overlap stays off the border; the mesh is aligned with the
   // reference point (element centres at integer multiples of the size from it).
   [[nodiscard]] TangentPlaneArea potential_contact_area(const WheelsetPosition& position,

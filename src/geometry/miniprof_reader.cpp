@@ -90,6 +90,7 @@ Profile geometry::parse_miniprof_profile(std::string_view bytes, const std::file
     if (ix < 0 || iy < 0) {
       fail(path, column_def_line, fmt::format("ColumnDef '{}' must name the columns X and Y", geometry::quoted(column_def)));
     }
+    geometry::refuse_decimal_commas(path, line.number, text);
     const auto values = geometry::parse_numbers(text);
     const auto needed = static_cast<std::size_t>(std::max(ix, iy)) + 1;
     if (!values || values->size() < needed) {

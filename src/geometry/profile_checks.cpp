@@ -145,6 +145,34 @@ void check_no_crossing(const Profile& p, const std::string& name) {
   }
 }
 
+// The points go one way laterally (from the first point's y towards the last's), back by at most
+// max_lateral_retreat_m: the contact search's graph z(y) (SmoothProfile::z) holds each y once, and
+// the part of an undercut profile that overhangs would be missing from it (a wheel in contact there
+// would seem to carry no load). The message names the overhang: the point where the points turn
+// back laterally and the one furthest back (the largest y_j - y_i over j < i, direction-adjusted).
+void check_single_valued(const Profile& p, const std::string& name) {
+  const double direction = p.y_m.back() >= p.y_m.front() ? 1.0 : -1.0;
+  std::size_t furthest = 0;  // the point furthest along so far
+  double retreat = 0.0;
+  std::size_t from = 0, to = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    if (direction * (p.y_m[i] - p.y_m[furthest]) > 0.0) furthest = i;
+    const double back = direction * (p.y_m[furthest] - p.y_m[i]);
+    if (back > retreat) {
+      retreat = back;
+      from = furthest;
+      to = i;
+    }
+  }
+  require(retreat <= ProfileLimits::max_lateral_retreat_m, [&] {
+    return fmt::format(
+        "profile {}: the profile is undercut: between point {} ({}) and point {} ({}) it overhangs by {:.3g} mm "
+        "laterally; the contact search takes a profile as z(y), each y once (an overhang of at most {:g} mm): remove "
+        "the undercut part or give a profile that is not undercut",
+        name, from + 1, point_at(p, from), to + 1, point_at(p, to), retreat / kMm, ProfileLimits::max_lateral_retreat_m / kMm);
+  });
+}
+
 }  // namespace
 
 void check_profile(const Profile& profile, std::string_view unit_hint) {
@@ -165,6 +193,7 @@ void check_profile(const Profile& profile, std::string_view unit_hint) {
   check_extent(profile, name, unit_hint);
   check_spacing(profile, name);
   check_no_crossing(profile, name);
+  check_single_valued(profile, name);
 }
 
 std::string length_unit_hint(double length_unit_m) {

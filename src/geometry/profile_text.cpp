@@ -74,6 +74,33 @@ std::optional<std::vector<double>> parse_numbers(std::string_view text) {
   return values;
 }
 
+void refuse_decimal_commas(const std::filesystem::path& path, std::size_t line, std::string_view text) {
+  if (text.find('.') != std::string_view::npos) return;
+  const auto is_digit = [](char c) { return c >= '0' && c <= '9'; };
+  const auto is_separator = [](char c) { return c == ' ' || c == '\t' || c == ';'; };
+  std::size_t fields = 0;
+  std::string_view decimal;  // the first field with a comma between digits
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    while (pos < text.size() && is_separator(text[pos])) ++pos;
+    if (pos >= text.size()) break;
+    std::size_t end = pos;
+    while (end < text.size() && !is_separator(text[end])) ++end;
+    const std::string_view field = text.substr(pos, end - pos);
+    ++fields;
+    for (std::size_t k = 1; decimal.empty() && k + 1 < field.size(); ++k)
+      if (field[k] == ',' && is_digit(field[k - 1]) && is_digit(field[k + 1])) decimal = field;
+    pos = end;
+  }
+  if (fields < 2 || decimal.empty()) return;
+  std::string dotted(decimal);
+  for (char& c : dotted) c = c == ',' ? '.' : c;
+  fail(path, line,
+       fmt::format("'{}' is written with decimal commas ({}); write the numbers with decimal points ({}): blanks, "
+                   "tabs, commas and semicolons separate numbers",
+                   printable_excerpt(text), printable_excerpt(decimal), printable_excerpt(dotted)));
+}
+
 std::string lower_case(std::string_view text) {
   std::string result(text);
   for (char& c : result) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

@@ -36,6 +36,12 @@ std::string_view trim(std::string_view text);
 // nothing if any field is not a (finite) number.
 std::optional<std::vector<double>> parse_numbers(std::string_view text);
 
+// Refuses a point line written with decimal commas ("0,5 1,25", "12,5;3,4": no decimal point, and
+// fields separated by blanks, tabs or semicolons of which one holds a comma between digits), which
+// parse_numbers would read as twice as many numbers: fail(path, line, ...) quoting the line. A
+// single field "12,5" is a comma-separated pair and passes.
+void refuse_decimal_commas(const std::filesystem::path& path, std::size_t line, std::string_view text);
+
 // One number (the whole string, trimmed); nothing if malformed.
 std::optional<double> parse_number(std::string_view text);
 

@@ -66,6 +66,7 @@ Section read_point_line(const Path& path, const geometry::NumberedLine& line, st
     file.points_closed = true;
     return Section::spline;
   }
+  geometry::refuse_decimal_commas(path, line.number, text);
   const auto values = geometry::parse_numbers(text);
   if (!values || values->size() < 2 || values->size() > 3) {
     fail(path, line.number, fmt::format("expected a point 'y z [weight]', got '{}'", geometry::quoted(text)));

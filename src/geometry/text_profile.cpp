@@ -25,6 +25,7 @@ Profile geometry::parse_text_profile(std::string_view bytes, const std::filesyst
   for (const auto& line : lines) {
     const std::string_view text = geometry::trim(geometry::strip_comment(line.text, "#!%"));
     if (text.empty()) continue;
+    geometry::refuse_decimal_commas(path, line.number, text);
     const auto values = geometry::parse_numbers(text);
     if (!values || values->size() < 2) {
       geometry::fail(path, line.number, fmt::format("expected two numbers 'y z', got '{}'", geometry::quoted(text)));

@@ -95,8 +95,9 @@ TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& p
                                                        const InterpenetrationRegion& region, double dx1_m,
                                                        double dx2_m, int border_elements) const {
   for (double d : {dx1_m, dx2_m}) {
-    require(std::isfinite(d) && d >= 1e-6 && d <= 0.01, [&] {
-      return fmt::format("potential contact area: the element size {:g} mm must lie in [0.001, 10] mm", d * 1e3);
+    require(std::isfinite(d) && d >= kMinimumTangentPlaneElement_m && d <= 0.01, [&] {
+      return fmt::format("potential contact area: the element size {:g} mm must lie in [{:g}, 10] mm", d * 1e3,
+                         kMinimumTangentPlaneElement_m * 1e3);
     });
   }
   require(border_elements >= 1 && border_elements <= 100,

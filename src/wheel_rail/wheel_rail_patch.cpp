@@ -14,6 +14,7 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/wheelset_geometry.hpp"
 #include "wheel_rail/cropped_patch.hpp"
 #include "wheel_rail/wheel_height.hpp"
 
@@ -344,6 +345,28 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   double element_area_m2 = M_PI * estimate.a_m * estimate.b_m / options.target_elements;
   double extent1 = 2.0 * estimate.a_m, extent2 = 2.0 * estimate.b_m;
   const auto target = static_cast<double>(options.target_elements);
+  if (options.reference == ContactReference::smooth) {
+    // The smooth reference meshes the track's overlap with the first-touch element sizes, at least
+    // kMinimumTangentPlaneElement_m: a target too fine for the load is refused here, before the
+    // first-touch solves (seconds with 200000 elements), from the same estimate.
+    const ElementSizes dx = element_sizes(element_area_m2, extent1, extent2, options.layout);
+    const double smallest = std::min(dx.dx1_m, dx.dx2_m);
+    if (smallest < kMinimumTangentPlaneElement_m) {
+      // The element area scales as 1 / target_elements: the target whose smallest side is the minimum.
+      const double fitting = target * (smallest / kMinimumTangentPlaneElement_m) * (smallest / kMinimumTangentPlaneElement_m);
+      const std::string advice =
+          fitting >= kMinimumWheelRailElements
+              ? fmt::format("about {:.0f} elements or fewer fit at this load, or give a larger load", std::floor(fitting))
+              : fmt::format("even the fewest, {}, are too small at this load: give a larger load",
+                            kMinimumWheelRailElements);
+      throw Error(fmt::format("{} elements of {:.2g} x {:.2g} mm at {} (target_elements = {} in a patch of about "
+                              "{:.3g} mm2 at Fz = {:g} N) are smaller than the {:g} mm the smooth contact reference "
+                              "takes: {}",
+                              kWheelRailElementsTooSmall, dx.dx1_m / kMm, dx.dx2_m / kMm, where,
+                              options.target_elements, M_PI * estimate.a_m * estimate.b_m / (kMm * kMm),
+                              options.vertical_load_N, kMinimumTangentPlaneElement_m / kMm, advice));
+    }
+  }
   std::optional<Solve> best;
   int enlargements = 0;
 
