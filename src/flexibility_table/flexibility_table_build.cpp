@@ -13,6 +13,7 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/text_file.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "flexibility_table/strict_json.hpp"
 #include "railcontact/version.h"
@@ -227,7 +228,11 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
     char* end = nullptr;
     const double seconds = std::strtod(time.c_str(), &end);
     require(newline != std::string::npos && !time.empty() && end == time.c_str() + time.size() && std::isfinite(seconds),
-            [&] { return fmt::format("flexibility table: node {} is not its time and its JSON", k); });
+            [&] {
+              return fmt::format("flexibility table: node {} does not begin with its solve time in seconds (got '{}'; a "
+                                 "damaged shard journal?)",
+                                 k, printable_excerpt(time));
+            });
     FlexibilityTableNode n = detail::parse_flexibility_table_node(text.substr(newline + 1), k);
     const std::lock_guard<std::mutex> guard(store_lock);
     nodes[k] = std::move(n);
