@@ -9,7 +9,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   railcontact::fuzz::expect_clean_outcome([&] {
     const railcontact::study::SweepJournal j =
-        railcontact::study::parse_sweep_journal(std::string(railcontact::fuzz::as_text(data, size)), "fuzz.journal");
+        railcontact::study::parse_sweep_journal(std::string(railcontact::fuzz::as_text(data, size)), "fuzz.journal", "fuzz");
     for (const auto& [k, r] : j.done)
       if (k >= j.header.cases) std::abort();
     if (j.valid_bytes > size) std::abort();

@@ -4,6 +4,7 @@
 // numbers themselves are those of the wheelset.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -140,6 +141,86 @@ TEST(SweepCli, MergedShardsWriteTheBytesOfTheWholeSweepAndStrangersAreRefused) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("are not shards of the same sweep"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir / "m2" / "sweep.csv"));
+}
+
+// A set-up file (gauge, rolling radius, the profiles) with the shipped profiles and the given gauge.
+std::string setup_with_gauge(const std::string& gauge_m) {
+  const std::string profiles = std::string(RAILCONTACT_DATA_DIR) + "/profiles/";
+  return "{\"wheel_profile\": \"" + profiles + "MBench_S1002_v3.prw\", \"rail_profile\": \"" + profiles +
+         "MBench_UIC60_v3.prr\", \"track\": {\"track_gauge_m\": " + gauge_m +
+         ", \"gauge_measuring_depth_m\": 0.014, \"flange_back_distance_m\": 1.360, \"flange_back_y_m\": -0.070, "
+         "\"taping_line_from_flange_back_m\": 0.070, \"nominal_rolling_radius_m\": 0.46}}\n";
+}
+
+// The journal's identity covers the [setup] file: shards of two gauges are not merged, and a shard
+// rerun after the gauge changed is refused instead of resumed (the sweep file's bytes are the same).
+TEST(SweepCli, ShardsOfAnotherSetUpFileAreNeitherMergedNorResumed) {
+  const ScratchDirectory dir("sweep_setup_identity");
+  write(dir / "s.toml", "[setup]\nfile = \"setup.json\"\n[mesh]\nelement_size_mm = 1.5\n[solvers]\nrun = [\"fastsim\"]\n"
+                        "[grid]\ny_mm = [0, 1]\n");
+  const std::string file = (dir / "s.toml").string();
+  const auto shard = [&](int i) {
+    return "sweep " + file + " --threads 1 --shard " + std::to_string(i) + "/2 --out " + (dir / ("s" + std::to_string(i))).string();
+  };
+  write(dir / "setup.json", setup_with_gauge("1.435"));
+  CommandResult r = run_cli(shard(0), kNoFigures);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  write(dir / "setup.json", setup_with_gauge("1.437"));
+  r = run_cli(shard(1), kNoFigures);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("merge " + (dir / "s0").string() + " " + (dir / "s1").string() + " --out " + (dir / "m").string(), kNoFigures);
+  railcontact::test::expect_one_error_line(r, "are not shards of the same sweep");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "m" / "sweep.csv"));
+  // Shard 0 again with the new gauge: its journal is of another sweep.
+  r = run_cli(shard(0), kNoFigures);
+  EXPECT_NE(r.err.find("railcontact: error: " + (dir / "s0" / "sweep-shard-0-of-2.journal").string() +
+                       " holds 1 completed cases of another sweep"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("its set-up file"), std::string::npos) << r.err;
+  EXPECT_EQ(r.exit_code, 2);
+  // Rebuilt with the new gauge, the shards merge; sweep.json records the set-up file and its track.
+  ASSERT_EQ(run_cli(shard(0) + " --restart", kNoFigures).exit_code, 0);
+  r = run_cli("merge " + (dir / "s0").string() + " " + (dir / "s1").string() + " --out " + (dir / "m").string(), kNoFigures);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json meta = nlohmann::json::parse(read(dir / "m" / "sweep.json"));
+  EXPECT_EQ(meta["setup"]["file"], "setup.json");
+  EXPECT_EQ(meta["setup"]["fnv1a64"].get<std::string>().size(), 16u);
+  EXPECT_EQ(meta["track"]["track_gauge_m"], 1.437);  // the JSON number as written in the set-up file
+}
+
+// merge reads regular files only, refused at once (not read forever or waited on), and says what
+// it expects when given something that is not a journal.
+TEST(SweepCli, MergeRefusesDevicesFifosDirectoriesAndFilesThatAreNotJournals) {
+  const ScratchDirectory dir("merge_not_journals");
+  const std::string out = " --out " + (dir / "m").string();
+  const std::string limits = "ulimit -v 4000000; exec timeout 60 ";  // without the checks: 20 GB, or a hang
+  CommandResult r = run_cli("merge /dev/zero" + out, limits);
+  railcontact::test::expect_one_error_line(r, "cannot read the journal /dev/zero: it is a character device");
+  EXPECT_EQ(r.exit_code, 3);
+  ASSERT_EQ(mkfifo((dir / "f.journal").c_str(), 0600), 0);
+  r = run_cli("merge " + (dir / "f.journal").string() + out, limits);
+  railcontact::test::expect_one_error_line(r, "f.journal: it is a FIFO (named pipe), not a regular file");
+  EXPECT_EQ(r.exit_code, 3);
+  // A directory of shards holding a FIFO or a directory by a journal's name.
+  std::filesystem::create_directories(dir / "shards" / "sweep-shard-0-of-2.journal");
+  r = run_cli("merge " + (dir / "shards").string() + out, limits);
+  railcontact::test::expect_one_error_line(r, "sweep-shard-0-of-2.journal: it is a directory");
+  EXPECT_EQ(r.exit_code, 3);
+  std::filesystem::remove(dir / "shards" / "sweep-shard-0-of-2.journal");
+  ASSERT_EQ(mkfifo((dir / "shards" / "sweep-shard-1-of-2.journal").c_str(), 0600), 0);
+  r = run_cli("merge " + (dir / "shards").string() + out, limits);
+  railcontact::test::expect_one_error_line(r, "sweep-shard-1-of-2.journal: it is a FIFO");
+  EXPECT_EQ(r.exit_code, 3);
+  // The sweep file itself: what merge got and what it expects; the user's file is not to be removed.
+  write(dir / "s.toml", kSweep);
+  r = run_cli("merge " + (dir / "s.toml").string() + out, limits);
+  railcontact::test::expect_one_error_line(r, "s.toml is not a complete sweep or table journal (it begins with '[mesh]'");
+  EXPECT_NE(r.err.find("merge expects the journals of `railcontact sweep --shard i/N`"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("remove"), std::string::npos) << r.err;
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(std::filesystem::exists(dir / "s.toml"));
 }
 
 // Starts `railcontact sweep` and kills it (SIGKILL) once its journal holds `records` cases.

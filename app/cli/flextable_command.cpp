@@ -59,22 +59,20 @@ struct ShardDone {
 
 // The arguments of a build as recorded in a shard's journal (and the profiles' fingerprints):
 // merge rebuilds the table's grid, metadata and contact jumps from them.
-nlohmann::json build_recipe(const BuildArguments& a, const WheelRailPair& pair) {
-  nlohmann::json loads = a.loads_N;
-  return {{"railcontact_version", RC_VERSION_STRING},
-          {"command", "flextable build"},
-          {"arguments",
-           {{"y_from_m", a.y_from_m},
-            {"y_to_m", a.y_to_m},
-            {"y_step_m", a.y_step_m},
-            {"loads_N", loads},
-            {"wheel", a.wheel ? nlohmann::json(*a.wheel) : nlohmann::json(nullptr)},
-            {"rail", a.rail ? nlohmann::json(*a.rail) : nlohmann::json(nullptr)},
-            {"elements", a.elements},
-            {"flexibility_coarsening", a.flexibility_coarsening}}},
-          {"wheel_profile_fnv1a64", file_fingerprint(pair.wheel().source()).hash_hex()},
-          {"rail_profile_fnv1a64", file_fingerprint(pair.rail().source()).hash_hex()},
-          {"created_utc", source_date_epoch_utc()}};
+std::string build_recipe(const BuildArguments& a, const WheelRailPair& pair) {
+  study::TableShardRecipe r;
+  r.y_from_m = a.y_from_m;
+  r.y_to_m = a.y_to_m;
+  r.y_step_m = a.y_step_m;
+  r.loads_N = a.loads_N;
+  r.wheel = a.wheel;
+  r.rail = a.rail;
+  r.elements = a.elements;
+  r.flexibility_coarsening = a.flexibility_coarsening;
+  r.wheel_profile_fnv1a64 = file_fingerprint(pair.wheel().source()).hash_hex();
+  r.rail_profile_fnv1a64 = file_fingerprint(pair.rail().source()).hash_hex();
+  r.created_utc = source_date_epoch_utc();
+  return study::table_shard_metadata(r);
 }
 
 struct CheckArguments {
@@ -152,15 +150,10 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
   const study::Shard shard = args.shard.empty() ? study::Shard{} : study::parse_shard(args.shard);
   if (merged != nullptr) {
     // merge: the nodes come from the shards' journals.
-    options.runner = [merged](std::size_t count, const TableNodeSolver&, const TableNodeStore& store) {
-      require(merged->size() == count, [&] {
-        return fmt::format("merge: the shards hold {} nodes; this build has {} (the profiles differ?)", merged->size(), count);
-      });
-      for (const auto& [k, r] : *merged) store(k, r.text);
-    };
+    options.runner = study::merged_node_runner(*merged);
   } else if (!shard.whole()) {
     // A shard: its nodes (on threads or ranks) into its journal, resumed when it exists.
-    const std::string recipe = build_recipe(args, pair).dump(2);
+    const std::string recipe = build_recipe(args, pair);
     const std::filesystem::path journal =
         fmt::format("{}.shard-{}-of-{}.journal", args.out, shard.index, shard.count);
     options.runner = [=, &args](std::size_t count, const TableNodeSolver& solve, const TableNodeStore&) {
@@ -171,7 +164,7 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
       if (study::MpiWorld::rank() == 0) {
         if (args.restart) std::filesystem::remove(journal);
         if (std::filesystem::exists(journal)) {
-          study::SweepJournal j = study::read_sweep_journal(journal);
+          study::SweepJournal j = study::read_sweep_journal(journal, study::kResumeAdvice);
           require(j.header.recipe == header.recipe && j.header.cases == count && j.header.shard.index == shard.index &&
                       j.header.shard.count == shard.count && j.header.version == header.version,
                   [&] {
@@ -365,28 +358,27 @@ int run_check(const CheckArguments& args) {
 
 }  // namespace
 
-int merge_flextable_shards(const study::SweepJournalHeader& header, const std::map<std::size_t, study::CaseResult>& nodes,
-                           const std::string& out) {
-  const nlohmann::json recipe = nlohmann::json::parse(header.metadata);
-  const nlohmann::json& a = recipe.at("arguments");
+int merge_flextable_shards(const study::SweepJournalHeader& header, const std::filesystem::path& journal,
+                           const std::map<std::size_t, study::CaseResult>& nodes, const std::string& out) {
+  const study::TableShardRecipe recipe = study::table_shard_recipe(header, journal);
   BuildArguments args;
   args.out = out;
-  args.y_from_m = a.at("y_from_m").get<double>();
-  args.y_to_m = a.at("y_to_m").get<double>();
-  args.y_step_m = a.at("y_step_m").get<double>();
-  args.loads_N = a.at("loads_N").get<std::vector<double>>();
-  if (!a.at("wheel").is_null()) args.wheel = a.at("wheel").get<std::string>();
-  if (!a.at("rail").is_null()) args.rail = a.at("rail").get<std::string>();
-  args.elements = a.at("elements").get<int>();
-  args.flexibility_coarsening = a.at("flexibility_coarsening").get<int>();
+  args.y_from_m = recipe.y_from_m;
+  args.y_to_m = recipe.y_to_m;
+  args.y_step_m = recipe.y_step_m;
+  args.loads_N = recipe.loads_N;
+  args.wheel = recipe.wheel;
+  args.rail = recipe.rail;
+  args.elements = recipe.elements;
+  args.flexibility_coarsening = recipe.flexibility_coarsening;
   args.threads = "1";
-  args.created_utc = recipe.at("created_utc").get<std::string>();
+  args.created_utc = recipe.created_utc;
   // The profiles here must be those the shards were built from.
   const WheelRailPair pair = pair_of(args.wheel, args.rail);
-  require(file_fingerprint(pair.wheel().source()).hash_hex() == recipe.at("wheel_profile_fnv1a64").get<std::string>() &&
-              file_fingerprint(pair.rail().source()).hash_hex() == recipe.at("rail_profile_fnv1a64").get<std::string>(),
+  require(file_fingerprint(pair.wheel().source()).hash_hex() == recipe.wheel_profile_fnv1a64 &&
+              file_fingerprint(pair.rail().source()).hash_hex() == recipe.rail_profile_fnv1a64,
           [&] {
-            return fmt::format("merge: the profiles {} and {} here are not those the shards were built from", 
+            return fmt::format("merge: the profiles {} and {} here are not those the shards were built from",
                                pair.wheel().source(), pair.rail().source());
           });
   return run_build(args, &nodes);

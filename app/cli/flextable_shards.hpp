@@ -3,6 +3,7 @@
 // the build again from the arguments recorded in the shards' journals, its nodes taken from them;
 // the table file is the bytes of the build on one machine (with the same created_utc).
 #include <cstddef>
+#include <filesystem>
 #include <map>
 #include <string>
 
@@ -11,8 +12,10 @@
 
 namespace railcontact::cli {
 
-// Throws Error when the profiles here are not those of the shards.
-int merge_flextable_shards(const study::SweepJournalHeader& header, const std::map<std::size_t, study::CaseResult>& nodes,
-                           const std::string& out);
+// The shards' header and nodes as combine_shard_journals gives them (`journal`: one of their
+// files, named in messages). Throws Error when the metadata is damaged or the profiles here are not
+// those of the shards.
+int merge_flextable_shards(const study::SweepJournalHeader& header, const std::filesystem::path& journal,
+                           const std::map<std::size_t, study::CaseResult>& nodes, const std::string& out);
 
 }  // namespace railcontact::cli

@@ -4,8 +4,8 @@
 #include <fmt/ostream.h>
 
 #include <iostream>
+#include <map>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -65,16 +65,15 @@ int run_sweep_command(const SweepArguments& a) {
 }
 
 int run_merge_command(const MergeArguments& a) {
-  std::vector<std::filesystem::path> shards(a.shards.begin(), a.shards.end());
+  const std::vector<std::filesystem::path> paths(a.shards.begin(), a.shards.end());
+  const std::vector<study::NamedSweepJournal> journals = study::read_shard_journals(paths);
+  study::SweepJournalHeader header;
+  const std::map<std::size_t, study::CaseResult> done = study::combine_shard_journals(journals, header);
   // A flexibility table's shards (flextable build --shard) or a sweep's.
-  const study::SweepJournal first = study::read_sweep_journal(study::shard_journal_files(shards).front());
-  if (nlohmann::json::parse(first.header.metadata).value("command", "") == "flextable build") {
-    study::SweepJournalHeader header;
-    const auto nodes = study::combine_shard_journals(shards, header);
-    return merge_flextable_shards(header, nodes, a.out);
-  }
-  const study::SweepSummary s = study::merge_sweep_shards(shards, a.out, std::cerr);
-  fmt::print("Wrote {} ({} cases from {} shard file(s), {} failed)\n", s.written.string(), s.cases, a.shards.size(),
+  if (study::journal_command(header, journals.front().file) == study::JournalCommand::flextable_build)
+    return merge_flextable_shards(header, journals.front().file, done, a.out);
+  const study::SweepSummary s = study::merge_sweep_journals(header, done, a.out, std::cerr);
+  fmt::print("Wrote {} ({} cases from {} shard file(s), {} failed)\n", s.written.string(), s.cases, journals.size(),
              s.failed);
   return report(s);
 }

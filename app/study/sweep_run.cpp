@@ -68,8 +68,16 @@ std::vector<std::string> columns(const SweepFile& s) {
   return c;
 }
 
+// The set-up file the track was read from (the sweep's [setup] file, or the default one, found
+// through RAILCONTACT_DATA, when the sweep names no profiles); null when it names profiles.
+nlohmann::json setup_json(const WheelsetCase& c) {
+  if (!c.right_wheel_profile.empty()) return nullptr;
+  return fingerprint_json((c.setup_file.empty() ? default_wheel_rail_setup_path() : c.setup_file).string());
+}
+
 Recipe make_recipe(const SweepFile& s, const WheelsetTrack& track) {
   const WheelsetOptions& o = s.base.options;
+  const TrackWheelsetParameters& t = track.parameters();
   nlohmann::json solvers = nlohmann::json::array();
   for (TangentialSolver solver : o.solvers) solvers.push_back(solver_name(solver));
   nlohmann::json axes = nlohmann::json::array();
@@ -86,6 +94,15 @@ Recipe make_recipe(const SweepFile& s, const WheelsetTrack& track) {
         {"right_rail", fingerprint_json(track.pair(WheelSide::right).rail().source())},
         {"left_wheel", fingerprint_json(track.pair(WheelSide::left).wheel().source())},
         {"left_rail", fingerprint_json(track.pair(WheelSide::left).rail().source())}}},
+      // Everything else the numbers depend on: the set-up file's bytes and the track it gives.
+      {"setup", setup_json(s.base)},
+      {"track",
+       {{"track_gauge_m", t.track_gauge_m},
+        {"gauge_measuring_depth_m", t.gauge_measuring_depth_m},
+        {"flange_back_distance_m", t.flange_back_distance_m},
+        {"flange_back_y_m", t.flange_back_y_m},
+        {"taping_line_from_flange_back_m", t.taping_line_from_flange_back_m},
+        {"nominal_rolling_radius_m", t.nominal_rolling_radius_m}}},
       {"recipe",
        {{"solvers", solvers},
         {"by_load", o.loads.has_value()},
@@ -95,6 +112,7 @@ Recipe make_recipe(const SweepFile& s, const WheelsetTrack& track) {
         {"poisson_ratio", o.material.poisson_ratio},
         {"flexibility_coarsening", o.nh_fastsim.flexibility_coarsening},
         {"nh_fastsim_slip_direction", slip_direction_name(o.nh_fastsim.bound.slip_direction)},
+        {"nh_fastsim_recipe", kNhFastSimRecipe},
         {"warm_start", "none: every case starts cold (results independent of the order, threads and ranks)"}}},
       {"kind", s.grid ? "grid" : "list"},
       {"axes", axes},
@@ -201,26 +219,20 @@ ErrorKind failed_kind(const std::string& row) {
   return ErrorKind::internal;
 }
 
-// sweep.csv, sweep.json and the figures from the complete set of cases.
+// sweep.csv, sweep.json and the figures from the complete set of cases (the CSV streamed: a
+// large sweep's rows are in memory once, in `done`).
 void write_outputs(OutputDirectory& dir, const std::string& metadata, const std::string& header,
                    const std::map<std::size_t, CaseResult>& done, std::ostream& log) {
-  const std::filesystem::path csv_path = dir.path("sweep.csv");
-  std::ofstream csv(csv_path, std::ios::binary);
-  csv << header;
-  std::size_t failed = 0;
-  for (const auto& [k, r] : done) {
-    csv << r.text;
-    failed += r.failed;
-  }
-  csv.close();
-  if (csv.fail()) throw write_error(csv_path, errno);
-  nlohmann::json j = nlohmann::json::parse(metadata);
-  j["failed_cases"] = failed;
-  const std::filesystem::path json_path = dir.path("sweep.json");
-  std::ofstream json(json_path, std::ios::binary);
-  json << j.dump(2) << "\n";
-  json.close();
-  if (json.fail()) throw write_error(json_path, errno);
+  const std::string json_text = sweep_json(metadata, done);
+  const auto write = [&](const char* name, const auto& write_text) {
+    const std::filesystem::path path = dir.path(name);
+    std::ofstream file(path, std::ios::binary);
+    write_text(file);
+    file.close();
+    if (file.fail()) throw write_error(path, errno);
+  };
+  write("sweep.csv", [&](std::ostream& out) { write_sweep_csv(out, header, done); });
+  write("sweep.json", [&](std::ostream& out) { out << json_text; });
   draw_figures("plot_sweep.py", dir.staging(), log);
 }
 
@@ -261,12 +273,13 @@ SweepSummary run_sweep(const SweepFile& sweep, const SweepRunOptions& options, s
   std::uintmax_t valid_bytes = 0;
   if (options.restart) std::filesystem::remove(journal_path);
   if (std::filesystem::exists(journal_path)) {
-    SweepJournal j = read_sweep_journal(journal_path);
+    SweepJournal j = read_sweep_journal(journal_path, kResumeAdvice);
     if (j.header.recipe != recipe.hash || j.header.version != header.version || j.header.cases != header.cases ||
         j.header.shard.index != options.shard.index || j.header.shard.count != options.shard.count)
       throw Error(fmt::format(
           "{} holds {} completed cases of another sweep (railcontact {}, recipe {}, {} cases, shard {}/{}; this run: "
-          "railcontact {}, recipe {}, {} cases, shard {}/{}): the sweep file, its profiles or railcontact changed. "
+          "railcontact {}, recipe {}, {} cases, shard {}/{}): the sweep file, its set-up file, its profiles or railcontact "
+          "changed. "
           "Rerun with --restart to discard them, or give another --out",
           journal_path.string(), j.done.size(), j.header.version, j.header.recipe, j.header.cases, j.header.shard.index,
           j.header.shard.count, header.version, header.recipe, header.cases, options.shard.index, options.shard.count));
@@ -308,15 +321,28 @@ SweepSummary run_sweep(const SweepFile& sweep, const SweepRunOptions& options, s
   return summary;
 }
 
-SweepSummary merge_sweep_shards(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
-                                std::ostream& log) {
-  SweepJournalHeader first;
-  const std::map<std::size_t, CaseResult> done = combine_shard_journals(shards, first);
+std::string sweep_json(const std::string& metadata, const std::map<std::size_t, CaseResult>& done) {
+  nlohmann::json j = nlohmann::json::parse(metadata, nullptr, false);
+  require(j.is_object(), "sweep: the metadata of the sweep is not a JSON object (a damaged journal?)");
+  std::size_t failed = 0;
+  for (const auto& entry : done) failed += entry.second.failed;
+  j["failed_cases"] = failed;
+  return j.dump(2) + "\n";
+}
+
+void write_sweep_csv(std::ostream& out, const std::string& header, const std::map<std::size_t, CaseResult>& done) {
+  out << header;
+  for (const auto& entry : done) out << entry.second.text;
+}
+
+SweepSummary merge_sweep_journals(const SweepJournalHeader& header, const std::map<std::size_t, CaseResult>& done,
+                                  const std::filesystem::path& out, std::ostream& log) {
+  sweep_json(header.metadata, done);  // a damaged journal's metadata refused before DIR is made
   OutputDirectory dir(out, &log);
-  write_outputs(dir, first.metadata, first.header, done, log);
+  write_outputs(dir, header.metadata, header.header, done, log);
   dir.commit();
   SweepSummary summary;
-  summary.cases = summary.in_run = first.cases;
+  summary.cases = summary.in_run = header.cases;
   summary.resumed = done.size();
   summarise_failures(done, summary);
   summary.written = dir.directory() / "sweep.csv";

@@ -13,6 +13,7 @@
 // kept in DIR/sweep.journal (study/sweep_journal.hpp): a rerun with the same file resumes.
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "case/sweep_file.hpp"
 #include "railcontact/error.hpp"
 #include "study/case_pool.hpp"
+#include "study/sweep_journal.hpp"
 
 namespace railcontact::study {
 
@@ -47,12 +49,18 @@ struct SweepSummary {
 // sweep in DIR (unless restart), or an I/O failure; failed cases are reported in the summary.
 SweepSummary run_sweep(const SweepFile& sweep, const SweepRunOptions& options, std::ostream& log);
 
-// Combines the journals of shards 0 .. N-1 of one sweep into DIR's sweep.csv, sweep.json and
-// figures, byte-identical to the serial run. Throws Error (invalid_input) naming the files unless
-// they are shards of the same sweep (recipe, version, case count, N), each shard present once and
-// complete.
-SweepSummary merge_sweep_shards(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out,
-                                std::ostream& log);
+// sweep.json's text: the sweep's metadata (JSON, from its recipe or a journal) with the number of
+// failed cases of `done`. Throws Error (invalid_input) when the metadata is not a JSON object (a
+// damaged journal).
+std::string sweep_json(const std::string& metadata, const std::map<std::size_t, CaseResult>& done);
+// sweep.csv: the header, then each case's rows in the order of the cases.
+void write_sweep_csv(std::ostream& out, const std::string& header, const std::map<std::size_t, CaseResult>& done);
+
+// Writes the cases of shards 0 .. N-1 of one sweep, combined by combine_shard_journals (which
+// checks that they belong together), into DIR's sweep.csv, sweep.json and figures,
+// byte-identical to the serial run.
+SweepSummary merge_sweep_journals(const SweepJournalHeader& header, const std::map<std::size_t, CaseResult>& done,
+                                  const std::filesystem::path& out, std::ostream& log);
 
 // The sweep's workers (one per thread; run_cases_on_threads): case k's CSV rows, or its failed row.
 // The sweep and the track must outlive the workers. For bench/sweep_bench.cpp.

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <mutex>
 #include <optional>
 
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/text_file.hpp"
 #include "railcontact/flexibility_table.hpp"
 #include "flexibility_table/strict_json.hpp"
 #include "railcontact/version.h"
@@ -220,8 +222,17 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   std::size_t solved = 0, stored = 0;
   const TableNodeStore store = [&](std::size_t k, const std::string& text) {
     require(k < total, [&] { return fmt::format("flexibility table: the runner stored node {} of {}", k, total); });
+    // The text may come from a shard's journal (railcontact merge): checked, not trusted.
     const std::size_t newline = text.find('\n');
-    const double seconds = std::stod(text.substr(0, newline));
+    const std::string time = text.substr(0, newline);
+    char* end = nullptr;
+    const double seconds = std::strtod(time.c_str(), &end);
+    require(newline != std::string::npos && !time.empty() && end == time.c_str() + time.size() && std::isfinite(seconds),
+            [&] {
+              return fmt::format("flexibility table: node {} does not begin with its solve time in seconds (got '{}'; a "
+                                 "damaged shard journal?)",
+                                 k, printable_excerpt(time));
+            });
     FlexibilityTableNode n = detail::parse_flexibility_table_node(text.substr(newline + 1), k);
     const std::lock_guard<std::mutex> guard(store_lock);
     nodes[k] = std::move(n);
