@@ -8,7 +8,7 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev libfftw3-dev libcli11
   python3-matplotlib python3-numpy python3-scipy python3-dev python3-pybind11 python3-pytest gfortran valgrind \
   libopenmpi-dev openmpi-bin
 
-.PHONY: all deps deps-fuzz configure build run test test-sanitize test-valgrind fuzz bench clean
+.PHONY: all deps deps-fuzz configure build run test test-portable test-sanitize test-valgrind fuzz bench clean
 
 all: build
 
@@ -34,12 +34,26 @@ run: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
+# The whole suite built for another instruction set than this CPU's -march=native (its own build
+# directory, Release, without the benchmarks): scripts/portable_arch.sh picks one this CPU runs
+# whose floating-point code differs (icelake-server on an AMD CPU with AVX-512, x86-64-v3 on an
+# Intel one, ...; PORTABLE_ARCH=... chooses another). A test that compares two code paths to the
+# last bit fails here as on another CPU (docs/RELIABILITY.md "Reproducibility across CPUs").
+PORTABLE_BUILD ?= build-portable
+PORTABLE_ARCH ?= $(shell scripts/portable_arch.sh)
+test-portable: deps
+	@test -n "$(PORTABLE_ARCH)" || { echo "test-portable: no instruction set (scripts/portable_arch.sh failed)"; exit 2; }
+	cmake -S . -B $(PORTABLE_BUILD) -DCMAKE_BUILD_TYPE=Release -DRAILCONTACT_ARCH=$(PORTABLE_ARCH) \
+	  -DRAILCONTACT_BUILD_BENCHMARKS=OFF
+	cmake --build $(PORTABLE_BUILD) -j $(JOBS)
+	ctest --test-dir $(PORTABLE_BUILD) --output-on-failure -j $(JOBS)
+
 # The whole suite built with AddressSanitizer and UndefinedBehaviorSanitizer (its own build
 # directory; about 10 minutes of build and 1 minute of tests on 2 cores).
 SANITIZE_BUILD ?= build-sanitize
 SANITIZE_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 test-sanitize: deps
-	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAILCONTACT_NATIVE=OFF \
+	cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAILCONTACT_ARCH=OFF \
 	  -DRAILCONTACT_BUILD_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS="$(SANITIZE_FLAGS)" \
 	  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
 	  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" -DRAILCONTACT_BUILD_PYTHON=OFF
@@ -48,11 +62,11 @@ test-sanitize: deps
 	  ctest --test-dir $(SANITIZE_BUILD) --output-on-failure -j $(JOBS) --timeout 900
 
 # The C examples (tests/install/example.c, handles.c) under valgrind (ctest c_api.valgrind): valgrind
-# cannot run the AVX-512 code of -march=native, so the shared library is built without it in its
-# own build directory (only that target: a few minutes on 2 cores).
+# cannot run the AVX-512 code of -march=native, so the shared library is built for portable x86-64
+# (RAILCONTACT_ARCH=OFF) in its own build directory (only that target: a few minutes on 2 cores).
 VALGRIND_BUILD ?= build-valgrind
 test-valgrind: deps
-	cmake -S . -B $(VALGRIND_BUILD) -DCMAKE_BUILD_TYPE=Release -DRAILCONTACT_NATIVE=OFF \
+	cmake -S . -B $(VALGRIND_BUILD) -DCMAKE_BUILD_TYPE=Release -DRAILCONTACT_ARCH=OFF \
 	  -DRAILCONTACT_BUILD_BENCHMARKS=OFF -DRAILCONTACT_BUILD_PYTHON=OFF
 	cmake --build $(VALGRIND_BUILD) -j $(JOBS) --target railcontact_shared
 	ctest --test-dir $(VALGRIND_BUILD) --output-on-failure -L valgrind
@@ -70,7 +84,7 @@ deps-fuzz: deps
 
 fuzz: deps-fuzz
 	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DRAILCONTACT_NATIVE=OFF -DRAILCONTACT_BUILD_TESTS=OFF -DRAILCONTACT_BUILD_BENCHMARKS=OFF -DRAILCONTACT_FUZZ=ON \
+	  -DRAILCONTACT_ARCH=OFF -DRAILCONTACT_BUILD_TESTS=OFF -DRAILCONTACT_BUILD_BENCHMARKS=OFF -DRAILCONTACT_FUZZ=ON \
 	  -DCMAKE_CXX_FLAGS="$(FUZZ_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined"
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
 	scripts/fuzz.sh --build $(FUZZ_BUILD) --seconds $(FUZZ_SECONDS)
@@ -81,4 +95,4 @@ bench: build
 	  PYTHONPATH=$(BUILD)/python /usr/bin/python3 bench/python_overhead.py --build $(BUILD); fi
 
 clean:
-	rm -rf $(BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(VALGRIND_BUILD)
+	rm -rf $(BUILD) $(PORTABLE_BUILD) $(SANITIZE_BUILD) $(FUZZ_BUILD) $(VALGRIND_BUILD)

@@ -20,6 +20,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 #include "carter.hpp"
+#include "different_paths.hpp"
 
 namespace railcontact {
 namespace {
@@ -252,15 +253,15 @@ TEST(FastSimMarching, MatchesIndependentScalarImplementation) {
       EXPECT_NEAR(result.forces.F1_N, ref.forces.F1_N, 1e-11 * fscale);
       EXPECT_NEAR(result.forces.F2_N, ref.forces.F2_N, 1e-11 * fscale);
       EXPECT_NEAR(result.forces.M3_Nm, ref.forces.M3_Nm, 1e-11 * fscale * 1e-2 + 1e-300);
-      // The forces-only path runs the same march: identical forces.
+      // The forces-only march: the same arithmetic in another instantiation of the march, which
+      // the compiler may vectorise and fuse differently (tests/different_paths.hpp): within
+      // test::kDifferentPathsRelative of |F|, tighter than the scalar reference's 1e-11.
       const TangentialForces f = fastsim.forces(c, L, kMu);
-      EXPECT_EQ(f.F1_N, result.forces.F1_N);
-      EXPECT_EQ(f.F2_N, result.forces.F2_N);
-      EXPECT_EQ(f.M3_Nm, result.forces.M3_Nm);
-      // One-shot conveniences (railcontact's default bound).
+      test::expect_forces_near(f, result.forces, fscale, 1e-2);
+      // One-shot conveniences (railcontact's default bound): the same paths, to the last bit.
       if (bound.skew == TractionBound{}.skew && bound.slip_direction == TractionBound{}.slip_direction) {
         EXPECT_EQ(fastsim_forces(patch, c, L, kMu).F1_N, f.F1_N);
-        EXPECT_EQ(railcontact::fastsim(patch, c, L, kMu).forces.M3_Nm, f.M3_Nm);
+        EXPECT_EQ(railcontact::fastsim(patch, c, L, kMu).forces.M3_Nm, result.forces.M3_Nm);
       }
     }
   }
@@ -753,8 +754,11 @@ TEST(NhFastSim, FlexibilitiesFromTheCoarsenedPatchAreCloseToTheFinePatchs) {
 namespace railcontact {
 namespace {
 
-// forces_and_adhesion is solve() without the fields: the same forces and adhesion fraction to the
-// last bit, with and without spin, in adhesion and in full slip.
+// forces_and_adhesion is solve() without the fields: the same forces within
+// test::kDifferentPathsRelative of mu F3 and the same adhesion fraction within one element (another
+// instantiation of the march, which the compiler may vectorise and fuse differently,
+// tests/different_paths.hpp; a slip flag may flip only where |p| sits on the bound to rounding),
+// with and without spin, in adhesion and in full slip.
 TEST(FastSimForcesAndAdhesion, EqualsSolveWithoutTheFields) {
   const ContactPatch patch =
       hertzian_patch(elliptical_contact_with_count(6e-3, 4e-3, 1200), 6e-3, 4e-3, 80e3, Material{});
@@ -763,10 +767,8 @@ TEST(FastSimForcesAndAdhesion, EqualsSolveWithoutTheFields) {
   for (const Creepage& c : {Creepage{1e-4, 0.0, 0.0}, Creepage{1e-3, -5e-4, 0.3}, Creepage{2e-2, 1e-2, -2.0}}) {
     const FastSimResult full = fastsim.solve(c, L, 0.3);
     const FastSimResult lean = fastsim.forces_and_adhesion(c, L, 0.3);
-    EXPECT_EQ(lean.forces.F1_N, full.forces.F1_N);
-    EXPECT_EQ(lean.forces.F2_N, full.forces.F2_N);
-    EXPECT_EQ(lean.forces.M3_Nm, full.forces.M3_Nm);
-    EXPECT_EQ(lean.adhesion_fraction, full.adhesion_fraction);
+    test::expect_forces_near(lean.forces, full.forces, 0.3 * 80e3, 6e-3);
+    EXPECT_NEAR(lean.adhesion_fraction, full.adhesion_fraction, 1.0 / static_cast<double>(full.p1_Pa.size()));
     EXPECT_TRUE(lean.p1_Pa.empty() && lean.slip.empty());
   }
   EXPECT_GT(fastsim.forces_and_adhesion(Creepage{1e-4, 0.0, 0.0}, L, 0.3).adhesion_fraction, 0.5);

@@ -227,7 +227,11 @@ def test_slip_direction():
     a, b = radial.solve(3e-3, -2e-3, 2.0), weighted.solve(3e-3, -2e-3, 2.0)
     assert abs(a.F1_N - b.F1_N) > 1e-3 * MU * F3
     small = radial.solve(1e-6)
-    assert small.adhesion_fraction == 1.0 and small.F1_N == weighted.solve(1e-6).F1_N  # no slip: the same march
+    # No slip: the same tractions, but the radial and the weighted limiting are different
+    # instantiations of the march, which the compiler may vectorise and fuse (FMA) differently on
+    # another CPU: within 1e-12 of mu F3 (tests/different_paths.hpp), not to the last bit.
+    assert small.adhesion_fraction == 1.0
+    assert small.F1_N == pytest.approx(weighted.solve(1e-6).F1_N, rel=0, abs=1e-12 * MU * F3)
     with pytest.raises(railcontact.InvalidInputError, match="slip_direction = 'weighted' is not one of"):
         railcontact.Solver(slip_direction="weighted")
 

@@ -6,7 +6,7 @@
 # Clean means no invalid read or write, no use of uninitialised values and no definitely or
 # indirectly lost block (--errors-for-leak-kinds=definite,indirect): valgrind exits 1 otherwise.
 # Exit 77 (ctest: skipped) when valgrind is missing, or cannot run the library: valgrind 3.19
-# does not decode AVX-512, which a build with -march=native (RAILCONTACT_NATIVE, the default) on
+# does not decode AVX-512, which a build with -march=native (RAILCONTACT_ARCH=native, the default) on
 # such a CPU contains. `make test-valgrind` builds the library without it and runs this test.
 # Usage: valgrind_test.sh C_COMPILER BUILD_DIR SOURCE_DIR GENERATED_INCLUDE_DIR
 set -eu
@@ -37,7 +37,7 @@ for program in example handles; do
   set -e
   if grep -q "unhandled instruction bytes" "$work/$program.valgrind"; then
     echo "valgrind cannot decode an instruction of the library (AVX-512 of -march=native?): skipped;"
-    echo "run make test-valgrind (a build without RAILCONTACT_NATIVE)"
+    echo "run make test-valgrind (a build with RAILCONTACT_ARCH=OFF)"
     exit 77
   fi
   grep -E "ERROR SUMMARY|definitely lost|indirectly lost|All heap blocks were freed" "$work/$program.valgrind" || true
