@@ -15,6 +15,13 @@ namespace railcontact::study {
 
 WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const WheelsetSweep& sweep,
                                        OutputDirectory& out, std::ostream& log) {
+  return run_wheelset_sweep([&](const WheelsetState& s) { return wheelset.evaluate(s); }, wheelset.options().solvers,
+                            state, sweep, out, log);
+}
+
+WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const std::vector<TangentialSolver>& solvers,
+                                       const WheelsetState& state, const WheelsetSweep& sweep, OutputDirectory& out,
+                                       std::ostream& log) {
   WheelsetSweepResult result;
   require(std::isfinite(sweep.y_from_m) && std::isfinite(sweep.y_to_m) && std::isfinite(sweep.y_step_m) &&
               sweep.y_step_m >= 1e-6 && sweep.y_step_m <= 10e-3,
@@ -31,7 +38,6 @@ WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& 
   const std::filesystem::path csv_path = out.path("wheelset_sweep.csv");
   std::ofstream csv(csv_path);
   if (!csv) throw Error(ErrorKind::io, fmt::format("cannot write {}", csv_path.string()));
-  const std::vector<TangentialSolver>& solvers = wheelset.options().solvers;
   fmt::print(csv,
              "y_mm,vertical_displacement_mm,roll_mrad,side,patch,patches,reference_x_mm,reference_y_mm,reference_z_mm,"
              "rail_profile_y_mm,wheel_profile_y_mm,contact_angle_rad,rolling_radius_mm,xi,eta,phi_per_m,"
@@ -45,7 +51,7 @@ WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& 
     s.position.lateral_displacement_m = sweep.y_from_m + direction * static_cast<double>(k) * sweep.y_step_m;
     WheelsetResult r;
     try {
-      r = wheelset.evaluate(s);
+      r = evaluate(s);
     } catch (const Error& e) {
       if (k == 0) throw;
       result.stopped = true;
