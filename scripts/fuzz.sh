@@ -7,7 +7,7 @@
 #   --seconds S    libFuzzer's -max_total_time per target (default: $FUZZ_SECONDS, else 60);
 #                  the one-hour run per target: scripts/fuzz.sh --seconds 3600
 #   TARGET         case_file wheelset_case simpack_profile miniprof_profile text_profile wheel_rail_setup
-#                  flexibility_table wheelset_table sweep_file sweep_journal merge (default: all)
+#                  flexibility_table wheelset_table sweep_file sweep_journal merge wheelset_table_lookup (default: all)
 #
 # Each target runs on a working corpus DIR/corpus/<target>/ (new inputs go there) seeded with the
 # repository's fuzz/corpus/<target>/ (read only) and the dictionary fuzz/dict/<target>.dict when
@@ -28,7 +28,7 @@ while [ $# -gt 0 ]; do
     *) TARGETS="$TARGETS $1"; shift ;;
   esac
 done
-[ -n "$TARGETS" ] || TARGETS="case_file wheelset_case simpack_profile miniprof_profile text_profile wheel_rail_setup flexibility_table wheelset_table sweep_file sweep_journal merge"
+[ -n "$TARGETS" ] || TARGETS="case_file wheelset_case simpack_profile miniprof_profile text_profile wheel_rail_setup flexibility_table wheelset_table sweep_file sweep_journal merge wheelset_table_lookup"
 
 mkdir -p "$BUILD/logs"
 status=0

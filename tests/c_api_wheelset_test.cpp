@@ -531,6 +531,70 @@ TEST(CApiWheelsetTable, BuildSaveLoadEvaluateEqualsTheCppTable) {
   EXPECT_EQ(rc_wheelset_table_load(w.h, "/nonexistent/t.json"), RC_IO);
 }
 
+// A table is used only with the track and options it was built for: rc_wheelset_table_load
+// refuses one built for another element size, naming it; rc_wheelset_set_options keeps the table
+// for a change of loads and mu and drops it for another material, and rc_wheelset_evaluate_table
+// then names the call and the difference; so do the track calls for another track; a rolled
+// state is refused.
+TEST(CApiWheelsetTable, ATableIsUsedOnlyWithTheTrackAndOptionsItWasBuiltFor) {
+  CWheelset w;
+  const double y[] = {-0.5e-3, 0.5e-3}, yaw[] = {0.0}, loads[] = {90e3, 110e3};
+  ASSERT_EQ(rc_wheelset_table_build(w.h, y, 2, yaw, 1, loads, 2, nullptr, nullptr), RC_OK) << w.error();
+  const std::string file = ::testing::TempDir() + "railcontact_c_api_wheelset_table_settings.json";
+  ASSERT_EQ(rc_wheelset_table_save(w.h, file.c_str()), RC_OK) << w.error();
+  rc_wheelset_state s;
+  rc_wheelset_state_default(&s);
+  rc_wheelset_result r{};
+  ASSERT_EQ(rc_wheelset_evaluate_table(w.h, &s, &r), RC_OK) << w.error();
+
+  rc_wheelset_options o;
+  rc_wheelset_get_options(w.h, &o);
+  o.right_load_N = 95e3;
+  o.friction_coefficient = 0.2;
+  ASSERT_EQ(rc_wheelset_set_options(w.h, &o), RC_OK) << w.error();
+  EXPECT_EQ(rc_wheelset_evaluate_table(w.h, &s, &r), RC_OK) << w.error();  // loads and mu are lookup inputs
+  s.roll_rad = 1e-3;
+  EXPECT_EQ(rc_wheelset_evaluate_table(w.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(w.error().find("rc_wheelset_state.roll_rad = 0.001 rad must be 0"), std::string::npos) << w.error();
+  s.roll_rad = 0.0;
+
+  o.youngs_modulus_Pa = 1e11;
+  ASSERT_EQ(rc_wheelset_set_options(w.h, &o), RC_OK) << w.error();
+  EXPECT_EQ(rc_wheelset_evaluate_table(w.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(w.error().find("the wheelset has no table: rc_wheelset_set_options dropped it: material E = 1e+11 Pa, "
+                           "nu = 0.3 (rc_wheelset_options: youngs_modulus_Pa, poisson_ratio) differs from the "
+                           "table's E = 2.1e+11 Pa, nu = 0.3"),
+            std::string::npos)
+      << w.error();
+
+  CWheelset other;  // element size 0.5 mm
+  rc_wheelset_get_options(other.h, &o);
+  o.element_size_m = 0.2e-3;
+  ASSERT_EQ(rc_wheelset_set_options(other.h, &o), RC_OK);
+  EXPECT_EQ(rc_wheelset_table_load(other.h, file.c_str()), RC_INVALID_INPUT);
+  EXPECT_NE(other.error().find("element-size 0.2 mm (rc_wheelset_options: element_size_m) differs from the table's 0.5 mm"),
+            std::string::npos)
+      << other.error();
+  o.element_size_m = 0.5e-3;
+  ASSERT_EQ(rc_wheelset_set_options(other.h, &o), RC_OK);
+  ASSERT_EQ(rc_wheelset_table_load(other.h, file.c_str()), RC_OK) << other.error();
+  ASSERT_EQ(rc_wheelset_set_default_track(other.h), RC_OK);  // the same track: the table stays
+  EXPECT_EQ(rc_wheelset_evaluate_table(other.h, &s, &r), RC_OK) << other.error();
+  rc_track_parameters wide;
+  rc_track_parameters_default(&wide);
+  wide.track_gauge_m = 1.445;
+  const std::string profiles = std::string(RAILCONTACT_DATA_DIR) + "/profiles/";
+  ASSERT_EQ(rc_wheelset_set_track(other.h, (profiles + "MBench_S1002_v3.prw").c_str(),
+                                  (profiles + "MBench_UIC60_v3.prr").c_str(), &wide),
+            RC_OK)
+      << other.error();
+  EXPECT_EQ(rc_wheelset_evaluate_table(other.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(other.error().find("the wheelset has no table: rc_wheelset_set_track dropped it: "), std::string::npos)
+      << other.error();
+  EXPECT_NE(other.error().find("was built for other track parameters"), std::string::npos) << other.error();
+  std::remove(file.c_str());
+}
+
 TEST(CApiApproach, HertzEllipseAndGridAtAnApproach) {
   rc_solver* solver = nullptr;
   ASSERT_EQ(rc_solver_create(&solver), RC_OK);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -262,6 +263,61 @@ TEST(WheelsetTable, LookupsOutsideTheTableOrWithBadInputAreRefused) {
   EXPECT_THROW((void)build_wheelset_table(track(), {{0.0}, {0.0, 0.2}, {100e3}}, coarse_table_options()), Error);
 }
 
+// A table holds the settings of its build (material, element size, nH-FastSim's coarsening,
+// collocation offset, slip direction, bound skew, recipe): mismatches names each that a wheelset's
+// options would change, with both values; the options of the build give none.
+TEST(WheelsetTable, MismatchesNameEverySettingItWasNotBuiltFor) {
+  const WheelsetOptions built = coarse_table_options().wheelset;
+  EXPECT_TRUE(table().mismatches(built).empty());
+  WheelsetOptions other = built;
+  other.element_size_m = 0.5 * 1e-3;  // the same value in other units: within 1e-9
+  EXPECT_TRUE(table().mismatches(other).empty());
+  other.material = Material{1e11, 0.25};
+  other.element_size_m = 2e-3;
+  other.nh_fastsim.flexibility_coarsening = 1;
+  other.nh_fastsim.collocation_offset = 0.5;
+  other.nh_fastsim.bound.slip_direction = SlipDirection::radial;
+  other.nh_fastsim.bound.skew = 0.2;
+  const std::vector<WheelsetTableMismatch> m = table().mismatches(other);
+  ASSERT_EQ(m.size(), 6u);
+  const auto is = [&](std::size_t k, WheelsetTableSetting setting, const std::string& requested, const std::string& table) {
+    EXPECT_EQ(m[k].setting, setting);
+    EXPECT_EQ(m[k].requested, requested);
+    EXPECT_EQ(m[k].table, table);
+  };
+  is(0, WheelsetTableSetting::material, "E = 1e+11 Pa, nu = 0.25", "E = 2.1e+11 Pa, nu = 0.3");
+  is(1, WheelsetTableSetting::element_size, "2 mm", "0.5 mm");
+  is(2, WheelsetTableSetting::flexibility_coarsening, "1", "0 (automatic)");
+  is(3, WheelsetTableSetting::collocation_offset, "0.5", "0");
+  is(4, WheelsetTableSetting::slip_direction, "radial", "flexibility-weighted");
+  EXPECT_EQ(m[5].setting, WheelsetTableSetting::traction_bound_skew);
+  // A table of an older recipe (format 3: not recorded) differs from this railcontact's.
+  nlohmann::json old = nlohmann::json::parse(wheelset_table_json(table()));
+  old.erase("nh_fastsim_recipe");
+  old["format_version"] = 3;
+  const std::vector<WheelsetTableMismatch> recipe = parse_wheelset_table(old.dump(), "t.json").mismatches(built);
+  ASSERT_EQ(recipe.size(), 1u);
+  EXPECT_EQ(recipe[0].setting, WheelsetTableSetting::nh_fastsim_recipe);
+  EXPECT_EQ(recipe[0].table, "1 or 2, not recorded");
+  for (WheelsetTableSetting setting : kWheelsetTableSettings)
+    EXPECT_EQ(parse_wheelset_table_setting(wheelset_table_setting_name(setting)), setting);
+  EXPECT_THROW((void)parse_wheelset_table_setting("speed"), Error);
+}
+
+// The nodes have zero roll: a rolled state is refused (the table would give the creepages of the
+// roll on the contact points of zero roll: docs/WHEELSET_TABLE.md §5).
+TEST(WheelsetTable, ARolledStateIsRefused) {
+  WheelsetState rolled = moving_state(0.0);
+  rolled.position.roll_rad = 10e-3;
+  try {
+    (void)table().evaluate(rolled, WheelLoads{100e3, 100e3, false}, kMu);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("the roll 10 mrad must be zero"), std::string::npos) << e.what();
+  }
+}
+
 // A node whose wheelset cannot be solved (here: the flange climbing over the rail) is a gap that
 // lookups next to it name.
 TEST(WheelsetTable, AGapIsNamedByTheLookupsThatNeedIt) {
@@ -376,13 +432,20 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   const std::string v2 = (dir / "v2.json").string();
   std::ofstream(v2) << old_format.dump();
   const auto evaluate = [](const std::string& file, const std::string& extra) {
-    const CommandResult r = run_cli("wheelset --table " + file + " --y -5.3 --load 100 --json" + extra);
+    const CommandResult r = run_cli("wheelset --table " + file + " --y -5.3 --load 100 --json --table-override recipe" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out);
   };
   const nlohmann::json weighted = evaluate(v3, ""), radial = evaluate(v2, "");
-  // A table of an older nH-FastSim recipe (format 3: not recorded) is used, with a note.
-  const CommandResult noted = run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json");
+  // A table of an older nH-FastSim recipe (format 3: not recorded) is refused unless the override
+  // names it; then it is used with a note, and the JSON records the override.
+  const CommandResult refused = run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json");
+  EXPECT_EQ(refused.exit_code, 2);
+  EXPECT_NE(refused.err.find("recipe 3 (this railcontact's) differs from the table's 1 or 2, not recorded"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(weighted["wheelset_table_overrides"][0]["setting"], "recipe");
+  const CommandResult noted = run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json --table-override recipe");
   EXPECT_NE(noted.err.find("note: " + v3 + ": the table was built with an older nH-FastSim recipe"), std::string::npos)
       << noted.err;
   EXPECT_EQ(weighted["nh_fastsim_slip_direction"], "flexibility-weighted");
@@ -390,6 +453,108 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   EXPECT_EQ(evaluate(v3, " --slip-direction flexibility-weighted")["wheels"], weighted["wheels"]);
   EXPECT_NE(weighted["wheels"][0]["force_track_N"], radial["wheels"][0]["force_track_N"]);
   EXPECT_EQ(run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --slip-direction radial").exit_code, 2);
+}
+
+// A small table built by the command (0.5 mm elements, y = -0.5, 0, 0.5 mm, 90 and 110 kN).
+std::string built_table(const std::filesystem::path& dir) {
+  const std::string file = (dir / "table.json").string();
+  const CommandResult build =
+      run_cli("wheelset-table build --y=-0.5:0.5:0.5 --load 90,110 --element-size 0.5 --out " + file);
+  EXPECT_EQ(build.exit_code, 0) << build.err;
+  return file;
+}
+
+// What the run asks for (a case file, options given) must be what the table was built with: the
+// material of a case, an element size or coarsening given, a roll are refused with one message
+// naming the setting, both values and the override; --table-override evaluates with the table's
+// values and the JSON records them. Without a case, options not given take the table's values.
+TEST(WheelsetTableCli, SettingsTheTableWasNotBuiltForAreRefusedUnlessOverridden) {
+  const test::ScratchDirectory dir("wheelset_table_settings");
+  const std::string file = built_table(dir.path());
+  const std::string at = " --y 0.2 --load 100 --json";
+  const CommandResult plain = run_cli("wheelset --table " + file + at);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const nlohmann::json j = nlohmann::json::parse(plain.out);
+  EXPECT_EQ(j["element_size_m"], 0.5e-3);  // the table's, not the command's default 0.2 mm
+  EXPECT_EQ(j["wheelset_table_overrides"], nlohmann::json::array());
+
+  const std::string steel_case = (dir / "other_material.toml").string();
+  std::ofstream(steel_case) << "[material]\nE_Pa = 1e11\nnu = 0.25\n[mesh]\nelement_size_mm = 0.5\n";
+  const CommandResult material = run_cli("wheelset " + steel_case + " --table " + file + at);
+  EXPECT_EQ(material.exit_code, 2);
+  EXPECT_EQ(material.out, "");
+  EXPECT_NE(material.err.find("railcontact: error: --table " + file +
+                              ": material E = 1e+11 Pa, nu = 0.25 (the case's [material]) differs from the table's "
+                              "E = 2.1e+11 Pa, nu = 0.3: rebuild the table for the run, or give --table-override "
+                              "material to evaluate with the table's"),
+            std::string::npos)
+      << material.err;
+
+  const CommandResult mesh = run_cli("wheelset --table " + file + at + " --element-size 2 --flexibility-coarsening 1");
+  EXPECT_EQ(mesh.exit_code, 2);
+  EXPECT_NE(mesh.err.find("element-size 2 mm (--element-size) differs from the table's 0.5 mm; flexibility-coarsening 1 "
+                          "(--flexibility-coarsening) differs from the table's 0 (automatic)"),
+            std::string::npos)
+      << mesh.err;
+  EXPECT_NE(mesh.err.find("--table-override element-size,flexibility-coarsening"), std::string::npos) << mesh.err;
+  const CommandResult overridden = run_cli("wheelset --table " + file + at +
+                                           " --element-size 2 --flexibility-coarsening 1 --table-override "
+                                           "element-size,flexibility-coarsening");
+  ASSERT_EQ(overridden.exit_code, 0) << overridden.err;
+  const nlohmann::json o = nlohmann::json::parse(overridden.out);
+  EXPECT_EQ(o["element_size_m"], 0.5e-3);
+  EXPECT_EQ(o["flexibility_coarsening"], 0);
+  EXPECT_EQ(o["wheels"], j["wheels"]);  // the same lookup (same code, same inputs)
+  ASSERT_EQ(o["wheelset_table_overrides"].size(), 2u);
+  EXPECT_EQ(o["wheelset_table_overrides"][0],
+            (nlohmann::json{{"setting", "element-size"}, {"requested", "2 mm"}, {"used", "0.5 mm"}}));
+  EXPECT_EQ(o["wheelset_table_overrides"][1]["setting"], "flexibility-coarsening");
+
+  const CommandResult rolled = run_cli("wheelset --table " + file + at + " --roll 10");
+  EXPECT_EQ(rolled.exit_code, 2);
+  EXPECT_NE(rolled.err.find("--roll 10 mrad (given) cannot be evaluated from --table"), std::string::npos) << rolled.err;
+  EXPECT_EQ(run_cli("wheelset --table " + file + at + " --table-override speed").exit_code, 2);
+}
+
+// --sweep-y with --table evaluates every position from the table: the CSV's forces are the
+// table's point evaluations (to the CSV's 3 decimals); past the table's y range the sweep stops
+// with the rows before it written.
+TEST(WheelsetTableCli, SweepFromTheTableGivesItsPointEvaluations) {
+  const test::ScratchDirectory dir("wheelset_table_sweep");
+  const std::string file = built_table(dir.path());
+  const std::string no_figures = "RAILCONTACT_SCRIPTS=/nonexistent-railcontact-scripts ";
+  const CommandResult sweep = run_cli("wheelset --table " + file + " --sweep-y 0.5:-0.5:0.25 --load 100 --speed 30 "
+                                      "--lateral-velocity 0.02 --out " + (dir / "a").string(), no_figures);
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_NE(sweep.out.find("Wrote 5 evaluations"), std::string::npos) << sweep.out;
+  const WheelsetTable table = load_wheelset_table(file);
+  std::ifstream csv(dir / "a" / "wheelset_sweep.csv");
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_NE(line.find("nh-fastsim_F1_N"), std::string::npos) << line;
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::vector<double> values;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) values.push_back(std::atof(cell.c_str()));
+    WheelsetState state;
+    state.position.lateral_displacement_m = values.front() * 1e-3;
+    state.velocity.forward_speed_m_per_s = 30.0;
+    state.velocity.lateral_velocity_m_per_s = 0.02;
+    const WheelsetResult r = table.evaluate(state, WheelLoads{100e3, 100e3, false}, 0.3);
+    const int side = line.find(",right,") != std::string::npos ? 0 : 1;
+    for (int i = 0; i < 3; ++i)  // the last three columns: the wheel's force, printed to 1e-3 N
+      EXPECT_NEAR(values[values.size() - 3 + i], r.wheels[side].force_track_N[i], 1e-3) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 10);  // 5 positions, one tread patch on each wheel
+  const CommandResult past = run_cli("wheelset --table " + file + " --sweep-y 0:1:0.5 --load 100 --out " +
+                                     (dir / "b").string(), no_figures);
+  EXPECT_EQ(past.exit_code, 2);
+  EXPECT_NE(past.err.find("the sweep stopped at y = 1 mm after 2 evaluations (written): wheelset table: the lateral "
+                          "displacement y = 1 mm lies outside the table's range [-0.5, 0.5] mm"),
+            std::string::npos)
+      << past.err;
 }
 
 TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -42,6 +43,7 @@ struct WheelsetArguments {
   std::string slip_direction;  // --slip-direction (radial, flexibility-weighted)
   std::string sweep_y;  // FROM:TO:STEP in mm
   std::string table;    // a wheelset table to evaluate from (docs/WHEELSET_TABLE.md)
+  std::vector<std::string> table_overrides;  // --table-override: settings the table's values replace
   std::string out = "railcontact-out/wheelset";
 };
 
@@ -125,12 +127,98 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
   return c;
 }
 
+// A wheelset table and what of it differs from the run's request (docs/WHEELSET_TABLE.md §5).
+struct TableUse {
+  std::optional<WheelsetTable> table;
+  std::vector<WheelsetTableMismatch> overridden;  // named by --table-override: the table's values used
+};
+
+// Where the run asks for a setting of the table: a command-line option given, or the case file
+// (a case describes the whole run, its defaults included). Without either the table's value is
+// used; the recipe is always this railcontact's.
+std::optional<std::string> requested_by(WheelsetTableSetting setting, const WheelsetArguments& a, const CLI::App& sub) {
+  const auto option_or_case = [&](const char* option, const char* key) -> std::optional<std::string> {
+    if (option != nullptr && sub.count(option) > 0) return std::string(option);
+    if (!a.case_file.empty()) return fmt::format("the case's {}", key);
+    return std::nullopt;
+  };
+  switch (setting) {
+    case WheelsetTableSetting::material: return option_or_case(nullptr, "[material]");
+    case WheelsetTableSetting::element_size: return option_or_case("--element-size", "[mesh] element_size_mm");
+    case WheelsetTableSetting::flexibility_coarsening:
+      return option_or_case("--flexibility-coarsening", "[solvers] flexibility_coarsening");
+    case WheelsetTableSetting::slip_direction: return option_or_case("--slip-direction", "[solvers] slip_direction");
+    case WheelsetTableSetting::collocation_offset:
+    case WheelsetTableSetting::traction_bound_skew: return option_or_case(nullptr, "default");
+    case WheelsetTableSetting::nh_fastsim_recipe: return std::string("this railcontact's");
+  }
+  return std::nullopt;
+}
+
+// Loads --table and checks it against the run: the track (profiles, parameters), the state (no
+// roll), and every setting the run asks for; a setting that differs is an error unless
+// --table-override names it.
+TableUse table_use(const WheelsetArguments& a, const CLI::App& sub, const WheelsetCase& c, const Wheelset& wheelset,
+                   NoteOnSuccess& recipe_note) {
+  TableUse use;
+  std::vector<WheelsetTableSetting> overrides;
+  for (const std::string& name : a.table_overrides) {
+    try {
+      overrides.push_back(parse_wheelset_table_setting(name));
+    } catch (const Error& e) {
+      throw Error(fmt::format("--table-override: {}", e.what()));
+    }
+  }
+  if (a.table.empty()) {
+    require(overrides.empty(), "--table-override needs --table (it names settings in which the table may differ)");
+    return use;
+  }
+  const WheelsetOptions& options = c.options;
+  // From a wheelset table: both wheels carry their loads (nh-fastsim on the table's patches).
+  require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
+  require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
+          "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
+  const double roll_rad = c.state.position.roll_rad;
+  require(roll_rad == 0.0, [&] {
+    return fmt::format("--roll {:g} mrad ({}) cannot be evaluated from --table {}: its nodes have zero roll; leave out "
+                       "--table to solve the rolled wheelset",
+                       roll_rad * 1e3, sub.count("--roll") > 0 ? "given" : "the case's [position] roll_mrad", a.table);
+  });
+  use.table = load_wheelset_table(a.table);
+  const WheelsetTable& table = *use.table;
+  if (const std::string text = older_nh_fastsim_recipe_note(table.metadata().nh_fastsim_recipe); !text.empty())
+    recipe_note.set(a.table + ": " + text);
+  table.check_track(wheelset.track());
+  std::string refused, names;
+  for (const WheelsetTableMismatch& m : table.mismatches(options)) {
+    const std::optional<std::string> source = requested_by(m.setting, a, sub);
+    if (!source) continue;  // not asked for: the table's value
+    if (std::find(overrides.begin(), overrides.end(), m.setting) != overrides.end()) {
+      use.overridden.push_back(m);
+      continue;
+    }
+    const char* name = wheelset_table_setting_name(m.setting);
+    refused += fmt::format("{}{} {} ({}) differs from the table's {}", refused.empty() ? "" : "; ", name, m.requested,
+                           *source, m.table);
+    names += fmt::format("{}{}", names.empty() ? "" : ",", name);
+  }
+  require(refused.empty(), [&] {
+    return fmt::format("--table {}: {}: rebuild the table for the run, or give --table-override {} to evaluate with "
+                       "the table's",
+                       a.table, refused, names);
+  });
+  return use;
+}
+
 int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
   const WheelsetCase c = wheelset_case(a, sub);
   const WheelsetOptions& options = c.options;
   Wheelset wheelset(wheelset_track(c), options);
   const WheelsetState& state = c.state;
   const double load_kN = options.loads ? options.loads->right_N * 1e-3 : 0.0;
+  NoteOnSuccess recipe_note;  // a table of an older nH-FastSim recipe: said once the output is written
+  const TableUse use = table_use(a, sub, c, wheelset, recipe_note);
+  const WheelsetTable* table = use.table ? &*use.table : nullptr;
 
   if (!a.sweep_y.empty()) {
     // FROM:TO:STEP in mm.
@@ -149,44 +237,39 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     sweep.y_to_m = to * 1e-3;
     sweep.y_step_m = step * 1e-3;
     study::OutputDirectory out(a.out, &std::cerr);
-    fmt::print(std::cerr, "wheelset sweep: y = {:g} ... {:g} mm in steps of {:g} mm\n", from, to, step);
-    const study::WheelsetSweepResult done = study::run_wheelset_sweep(wheelset, state, sweep, out, std::cerr);
+    fmt::print(std::cerr, "wheelset sweep: y = {:g} ... {:g} mm in steps of {:g} mm{}\n", from, to, step,
+               table ? " from the table " + a.table : std::string());
+    const study::WheelsetSweepResult done =
+        table ? study::run_wheelset_sweep(
+                    [&](const WheelsetState& s) {
+                      return table->evaluate(s, *options.loads, options.friction_coefficient);
+                    },
+                    {TangentialSolver::nh_fastsim}, state, sweep, out, std::cerr)
+              : study::run_wheelset_sweep(wheelset, state, sweep, out, std::cerr);
     out.commit();
     fmt::print("Wrote {} evaluations to {}/wheelset_sweep.csv (figures: wheelset_sweep.png)\n", done.evaluations, a.out);
     if (done.stopped) {
       // The rows up to the last position that could be evaluated are kept; the error says why the
-      // next one could not (for a sweep into the flange, where the flange climbs).
+      // next one could not (for a sweep into the flange, where the flange climbs; from a table, at
+      // the end of its y range).
       throw Error(done.stop_kind, fmt::format("the sweep stopped at y = {:g} mm after {} evaluations (written): {}",
                                               done.stopped_at_y_m * 1e3, done.evaluations, done.stop_message));
     }
     return 0;
   }
-  WheelsetResult r;
-  SlipDirection slip_direction = options.nh_fastsim.bound.slip_direction;  // the one used
-  NoteOnSuccess recipe_note;  // a table of an older nH-FastSim recipe: said once the output is written
-  if (!a.table.empty()) {
-    // From a wheelset table: both wheels carry their loads (nh-fastsim on the table's patches).
-    require(a.sweep_y.empty(), "--table and --sweep-y cannot be combined");
-    require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
-    require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
-            "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
-    const WheelsetTable table = load_wheelset_table(a.table);
-    if (const std::string text = older_nh_fastsim_recipe_note(table.metadata().nh_fastsim_recipe); !text.empty())
-      recipe_note.set(a.table + ": " + text);
-    // The table evaluates with the slip direction it was built with (its file says which).
-    require(sub.count("--slip-direction") == 0 || options.nh_fastsim.bound.slip_direction == table.bound().slip_direction,
-            [&] {
-              return fmt::format("--slip-direction {} differs from the table's {} ({}): leave it out",
-                                 slip_direction_name(options.nh_fastsim.bound.slip_direction),
-                                 slip_direction_name(table.bound().slip_direction), a.table);
-            });
-    table.check_track(wheelset.track());
-    slip_direction = table.bound().slip_direction;
-    r = table.evaluate(state, *options.loads, options.friction_coefficient);
-  } else {
-    r = wheelset.evaluate(state);
-  }
+  // The settings used: the table's when evaluating from it.
+  const Material material = table ? table->material() : options.material;
+  const double element_size_m = table ? table->metadata().element_size_m : options.element_size_m;
+  const int flexibility_coarsening =
+      table ? table->metadata().flexibility_coarsening : options.nh_fastsim.flexibility_coarsening;
+  const SlipDirection slip_direction = table ? table->bound().slip_direction : options.nh_fastsim.bound.slip_direction;
+  const WheelsetResult r =
+      table ? table->evaluate(state, *options.loads, options.friction_coefficient) : wheelset.evaluate(state);
 
+  // The settings in which the table differs from the run's request, named by --table-override.
+  nlohmann::json overrides = table ? nlohmann::json::array() : nlohmann::json(nullptr);
+  for (const WheelsetTableMismatch& m : use.overridden)
+    overrides.push_back({{"setting", wheelset_table_setting_name(m.setting)}, {"requested", m.requested}, {"used", m.table}});
   if (a.json) {
     nlohmann::json wheels = nlohmann::json::array();
     for (const WheelResult& w : r.wheels) {
@@ -208,10 +291,13 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
         {"case", c.source},
         {"friction_coefficient", options.friction_coefficient},
         {"nh_fastsim_slip_direction", slip_direction_name(slip_direction)},
-        {"element_size_m", options.element_size_m},
+        {"element_size_m", element_size_m},
+        {"material", {{"youngs_modulus_Pa", material.youngs_modulus_Pa}, {"poisson_ratio", material.poisson_ratio}}},
+        {"flexibility_coarsening", flexibility_coarsening},
         {"by_load", options.loads.has_value()},
         {"solver", solver_name(options.solvers.front())},
         {"wheelset_table", a.table.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.table)},
+        {"wheelset_table_overrides", overrides},
         {"wheels", wheels},
         {"force_track_N", vector_json(r.force_track_N)},
     };
@@ -225,8 +311,11 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
              options.loads ? fmt::format("{:g} / {:g} kN on the right / left wheel", load_kN,
                                          options.loads->left_N * 1e-3)
                            : fmt::format("by position, z = {:g} mm", state.position.vertical_displacement_m * 1e3),
-             options.friction_coefficient, options.element_size_m * 1e3,
+             options.friction_coefficient, element_size_m * 1e3,
              a.table.empty() ? std::string(solver_name(options.solvers.front())) : "nh-fastsim from the table " + a.table);
+  for (const WheelsetTableMismatch& m : use.overridden)
+    fmt::print("Table override: {} {} (the table's) instead of {}\n", wheelset_table_setting_name(m.setting), m.table,
+               m.requested);
   fmt::print("Forces on the wheels in the track frame (x forward, y left, z up), N; patch forces in the contact "
              "frame.\n\n");
   for (const WheelResult& w : r.wheels) {
@@ -282,7 +371,13 @@ void add_wheelset_command(CLI::App& app, Action& action) {
                   "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
   sub->add_option("--out", args->out, "output directory of a sweep");
   sub->add_option("--table", args->table,
-                  "evaluate from this wheelset table (`railcontact wheelset-table build`; nh-fastsim, by load)");
+                  "evaluate from this wheelset table (`railcontact wheelset-table build`; nh-fastsim, by load, zero "
+                  "roll; also a --sweep-y); the settings the run asks for must be the table's");
+  sub->add_option("--table-override", args->table_overrides,
+                  "with --table: evaluate with the table's value of these settings where the run asks for others "
+                  "(material, element-size, flexibility-coarsening, collocation-offset, slip-direction, "
+                  "traction-bound-skew, recipe; a list); the JSON records them")
+      ->delimiter(',');
   sub->callback([&action, args, sub] { action = [args, sub] { return run_wheelset(*args, *sub); }; });
 }
 

@@ -17,6 +17,13 @@ namespace railcontact::study {
 
 WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const WheelsetSweep& sweep,
                                        OutputDirectory& out, std::ostream& log) {
+  return run_wheelset_sweep([&](const WheelsetState& s) { return wheelset.evaluate(s); }, wheelset.options().solvers,
+                            state, sweep, out, log);
+}
+
+WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const std::vector<TangentialSolver>& solvers,
+                                       const WheelsetState& state, const WheelsetSweep& sweep, OutputDirectory& out,
+                                       std::ostream& log) {
   WheelsetSweepResult result;
   require(std::isfinite(sweep.y_from_m) && std::isfinite(sweep.y_to_m) && std::isfinite(sweep.y_step_m) &&
               sweep.y_step_m >= 1e-6 && sweep.y_step_m <= 10e-3,
@@ -47,7 +54,7 @@ WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& 
     s.position.lateral_displacement_m = sweep.y_from_m + direction * static_cast<double>(k) * sweep.y_step_m;
     WheelsetResult r;
     try {
-      r = wheelset.evaluate(s);
+      r = evaluate(s);
     } catch (const Error& e) {
       if (k == 0) throw;
       result.stopped = true;

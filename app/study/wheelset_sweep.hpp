@@ -1,8 +1,10 @@
 #pragma once
 // A sweep of the wheelset over its lateral displacement (docs/WHEELSET.md §7): one evaluation per
 // y, one CSV row per patch (wheelset_sweep.csv) and the figures of scripts/plot_wheelset_sweep.py.
+#include <functional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "railcontact/error.hpp"
 
@@ -32,5 +34,11 @@ struct WheelsetSweepResult {
 // the result says where and why (the first position failing throws).
 WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const WheelsetSweep& sweep,
                                        OutputDirectory& out, std::ostream& log);
+// The same with another evaluation of a state (e.g. WheelsetTable::evaluate) whose patches carry
+// the forces of `solvers`, in that order.
+using WheelsetEvaluation = std::function<WheelsetResult(const WheelsetState&)>;
+WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const std::vector<TangentialSolver>& solvers,
+                                       const WheelsetState& state, const WheelsetSweep& sweep, OutputDirectory& out,
+                                       std::ostream& log);
 
 }  // namespace railcontact::study

@@ -534,7 +534,14 @@ RC_API rc_status rc_wheelset_batch_evaluate(rc_wheelset* wheelset, size_t count,
    A wheelset's patches precomputed over a grid of lateral displacement y, yaw and wheel load, so
    that a state is evaluated in microseconds: the kinematic creepages of the state on each node's
    patches, FastSim with the node's nH-FastSim flexibilities, the forces interpolated between the
-   nodes. A wheelset holds at most one table; it serves rc_wheelset_evaluate_table. */
+   nodes. A wheelset holds at most one table; it serves rc_wheelset_evaluate_table. The table is
+   used only with what it was built for: the track (four profile files, dimensions) and the options
+   youngs_modulus_Pa, poisson_ratio, element_size_m and slip_direction (and nH-FastSim's recipe of
+   this railcontact). rc_wheelset_set_default_track, rc_wheelset_set_track,
+   rc_wheelset_set_track_profiles and rc_wheelset_set_options keep the table while these are its;
+   a call that changes one of them drops the table, and rc_wheelset_evaluate_table then fails
+   naming that call and what differs. Loads, friction, solvers and the other flags do not matter
+   to the table. */
 
 /* Builds the table of this wheelset's track with its options (material, element size) over the
    grid: y_m (m), yaw_rad (rad, |yaw| <= 0.1; one value, e.g. 0, serves every yaw by turning the
@@ -546,7 +553,10 @@ RC_API rc_status rc_wheelset_table_build(rc_wheelset* wheelset, const double* y_
                                          size_t yaw_count, const double* loads_N, size_t load_count,
                                          rc_progress_callback progress, void* user_data);
 /* Loads a table file (`railcontact wheelset-table build`, rc_wheelset_table_save) and checks that it
-   was built for this wheelset's track: its four profile files (hashes) and dimensions. */
+   was built for this wheelset's track (its four profile files (hashes) and dimensions) and options
+   (material, element size, slip direction, nH-FastSim's recipe): RC_INVALID_INPUT naming each
+   difference, e.g. "element-size 0.2 mm (rc_wheelset_options: element_size_m) differs from the
+   table's 0.5 mm"; the wheelset keeps the table it had. */
 RC_API rc_status rc_wheelset_table_load(rc_wheelset* wheelset, const char* path);
 /* Writes the wheelset's table (JSON, docs/WHEELSET_TABLE.md §4). */
 RC_API rc_status rc_wheelset_table_save(const rc_wheelset* wheelset, const char* path);
@@ -556,7 +566,8 @@ RC_API rc_status rc_wheelset_table_size(const rc_wheelset* wheelset, size_t* y_c
 
 /* Evaluates a state from the table: each wheel carries its load of the options (right_load_N,
    left_load_N; normal_mode must be RC_WHEELSET_BY_LOAD), the friction coefficient is the options',
-   the solver nh-fastsim (one entry in each patch's forces). The state's z and roll are not used.
+   the solver nh-fastsim (one entry in each patch's forces). The state's z is not used; its roll_rad
+   must be 0 (the nodes have zero roll).
    RC_INVALID_INPUT when y, yaw (with several yaw values) or a load lies outside the grid or a node
    needed is a gap. The result and patches are queried as after rc_wheelset_evaluate. Thread-safe
    against other wheelsets; the table itself is not modified. */

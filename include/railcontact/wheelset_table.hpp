@@ -165,6 +165,36 @@ struct WheelsetTableProgress {
 };
 using WheelsetTableProgressCallback = std::function<void(const WheelsetTableProgress&)>;
 
+// The settings of a wheelset that change a table's numbers but are not among its axes (y, yaw,
+// load). A table holds the values of its build (its metadata, material and bound) and is used only
+// with those (docs/WHEELSET_TABLE.md §5 "What a table is used with"); speed, velocities and mu are
+// inputs of every lookup, not settings.
+enum class WheelsetTableSetting {
+  material,                // E and nu: the normal problem, K2 and FastSim's patches
+  element_size,            // the mesh of the nodes' patches
+  flexibility_coarsening,  // nH-FastSim's K2 blocks (NhFastSimOptions::flexibility_coarsening)
+  collocation_offset,      // K2's collocation points (NhFastSimOptions::collocation_offset)
+  slip_direction,          // FastSim's slipping traction (TractionBound::slip_direction)
+  traction_bound_skew,     // FastSim's traction bound (TractionBound::skew)
+  nh_fastsim_recipe,       // kNhFastSimRecipe of the build (this railcontact computes with today's)
+};
+inline constexpr WheelsetTableSetting kWheelsetTableSettings[] = {
+    WheelsetTableSetting::material,           WheelsetTableSetting::element_size,
+    WheelsetTableSetting::flexibility_coarsening, WheelsetTableSetting::collocation_offset,
+    WheelsetTableSetting::slip_direction,     WheelsetTableSetting::traction_bound_skew,
+    WheelsetTableSetting::nh_fastsim_recipe};
+// "material", "element-size", "flexibility-coarsening", "collocation-offset", "slip-direction",
+// "traction-bound-skew", "recipe".
+const char* wheelset_table_setting_name(WheelsetTableSetting setting);
+// Throws Error (invalid_input) naming the allowed names.
+WheelsetTableSetting parse_wheelset_table_setting(const std::string& name);
+
+// A setting whose requested value is not the table's (the values as text, with units).
+struct WheelsetTableMismatch {
+  WheelsetTableSetting setting = WheelsetTableSetting::material;
+  std::string requested, table;
+};
+
 class WheelsetTable {
  public:
   WheelsetTable() = default;
@@ -191,11 +221,17 @@ class WheelsetTable {
   // file is compared by name) and its track parameters are the table's.
   void check_track(const WheelsetTrack& track) const;
 
+  // The settings of `options` that are not the table's (WheelsetTableSetting; element size and
+  // doubles to 1e-9 relative, the rest exactly; the recipe is kNhFastSimRecipe against the table's),
+  // in the order of kWheelsetTableSettings; empty: the table was built for these options.
+  [[nodiscard]] std::vector<WheelsetTableMismatch> mismatches(const WheelsetOptions& options) const;
+
   // The wheelset's contact forces at a state: both wheels, every patch, as Wheelset::evaluate
-  // gives them (one solver, nh_fastsim; no tractions; the state's vertical displacement and roll
-  // are not used: each wheel carries its load, loads.balance_roll is ignored). Throws Error
-  // (invalid_input) for a bad state, load or mu, for y or a load outside the table's grid, and
-  // when a node needed is a gap. Thread-safe (const).
+  // gives them (one solver, nh_fastsim; no tractions; the state's vertical displacement is not
+  // used: each wheel carries its load, loads.balance_roll is ignored). The nodes have zero roll: a
+  // state with a roll other than zero is refused. Throws Error (invalid_input) for a bad state,
+  // load or mu, for y or a load outside the table's grid, and when a node needed is a gap.
+  // Thread-safe (const).
   [[nodiscard]] WheelsetResult evaluate(const WheelsetState& state, const WheelLoads& loads,
                                         double friction_coefficient) const;
 

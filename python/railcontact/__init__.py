@@ -667,7 +667,10 @@ class Wheelset:
 
     def load_table(self, path) -> None:
         """Loads a table file (`railcontact wheelset-table build`, save_table), checked against this
-        wheelset's track (its four profile files and dimensions)."""
+        wheelset's track (its four profile files and dimensions) and the settings it was built with:
+        youngs_modulus, poisson_ratio, element_size and slip_direction (and nH-FastSim's recipe);
+        InvalidInputError names each that differs (docs/WHEELSET_TABLE.md "What a table is used
+        with")."""
         self._core.load_table(_check.path("path", path))
 
     def save_table(self, path) -> None:
@@ -677,8 +680,8 @@ class Wheelset:
     def evaluate_table(self, y: float = 0.0, yaw: float = 0.0, *, speed: float = 20.0, lateral_velocity: float = 0.0,
                        yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
                        extra_creepage: Optional[float] = None) -> WheelsetResult:
-        """A state from the table (arguments as in evaluate(); each wheel carries its load of the
-        options, nh-fastsim only). Raises InvalidInputError outside the table's grid."""
+        """A state from the table (arguments as in evaluate(), zero roll; each wheel carries its load
+        of the options, nh-fastsim only). Raises InvalidInputError outside the table's grid."""
         row = _state_row(y=y, yaw=yaw, speed=speed, lateral_velocity=lateral_velocity, yaw_rate=yaw_rate,
                          wheel_angular_velocity=wheel_angular_velocity, extra_creepage=extra_creepage)
         with _check.library_names(_STATE_LIBRARY_NAMES):

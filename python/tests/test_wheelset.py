@@ -264,3 +264,20 @@ def test_table_refuses_states_outside_and_cancels(tabled):
         w.build_table((0.0, 0.5e-3), (0.0,), (100e3,), progress=lambda done, total: False)
     with pytest.raises(railcontact.InvalidInputError, match="has no table"):
         w.table_forces(0.0, 0.0, speed=20.0)
+
+
+def test_a_table_is_used_only_with_the_settings_it_was_built_for(tabled):
+    # A wheelset of other material or element size refuses the table, naming the setting and both
+    # values (the C API's rc_wheelset_table_load).
+    path = os.path.join(os.environ.get("TMPDIR", "/tmp"), f"railcontact_pytest_table_settings_{os.getpid()}.json")
+    tabled.save_table(path)
+    try:
+        for options, message in (({"element_size": 0.2e-3}, "element-size 0.2 mm .* differs from the table's 0.5 mm"),
+                                 ({"element_size": 0.5e-3, "youngs_modulus": 1e11},
+                                  "material E = 1e\\+11 Pa, nu = 0.3 .* differs from the table's E = 2.1e\\+11 Pa"),
+                                 ({"element_size": 0.5e-3, "slip_direction": "radial"},
+                                  "slip-direction radial .* differs from the table's flexibility-weighted")):
+            with pytest.raises(railcontact.InvalidInputError, match=message):
+                railcontact.Wheelset(**options).load_table(path)
+    finally:
+        os.remove(path)

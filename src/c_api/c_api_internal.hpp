@@ -194,6 +194,9 @@ struct rc_wheelset {
   rc_wheelset_options options{};
   std::optional<railcontact::WheelsetResult> last;
   std::optional<railcontact::WheelsetTable> table;  // rc_wheelset_table_build / _load
+  // Why the wheelset has no table: the call that dropped it and what no longer fits (empty when
+  // none was dropped), for rc_wheelset_evaluate_table's message.
+  std::string table_dropped;
   mutable railcontact::c_api::LastError error;  // set by const calls too
   rc_wheelset();
 };

@@ -224,10 +224,46 @@ rc::Profile profile(const char* path, const char* what) {
   return rc::read_profile(path);
 }
 
-void set_track(rc_wheelset* w, rc::WheelsetTrack track) {
+// The fields of rc_wheelset_options behind a table's setting (docs/C_API.md "The wheelset table").
+const char* options_field(rc::WheelsetTableSetting setting) {
+  switch (setting) {
+    case rc::WheelsetTableSetting::material: return "youngs_modulus_Pa, poisson_ratio";
+    case rc::WheelsetTableSetting::element_size: return "element_size_m";
+    case rc::WheelsetTableSetting::slip_direction: return "slip_direction";
+    default: return "not an option: rebuild the table";
+  }
+}
+
+// Empty when `table` was built for this track and these options; else what differs, e.g.
+// "element-size 0.2 mm (rc_wheelset_options.element_size_m) differs from the table's 0.5 mm".
+std::string table_misfit(const rc::WheelsetTable& table, const rc::Wheelset& wheelset) {
+  try {
+    table.check_track(wheelset.track());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  std::string misfit;
+  for (const rc::WheelsetTableMismatch& m : table.mismatches(wheelset.options()))
+    misfit += fmt::format("{}{} {} (rc_wheelset_options: {}) differs from the table's {}", misfit.empty() ? "" : "; ",
+                          rc::wheelset_table_setting_name(m.setting), m.requested, options_field(m.setting), m.table);
+  return misfit;
+}
+
+// After a call that changed the track or the options: the table stays only while it was built for
+// them; otherwise it is dropped, and rc_wheelset_evaluate_table names the call and what differs.
+void recheck_table(rc_wheelset* w, const char* call) {
+  if (!w->table) return;
+  const std::string misfit = w->wheelset ? table_misfit(*w->table, *w->wheelset) : std::string("no track");
+  if (misfit.empty()) return;
+  w->table.reset();
+  w->table_dropped = fmt::format("{} dropped it: {}", call, misfit);
+}
+
+void set_track(rc_wheelset* w, rc::WheelsetTrack track, const char* call) {
   w->last.reset();
   w->wheelset.reset();
   w->wheelset.emplace(std::move(track), options_of(w->options));
+  recheck_table(w, call);
 }
 
 // Batch: a contiguous range of states on one worker.
@@ -289,8 +325,13 @@ std::vector<double> finite_grid(const double* values, std::size_t count, const c
 struct TableBuildCancelled {};
 
 const rc::WheelsetTable& require_table(const rc_wheelset* w) {
-  if (!w->table)
+  if (!w->table) {
+    if (!w->table_dropped.empty())
+      throw Error(fmt::format("the wheelset has no table: {} (rc_wheelset_table_build or rc_wheelset_table_load for "
+                              "the wheelset as it is)",
+                              w->table_dropped));
     throw Error("the wheelset has no table (rc_wheelset_table_build or rc_wheelset_table_load first)");
+  }
   return *w->table;
 }
 
@@ -356,7 +397,7 @@ rc_status rc_wheelset_last_error(const rc_wheelset* wheelset, char* buffer, size
 
 rc_status rc_wheelset_set_default_track(rc_wheelset* w) {
   if (w == nullptr) return RC_INVALID_INPUT;
-  return guarded(&w->error, [&] { set_track(w, rc::default_wheelset_track()); });
+  return guarded(&w->error, [&] { set_track(w, rc::default_wheelset_track(), "rc_wheelset_set_default_track"); });
 }
 
 rc_status rc_wheelset_set_track(rc_wheelset* w, const char* wheel_profile_path, const char* rail_profile_path,
@@ -366,7 +407,7 @@ rc_status rc_wheelset_set_track(rc_wheelset* w, const char* wheel_profile_path, 
     const rc::TrackWheelsetParameters parameters = track_of(track);
     const rc::Profile wheel = profile(wheel_profile_path, "rc_wheelset_set_track: wheel_profile_path");
     const rc::Profile rail = profile(rail_profile_path, "rc_wheelset_set_track: rail_profile_path");
-    set_track(w, rc::WheelsetTrack(wheel, rail, parameters));
+    set_track(w, rc::WheelsetTrack(wheel, rail, parameters), "rc_wheelset_set_track");
   });
 }
 
@@ -381,7 +422,7 @@ rc_status rc_wheelset_set_track_profiles(rc_wheelset* w, const char* right_wheel
     profiles.left_wheel = profile(left_wheel_path, "rc_wheelset_set_track_profiles: left_wheel_path");
     profiles.right_rail = profile(right_rail_path, "rc_wheelset_set_track_profiles: right_rail_path");
     profiles.left_rail = profile(left_rail_path, "rc_wheelset_set_track_profiles: left_rail_path");
-    set_track(w, rc::WheelsetTrack(profiles, parameters));
+    set_track(w, rc::WheelsetTrack(profiles, parameters), "rc_wheelset_set_track_profiles");
   });
 }
 
@@ -417,6 +458,7 @@ rc_status rc_wheelset_set_options(rc_wheelset* w, const rc_wheelset_options* opt
     }
     w->options = *options;
     w->last.reset();
+    recheck_table(w, "rc_wheelset_set_options");
   });
 }
 
@@ -540,6 +582,7 @@ rc_status rc_wheelset_table_build(rc_wheelset* w, const double* y_m, size_t y_co
       rc::WheelsetTable built = rc::build_wheelset_table(wheelset.track(), grid, options, callback);
       w->table.reset();
       w->table.emplace(std::move(built));
+      w->table_dropped.clear();
     } catch (const TableBuildCancelled&) {
       throw StatusError{RC_CANCELLED, "rc_wheelset_table_build: cancelled by the progress callback"};
     }
@@ -553,8 +596,13 @@ rc_status rc_wheelset_table_load(rc_wheelset* w, const char* path) {
     const rc::Wheelset& wheelset = require_wheelset(w);
     rc::WheelsetTable loaded = rc::load_wheelset_table(path);
     loaded.check_track(wheelset.track());
+    const std::string misfit = table_misfit(loaded, wheelset);
+    require(misfit.empty(), [&] {
+      return fmt::format("rc_wheelset_table_load: the wheelset table {} was built for other options: {}", path, misfit);
+    });
     w->table.reset();
     w->table.emplace(std::move(loaded));
+    w->table_dropped.clear();
   });
 }
 
@@ -582,6 +630,11 @@ rc_status rc_wheelset_evaluate_table(rc_wheelset* w, const rc_wheelset_state* st
     require_pointer(state, "rc_wheelset_evaluate_table: state");
     const rc::WheelsetState s = state_of(*state);
     const rc::WheelsetTable& table = require_table(w);
+    require(state->roll_rad == 0.0, [&] {
+      return fmt::format("rc_wheelset_evaluate_table: rc_wheelset_state.roll_rad = {} rad must be 0: the table's nodes "
+                         "have zero roll (rc_wheelset_evaluate solves a rolled wheelset)",
+                         state->roll_rad);
+    });
     require(w->options.normal_mode == RC_WHEELSET_BY_LOAD,
             "rc_wheelset_evaluate_table: the wheels carry the loads of the options: normal_mode must be "
             "RC_WHEELSET_BY_LOAD");

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "railcontact/error.hpp"
+#include "railcontact/text_file.hpp"
 
 namespace railcontact {
 namespace {
@@ -201,9 +202,72 @@ void WheelsetTable::check_track(const WheelsetTrack& track) const {
                             name, a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m));
 }
 
+const char* wheelset_table_setting_name(WheelsetTableSetting setting) {
+  switch (setting) {
+    case WheelsetTableSetting::material: return "material";
+    case WheelsetTableSetting::element_size: return "element-size";
+    case WheelsetTableSetting::flexibility_coarsening: return "flexibility-coarsening";
+    case WheelsetTableSetting::collocation_offset: return "collocation-offset";
+    case WheelsetTableSetting::slip_direction: return "slip-direction";
+    case WheelsetTableSetting::traction_bound_skew: return "traction-bound-skew";
+    case WheelsetTableSetting::nh_fastsim_recipe: return "recipe";
+  }
+  return "?";
+}
+
+WheelsetTableSetting parse_wheelset_table_setting(const std::string& name) {
+  std::string allowed;
+  for (WheelsetTableSetting s : kWheelsetTableSettings) {
+    if (name == wheelset_table_setting_name(s)) return s;
+    allowed += fmt::format("{}{}", allowed.empty() ? "" : ", ", wheelset_table_setting_name(s));
+  }
+  throw Error(fmt::format("unknown wheelset-table setting '{}' ({})", printable_excerpt(name), allowed));
+}
+
+std::vector<WheelsetTableMismatch> WheelsetTable::mismatches(const WheelsetOptions& options) const {
+  // Doubles to 1e-9 relative: the same value given in other units (0.2 mm and 0.2e-3 m) may differ
+  // in the last bits; a file keeps 17 digits, so a table's own values compare equal.
+  const auto same = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); };
+  std::vector<WheelsetTableMismatch> found;
+  const auto add = [&](WheelsetTableSetting setting, std::string requested, std::string table) {
+    found.push_back({setting, std::move(requested), std::move(table)});
+  };
+  const auto material = [](const Material& m) { return fmt::format("E = {:g} Pa, nu = {:g}", m.youngs_modulus_Pa, m.poisson_ratio); };
+  if (!same(options.material.youngs_modulus_Pa, material_.youngs_modulus_Pa) ||
+      !same(options.material.poisson_ratio, material_.poisson_ratio))
+    add(WheelsetTableSetting::material, material(options.material), material(material_));
+  if (!same(options.element_size_m, metadata_.element_size_m))
+    add(WheelsetTableSetting::element_size, fmt::format("{:g} mm", options.element_size_m * 1e3),
+        fmt::format("{:g} mm", metadata_.element_size_m * 1e3));
+  const NhFastSimOptions& nh = options.nh_fastsim;
+  const auto coarsening = [](int f) { return f == 0 ? std::string("0 (automatic)") : std::to_string(f); };
+  if (nh.flexibility_coarsening != metadata_.flexibility_coarsening)
+    add(WheelsetTableSetting::flexibility_coarsening, coarsening(nh.flexibility_coarsening),
+        coarsening(metadata_.flexibility_coarsening));
+  if (!same(nh.collocation_offset, metadata_.collocation_offset))
+    add(WheelsetTableSetting::collocation_offset, fmt::format("{:g}", nh.collocation_offset),
+        fmt::format("{:g}", metadata_.collocation_offset));
+  if (nh.bound.slip_direction != bound_.slip_direction)
+    add(WheelsetTableSetting::slip_direction, slip_direction_name(nh.bound.slip_direction),
+        slip_direction_name(bound_.slip_direction));
+  if (!same(nh.bound.skew, bound_.skew))
+    add(WheelsetTableSetting::traction_bound_skew, fmt::format("{:g}", nh.bound.skew), fmt::format("{:g}", bound_.skew));
+  if (metadata_.nh_fastsim_recipe != kNhFastSimRecipe)
+    add(WheelsetTableSetting::nh_fastsim_recipe, std::to_string(kNhFastSimRecipe),
+        metadata_.nh_fastsim_recipe == 0 ? std::string("1 or 2, not recorded") : std::to_string(metadata_.nh_fastsim_recipe));
+  return found;
+}
+
 WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLoads& loads,
                                        double friction_coefficient) const {
   if (nodes_.empty()) throw Error("wheelset table: the table is empty");
+  // The nodes have zero roll; a roll would turn the contact points and frames the table does not
+  // have (its kinematic creepages alone moved Fx from -4482 N to 14 N at 10 mrad, where the wheelset
+  // solved at that roll gives 18320 N).
+  if (state.position.roll_rad != 0.0)
+    throw Error(fmt::format("wheelset table: the roll {:g} mrad must be zero: the table's nodes have zero roll (each "
+                            "wheel's height is solved for its load); evaluate a rolled wheelset on the fly",
+                            state.position.roll_rad * 1e3));
   if (!(friction_coefficient > 0.0 && std::isfinite(friction_coefficient)))
     throw Error(fmt::format("wheelset table: the friction coefficient {} must be positive and finite", friction_coefficient));
   const WheelsetPosition& position = state.position;

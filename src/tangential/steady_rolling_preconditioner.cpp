@@ -110,8 +110,10 @@ void SteadyRollingPreconditioner::apply_stencil(const double* source, double* z)
     const double* __restrict u = p + 1;
     double* __restrict zc = z + c * n;
     for (std::size_t e = 0; e < n; ++e) {
+      // u[e - 1] as p[e]: at e = 0 the unsigned e - 1 wrapped around, an overflowing pointer
+      // addition (UBSan, fuzz/crashes/wheelset_table_lookup/), though it landed on p[0].
       const double laplacian =
-          (left[e] * u[e - 1] - 2.0 * u[e] + right[e] * u[e + 1]) * w1 + (p[down[e]] - 2.0 * u[e] + p[up[e]]) * w2;
+          (left[e] * p[e] - 2.0 * u[e] + right[e] * u[e + 1]) * w1 + (p[down[e]] - 2.0 * u[e] + p[up[e]]) * w2;
       zc[e] = c0 * u[e] - laplacian;
     }
   }
