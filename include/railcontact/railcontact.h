@@ -72,6 +72,20 @@ RC_API rc_status rc_version(int* major, int* minor, int* patch);
    when the two fit. */
 RC_API int rc_abi_version(void);
 
+/* ---- Counts ------------------------------------------------------------------------------ */
+
+/* The largest count each call accepts, checked before anything is allocated (RC_INVALID_INPUT
+   naming the argument): a count like (size_t)-1 is a caller's error, not a batch.
+   RC_MAX_BATCH_STATES: rc_batch_creep_forces' count (10 million states: ~36 bytes of bookkeeping
+   each, and about 10 s at 1 us a state). RC_MAX_WHEELSET_BATCH_STATES: rc_wheelset_batch_evaluate's
+   count (1 million states, as a sweep's cases: 0.1-0.5 s each). RC_MAX_PATCHES_PER_WHEEL: its
+   patches_per_wheel (a wheel has 1 to 3 patches). rc_flextable_build: y_count at most 10000 and
+   load_count at most 100 (kMaximumFlexibilityTableYValues, kMaximumFlexibilityTableLoads of
+   flexibility_table.hpp); rc_wheelset_table_build: at most 20000 values per axis and nodes. */
+#define RC_MAX_BATCH_STATES ((size_t)10000000)
+#define RC_MAX_WHEELSET_BATCH_STATES ((size_t)1000000)
+#define RC_MAX_PATCHES_PER_WHEEL ((size_t)64)
+
 /* ---- Settings of a solver ---------------------------------------------------------------- */
 
 /* The tangential method. */
