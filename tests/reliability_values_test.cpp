@@ -459,8 +459,10 @@ TEST(EllipseRanges, SemiAxesAndCurvaturesOutsideTheirRangeAreRefusedByTheLibrary
                 "ellipse of semi-axes"});
   expect_error([] { (void)hertz_from_semi_axes(2e-5, 2e-5, 98100.0, kSteel); }, ErrorKind::invalid_input,
                {"hertz: the semi-axes a = 2e-05 m, b = 2e-05 m under F3 = 98100 N give a maximum pressure"});
-  expect_error([] { (void)hertz_from_semi_axes(6e-3, 4e-5, 98100.0, kSteel); }, ErrorKind::invalid_input,
-               {"give an ellipse of a/b = 150, outside [0.01, 100]"});
+  // The axis ratio limits the meshes of the solvers (Hertz's closed form takes any).
+  expect_error([] { (void)hertzian_patch(elliptical_contact(6e-3, 4e-5, 20), 6e-3, 4e-5, 98100.0, kSteel); },
+               ErrorKind::invalid_input,
+               {"Hertzian patch: the semi-axes a = 0.006 m, b = 4e-05 m give an ellipse of a/b = 150, outside [0.01, 100]"});
   // Within the ranges: a wheel-rail ellipse, and the limits themselves.
   EXPECT_NO_THROW((void)hertz_from_curvatures(1.1, 5.0, 98100.0, kSteel));
   EXPECT_NO_THROW((void)hertz_curvatures_for_semi_axes(kMaximumSemiAxis_m, kMaximumSemiAxis_m, 98100.0, kSteel));

@@ -35,13 +35,13 @@ struct HertzContact {
 // [kMinimumRelativeCurvature_per_m, kMaximumRelativeCurvature_per_m], F3 lies in
 // [kMinimumNormalForce_N, kMaximumNormalForce_N] (1 N ... 1e7 N, contact_patch.hpp), the material is
 // valid and the ellipse they give has semi-axes in [kMinimumSemiAxis_m, kMaximumSemiAxis_m] and
-// p0 <= kMaximumHertzPressure_Pa (the message names A, B, F3 and E).
+// p0 <= kMaximumHertzPressure_Pa (the message names A, B, F3 and E); any axis ratio.
 HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal_force_N, const Material& material);
 
 // The curvatures (A, B) that give semi-axes a, b under normal force F3: inverse of the above
 // (closed form, no iteration). Throws railcontact::Error unless a, b lie in [kMinimumSemiAxis_m,
 // kMaximumSemiAxis_m], F3 in [kMinimumNormalForce_N, kMaximumNormalForce_N] and the ellipse passes
-// validate_ellipse.
+// validate_hertz_pressure (any axis ratio).
 struct HertzCurvatures {
   double A_per_m = 0.0;
   double B_per_m = 0.0;

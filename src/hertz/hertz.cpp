@@ -149,7 +149,7 @@ HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal
                          inputs, normal_force_N, contact.a_m * 1e3, contact.b_m * 1e3, kMinimumSemiAxis_m * 1e3,
                          kMaximumSemiAxis_m * 1e3);
     });
-  validate_ellipse(contact.a_m, contact.b_m, normal_force_N, inputs);
+  detail::validate_hertz_pressure(contact.a_m, contact.b_m, normal_force_N, inputs);
   return contact;
 }
 
@@ -167,7 +167,8 @@ SemiAxesSolution solve_semi_axes(double a_m, double b_m, double normal_force_N, 
   validate_semi_axis(a_m, "hertz: the semi-axis a");
   validate_semi_axis(b_m, "hertz: the semi-axis b");
   validate_normal_force(normal_force_N, "hertz: the normal force F3");
-  validate_ellipse(a_m, b_m, normal_force_N, fmt::format("hertz: the semi-axes a = {:g} m, b = {:g} m", a_m, b_m));
+  detail::validate_hertz_pressure(a_m, b_m, normal_force_N,
+                          fmt::format("hertz: the semi-axes a = {:g} m, b = {:g} m", a_m, b_m));
   SemiAxesSolution s;
   s.e_star_Pa = material.contact_modulus_Pa();
 

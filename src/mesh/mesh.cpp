@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "hertz/hertz_estimate.hpp"
 #include "railcontact/error.hpp"
 
 namespace railcontact {
@@ -84,6 +85,10 @@ void validate_ellipse(double a_m, double b_m, double normal_force_N, std::string
                        "slender patch)",
                        inputs, ratio, fmt::format("[{:g}, {:g}]", kMinimumEllipseAxisRatio, kMaximumEllipseAxisRatio));
   });
+  detail::validate_hertz_pressure(a_m, b_m, normal_force_N, inputs);
+}
+
+void detail::validate_hertz_pressure(double a_m, double b_m, double normal_force_N, std::string_view inputs) {
   const double p0 = 3.0 * normal_force_N / (2.0 * std::numbers::pi * a_m * b_m);
   require(p0 <= kMaximumHertzPressure_Pa, [&] {
     return fmt::format("{} under F3 = {:g} N give a maximum pressure p0 = 3 F3 / (2 pi a b) = {:.3g} MPa, above {:g} "
