@@ -23,6 +23,7 @@
 
 #include "hertz/elliptic_integrals.hpp"
 #include "hertz/hertz_estimate.hpp"
+#include "mesh/hertz_pressure.hpp"
 #include "railcontact/error.hpp"
 
 namespace railcontact {

@@ -2,8 +2,6 @@
 // Internal: Hertz's closed form without the physical ranges of railcontact/hertz.hpp, for the
 // wheel-rail patch's first estimate from the profiles' local curvatures (a conformal contact has B
 // below kMinimumRelativeCurvature_per_m; the estimate only seeds the mesh of the true patch).
-#include <string_view>
-
 #include "railcontact/hertz.hpp"
 
 namespace railcontact::detail {
@@ -11,9 +9,5 @@ namespace railcontact::detail {
 // hertz_from_curvatures for any A, B > 0 and finite, F3 > 0 and a valid material; a result that
 // is not positive and finite throws Error (internal).
 HertzContact hertz_estimate(double A_per_m, double B_per_m, double normal_force_N, const Material& material);
-
-// The pressure part of validate_ellipse alone (contact_patch.hpp): Hertz's closed form, which has no
-// mesh, takes any axis ratio.
-void validate_hertz_pressure(double a_m, double b_m, double normal_force_N, std::string_view inputs);
 
 }  // namespace railcontact::detail

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "hertz/hertz_estimate.hpp"
+#include "mesh/hertz_pressure.hpp"
 #include "railcontact/error.hpp"
 
 namespace railcontact {
