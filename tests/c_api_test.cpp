@@ -314,7 +314,7 @@ TEST(CApi, BadInputGivesStatusAndMessage) {
   ASSERT_EQ(rc_solver_set_ellipse(s.h, kA, kB, kF3), RC_OK);
   const rc_creepage bad{kNaN, 0, 0};
   EXPECT_EQ(rc_solver_solve(s.h, &bad, &f), RC_INVALID_INPUT);
-  EXPECT_NE(s.error().find("must be finite"), std::string::npos) << s.error();
+  EXPECT_NE(s.error().find("rc_creepage.xi = nan must lie in [-0.5, 0.5]"), std::string::npos) << s.error();
 
   rc_settings settings;
   rc_settings_default(&settings);
@@ -586,6 +586,97 @@ TEST(CApiEqualsCli, SinglePatchAndWheelsetToTheLastDigit) {
           << k << " " << i << " difference " << r.wheel_force_track_N[k][i] - w["wheels"][k]["force_track_N"][i].get<double>();
   rc_wheelset_destroy(wheelset);
   std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace railcontact
+
+// Issue 28: ranges of every number of the single-patch C API, before any work, naming the field.
+namespace railcontact {
+namespace {
+
+TEST(CApiRanges, EllipseAndCurvaturesOutsideTheirPhysicalRangeAreInvalidInput) {
+  Solver s;
+  // 1e-300 m made Hertz's closed form overflow (RC_INTERNAL); 1e-9 m at 98 kN gave 4.7e16 MPa.
+  EXPECT_EQ(rc_solver_set_ellipse(s.h, 1e-300, kB, kF3), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_patch.a_m = 1e-300 m must lie in [1e-05, 0.1] m"), std::string::npos) << s.error();
+  EXPECT_EQ(rc_solver_set_ellipse(s.h, 1e-9, 1e-9, 98100.0), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_patch.a_m = 1e-09 m"), std::string::npos) << s.error();
+  // Each semi-axis in range, the pair too small for the load: the pressure, naming a_m and b_m.
+  EXPECT_EQ(rc_solver_set_ellipse(s.h, 2e-5, 2e-5, 98100.0), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_patch.a_m = 2e-05 m and rc_patch.b_m = 2e-05 m under F3 = 98100 N give a maximum "
+                           "pressure"),
+            std::string::npos)
+      << s.error();
+  EXPECT_EQ(rc_solver_set_hertz(s.h, 1e-300, 1e-300, kF3), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_patch.A_per_m = 1e-300 1/m must lie in [0.001, 10000] 1/m"), std::string::npos)
+      << s.error();
+  EXPECT_EQ(rc_solver_set_hertz(s.h, 1e300, 1e300, kF3), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_patch.A_per_m = 1e+300 1/m"), std::string::npos) << s.error();
+  // In range, the solver's patch: a 98 kN wheel-rail ellipse and its curvatures.
+  EXPECT_EQ(rc_solver_set_ellipse(s.h, kA, kB, kF3), RC_OK) << s.error();
+  EXPECT_EQ(rc_solver_set_hertz(s.h, 1.1, 5.0, kF3), RC_OK) << s.error();
+}
+
+TEST(CApiRanges, CreepagesBeyondTheRangeOfAContactNameTheField) {
+  Solver s;
+  ASSERT_EQ(rc_solver_set_ellipse(s.h, kA, kB, kF3), RC_OK) << s.error();
+  rc_forces f{};
+  // xi = 1e200 blamed the flexibilities; the exact solver said "not converged".
+  const rc_creepage huge{1e200, 0, 0};
+  EXPECT_EQ(rc_solver_solve(s.h, &huge, &f), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_creepage.xi = 1e+200 must lie in [-0.5, 0.5]"), std::string::npos) << s.error();
+  const rc_creepage eta{0, -0.6, 0};
+  double J[9];
+  EXPECT_EQ(rc_solver_jacobian(s.h, &eta, &f, J), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_creepage.eta = -0.6"), std::string::npos) << s.error();
+  const rc_creepage spin{0, 0, 150.0};
+  EXPECT_EQ(rc_solver_solve(s.h, &spin, &f), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_creepage.phi_per_m = 150 1/m must lie in [-100, 100] 1/m"), std::string::npos)
+      << s.error();
+  Solver exact(RC_METHOD_EXACT, 300);
+  ASSERT_EQ(rc_solver_set_ellipse(exact.h, kA, kB, kF3), RC_OK) << exact.error();
+  EXPECT_EQ(rc_solver_solve(exact.h, &huge, &f), RC_INVALID_INPUT);
+  EXPECT_NE(exact.error().find("rc_creepage.xi"), std::string::npos) << exact.error();
+  // The limits themselves are creepages (the Jacobian steps past them by its step).
+  const rc_creepage edge{0.5, -0.5, 100.0};
+  EXPECT_EQ(rc_solver_solve(s.h, &edge, &f), RC_OK) << s.error();
+  EXPECT_EQ(rc_solver_jacobian(s.h, &edge, &f, J), RC_OK) << s.error();
+}
+
+TEST(CApiRanges, CountsAreCheckedBeforeAnyAllocation) {
+  Solver s;
+  rc_patch patch{};
+  patch.kind = RC_GEOMETRY_ELLIPSE;
+  patch.a_m = kA;
+  patch.b_m = kB;
+  patch.normal_force_N = kF3;
+  const rc_creepage c{1e-3, 0, 0};
+  rc_forces f{};
+  // (size_t)-1 made std::vector throw "cannot create std::vector larger than max_size()" (RC_INTERNAL).
+  EXPECT_EQ(rc_batch_creep_forces(s.h, SIZE_MAX, &patch, 1, &c, 1, &f, nullptr, nullptr, nullptr), RC_INVALID_INPUT);
+  EXPECT_NE(s.error().find("rc_batch_creep_forces: count = 18446744073709551615 states; at most RC_MAX_BATCH_STATES"),
+            std::string::npos)
+      << s.error();
+  rc_flextable* table = nullptr;
+  ASSERT_EQ(rc_flextable_create(&table), RC_OK);
+  const double y = 0.0, load = 1e5;
+  EXPECT_EQ(rc_flextable_build(table, nullptr, &y, SIZE_MAX, &load, 1, 300, 2.1e11, 0.3, nullptr, nullptr),
+            RC_INVALID_INPUT);
+  std::string message(512, '\0');
+  std::size_t length = 0;
+  rc_flextable_last_error(table, message.data(), message.size(), &length);
+  message.resize(std::min(length, message.size() - 1));
+  EXPECT_NE(message.find("rc_flextable_build: y_count = 18446744073709551615: 1 to 10000 values"), std::string::npos)
+      << message;
+  EXPECT_EQ(rc_flextable_build(table, nullptr, &y, 1, &load, SIZE_MAX, 300, 2.1e11, 0.3, nullptr, nullptr),
+            RC_INVALID_INPUT);
+  message.assign(512, '\0');
+  rc_flextable_last_error(table, message.data(), message.size(), &length);
+  message.resize(std::min(length, message.size() - 1));
+  EXPECT_NE(message.find("rc_flextable_build: load_count = 18446744073709551615: 1 to 100 values"), std::string::npos)
+      << message;
+  rc_flextable_destroy(table);
 }
 
 }  // namespace

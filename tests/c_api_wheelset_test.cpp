@@ -398,7 +398,7 @@ TEST(CApiWheelset, BadInputGivesStatusAndMessage) {
   s = c_state(0.0);
   s.forward_speed_m_per_s = 0.0;
   EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
-  EXPECT_NE(c.error().find("forward_speed_m_per_s = 0 m/s must be positive"), std::string::npos) << c.error();
+  EXPECT_NE(c.error().find("rc_wheelset_state.forward_speed_m_per_s = 0 m/s must lie in (0, 200] m/s"), std::string::npos) << c.error();
   s = c_state(0.0);
   s.rotation = 7;
   EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
@@ -672,6 +672,70 @@ TEST(CApiApproach, HertzEllipseAndGridAtAnApproach) {
   EXPECT_EQ(rc_solver_set_patch_at_approach(solver, &p, -1e-3), RC_NO_CONTACT);
   EXPECT_NE(solver_error(solver).find("no element comes into contact"), std::string::npos) << solver_error(solver);
   rc_solver_destroy(solver);
+}
+
+// Issue 28: the wheelset's rates, its track and its counts in their physical ranges, before any
+// solve, naming the field.
+TEST(CApiWheelsetRanges, RatesTrackAndCountsOutsideTheirRangesNameTheField) {
+  CWheelset c;
+  rc_wheelset_state s;
+  rc_wheelset_state_default(&s);
+  rc_wheelset_result r{};
+  // A yaw rate of 1e6 rad/s gave xi = 37 522 and exit 0; 1e300 blamed the flexibilities.
+  s.yaw_rate_rad_per_s = 1e6;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_state.yaw_rate_rad_per_s = 1e+06 rad/s must lie in [-10, 10] rad/s"),
+            std::string::npos)
+      << c.error();
+  rc_wheelset_state_default(&s);
+  s.forward_speed_m_per_s = 1e6;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_state.forward_speed_m_per_s = 1e+06 m/s must lie in (0, 200] m/s"),
+            std::string::npos)
+      << c.error();
+  rc_wheelset_state_default(&s);
+  s.rotation = RC_ROTATION_GIVEN;
+  s.wheel_angular_velocity_rad_per_s = 1e5;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_state.wheel_angular_velocity_rad_per_s = 100000 rad/s"), std::string::npos)
+      << c.error();
+  // Each rate in range, the wheels turning backwards: the kinematic creepage of a contact, naming
+  // the rotation, before the tangential solve.
+  s.wheel_angular_velocity_rad_per_s = -s.forward_speed_m_per_s / 0.46;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("wheel_angular_velocity_rad_per_s = -43.4783 rad/s at the forward speed V = 20 m/s gives "
+                           "the right wheel's contact a longitudinal creepage xi = 1.99"),
+            std::string::npos)
+      << c.error();
+
+  // The track: r0 = 1e-9 said "no contact"; 46 (a unit slip) ran a 46 m wheel.
+  rc_track_parameters t;
+  rc_track_parameters_default(&t);
+  t.nominal_rolling_radius_m = 1e-9;
+  EXPECT_EQ(rc_wheelset_set_track(c.h, "w", "r", &t), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_track_parameters.nominal_rolling_radius_m = 1e-09 m must lie in [0.04, 1.5] m"),
+            std::string::npos)
+      << c.error();
+  t.nominal_rolling_radius_m = 46;
+  EXPECT_EQ(rc_wheelset_set_track(c.h, "w", "r", &t), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("the value is in metres: 46 mm would be 0.046 m"), std::string::npos) << c.error();
+  rc_track_parameters_default(&t);
+  t.flange_back_distance_m = 1.43;
+  EXPECT_EQ(rc_wheelset_set_track(c.h, "w", "r", &t), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("track_gauge_m - flange_back_distance_m = 1.435 - 1.43"), std::string::npos) << c.error();
+
+  // Counts: (size_t)-1 states or patches per wheel, before anything is allocated.
+  rc_wheelset_state_default(&s);
+  EXPECT_EQ(rc_wheelset_batch_evaluate(c.h, SIZE_MAX, &s, 1, &r, 0, nullptr, nullptr), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_batch_evaluate: count = 18446744073709551615 states; at most "
+                           "RC_MAX_WHEELSET_BATCH_STATES = 1000000"),
+            std::string::npos)
+      << c.error();
+  rc_wheelset_patch patch{};
+  EXPECT_EQ(rc_wheelset_batch_evaluate(c.h, 1, &s, 1, &r, SIZE_MAX, &patch, nullptr), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("patches_per_wheel = 18446744073709551615; at most RC_MAX_PATCHES_PER_WHEEL"),
+            std::string::npos)
+      << c.error();
 }
 
 }  // namespace

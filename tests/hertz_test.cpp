@@ -11,6 +11,7 @@
 #include <string>
 
 #include "hertz/elliptic_integrals.hpp"
+#include "hertz/hertz_estimate.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/hertz.hpp"
 #include "railcontact/contact_patch.hpp"
@@ -151,7 +152,9 @@ TEST(Hertz, SwappingCurvaturesSwapsSemiAxes) {
 }
 
 TEST(Hertz, RoundTripCurvaturesSemiAxesCurvatures) {
-  for (const double ratio : {1.0, 1.0 + 1e-7, 1.5, 3.0, 17.0, 250.0, 1e4, 1e8, 1.0 / 40.0, 1e-6}) {
+  // B/A within the curvatures' range [1e-3, 1e4] 1/m (hertz.hpp); the closed form itself for 1e8
+  // and 1e-6 in HertzEstimate below.
+  for (const double ratio : {1.0, 1.0 + 1e-7, 1.5, 3.0, 17.0, 250.0, 1e4, 1.0 / 40.0, 1.0 / 400.0}) {
     const double A = 0.8;
     const double B = A * ratio;
     const double force_N = 2.5e4;
@@ -164,12 +167,22 @@ TEST(Hertz, RoundTripCurvaturesSemiAxesCurvatures) {
 }
 
 TEST(Hertz, RoundTripSemiAxesCurvaturesSemiAxes) {
-  for (const double b_m : {1e-3, 2e-3, 5e-3, 6e-3, 2e-2, 1.0}) {
+  for (const double b_m : {1e-3, 2e-3, 5e-3, 6e-3, 2e-2, kMaximumSemiAxis_m}) {
     const double a_m = 6e-3;
     const HertzCurvatures k = hertz_curvatures_for_semi_axes(a_m, b_m, 1e5, kSteel);
     const HertzContact c = hertz_from_curvatures(k.A_per_m, k.B_per_m, 1e5, kSteel);
     EXPECT_LT(rel_diff(c.a_m, a_m), 1e-10) << "b = " << b_m;
     EXPECT_LT(rel_diff(c.b_m, b_m), 1e-10) << "b = " << b_m;
+  }
+}
+
+// Hertz's closed form without the physical ranges (the wheel-rail patch's estimate): very slender
+// ellipses still carry their load, 2/3 pi a b p0 = F3, to 1e-13.
+TEST(Hertz, EstimateForVerySlenderEllipses) {
+  for (const double ratio : {1e8, 1e-6}) {
+    const HertzContact c = detail::hertz_estimate(0.8, 0.8 * ratio, 2.5e4, kSteel);
+    EXPECT_LT(rel_diff(2.0 / 3.0 * pi * c.a_m * c.b_m * c.max_pressure_Pa, 2.5e4), 1e-13) << "B/A = " << ratio;
+    EXPECT_THROW((void)hertz_from_curvatures(0.8, 0.8 * ratio, 2.5e4, kSteel), Error);
   }
 }
 
@@ -191,7 +204,7 @@ TEST(Hertz, RejectsBadInput) {
     hertz_from_curvatures(-1.0, 1.0, 1e4, kSteel);
     FAIL() << "expected railcontact::Error";
   } catch (const Error& error) {
-    EXPECT_NE(std::string(error.what()).find("hertz: curvature A"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("hertz: the relative curvature A"), std::string::npos) << error.what();
   }
 }
 

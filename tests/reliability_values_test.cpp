@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "case/case.hpp"
@@ -436,6 +437,195 @@ TEST(Incompressible, CliAcceptsNuOneHalf) {
   for (const char* key : {"C11", "C22", "C23"}) EXPECT_LT(std::fabs(j["rel_error"][key].get<double>()), 0.02) << key;
   expect_one_error_line(run_cli("coefficients --a-over-b 1 --nu 0.51"), "--nu 0.51 must lie in [0, 0.5]");
   expect_one_error_line(run_cli("coefficients --a-over-b 1 --nu -0.1"), "--nu -0.1 must lie in [0, 0.5]");
+}
+
+// ---- Issue 28: physical ranges of the ellipse, the wheelset's rates and the track -----------------
+
+TEST(EllipseRanges, SemiAxesAndCurvaturesOutsideTheirRangeAreRefusedByTheLibrary) {
+  // a = b = 1e-9 m at 98 kN gave p0 = 4.7e16 MPa; A = B = 1e-300 a 6.8e97 mm ellipse; 1e300 an
+  // internal error.
+  expect_error([] { (void)hertzian_patch(elliptical_contact(1e-9, 1e-9, 20), 1e-9, 1e-9, 98100.0, kSteel); },
+               ErrorKind::invalid_input, {"Hertzian patch: the semi-axis a = 1e-09 m must lie in [1e-05, 0.1] m"});
+  expect_error([] { (void)hertz_curvatures_for_semi_axes(6e-3, 0.5, 98100.0, kSteel); }, ErrorKind::invalid_input,
+               {"hertz: the semi-axis b = 0.5 m must lie in [1e-05, 0.1] m"});
+  expect_error([] { (void)hertz_from_curvatures(1e-300, 1e-300, 98100.0, kSteel); }, ErrorKind::invalid_input,
+               {"hertz: the relative curvature A = 1e-300 1/m must lie in [0.001, 10000] 1/m"});
+  expect_error([] { (void)hertz_from_curvatures(1e300, 1e300, 98100.0, kSteel); }, ErrorKind::invalid_input,
+               {"hertz: the relative curvature A = 1e+300 1/m"});
+  // Each curvature in range, the ellipse they give under the load is not: the message names the
+  // inputs (A, B, F3, E), not the derived semi-axes alone.
+  expect_error([] { (void)hertz_from_curvatures(1e-3, 1e-3, 1e7, kSteel); }, ErrorKind::invalid_input,
+               {"hertz: the curvatures A = 0.001 1/m, B = 0.001 1/m (with E = 2.1e+11 Pa) under F3 = 1e+07 N give an "
+                "ellipse of semi-axes"});
+  expect_error([] { (void)hertz_from_semi_axes(2e-5, 2e-5, 98100.0, kSteel); }, ErrorKind::invalid_input,
+               {"hertz: the semi-axes a = 2e-05 m, b = 2e-05 m under F3 = 98100 N give a maximum pressure"});
+  // The axis ratio limits the meshes of the solvers (Hertz's closed form takes any).
+  expect_error([] { (void)hertzian_patch(elliptical_contact(6e-3, 4e-5, 20), 6e-3, 4e-5, 98100.0, kSteel); },
+               ErrorKind::invalid_input,
+               {"Hertzian patch: the semi-axes a = 0.006 m, b = 4e-05 m give an ellipse of a/b = 150, outside [0.01, 100]"});
+  // Within the ranges: a wheel-rail ellipse, and the limits themselves.
+  EXPECT_NO_THROW((void)hertz_from_curvatures(1.1, 5.0, 98100.0, kSteel));
+  EXPECT_NO_THROW((void)hertz_curvatures_for_semi_axes(kMaximumSemiAxis_m, kMaximumSemiAxis_m, 98100.0, kSteel));
+  EXPECT_NO_THROW((void)hertz_from_semi_axes(kMinimumSemiAxis_m, kMinimumSemiAxis_m, 1.0, kSteel));
+}
+
+// hertz_from_semi_axes (p0 and the approach from a, b directly) against the round trip through the
+// curvatures (hertz_curvatures_for_semi_axes, then hertz_from_curvatures: a root search for b/a):
+// the same closed form, to the few ulps of the root search (relative 1e-12).
+TEST(EllipseRanges, HertzFromSemiAxesEqualsTheRoundTripThroughTheCurvatures) {
+  for (const auto [a, b] : {std::pair{6e-3, 4e-3}, std::pair{3e-3, 9e-3}, std::pair{5e-3, 5e-3}}) {
+    const HertzContact direct = hertz_from_semi_axes(a, b, 98100.0, kSteel);
+    const HertzCurvatures c = hertz_curvatures_for_semi_axes(a, b, 98100.0, kSteel);
+    const HertzContact round_trip = hertz_from_curvatures(c.A_per_m, c.B_per_m, 98100.0, kSteel);
+    EXPECT_NEAR(direct.approach_m, round_trip.approach_m, 1e-12 * round_trip.approach_m);
+    EXPECT_NEAR(direct.max_pressure_Pa, round_trip.max_pressure_Pa, 1e-12 * round_trip.max_pressure_Pa);
+  }
+}
+
+TEST(EllipseRanges, CaseFilesNameTheKey) {
+  const std::string data = RAILCONTACT_SOURCE_DIR "/tests/data/bad_inputs/";
+  CommandResult r = run_cli("run " + data + "ellipse_nanometre.toml");
+  expect_one_error_line(r, "[geometry] a = 1e-09 m must lie in [1e-05, 0.1] m");
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_cli("run " + data + "ellipse_flat_curvatures.toml");
+  expect_one_error_line(r, "[geometry] A = 1e-300 1/m must lie in [0.001, 10000] 1/m");
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_cli("run " + data + "ellipse_sharp_curvatures.toml");
+  expect_one_error_line(r, "[geometry] A = 1e+300 1/m must lie in");
+  EXPECT_EQ(r.exit_code, 2);
+  // Semi-axes in millimetres where metres are meant.
+  const ScratchDirectory dir("values_ellipse_mm");
+  std::string text = ellipse_case();
+  text.replace(text.find("a = 0.006\nb = 0.004"), 19, "a = 6.0\nb = 4.0");
+  r = run_cli("run " + write_case(dir, "mm.toml", text));
+  expect_one_error_line(r, "[geometry] a = 6 m must lie in [1e-05, 0.1] m (a contact patch from a laboratory "
+                           "micro-contact to beyond a rail head; the semi-axes are in metres: is it given in "
+                           "millimetres?)");
+}
+
+TEST(WheelsetRates, EveryRateOutsideItsRangeIsNamedAsGiven) {
+  WheelsetVelocity v;
+  v.yaw_rate_rad_per_s = 1e300;
+  expect_error([&] { validate(v); }, ErrorKind::invalid_input,
+               {"wheelset: yaw_rate_rad_per_s = 1e+300 rad/s must lie in [-10, 10] rad/s"});
+  v = {};
+  v.forward_speed_m_per_s = 0.0;
+  expect_error([&] { validate(v); }, ErrorKind::invalid_input,
+               {"wheelset: forward_speed_m_per_s = 0 m/s must lie in (0, 200] m/s"});
+  v = {};
+  v.lateral_velocity_m_per_s = -11.0;
+  expect_error([&] { validate(v); }, ErrorKind::invalid_input, {"lateral_velocity_m_per_s = -11 m/s must lie in [-10, 10]"});
+  v = {};
+  v.vertical_velocity_m_per_s = kNaN;
+  expect_error([&] { validate(v); }, ErrorKind::invalid_input, {"vertical_velocity_m_per_s = nan m/s"});
+  v = {};
+  v.roll_rate_rad_per_s = 20.0;
+  expect_error([&] { validate(v); }, ErrorKind::invalid_input, {"roll_rate_rad_per_s = 20 rad/s"});
+  v = {};
+  v.wheel_angular_velocity_rad_per_s = 2000.0;
+  expect_error([&] { validate(v); }, ErrorKind::invalid_input,
+               {"wheel_angular_velocity_rad_per_s = 2000 rad/s must lie in [-1000, 1000] rad/s"});
+  v = {};
+  v.extra_longitudinal_creepage = 0.9;
+  expect_error([&] { validate(v); }, ErrorKind::invalid_input, {"extra_longitudinal_creepage = 0.9 must lie in [-0.5, 0.5]"});
+  // Options are named as options.
+  v = {};
+  v.yaw_rate_rad_per_s = 1e6;
+  WheelsetVelocityNames names;
+  names.yaw_rate = "--yaw-rate";
+  expect_error([&] { validate(v, names); }, ErrorKind::invalid_input, {"--yaw-rate 1e+06 rad/s must lie in [-10, 10] rad/s"});
+  // The limits are velocities.
+  v = {};
+  v.forward_speed_m_per_s = kMaximumForwardSpeed_m_per_s;
+  v.yaw_rate_rad_per_s = -kMaximumRollYawRate_rad_per_s;
+  v.wheel_angular_velocity_rad_per_s = kMaximumWheelAngularVelocity_rad_per_s;
+  EXPECT_NO_THROW(validate(v));
+}
+
+// The kinematic creepage of a contact beyond a contact's range names the velocity that gives it:
+// a contact 0.75 m left of the centre on the right wheel... (the creepages are linear in the
+// velocities; the largest share is named).
+TEST(WheelsetRates, KinematicCreepageBeyondAContactsRangeNamesTheRate) {
+  WheelsetMotion m;
+  m.forward_speed_m_per_s = 1.0;
+  m.wheel_angular_velocity_rad_per_s = 1.0 / 0.46;
+  m.yaw_rate_rad_per_s = 10.0;
+  const ContactFrame frame = contact_frame({0.0, -0.75, -0.46}, 0.03, WheelSide::right);
+  const Creepage c = kinematic_creepage(m, frame);
+  ASSERT_GT(std::abs(c.xi), kMaximumCreepage);
+  expect_error([&] { check_kinematic_creepage(c, m, frame, WheelSide::right); }, ErrorKind::invalid_input,
+               {"wheelset: the yaw rate yaw_rate_rad_per_s = 10 rad/s at the forward speed V = 1 m/s gives the right "
+                "wheel's contact a longitudinal creepage xi = 7.5",
+                "beyond [-0.5, 0.5]"});
+  m.yaw_rate_rad_per_s = 0.1;  // xi = 0.075: a contact's creepage
+  EXPECT_NO_THROW(check_kinematic_creepage(kinematic_creepage(m, frame), m, frame, WheelSide::right));
+}
+
+TEST(WheelsetRates, CliAndCaseNameTheOptionAndTheKey) {
+  CommandResult r = run_cli("wheelset --yaw-rate 1e6");
+  expect_one_error_line(r, "--yaw-rate 1e+06 rad/s must lie in [-10, 10] rad/s");
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_cli("wheelset --yaw-rate 1e300");
+  expect_one_error_line(r, "--yaw-rate 1e+300 rad/s must lie in [-10, 10] rad/s");
+  r = run_cli("wheelset --speed 1e6");
+  expect_one_error_line(r, "--speed 1e+06 m/s must lie in (0, 200] m/s");
+  r = run_cli("wheelset --lateral-velocity -50");
+  expect_one_error_line(r, "--lateral-velocity -50 m/s must lie in [-10, 10] m/s");
+  r = run_cli("wheelset --extra-creepage 0.9");
+  expect_one_error_line(r, "--extra-creepage 0.9 must lie in [-0.5, 0.5]");
+  r = run_cli(std::string("wheelset ") + RAILCONTACT_SOURCE_DIR "/tests/data/bad_inputs/wheelset_yaw_rate.toml");
+  expect_one_error_line(r, "wheelset_yaw_rate.toml:3: [velocity] yaw_rate_rad_per_s = 1e+06 rad/s must lie in [-10, 10]");
+  EXPECT_EQ(r.exit_code, 2);
+  // Rates in range whose combination is not: the creepage, named by its rate, before the tangential solve.
+  r = run_cli("wheelset --yaw-rate 10 --speed 1 --element-size 0.5");
+  expect_one_error_line(r, "the yaw rate yaw_rate_rad_per_s = 10 rad/s at the forward speed V = 1 m/s gives the right "
+                           "wheel's contact a longitudinal creepage xi =");
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+TEST(TrackRanges, EveryTrackParameterIsCheckedAgainstItsRange) {
+  const TrackWheelsetParameters ok;
+  EXPECT_NO_THROW(validate(ok));
+  const auto refused = [](TrackWheelsetParameters p, const std::string& part) {
+    expect_error([&] { validate(p); }, ErrorKind::invalid_input, {part});
+  };
+  TrackWheelsetParameters p;
+  p.nominal_rolling_radius_m = 46;
+  refused(p, "track parameters: nominal_rolling_radius_m = 46 m must lie in [0.04, 1.5] m (from a scale roller-rig wheel "
+             "to a locomotive's driving wheel; 0.46 for a UIC wheel); the value is in metres: 46 mm would be 0.046 m");
+  p = {};
+  p.track_gauge_m = 1435;
+  refused(p, "track_gauge_m = 1435 m must lie in [0.38, 2.2] m");
+  p = {};
+  p.gauge_measuring_depth_m = 0.0;
+  refused(p, "gauge_measuring_depth_m = 0 m must lie in [0.001, 0.03] m");
+  p = {};
+  p.flange_back_distance_m = 0.1;
+  refused(p, "flange_back_distance_m = 0.1 m must lie in [0.3, 2.2] m");
+  p = {};
+  p.flange_back_y_m = -0.5;
+  refused(p, "flange_back_y_m = -0.5 m must lie in [-0.2, 0.2] m");
+  p = {};
+  p.taping_line_from_flange_back_m = 70;
+  refused(p, "taping_line_from_flange_back_m = 70 m must lie in [0.01, 0.2] m");
+  p = {};
+  p.flange_back_distance_m = 1.5;
+  refused(p, "track_gauge_m - flange_back_distance_m = 1.435 - 1.5 = -0.065 m must lie in [0.02, 0.2] m");
+  // Metre gauge with its flange backs.
+  p = {};
+  p.track_gauge_m = 1.000;
+  p.flange_back_distance_m = 0.930;
+  EXPECT_NO_THROW(validate(p));
+}
+
+TEST(TrackRanges, SetUpFileAndGeometryOptionsNameTheKeyAndTheOption) {
+  CommandResult r = run_cli(std::string("wheelset ") + RAILCONTACT_SOURCE_DIR "/tests/data/bad_inputs/wheelset_setup_radius_46.toml");
+  expect_one_error_line(r, "setup_radius_46.json: track: nominal_rolling_radius_m = 46 m must lie in [0.04, 1.5] m");
+  EXPECT_NE(r.err.find("46 mm would be 0.046 m"), std::string::npos) << r.err;
+  EXPECT_EQ(r.exit_code, 2);
+  expect_one_error_line(run_cli("geometry --rolling-radius 46000"), "--rolling-radius 46000 mm must lie in [40, 1500] mm");
+  expect_one_error_line(run_cli("geometry --gauge 1000"),
+                        "the gauge 1000 mm less the flange backs' distance 1360 mm (--gauge, --flange-back) is -360 mm");
 }
 
 }  // namespace

@@ -297,7 +297,7 @@ TEST(WheelsetCli, PrintsOneJsonObjectWithEveryPatch) {
   EXPECT_NEAR(j["wheels"][0]["force_track_N"][2].get<double>(), 98.1e3, 98.1);  // the settling tolerance, 1e-3
   const CommandResult bad = run_cli("wheelset --speed 0");
   EXPECT_EQ(bad.exit_code, 2);
-  expect_one_error_line(bad, "forward speed");
+  expect_one_error_line(bad, "--speed 0 m/s must lie in (0, 200] m/s");
 }
 
 }  // namespace

@@ -60,9 +60,9 @@ void read_wheel_rail(Section& geometry, Case& c) {
   c.wheel_rail.wheel_file = geometry.optional_string("wheel").value_or("");
   c.wheel_rail.rail_file = geometry.optional_string("rail").value_or("");
   c.wheel_rail.y_m = geometry.optional_number("y").value_or(0.0);
-  if (std::fabs(c.wheel_rail.y_m) > 0.05)
-    throw Error(fmt::format("{}: [geometry] y = {} m is not a plausible lateral displacement (|y| <= 0.05 m)",
-                            geometry.location("y"), c.wheel_rail.y_m));
+  if (std::fabs(c.wheel_rail.y_m) > kMaximumWheelRailLateralDisplacement_m)
+    throw Error(fmt::format("{}: [geometry] y = {} m is not a plausible lateral displacement (|y| <= {:g} m)",
+                            geometry.location("y"), c.wheel_rail.y_m, kMaximumWheelRailLateralDisplacement_m));
   if (const std::optional<std::string> reference = geometry.optional_string("contact_reference")) {
     if (*reference != "smooth" && *reference != "first-touch")
       throw Error(fmt::format("{}: [geometry] contact_reference must be \"smooth\" or \"first-touch\" (got \"{}\")",
@@ -127,11 +127,12 @@ void read_spin(Section& creepage, Case& c) {
 // [creepage]: no absurd magnitudes of the raw or normalised creepages.
 void check_creepage_ranges(const Section& creepage, const Case& c) {
   for (const char* key : {"xi", "eta"})
-    if (std::fabs(key[0] == 'x' ? c.creepage.raw.xi : c.creepage.raw.eta) > 0.5)
-      throw Error(fmt::format("{}: [creepage] {} is absurd (|{}| <= 0.5)", creepage.location(key), key, key));
-  if (std::fabs(c.creepage.raw.phi) > 100.0)
-    throw Error(fmt::format("{}: [creepage] phi = {} 1/m is absurd (|phi| <= 100 1/m)", creepage.location("phi"),
-                            c.creepage.raw.phi));
+    if (std::fabs(key[0] == 'x' ? c.creepage.raw.xi : c.creepage.raw.eta) > kMaximumCreepage)
+      throw Error(fmt::format("{}: [creepage] {} is absurd (|{}| <= {:g})", creepage.location(key), key, key,
+                              kMaximumCreepage));
+  if (std::fabs(c.creepage.raw.phi) > kMaximumSpinCreepage_per_m)
+    throw Error(fmt::format("{}: [creepage] phi = {} 1/m is absurd (|phi| <= {:g} 1/m)", creepage.location("phi"),
+                            c.creepage.raw.phi, kMaximumSpinCreepage_per_m));
   for (const char* key : {"xi_normalised", "eta_normalised"}) {
     const auto& v = key[0] == 'x' ? c.creepage.xi_normalised : c.creepage.eta_normalised;
     if (v && std::fabs(*v) > 100.0)

@@ -135,6 +135,25 @@ void check_values(const Case& input) {
                                     input.geometry == GeometryKind::wheel_rail ? " (the vertical wheel load Fz)" : ""));
   require(input.mu > 0 && std::isfinite(input.mu),
           [&] { return fmt::format("{}: [friction] mu = {:g} must be positive", file, input.mu); });
+  if (input.geometry == GeometryKind::ellipse) {
+    // The ellipse's ranges (contact_patch.hpp, hertz.hpp) with its keys' names; the ellipse that
+    // the curvatures give is checked by Hertz's solution, its message naming A, B, F3 and E.
+    const EllipseGeometry& e = input.ellipse;
+    if (e.a_m && e.b_m) {
+      validate_semi_axis(*e.a_m, fmt::format("{}: [geometry] a", file));
+      validate_semi_axis(*e.b_m, fmt::format("{}: [geometry] b", file));
+      validate_ellipse(*e.a_m, *e.b_m, input.normal_force_N,
+                       fmt::format("{}: [geometry] a = {:g} m and b = {:g} m", file, *e.a_m, *e.b_m));
+    } else if (e.A_per_m && e.B_per_m) {
+      validate_relative_curvature(*e.A_per_m, fmt::format("{}: [geometry] A", file));
+      validate_relative_curvature(*e.B_per_m, fmt::format("{}: [geometry] B", file));
+      try {
+        (void)hertz_from_curvatures(*e.A_per_m, *e.B_per_m, input.normal_force_N, input.material);
+      } catch (const Error& error) {
+        throw Error(error.kind(), fmt::format("{}: [geometry] {}", file, error.what()));
+      }
+    }
+  }
   if (input.geometry == GeometryKind::wheel_rail)
     require(input.target_elements >= kMinimumWheelRailElements && input.target_elements <= kMaximumWheelRailElements,
             [&] {

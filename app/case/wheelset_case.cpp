@@ -77,6 +77,12 @@ void read_velocity(Section s, WheelsetCase& c) {
                               s.location("wheel_angular_velocity_rad_per_s")));
     v.wheel_angular_velocity_rad_per_s = *w;
   }
+  // The ranges of the library (wheelset.hpp), named as the file gives them: "FILE:5: [velocity] yaw_rate_rad_per_s".
+  const auto name = [&](const char* key) { return fmt::format("{}: [velocity] {}", s.location(key), key); };
+  validate(v, WheelsetVelocityNames{name("speed_m_per_s"), name("lateral_velocity_m_per_s"),
+                                    name("vertical_velocity_m_per_s"), name("roll_rate_rad_per_s"),
+                                    name("yaw_rate_rad_per_s"), name("wheel_angular_velocity_rad_per_s"),
+                                    name("extra_longitudinal_creepage")});
   s.finish();
 }
 

@@ -16,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/commands.hpp"
@@ -129,6 +130,12 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
   require(loads.size() <= kMaximumFlexibilityTableLoads, [&] {
     return fmt::format("--load: {} loads; a table holds at most {}", loads.size(), kMaximumFlexibilityTableLoads);
   });
+  for (const auto& [option, value] : {std::pair{"--y-from", args.y_from_m}, std::pair{"--y-to", args.y_to_m}})
+    require(std::abs(value) <= kMaximumWheelRailLateralDisplacement_m, [&] {
+      return fmt::format("{} {:g} m must lie in [{:g}, {:g}] m (a lateral displacement in metres: beyond it the wheel "
+                         "is off its rail)",
+                         option, value, -kMaximumWheelRailLateralDisplacement_m, kMaximumWheelRailLateralDisplacement_m);
+    });
   const std::vector<double> y = flexibility_table_y_grid(args.y_from_m, args.y_to_m, args.y_step_m);
   // The work of the build (nodes × elements), refused before the profiles are read.
   check_flexibility_table_work(y.size(), loads.size(), args.elements);

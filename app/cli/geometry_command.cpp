@@ -65,24 +65,26 @@ WheelsetTrack geometry_track(const GeometryArguments& a, const CLI::App& sub, st
                               a.rail_file.empty() ? setup.rail_profile.filename().string() : a.rail_file);
   }
   TrackWheelsetParameters& t = setup.track;
-  if (given("--gauge")) {
-    require(std::isfinite(a.gauge_mm) && a.gauge_mm >= 600.0 && a.gauge_mm <= 2000.0,
-            [&] { return fmt::format("--gauge {:g} mm must lie in [600, 2000] mm", a.gauge_mm); });
-    t.track_gauge_m = a.gauge_mm * 1e-3;
-  }
-  if (given("--flange-back")) {
-    require(std::isfinite(a.flange_back_mm) && a.flange_back_mm >= 500.0 && a.flange_back_mm <= 2000.0,
-            [&] { return fmt::format("--flange-back {:g} mm must lie in [500, 2000] mm", a.flange_back_mm); });
-    t.flange_back_distance_m = a.flange_back_mm * 1e-3;
-  }
-  if (given("--rolling-radius")) {
-    require(std::isfinite(a.radius_mm) && a.radius_mm >= 100.0 && a.radius_mm <= 1000.0,
-            [&] { return fmt::format("--rolling-radius {:g} mm must lie in [100, 1000] mm", a.radius_mm); });
-    t.nominal_rolling_radius_m = a.radius_mm * 1e-3;
-  }
-  require(t.flange_back_distance_m < t.track_gauge_m, [&] {
-    return fmt::format("--flange-back {:g} mm must be smaller than the gauge {:g} mm", t.flange_back_distance_m * 1e3,
-                       t.track_gauge_m * 1e3);
+  // The ranges of the library (geometry.hpp), in the options' millimetres.
+  const auto length_mm = [&](const char* option, double value_mm, double low_m, double high_m) {
+    require(std::isfinite(value_mm) && value_mm >= low_m * 1e3 && value_mm <= high_m * 1e3, [&] {
+      return fmt::format("{} {:g} mm must lie in [{:g}, {:g}] mm", option, value_mm, low_m * 1e3, high_m * 1e3);
+    });
+    return value_mm * 1e-3;
+  };
+  if (given("--gauge")) t.track_gauge_m = length_mm("--gauge", a.gauge_mm, kMinimumTrackGauge_m, kMaximumTrackGauge_m);
+  if (given("--flange-back"))
+    t.flange_back_distance_m =
+        length_mm("--flange-back", a.flange_back_mm, kMinimumFlangeBackDistance_m, kMaximumFlangeBackDistance_m);
+  if (given("--rolling-radius"))
+    t.nominal_rolling_radius_m =
+        length_mm("--rolling-radius", a.radius_mm, kMinimumNominalRollingRadius_m, kMaximumNominalRollingRadius_m);
+  const double play_m = t.track_gauge_m - t.flange_back_distance_m;
+  require(play_m >= kMinimumGaugeMinusFlangeBack_m && play_m <= kMaximumGaugeMinusFlangeBack_m, [&] {
+    return fmt::format("the gauge {:g} mm less the flange backs' distance {:g} mm (--gauge, --flange-back) is {:g} mm; "
+                       "it must lie in [{:g}, {:g}] mm (two flanges and their play: 75 mm on standard gauge)",
+                       t.track_gauge_m * 1e3, t.flange_back_distance_m * 1e3, play_m * 1e3,
+                       kMinimumGaugeMinusFlangeBack_m * 1e3, kMaximumGaugeMinusFlangeBack_m * 1e3);
   });
   description += fmt::format(", gauge {:g} mm, flange backs {:g} mm", t.track_gauge_m * 1e3,
                              t.flange_back_distance_m * 1e3);

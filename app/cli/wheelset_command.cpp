@@ -94,11 +94,23 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
   if (given("--extra-creepage")) v.extra_longitudinal_creepage = a.extra_creepage;
   if (given("--lateral-velocity")) v.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
   if (given("--yaw-rate")) v.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
+  // The velocities' ranges (wheelset.hpp), an option given named as given: "--yaw-rate 1e+06 rad/s must lie in …".
+  WheelsetVelocityNames names;
+  if (given("--speed")) names.forward_speed = "--speed";
+  if (given("--extra-creepage")) names.extra_longitudinal_creepage = "--extra-creepage";
+  if (given("--lateral-velocity")) names.lateral_velocity = "--lateral-velocity";
+  if (given("--yaw-rate")) names.yaw_rate = "--yaw-rate";
+  validate(v, names);
   if (given("--mu")) c.options.friction_coefficient = a.mu;
   if (given("--element-size")) c.options.element_size_m = a.element_size_mm * 1e-3;
   if (given("--load")) {
     require(std::isfinite(a.load_kN) && a.load_kN > 0.0,
             [&] { return fmt::format("--load {:g} kN must be positive", a.load_kN); });
+    require(a.load_kN * 1e3 >= kMinimumNormalForce_N && a.load_kN * 1e3 <= kMaximumNormalForce_N, [&] {
+      return fmt::format("--load {:g} kN must lie in [{:g}, {:g}] kN (a wheel's vertical load: a heavy-haul wheel under "
+                         "the largest dynamic factors with a factor 10 to spare)",
+                         a.load_kN, kMinimumNormalForce_N * 1e-3, kMaximumNormalForce_N * 1e-3);
+    });
     c.options.loads = WheelLoads{a.load_kN * 1e3, a.load_kN * 1e3, false};
   }
   if (given("--flexibility-coarsening")) {

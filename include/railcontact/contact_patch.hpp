@@ -71,6 +71,21 @@ struct Creepage {
   double phi = 0.0;   // spin creepage (1/m)
 };
 
+// The range of the creepages of one contact. |xi|, |eta| <= 0.5: a wheel sliding at half the
+// rolling speed (a locked or spinning wheel is 1); the traction saturates at mu p3 from about
+// 3 mu F3 / (G c^2 C11), a few 1e-3 for wheel-rail patches, so 0.5 is a hundred times past the
+// saturation, and beyond it the steady-rolling model no longer describes the contact. |phi| <= 100
+// 1/m: the spin of a contact angle of 90 degrees on a wheel of radius 10 mm (phi = sin(gamma) / r),
+// far beyond a flange contact on a railway wheel (sin(70 deg) / 0.46 m = 2 1/m).
+inline constexpr double kMaximumCreepage = 0.5;
+inline constexpr double kMaximumSpinCreepage_per_m = 100.0;
+
+// Throws railcontact::Error (invalid_input) unless xi, eta and phi are finite, |xi|, |eta| <=
+// kMaximumCreepage and |phi| <= kMaximumSpinCreepage_per_m. The message names the value as
+// `structure`.xi, .eta and .`spin_field` (how the caller gave them): "rc_creepage.xi = 1e+200 must
+// lie in [-0.5, 0.5] (…)".
+void validate_creepage(const Creepage& creepage, std::string_view structure, std::string_view spin_field = "phi");
+
 // Tangential force and spin moment on the wheel (upper body), in the contact frame.
 struct TangentialForces {
   double F1_N = 0.0;   // longitudinal force
@@ -208,10 +223,33 @@ ContactPatch coarsened(const ContactPatch& patch, CoarseBlocks blocks);
 // Square blocks of factor x factor elements, factor in [1, kMaximumCoarsening].
 ContactPatch coarsened(const ContactPatch& patch, int factor);
 
+// The physical range of an elliptical contact (docs/RELIABILITY.md "Values and solvers").
+// Semi-axes a, b in [10 um, 100 mm]: from a micro-contact of a laboratory rig to beyond the rail
+// head (about 70 mm wide: a wheel-rail patch is a few mm to 20 mm long). Below, a patch of 98 kN
+// carried pressures of 1e16 Pa; above, no body of railcontact's scope is that large.
+inline constexpr double kMinimumSemiAxis_m = 1e-5;
+inline constexpr double kMaximumSemiAxis_m = 0.1;
+// The axis ratio a/b of an ellipse in [0.01, 100] (Kalker's table covers 0.1 ... 10; beyond 100 the
+// meshes of the solvers resolve the narrow direction with too few elements).
+inline constexpr double kMinimumEllipseAxisRatio = 0.01;
+inline constexpr double kMaximumEllipseAxisRatio = 100.0;
+// The largest Hertzian maximum pressure p0 = 3 F3 / (2 pi a b): 100 GPa, 50 times a heavy-haul
+// wheel-rail contact (about 2 GPa) and beyond the strength of any solid; linear elasticity (the
+// half-space theory of every solver) has long ceased to hold there.
+inline constexpr double kMaximumHertzPressure_Pa = 1e11;
+
+// Throws Error (invalid_input) unless value lies in [kMinimumSemiAxis_m, kMaximumSemiAxis_m];
+// `name` is the input as the caller gave it ("rc_patch.a_m", "[geometry] a").
+void validate_semi_axis(double value_m, std::string_view name);
+// Throws Error (invalid_input) unless the ellipse a x b carrying F3 has an axis ratio in
+// [kMinimumEllipseAxisRatio, kMaximumEllipseAxisRatio] and p0 <= kMaximumHertzPressure_Pa;
+// `inputs` names what gave the ellipse ("the semi-axes a = 1e-05 m, b = 1e-05 m").
+void validate_ellipse(double a_m, double b_m, double normal_force_N, std::string_view inputs);
+
 // Hertzian pressure p0 sqrt(1 - (x1/a)^2 - (x2/b)^2) on an elliptical patch (elements whose
 // centre lies inside the ellipse), scaled so that the discrete normal force equals F3. Throws
-// Error unless a, b are positive and finite and F3 lies in [kMinimumNormalForce_N,
-// kMaximumNormalForce_N].
+// Error unless a, b lie in [kMinimumSemiAxis_m, kMaximumSemiAxis_m], F3 in [kMinimumNormalForce_N,
+// kMaximumNormalForce_N] and the ellipse passes validate_ellipse.
 ContactPatch hertzian_patch(const ContactElements& ellipse, double a_m, double b_m, double normal_force_N,
                             const Material& material);
 

@@ -205,8 +205,32 @@ struct TrackWheelsetParameters {
   double nominal_rolling_radius_m = 0.46;     // wheel radius at the taping line
 };
 
-// Throws Error unless all lengths are positive and finite (flange_back_y finite).
-void validate(const TrackWheelsetParameters& parameters);
+// The physical ranges of the track and wheelset data (m; docs/RELIABILITY.md "Values and solvers"):
+// - track gauge [0.38, 2.2]: from the 15-inch minimum gauge (381 mm) to Brunel's 7 ft 1/4 in
+//   (2140 mm); 1.435 standard, 1.000, 1.067, 1.520, 1.668 in use;
+// - gauge measuring depth [0.001, 0.03]: within the rail head's gauge corner (EN 13848 14 mm, AREMA
+//   5/8 in = 15.9 mm);
+// - flange-back distance [0.3, 2.2], and the gauge minus it in [0.02, 0.2]: two flanges (about
+//   30 mm thick each) and their play (1435 - 1360 = 75 mm);
+// - flange-back position in the wheel profile frame [-0.2, 0.2] and taping line from the flange
+//   back [0.01, 0.2]: within a wheel profile (at most 0.4 m wide, Profile; a wheel's tread is
+//   about 135 mm, the taping line 70 mm from the back);
+// - nominal rolling radius [0.04, 1.5]: from a 1:10 scale roller-rig wheel to a steam locomotive's
+//   driving wheel (about 1.15 m); 0.46 for a new UIC freight or passenger wheel.
+// A value above a range that would lie in it in millimetres is said to be (a value of 46 for
+// nominal_rolling_radius_m ran as a 46 m wheel).
+inline constexpr double kMinimumTrackGauge_m = 0.38, kMaximumTrackGauge_m = 2.2;
+inline constexpr double kMinimumGaugeMeasuringDepth_m = 0.001, kMaximumGaugeMeasuringDepth_m = 0.03;
+inline constexpr double kMinimumFlangeBackDistance_m = 0.3, kMaximumFlangeBackDistance_m = 2.2;
+inline constexpr double kMinimumGaugeMinusFlangeBack_m = 0.02, kMaximumGaugeMinusFlangeBack_m = 0.2;
+inline constexpr double kMaximumFlangeBackPosition_m = 0.2;
+inline constexpr double kMinimumTapingLineFromFlangeBack_m = 0.01, kMaximumTapingLineFromFlangeBack_m = 0.2;
+inline constexpr double kMinimumNominalRollingRadius_m = 0.04, kMaximumNominalRollingRadius_m = 1.5;
+
+// Throws Error (invalid_input) unless every field lies in its range above; the message names the
+// field with `prefix` before it, e.g. "rc_track_parameters." or "" (the set-up file's keys are
+// the field names): "nominal_rolling_radius_m = 46 m must lie in [0.04, 1.5] m (…)".
+void validate(const TrackWheelsetParameters& parameters, std::string_view prefix = "track parameters: ");
 
 // The geometric contact point of one lateral displacement.
 struct WheelRailContactPoint {

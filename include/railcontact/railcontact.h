@@ -75,6 +75,20 @@ RC_API rc_status rc_version(int* major, int* minor, int* patch);
    when the two fit. */
 RC_API int rc_abi_version(void);
 
+/* ---- Counts ------------------------------------------------------------------------------ */
+
+/* The largest count each call accepts, checked before anything is allocated (RC_INVALID_INPUT
+   naming the argument): a count like (size_t)-1 is a caller's error, not a batch.
+   RC_MAX_BATCH_STATES: rc_batch_creep_forces' count (10 million states: ~36 bytes of bookkeeping
+   each, and about 10 s at 1 us a state). RC_MAX_WHEELSET_BATCH_STATES: rc_wheelset_batch_evaluate's
+   count (1 million states, as a sweep's cases: 0.1-0.5 s each). RC_MAX_PATCHES_PER_WHEEL: its
+   patches_per_wheel (a wheel has 1 to 3 patches). rc_flextable_build: y_count at most 10000 and
+   load_count at most 100 (kMaximumFlexibilityTableYValues, kMaximumFlexibilityTableLoads of
+   flexibility_table.hpp); rc_wheelset_table_build: at most 20000 values per axis and nodes. */
+#define RC_MAX_BATCH_STATES ((size_t)10000000)
+#define RC_MAX_WHEELSET_BATCH_STATES ((size_t)1000000)
+#define RC_MAX_PATCHES_PER_WHEEL ((size_t)64)
+
 /* ---- Settings of a solver ---------------------------------------------------------------- */
 
 /* The tangential method. */
@@ -152,8 +166,8 @@ typedef enum rc_geometry {
 /* One single-patch state's geometry and load. Fields not used by the kind are ignored. */
 typedef struct rc_patch {
   double normal_force_N;  /* F3 (N), [1, 1e7] */
-  double a_m, b_m;        /* ELLIPSE: semi-axes along X1 and X2 (m) */
-  double A_per_m, B_per_m;/* HERTZ: curvatures of h = A x1^2 + B x2^2 (1/m), > 0 */
+  double a_m, b_m;        /* ELLIPSE: semi-axes along X1 and X2 (m), [1e-5, 0.1], a/b [0.01, 100] */
+  double A_per_m, B_per_m;/* HERTZ: curvatures of h = A x1^2 + B x2^2 (1/m), [1e-3, 1e4] */
   double grid_dx1_m;      /* GRID: element length along X1 (m) */
   double grid_dx2_m;      /* GRID: element width along X2 (m) */
   const double* grid_h_m; /* GRID: n1 * n2 values of h (m), element (i1, i2) at i2 * n1 + i1
@@ -165,9 +179,9 @@ typedef struct rc_patch {
 
 /* Creepages of steady rolling. */
 typedef struct rc_creepage {
-  double xi;         /* longitudinal creepage (-) */
-  double eta;        /* lateral creepage (-) */
-  double phi_per_m;  /* spin creepage (1/m) */
+  double xi;         /* longitudinal creepage (-), [-0.5, 0.5] */
+  double eta;        /* lateral creepage (-), [-0.5, 0.5] */
+  double phi_per_m;  /* spin creepage (1/m), [-100, 100] */
 } rc_creepage;
 
 /* Tangential results on the wheel, in the contact frame. */
@@ -362,7 +376,7 @@ typedef struct rc_track_parameters {
   double flange_back_distance_m;         /* between the wheels' flange backs; 1.360 */
   double flange_back_y_m;                /* the flange back in the wheel profile frame; -0.070 */
   double taping_line_from_flange_back_m; /* lateral distance flange back -> taping line; 0.070 */
-  double nominal_rolling_radius_m;       /* wheel radius at the taping line (r0); 0.46 */
+  double nominal_rolling_radius_m;       /* wheel radius at the taping line (r0); 0.46 (ranges: geometry.hpp) */
 } rc_track_parameters;
 
 RC_API rc_status rc_track_parameters_default(rc_track_parameters* track);
@@ -420,13 +434,13 @@ typedef struct rc_wheelset_state {
   double roll_rad;             /* about x, + the left wheel rises; |roll| <= 0.1 (balance_roll:
                                   the first guess) */
   double yaw_rad;              /* about z, + the axle's left end moves backwards; |yaw| <= 0.1 */
-  double forward_speed_m_per_s;    /* V > 0, the rolling speed of the creepages; default 20 */
-  double lateral_velocity_m_per_s; /* dy/dt (m/s) */
+  double forward_speed_m_per_s;    /* V in (0, 200], the rolling speed of the creepages; default 20 */
+  double lateral_velocity_m_per_s; /* dy/dt (m/s), |.| <= 10; rates |.| <= 10 rad/s (wheelset.hpp) */
   double vertical_velocity_m_per_s;/* dz/dt (m/s) */
   double roll_rate_rad_per_s;
   double yaw_rate_rad_per_s;
-  double wheel_angular_velocity_rad_per_s; /* RC_ROTATION_GIVEN: about the axle, + rolling forward */
-  double extra_longitudinal_creepage;      /* RC_ROTATION_ROLLING: xi0 (-), < 0 traction, > 0 braking */
+  double wheel_angular_velocity_rad_per_s; /* RC_ROTATION_GIVEN: about the axle, + rolling forward, |.| <= 1000 */
+  double extra_longitudinal_creepage;      /* RC_ROTATION_ROLLING: xi0 (-), < 0 traction, > 0 braking, |.| <= 0.5 */
   int rotation;                /* rc_wheel_rotation; default RC_ROTATION_ROLLING */
   int reserved;                /* set to 0 */
 } rc_wheelset_state;

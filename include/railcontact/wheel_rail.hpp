@@ -71,6 +71,9 @@ enum class PatchMeshLayout {
 // every y in −4.5 … 4.5 mm up to 1 MN. Such patches are also wrong: with 20 elements the area is
 // 6–15 % too large and the maximum pressure up to 24 % too small, with 100 within 7 % and 1 %
 // (y = −3, 0, 3 mm at 98.1 kN, against 3000 elements).
+// The largest lateral displacement |y| of a wheel-rail case (case [geometry] y, in metres): 0.05 m. A flangeway's play is about ±8 mm and a flange is about 30 mm thick: beyond
+// 50 mm the wheel is off its rail (a value like 5 is millimetres given as metres).
+inline constexpr double kMaximumWheelRailLateralDisplacement_m = 0.05;
 inline constexpr int kMinimumWheelRailElements = 100;
 inline constexpr int kMaximumWheelRailElements = 200000;
 // On the smooth reference the patch is meshed with elements of at least

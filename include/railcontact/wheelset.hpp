@@ -64,6 +64,15 @@ ContactFrame contact_frame(const Vector3& point_from_wheelset_centre_m, double c
 // and orthogonal to 1e-9.
 Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& contact);
 
+// Throws Error (invalid_input) unless the kinematic creepage of a contact (kinematic_creepage of
+// motion and contact) lies in the range of a contact: |ξ|, |η| <= kMaximumCreepage and |φ| <=
+// kMaximumSpinCreepage_per_m (contact_patch.hpp), as for a single patch. The message names the
+// wheel, the creepage and the velocity of the motion that contributes most to it (the creepages are
+// linear in the velocities), e.g. "wheelset: the yaw rate yaw_rate_rad_per_s = 1000 rad/s at the
+// forward speed V = 20 m/s gives the right wheel's contact a longitudinal creepage xi = 37.5, …".
+void check_kinematic_creepage(const Creepage& creepage, const WheelsetMotion& motion, const ContactFrame& contact,
+                              WheelSide side);
+
 }  // namespace railcontact
 
 // The wheelset evaluated as a whole (docs/WHEELSET.md §5–7): the state of a multibody time step in,
@@ -92,6 +101,37 @@ struct WheelsetVelocity {
   double wheel_angular_velocity_rad_per_s = std::numeric_limits<double>::quiet_NaN();
   double extra_longitudinal_creepage = 0.0;  // ξ0 of the shortcut (< 0 traction, > 0 braking)
 };
+
+// The physical ranges of the velocities (docs/RELIABILITY.md "Values and solvers"):
+// - forward speed V in (0, 200] m/s: the rail speed record is 160 m/s (574.8 km/h);
+// - lateral and vertical velocity of the centre within ±10 m/s: hunting of 10 mm at 10 Hz is
+//   0.6 m/s, a wheel flat's impact about 1 m/s;
+// - roll and yaw rate within ±10 rad/s: hunting's yaw of 10 mrad at 10 Hz is 0.6 rad/s;
+// - the wheels' angular velocity within ±1000 rad/s: 200 m/s on a wheel of 0.2 m radius;
+// - the extra longitudinal creepage within ±kMaximumCreepage (0.5), the range of any creepage.
+// Within them, a combination can still give a contact a creepage beyond a contact's range (a yaw
+// rate of 10 rad/s at 1 m/s): check_kinematic_creepage refuses it before the tangential solve.
+inline constexpr double kMaximumForwardSpeed_m_per_s = 200.0;
+inline constexpr double kMaximumCentreVelocity_m_per_s = 10.0;
+inline constexpr double kMaximumRollYawRate_rad_per_s = 10.0;
+inline constexpr double kMaximumWheelAngularVelocity_rad_per_s = 1000.0;
+
+// How the caller named the velocities in its input: the fields (default), a case file's keys or
+// the command-line options ("--yaw-rate"), for the messages of validate(WheelsetVelocity).
+struct WheelsetVelocityNames {
+  std::string forward_speed = "forward_speed_m_per_s";
+  std::string lateral_velocity = "lateral_velocity_m_per_s";
+  std::string vertical_velocity = "vertical_velocity_m_per_s";
+  std::string roll_rate = "roll_rate_rad_per_s";
+  std::string yaw_rate = "yaw_rate_rad_per_s";
+  std::string wheel_angular_velocity = "wheel_angular_velocity_rad_per_s";
+  std::string extra_longitudinal_creepage = "extra_longitudinal_creepage";
+};
+
+// Throws Error (invalid_input) unless every velocity lies in its range above (the wheels' angular
+// velocity may be NaN: the rolling shortcut); the message names the value as `names` has it:
+// "wheelset: yaw_rate_rad_per_s = 1e+06 rad/s must lie in [-10, 10] rad/s (…)", "--yaw-rate 1e+06 rad/s …".
+void validate(const WheelsetVelocity& velocity, const WheelsetVelocityNames& names = {});
 
 struct WheelsetState {
   WheelsetPosition position;

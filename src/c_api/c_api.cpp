@@ -13,6 +13,7 @@
 
 using railcontact::Error;
 using railcontact::ErrorKind;
+using railcontact::require;
 using railcontact::c_api::guarded;
 using railcontact::c_api::LastError;
 using railcontact::c_api::PatchKey;
@@ -284,6 +285,10 @@ rc_status rc_batch_creep_forces(rc_solver* solver, size_t count, const rc_patch*
   rc_status first_failure = RC_OK;
   const rc_status status = guarded(&solver->error, [&] {
     if (count == 0) return;
+    require(count <= RC_MAX_BATCH_STATES, [&] {
+      return fmt::format("rc_batch_creep_forces: count = {} states; at most RC_MAX_BATCH_STATES = {}", count,
+                         RC_MAX_BATCH_STATES);
+    });
     require_pointer(patches, "rc_batch_creep_forces: patches");
     require_pointer(creepages, "rc_batch_creep_forces: creepages");
     require_pointer(forces, "rc_batch_creep_forces: forces");
@@ -352,7 +357,11 @@ railcontact::WheelRailPair pair_of(const char* setup_path) {
   return railcontact::load_wheel_rail_pair(railcontact::read_wheel_rail_setup(setup_path));
 }
 
-std::vector<double> finite_values(const double* values, size_t count, const char* what) {
+std::vector<double> finite_values(const double* values, size_t count, std::size_t max_count, const char* what,
+                                  const char* count_name) {
+  require(count >= 1 && count <= max_count, [&] {
+    return fmt::format("{} = {}: 1 to {} values are allowed", count_name, count, max_count);
+  });
   require_pointer(values, what);
   std::vector<double> v(values, values + count);
   for (std::size_t k = 0; k < v.size(); ++k)
@@ -374,8 +383,19 @@ rc_status rc_flextable_build(rc_flextable* table, const char* setup_path, const 
                              double poisson_ratio, rc_progress_callback progress, void* user_data) {
   if (table == nullptr) return RC_INVALID_INPUT;
   return guarded(&table->error, [&] {
-    const std::vector<double> y = finite_values(y_m, y_count, "rc_flextable_build: y_m");
-    const std::vector<double> loads = finite_values(loads_N, load_count, "rc_flextable_build: loads_N");
+    const std::vector<double> y = finite_values(y_m, y_count, railcontact::kMaximumFlexibilityTableYValues,
+                                                "rc_flextable_build: y_m", "rc_flextable_build: y_count");
+    const std::vector<double> loads = finite_values(loads_N, load_count, railcontact::kMaximumFlexibilityTableLoads,
+                                                    "rc_flextable_build: loads_N", "rc_flextable_build: load_count");
+    for (std::size_t k = 0; k < y.size(); ++k)
+      require(std::abs(y[k]) <= railcontact::kMaximumWheelRailLateralDisplacement_m, [&] {
+        return fmt::format("rc_flextable_build: y_m[{}] = {:g} m must lie in [{:g}, {:g}] m (a lateral displacement in "
+                           "metres: beyond it the wheel is off its rail)",
+                           k, y[k], -railcontact::kMaximumWheelRailLateralDisplacement_m,
+                           railcontact::kMaximumWheelRailLateralDisplacement_m);
+      });
+    for (std::size_t k = 0; k < loads.size(); ++k)
+      railcontact::validate_normal_force(loads[k], fmt::format("rc_flextable_build: loads_N[{}]", k));
     railcontact::FlexibilityTableOptions options;
     if (target_elements != 0) options.patch.target_elements = target_elements;
     options.patch.material = railcontact::Material{youngs_modulus_Pa, poisson_ratio};

@@ -63,13 +63,14 @@ void validate_patch(const rc_patch& p) {
             [&] { return fmt::format("rc_patch.{} = {}{} must be positive and finite", field, v, unit); });
   };
   if (p.kind == RC_GEOMETRY_ELLIPSE) {
-    finite_positive(p.a_m, "a_m", " m");
-    finite_positive(p.b_m, "b_m", " m");
-    require(p.a_m / p.b_m >= 0.01 && p.a_m / p.b_m <= 100,
-            [&] { return fmt::format("rc_patch: the ellipse's a/b = {} lies outside [0.01, 100]", p.a_m / p.b_m); });
+    validate_semi_axis(p.a_m, "rc_patch.a_m");
+    validate_semi_axis(p.b_m, "rc_patch.b_m");
+    // F3 is 0 for rc_solver_set_patch_at_approach: the axis ratio alone, the pressure once F3 is found.
+    validate_ellipse(p.a_m, p.b_m, p.normal_force_N,
+                     fmt::format("rc_patch.a_m = {:g} m and rc_patch.b_m = {:g} m", p.a_m, p.b_m));
   } else if (p.kind == RC_GEOMETRY_HERTZ) {
-    finite_positive(p.A_per_m, "A_per_m", " 1/m");
-    finite_positive(p.B_per_m, "B_per_m", " 1/m");
+    validate_relative_curvature(p.A_per_m, "rc_patch.A_per_m");
+    validate_relative_curvature(p.B_per_m, "rc_patch.B_per_m");
   } else {
     finite_positive(p.grid_dx1_m, "grid_dx1_m", " m");
     finite_positive(p.grid_dx2_m, "grid_dx2_m", " m");
@@ -308,17 +309,15 @@ std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare(const rc_setting
   } else {
     double a = patch.a_m, b = patch.b_m, approach = 0;
     if (patch.kind == RC_GEOMETRY_HERTZ) {
+      validate_normal_force(patch.normal_force_N, "rc_patch.normal_force_N");
       const HertzContact h = hertz_from_curvatures(patch.A_per_m, patch.B_per_m, patch.normal_force_N, material);
       a = h.a_m;
       b = h.b_m;
       approach = h.approach_m;
-      require(a / b >= 0.01 && a / b <= 100, [&] {
-        return fmt::format("rc_patch hertz: the ellipse's a/b = {} lies outside [0.01, 100]", a / b);
-      });
     } else {
       validate(material);
-      const HertzCurvatures c = hertz_curvatures_for_semi_axes(a, b, patch.normal_force_N, material);
-      approach = hertz_from_curvatures(c.A_per_m, c.B_per_m, patch.normal_force_N, material).approach_m;
+      validate_normal_force(patch.normal_force_N, "rc_patch.normal_force_N");
+      approach = hertz_from_semi_axes(a, b, patch.normal_force_N, material).approach_m;
     }
     p->patch = hertzian_patch(ellipse_elements(s, a, b), a, b, patch.normal_force_N, material);
     describe_patch(p->patch, n, a_eq, b_eq);
@@ -387,8 +386,7 @@ void SinglePatchSolver::set_patch_at_approach(const rc_patch& given, double appr
           hertz_from_curvatures(patch.A_per_m, patch.B_per_m, reference_N, material).approach_m;
       force = reference_N * std::pow(approach_m / reference, 1.5);
     } else {
-      const HertzCurvatures c = hertz_curvatures_for_semi_axes(patch.a_m, patch.b_m, reference_N, material);
-      const double reference = hertz_from_curvatures(c.A_per_m, c.B_per_m, reference_N, material).approach_m;
+      const double reference = hertz_from_semi_axes(patch.a_m, patch.b_m, reference_N, material).approach_m;
       force = reference_N * approach_m / reference;
     }
     validate_normal_force(force, fmt::format("rc_patch at approach {} m: the normal force found", approach_m));
@@ -464,13 +462,21 @@ Evaluation SinglePatchSolver::evaluate(const rc_creepage& c, bool with_fields) c
   return e;
 }
 
+// The caller's creepages in the range of a contact (validate_creepage), before any solve; the
+// Jacobian's differences may step past the range by their step.
+static void validate_creepage(const rc_creepage& c) {
+  railcontact::validate_creepage(Creepage{c.xi, c.eta, c.phi_per_m}, "rc_creepage", "phi_per_m");
+}
+
 rc_forces SinglePatchSolver::solve(const rc_creepage& creepage) {
+  validate_creepage(creepage);
   last_.reset();
   last_ = evaluate(creepage, false);
   return last_->forces;
 }
 
 rc_forces SinglePatchSolver::jacobian(const rc_creepage& c, double J[9]) {
+  validate_creepage(c);
   const double steps[3] = {settings_.jacobian_step_creepage, settings_.jacobian_step_creepage,
                            settings_.jacobian_step_spin_per_m};
   last_.reset();

@@ -109,11 +109,6 @@ rc::WheelsetState state_of(const rc_wheelset_state& c) {
   require(c.rotation == RC_ROTATION_ROLLING || c.rotation == RC_ROTATION_GIVEN, [&] {
     return fmt::format("rc_wheelset_state.rotation = {} is not an rc_wheel_rotation (0 rolling, 1 given)", c.rotation);
   });
-  require(c.forward_speed_m_per_s > 0.0, [&] {
-    return fmt::format("rc_wheelset_state.forward_speed_m_per_s = {} m/s must be positive (the creepages are "
-                       "velocities divided by the forward speed)",
-                       c.forward_speed_m_per_s);
-  });
   rc::WheelsetState state;
   state.position.lateral_displacement_m = c.y_m;
   state.position.vertical_displacement_m = c.z_m;
@@ -130,6 +125,12 @@ rc::WheelsetState state_of(const rc_wheelset_state& c) {
     v.wheel_angular_velocity_rad_per_s = c.wheel_angular_velocity_rad_per_s;
     v.extra_longitudinal_creepage = 0.0;
   }  // else NaN: pure rolling with the extra creepage (WheelsetVelocity)
+  static const rc::WheelsetVelocityNames names{
+      "rc_wheelset_state.forward_speed_m_per_s", "rc_wheelset_state.lateral_velocity_m_per_s",
+      "rc_wheelset_state.vertical_velocity_m_per_s", "rc_wheelset_state.roll_rate_rad_per_s",
+      "rc_wheelset_state.yaw_rate_rad_per_s", "rc_wheelset_state.wheel_angular_velocity_rad_per_s",
+      "rc_wheelset_state.extra_longitudinal_creepage"};
+  rc::validate(state.velocity, names);
   return state;
 }
 
@@ -149,7 +150,7 @@ rc::TrackWheelsetParameters track_of(const rc_track_parameters* t) {
   p.flange_back_y_m = t->flange_back_y_m;
   p.taping_line_from_flange_back_m = t->taping_line_from_flange_back_m;
   p.nominal_rolling_radius_m = t->nominal_rolling_radius_m;
-  rc::validate(p);
+  rc::validate(p, "rc_track_parameters.");
   return p;
 }
 
@@ -527,6 +528,14 @@ rc_status rc_wheelset_batch_evaluate(rc_wheelset* w, size_t count, const rc_whee
   rc_status first_failure = RC_OK;
   const rc_status status = guarded(&w->error, [&] {
     if (count == 0) return;
+    require(count <= RC_MAX_WHEELSET_BATCH_STATES, [&] {
+      return fmt::format("rc_wheelset_batch_evaluate: count = {} states; at most RC_MAX_WHEELSET_BATCH_STATES = {}",
+                         count, RC_MAX_WHEELSET_BATCH_STATES);
+    });
+    require(patches_per_wheel <= RC_MAX_PATCHES_PER_WHEEL, [&] {
+      return fmt::format("rc_wheelset_batch_evaluate: patches_per_wheel = {}; at most RC_MAX_PATCHES_PER_WHEEL = {}",
+                         patches_per_wheel, RC_MAX_PATCHES_PER_WHEEL);
+    });
     require_pointer(states, "rc_wheelset_batch_evaluate: states");
     require_pointer(results, "rc_wheelset_batch_evaluate: results");
     if (patches_per_wheel > 0) require_pointer(patches, "rc_wheelset_batch_evaluate: patches");

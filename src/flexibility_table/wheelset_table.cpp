@@ -275,6 +275,7 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
       !(std::abs(position.yaw_rad) <= 0.1))
     throw Error(fmt::format("wheelset table: the lateral displacement {} m and yaw {} rad must be finite, |yaw| <= 0.1 rad",
                             position.lateral_displacement_m, position.yaw_rad));
+  validate(state.velocity);
   const WheelsetMotion motion = wheelset_motion(state, nominal_rolling_radius_m_);
   const Bracket by = bracket(grid_.y_m, position.lateral_displacement_m, "the lateral displacement y", "mm", kMm);
   // One yaw node serves every yaw (the contact point turned); several are interpolated.
@@ -320,6 +321,7 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
         frame.x2 = p.x2_axis;
         frame.x3 = p.x3_axis;
         const Creepage creepage = kinematic_creepage(motion, frame);
+        check_kinematic_creepage(creepage, motion, frame, side);
         TangentialForces forces{};
         const RuntimePatch& runtime = runtime_[n][w][k];
         if (runtime.whole) {

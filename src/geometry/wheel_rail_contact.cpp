@@ -59,14 +59,33 @@ std::optional<double> crossing_from_end(const SmoothProfile& profile, double lev
 
 }  // namespace
 
-void validate(const TrackWheelsetParameters& p) {
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
-  require(positive(p.track_gauge_m), "track: the gauge must be positive");
-  require(positive(p.gauge_measuring_depth_m), "track: the gauge measuring depth must be positive");
-  require(positive(p.flange_back_distance_m), "wheelset: the flange-back distance must be positive");
-  require(std::isfinite(p.flange_back_y_m), "wheelset: the flange-back position must be finite");
-  require(positive(p.taping_line_from_flange_back_m), "wheelset: the taping-line distance must be positive");
-  require(positive(p.nominal_rolling_radius_m), "wheelset: the nominal rolling radius must be positive");
+void validate(const TrackWheelsetParameters& p, std::string_view prefix) {
+  const auto check = [&](double value, const char* field, double low, double high, const char* reason) {
+    if (std::isfinite(value) && value >= low && value <= high) return;
+    const bool in_mm = value > high && value * 1e-3 >= low && value * 1e-3 <= high;
+    throw Error(fmt::format("{}{} = {:g} m must lie in [{:g}, {:g}] m ({}){}", prefix, field, value, low, high, reason,
+                            in_mm ? fmt::format("; the value is in metres: {:g} mm would be {:g} m", value, value * 1e-3)
+                                  : std::string()));
+  };
+  check(p.track_gauge_m, "track_gauge_m", kMinimumTrackGauge_m, kMaximumTrackGauge_m,
+        "from the 15-inch minimum gauge to Brunel's broad gauge; 1.435 standard");
+  check(p.gauge_measuring_depth_m, "gauge_measuring_depth_m", kMinimumGaugeMeasuringDepth_m,
+        kMaximumGaugeMeasuringDepth_m, "within the rail head's gauge corner; 0.014 in EN 13848");
+  check(p.flange_back_distance_m, "flange_back_distance_m", kMinimumFlangeBackDistance_m, kMaximumFlangeBackDistance_m,
+        "between the wheels' flange backs; 1.360 on standard gauge");
+  check(p.flange_back_y_m, "flange_back_y_m", -kMaximumFlangeBackPosition_m, kMaximumFlangeBackPosition_m,
+        "a position in the wheel profile frame, within the profile");
+  check(p.taping_line_from_flange_back_m, "taping_line_from_flange_back_m", kMinimumTapingLineFromFlangeBack_m,
+        kMaximumTapingLineFromFlangeBack_m, "on the wheel's tread; 0.070 on a UIC wheel");
+  check(p.nominal_rolling_radius_m, "nominal_rolling_radius_m", kMinimumNominalRollingRadius_m,
+        kMaximumNominalRollingRadius_m, "from a scale roller-rig wheel to a locomotive's driving wheel; 0.46 for a UIC wheel");
+  const double play = p.track_gauge_m - p.flange_back_distance_m;
+  require(play >= kMinimumGaugeMinusFlangeBack_m && play <= kMaximumGaugeMinusFlangeBack_m, [&] {
+    return fmt::format("{}track_gauge_m - flange_back_distance_m = {:g} - {:g} = {:g} m must lie in [{:g}, {:g}] m (two "
+                       "flanges and their play: 0.075 on standard gauge)",
+                       prefix, p.track_gauge_m, p.flange_back_distance_m, play, kMinimumGaugeMinusFlangeBack_m,
+                       kMaximumGaugeMinusFlangeBack_m);
+  });
 }
 
 WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const TrackWheelsetParameters& parameters,

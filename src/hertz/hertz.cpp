@@ -19,8 +19,11 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <string>
 
 #include "hertz/elliptic_integrals.hpp"
+#include "hertz/hertz_estimate.hpp"
+#include "mesh/hertz_pressure.hpp"
 #include "railcontact/error.hpp"
 
 namespace railcontact {
@@ -81,11 +84,30 @@ void require_finite_result(double v1, double v2, double v3, double v4, Describe&
 
 }  // namespace
 
-HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal_force_N, const Material& material) {
+namespace {
+
+std::string range_text(double low, double high, const char* unit) { return fmt::format("[{:g}, {:g}]{}", low, high, unit); }
+
+}  // namespace
+
+void validate_relative_curvature(double value_per_m, std::string_view name) {
+  require(std::isfinite(value_per_m) && value_per_m >= kMinimumRelativeCurvature_per_m &&
+              value_per_m <= kMaximumRelativeCurvature_per_m,
+          [&] {
+            return fmt::format("{} = {:g} 1/m must lie in {} (half the sum of the bodies' curvatures: radii from 500 m, "
+                               "nearly flat, to 50 um, a sharp edge)",
+                               name, value_per_m,
+                               range_text(kMinimumRelativeCurvature_per_m, kMaximumRelativeCurvature_per_m, " 1/m"));
+          });
+}
+
+namespace detail {
+
+HertzContact hertz_estimate(double A_per_m, double B_per_m, double normal_force_N, const Material& material) {
   validate(material);
   require_positive_finite(A_per_m, "curvature A");
   require_positive_finite(B_per_m, "curvature B");
-  validate_normal_force(normal_force_N, "hertz: the normal force F3");
+  require_positive_finite(normal_force_N, "the normal force F3");
   const double e_star_Pa = material.contact_modulus_Pa();
 
   // The major semi-axis lies along the axis of the smaller curvature.
@@ -111,29 +133,80 @@ HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal
   return contact;
 }
 
-HertzCurvatures hertz_curvatures_for_semi_axes(double a_m, double b_m, double normal_force_N, const Material& material) {
+}  // namespace detail
+
+HertzContact hertz_from_curvatures(double A_per_m, double B_per_m, double normal_force_N, const Material& material) {
   validate(material);
-  require_positive_finite(a_m, "semi-axis a");
-  require_positive_finite(b_m, "semi-axis b");
+  validate_relative_curvature(A_per_m, "hertz: the relative curvature A");
+  validate_relative_curvature(B_per_m, "hertz: the relative curvature B");
   validate_normal_force(normal_force_N, "hertz: the normal force F3");
-  const double e_star_Pa = material.contact_modulus_Pa();
+  const HertzContact contact = detail::hertz_estimate(A_per_m, B_per_m, normal_force_N, material);
+  const std::string inputs = fmt::format("hertz: the curvatures A = {:g} 1/m, B = {:g} 1/m (with E = {:g} Pa)",
+                                         A_per_m, B_per_m, material.youngs_modulus_Pa);
+  for (const double axis : {contact.a_m, contact.b_m})
+    require(axis >= kMinimumSemiAxis_m && axis <= kMaximumSemiAxis_m, [&] {
+      return fmt::format("{} under F3 = {:g} N give an ellipse of semi-axes a = {:.3g} mm, b = {:.3g} mm, outside "
+                         "[{:g}, {:g}] mm (a contact patch from a laboratory micro-contact to beyond a rail head)",
+                         inputs, normal_force_N, contact.a_m * 1e3, contact.b_m * 1e3, kMinimumSemiAxis_m * 1e3,
+                         kMaximumSemiAxis_m * 1e3);
+    });
+  detail::validate_hertz_pressure(contact.a_m, contact.b_m, normal_force_N, inputs);
+  return contact;
+}
+
+namespace {
+
+// The curvatures and the elliptic integrals of the ellipse a x b under F3: inputs checked.
+struct SemiAxesSolution {
+  HertzCurvatures curvatures;
+  double e_star_Pa = 0.0, g = 0.0, minor_m = 0.0;
+  detail::CompleteEllipticIntegrals ell;
+};
+
+SemiAxesSolution solve_semi_axes(double a_m, double b_m, double normal_force_N, const Material& material) {
+  validate(material);
+  validate_semi_axis(a_m, "hertz: the semi-axis a");
+  validate_semi_axis(b_m, "hertz: the semi-axis b");
+  validate_normal_force(normal_force_N, "hertz: the normal force F3");
+  detail::validate_hertz_pressure(a_m, b_m, normal_force_N,
+                          fmt::format("hertz: the semi-axes a = {:g} m, b = {:g} m", a_m, b_m));
+  SemiAxesSolution s;
+  s.e_star_Pa = material.contact_modulus_Pa();
 
   const double major_m = std::max(a_m, b_m);
-  const double g = std::min(a_m, b_m) / major_m;
-  require(g > 1e-150, [&] { return fmt::format("hertz: semi-axis ratio {} / {} is too extreme", a_m, b_m); });
-  const detail::CompleteEllipticIntegrals ell = detail::complete_elliptic_integrals(g * g);
+  s.minor_m = std::min(a_m, b_m);
+  s.g = s.minor_m / major_m;
+  s.ell = detail::complete_elliptic_integrals(s.g * s.g);
 
   // (4.40) solved for the smaller curvature (along the major axis), then (4.39) for the larger.
   const double small_curvature =
-      3.0 * normal_force_N * ell.D / (2.0 * std::numbers::pi * e_star_Pa * major_m * major_m * major_m);
-  const double large_curvature = small_curvature * ell.B / (g * g * ell.D);
+      3.0 * normal_force_N * s.ell.D / (2.0 * std::numbers::pi * s.e_star_Pa * major_m * major_m * major_m);
+  const double large_curvature = small_curvature * s.ell.B / (s.g * s.g * s.ell.D);
 
-  HertzCurvatures curvatures;
-  curvatures.A_per_m = a_m >= b_m ? small_curvature : large_curvature;
-  curvatures.B_per_m = a_m >= b_m ? large_curvature : small_curvature;
-  require_finite_result(curvatures.A_per_m, curvatures.B_per_m, curvatures.A_per_m, curvatures.B_per_m,
+  s.curvatures.A_per_m = a_m >= b_m ? small_curvature : large_curvature;
+  s.curvatures.B_per_m = a_m >= b_m ? large_curvature : small_curvature;
+  require_finite_result(s.curvatures.A_per_m, s.curvatures.B_per_m, s.curvatures.A_per_m, s.curvatures.B_per_m,
                         [&] { return fmt::format("a = {:g} m, b = {:g} m", a_m, b_m); });
-  return curvatures;
+  return s;
+}
+
+}  // namespace
+
+HertzCurvatures hertz_curvatures_for_semi_axes(double a_m, double b_m, double normal_force_N, const Material& material) {
+  return solve_semi_axes(a_m, b_m, normal_force_N, material).curvatures;
+}
+
+HertzContact hertz_from_semi_axes(double a_m, double b_m, double normal_force_N, const Material& material) {
+  const SemiAxesSolution s = solve_semi_axes(a_m, b_m, normal_force_N, material);
+  HertzContact contact;
+  contact.normal_force_N = normal_force_N;
+  contact.a_m = a_m;
+  contact.b_m = b_m;
+  contact.max_pressure_Pa = 3.0 * normal_force_N / (2.0 * std::numbers::pi * a_m * b_m);  // (4.41)
+  contact.approach_m = contact.max_pressure_Pa / s.e_star_Pa * s.minor_m * s.ell.K;     // (4.42)
+  require_finite_result(contact.a_m, contact.b_m, contact.max_pressure_Pa, contact.approach_m,
+                        [&] { return fmt::format("a = {:g} m, b = {:g} m", a_m, b_m); });
+  return contact;
 }
 
 }  // namespace railcontact

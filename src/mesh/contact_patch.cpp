@@ -135,8 +135,11 @@ ContactPatch coarsened(const ContactPatch& patch, CoarseBlocks blocks) {
 
 ContactPatch hertzian_patch(const ContactElements& ellipse, double a_m, double b_m, double normal_force_N,
                             const Material& material) {
-  require(a_m > 0 && b_m > 0 && std::isfinite(a_m) && std::isfinite(b_m), "Hertzian patch: semi-axes must be positive");
+  validate_semi_axis(a_m, "Hertzian patch: the semi-axis a");
+  validate_semi_axis(b_m, "Hertzian patch: the semi-axis b");
   validate_normal_force(normal_force_N, "Hertzian patch: the normal force F3");
+  validate_ellipse(a_m, b_m, normal_force_N,
+                   fmt::format("Hertzian patch: the semi-axes a = {:g} m, b = {:g} m", a_m, b_m));
   const Mesh& mesh = ellipse.mesh();
   std::vector<double> pressure(mesh.size(), 0.0);
   double force = 0.0;

@@ -1,10 +1,12 @@
 #include "railcontact/contact_patch.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 #include <fmt/format.h>
 
+#include "mesh/hertz_pressure.hpp"
 #include "railcontact/error.hpp"
 
 namespace railcontact {
@@ -63,6 +65,52 @@ void validate_normal_force(double normal_force_N, std::string_view what) {
                                                                                   : "is too large";
   throw Error(fmt::format("{} {} ({:g} N; allowed [{:g}, {:g}] N)", what, problem, normal_force_N,
                           kMinimumNormalForce_N, kMaximumNormalForce_N));
+}
+
+void validate_semi_axis(double value_m, std::string_view name) {
+  require(std::isfinite(value_m) && value_m >= kMinimumSemiAxis_m && value_m <= kMaximumSemiAxis_m, [&] {
+    return fmt::format("{} = {:g} m must lie in {} (a contact patch from a laboratory micro-contact to beyond a rail "
+                       "head{})",
+                       name, value_m, fmt::format("[{:g}, {:g}] m", kMinimumSemiAxis_m, kMaximumSemiAxis_m),
+                       value_m > kMaximumSemiAxis_m && value_m * 1e-3 <= kMaximumSemiAxis_m
+                           ? "; the semi-axes are in metres: is it given in millimetres?"
+                           : "");
+  });
+}
+
+void validate_ellipse(double a_m, double b_m, double normal_force_N, std::string_view inputs) {
+  const double ratio = a_m / b_m;
+  require(ratio >= kMinimumEllipseAxisRatio && ratio <= kMaximumEllipseAxisRatio, [&] {
+    return fmt::format("{} give an ellipse of a/b = {:g}, outside {} (the solvers' meshes cannot resolve a more "
+                       "slender patch)",
+                       inputs, ratio, fmt::format("[{:g}, {:g}]", kMinimumEllipseAxisRatio, kMaximumEllipseAxisRatio));
+  });
+  detail::validate_hertz_pressure(a_m, b_m, normal_force_N, inputs);
+}
+
+void detail::validate_hertz_pressure(double a_m, double b_m, double normal_force_N, std::string_view inputs) {
+  const double p0 = 3.0 * normal_force_N / (2.0 * std::numbers::pi * a_m * b_m);
+  require(p0 <= kMaximumHertzPressure_Pa, [&] {
+    return fmt::format("{} under F3 = {:g} N give a maximum pressure p0 = 3 F3 / (2 pi a b) = {:.3g} MPa, above {:g} "
+                       "MPa: beyond the strength of any solid, where the elastic half-space does not hold (is the "
+                       "patch too small or the load too large?)",
+                       inputs, normal_force_N, p0 * 1e-6, kMaximumHertzPressure_Pa * 1e-6);
+  });
+}
+
+void validate_creepage(const Creepage& c, std::string_view names, std::string_view spin_field) {
+  const auto check = [&](double value, std::string_view field, double limit, const char* unit, const char* reason) {
+    require(std::isfinite(value) && std::fabs(value) <= limit, [&] {
+      return fmt::format("{}.{} = {:g}{} must lie in [{:g}, {:g}]{} ({})", names, field, value, unit, -limit, limit,
+                         unit, reason);
+    });
+  };
+  constexpr const char* kSliding = "a creepage is a sliding velocity over the rolling speed; beyond 0.5 the wheel "
+                                   "slides rather than rolls and the steady-rolling model does not apply";
+  check(c.xi, "xi", kMaximumCreepage, "", kSliding);
+  check(c.eta, "eta", kMaximumCreepage, "", kSliding);
+  check(c.phi, spin_field, kMaximumSpinCreepage_per_m, " 1/m",
+        "sin(contact angle) / rolling radius: 100 1/m is a contact angle of 90 degrees on a wheel of radius 10 mm");
 }
 
 }  // namespace railcontact

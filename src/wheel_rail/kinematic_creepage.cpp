@@ -1,6 +1,9 @@
 // Kinematic creepages of a contact from the wheelset's motion (railcontact/wheelset.hpp,
 // docs/WHEEL_RAIL.md §12): v_P = v_C + ω × p, then ξ = v_P·X1 / V, η = v_P·X2 / V, φ = ω·X3 / V.
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -59,8 +62,9 @@ double wheel_angular_velocity_for_rolling(double forward_speed_m_per_s, double n
   require(std::isfinite(nominal_rolling_radius_m) && nominal_rolling_radius_m > 0.0, [&] {
     return fmt::format("rolling: the nominal rolling radius r0 = {} m must be positive and finite", nominal_rolling_radius_m);
   });
-  require(std::isfinite(extra_longitudinal_creepage) && std::abs(extra_longitudinal_creepage) < 1.0, [&] {
-    return fmt::format("rolling: the extra longitudinal creepage {} must lie in (-1, 1)", extra_longitudinal_creepage);
+  require(std::isfinite(extra_longitudinal_creepage) && std::abs(extra_longitudinal_creepage) <= kMaximumCreepage, [&] {
+    return fmt::format("rolling: the extra longitudinal creepage {} must lie in [{:g}, {:g}]", extra_longitudinal_creepage,
+                       -kMaximumCreepage, kMaximumCreepage);
   });
   // At the nominal radius below the axle, v_P·x = V − Ω r0 = ξ0 V.
   return forward_speed_m_per_s * (1.0 - extra_longitudinal_creepage) / nominal_rolling_radius_m;
@@ -98,6 +102,56 @@ Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& co
   const Vector3 v{centre_velocity[0] + spin_part[0], centre_velocity[1] + spin_part[1], centre_velocity[2] + spin_part[2]};
   const double V = motion.forward_speed_m_per_s;
   return {dot(v, contact.x1) / V, dot(v, contact.x2) / V, dot(omega, contact.x3) / V};
+}
+
+void check_kinematic_creepage(const Creepage& creepage, const WheelsetMotion& motion, const ContactFrame& contact,
+                              WheelSide side) {
+  const double values[3] = {creepage.xi, creepage.eta, creepage.phi};
+  const double limits[3] = {kMaximumCreepage, kMaximumCreepage, kMaximumSpinCreepage_per_m};
+  int component = -1;
+  for (int k = 0; k < 3 && component < 0; ++k)
+    if (!(std::abs(values[k]) <= limits[k])) component = k;
+  if (component < 0) return;
+  // The creepages are linear in the velocities: the share of each. The rolling part (V with the
+  // wheels' rotation at the roll and yaw angles) is the motion without the rates; each rate's share
+  // is its creepage alone (V kept as the divisor) less that of no motion at all.
+  const auto part = [&](const WheelsetMotion& m) {
+    const Creepage c = kinematic_creepage(m, contact);
+    return component == 0 ? c.xi : component == 1 ? c.eta : c.phi;
+  };
+  WheelsetMotion rolling = motion;
+  rolling.lateral_velocity_m_per_s = rolling.vertical_velocity_m_per_s = 0.0;
+  rolling.roll_rate_rad_per_s = rolling.yaw_rate_rad_per_s = 0.0;
+  WheelsetMotion still = rolling;
+  still.wheel_angular_velocity_rad_per_s = 0.0;
+  const double none = part(still);
+  struct Share {
+    std::string input;
+    double value;
+  };
+  std::vector<Share> shares;
+  shares.push_back({fmt::format("the wheels' rotation wheel_angular_velocity_rad_per_s = {:g} rad/s", motion.wheel_angular_velocity_rad_per_s),
+                    part(rolling)});
+  const auto rate = [&](double WheelsetMotion::*field, const char* name, const char* unit) {
+    WheelsetMotion m = still;
+    m.*field = motion.*field;
+    shares.push_back({fmt::format("{} = {:g} {}", name, motion.*field, unit), part(m) - none});
+  };
+  rate(&WheelsetMotion::lateral_velocity_m_per_s, "the lateral velocity lateral_velocity_m_per_s", "m/s");
+  rate(&WheelsetMotion::vertical_velocity_m_per_s, "the vertical velocity vertical_velocity_m_per_s", "m/s");
+  rate(&WheelsetMotion::roll_rate_rad_per_s, "the roll rate roll_rate_rad_per_s", "rad/s");
+  rate(&WheelsetMotion::yaw_rate_rad_per_s, "the yaw rate yaw_rate_rad_per_s", "rad/s");
+  const Share& largest = *std::max_element(shares.begin(), shares.end(), [](const Share& a, const Share& b) {
+    return std::abs(a.value) < std::abs(b.value);
+  });
+  constexpr const char* kNames[3] = {"a longitudinal creepage xi", "a lateral creepage eta", "a spin creepage phi"};
+  constexpr const char* kUnits[3] = {"", "", " 1/m"};
+  throw Error(fmt::format("wheelset: {} at the forward speed V = {:g} m/s gives the {} wheel's contact {} = {:.5g}{} "
+                          "({:.5g}{} of it), beyond [{:g}, {:g}]{}: a contact slides rather than rolls (the same range "
+                          "as a single patch's creepages)",
+                          largest.input, motion.forward_speed_m_per_s, side_name(side), kNames[component],
+                          values[component], kUnits[component], largest.value, kUnits[component], -limits[component],
+                          limits[component], kUnits[component]));
 }
 
 }  // namespace railcontact

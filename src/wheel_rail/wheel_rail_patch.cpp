@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 
+#include "hertz/hertz_estimate.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheelset_geometry.hpp"
@@ -337,8 +338,10 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   // First estimate: Hertz for the local curvatures. B <= 0 (laterally conformal or concave) has
   // no Hertzian contact; a small positive B then only seeds the mesh passes.
   const double A = r.contact.A_per_m, B = r.contact.B_per_m;
-  if (B > 0.0) r.local_hertz = hertz_from_curvatures(A, B, F3, options.material);
-  const HertzContact estimate = B > 0.0 ? r.local_hertz : hertz_from_curvatures(A, 0.05 * A, F3, options.material);
+  // Hertz's closed form without its physical ranges (hertz_estimate): a nearly conformal contact
+  // has B below kMinimumRelativeCurvature_per_m, and the estimate is only a seed.
+  if (B > 0.0) r.local_hertz = detail::hertz_estimate(A, B, F3, options.material);
+  const HertzContact estimate = B > 0.0 ? r.local_hertz : detail::hertz_estimate(A, 0.05 * A, F3, options.material);
 
   double approach_m = options.initial_approach_m.value_or(estimate.approach_m);
   double margin = PotentialAreaOptions{}.margin_factor;

@@ -101,7 +101,7 @@ WheelRailSetup wheel_rail::parse_wheel_rail_setup(std::string_view content, cons
   t.taping_line_from_flange_back_m = number(*track, "taping_line_from_flange_back_m", track_where);
   t.nominal_rolling_radius_m = number(*track, "nominal_rolling_radius_m", track_where);
   try {
-    validate(t);
+    validate(t, "");
   } catch (const Error& e) {
     throw Error(fmt::format("{}: {}", track_where, e.what()));
   }

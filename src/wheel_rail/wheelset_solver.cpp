@@ -340,6 +340,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     frame.x2 = n.region.x2_axis;
     frame.x3 = n.region.x3_axis;
     patch.creepage = kinematic_creepage(motion, frame);
+    check_kinematic_creepage(patch.creepage, motion, frame, side);
     patch.normal_force_N = n.normal.normal_force_N;
     patch.elements_in_contact = n.normal.elements_in_contact;
     patch.normal_iterations = n.normal.iterations;
@@ -539,19 +540,43 @@ Wheelset::Wheelset(Wheelset&&) noexcept = default;
 void Wheelset::reset_warm_start() { warm_ = std::make_unique<detail::WheelsetWarmStart>(); }
 Wheelset& Wheelset::operator=(Wheelset&&) noexcept = default;
 
+void validate(const WheelsetVelocity& v, const WheelsetVelocityNames& names) {
+  // "--yaw-rate 10 rad/s" for an option, "wheelset: yaw_rate_rad_per_s = 10 rad/s" for a field or key.
+  const auto given = [](const std::string& name, double value, const char* unit) {
+    if (name.starts_with("--")) return fmt::format("{} {:g}{}", name, value, unit);
+    const bool field = name.find_first_of(".:") == std::string::npos;  // a WheelsetVelocity field
+    return fmt::format("{}{} = {:g}{}", field ? "wheelset: " : "", name, value, unit);
+  };
+  const auto check = [&](double value, const std::string& name, double limit, const char* unit, const char* reason) {
+    require(std::isfinite(value) && std::abs(value) <= limit, [&] {
+      return fmt::format("{} must lie in [{:g}, {:g}]{} ({})", given(name, value, unit), -limit, limit, unit, reason);
+    });
+  };
+  require(std::isfinite(v.forward_speed_m_per_s) && v.forward_speed_m_per_s > 0.0 &&
+              v.forward_speed_m_per_s <= kMaximumForwardSpeed_m_per_s,
+          [&] {
+            return fmt::format("{} must lie in (0, {:g}] m/s (the creepages are velocities divided by it, a wheelset at "
+                               "rest has no steady rolling contact; the rail speed record is 160 m/s)",
+                               given(names.forward_speed, v.forward_speed_m_per_s, " m/s"), kMaximumForwardSpeed_m_per_s);
+          });
+  check(v.lateral_velocity_m_per_s, names.lateral_velocity, kMaximumCentreVelocity_m_per_s, " m/s",
+        "hunting of 10 mm at 10 Hz is 0.6 m/s");
+  check(v.vertical_velocity_m_per_s, names.vertical_velocity, kMaximumCentreVelocity_m_per_s, " m/s",
+        "a wheel flat's impact is about 1 m/s");
+  check(v.roll_rate_rad_per_s, names.roll_rate, kMaximumRollYawRate_rad_per_s, " rad/s",
+        "a wheelset's roll and yaw oscillate by milliradians at up to 10 Hz");
+  check(v.yaw_rate_rad_per_s, names.yaw_rate, kMaximumRollYawRate_rad_per_s, " rad/s",
+        "hunting's yaw of 10 mrad at 10 Hz is 0.6 rad/s");
+  if (!std::isnan(v.wheel_angular_velocity_rad_per_s))
+    check(v.wheel_angular_velocity_rad_per_s, names.wheel_angular_velocity, kMaximumWheelAngularVelocity_rad_per_s,
+          " rad/s", "200 m/s on a wheel of 0.2 m radius; V / r0 = 43 rad/s at 20 m/s");
+  check(v.extra_longitudinal_creepage, names.extra_longitudinal_creepage, kMaximumCreepage, "",
+        "the range of any creepage: beyond, the wheel slides rather than rolls");
+}
+
 WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
   validate(input.position);
-  const WheelsetVelocity& v = input.velocity;
-  require(std::isfinite(v.forward_speed_m_per_s) && v.forward_speed_m_per_s > 0.0, [&] {
-    return fmt::format("wheelset: the forward speed V = {:g} m/s must be positive (the creepages are velocities "
-                       "divided by it; a wheelset at rest has no steady rolling contact)",
-                       v.forward_speed_m_per_s);
-  });
-  for (double value : {v.lateral_velocity_m_per_s, v.vertical_velocity_m_per_s, v.roll_rate_rad_per_s,
-                       v.yaw_rate_rad_per_s, v.extra_longitudinal_creepage}) {
-    require(std::isfinite(value), "wheelset: every velocity must be finite");
-  }
-  require(!std::isinf(v.wheel_angular_velocity_rad_per_s), "wheelset: the wheel angular velocity must be finite");
+  validate(input.velocity);
 
   WheelsetResult result;
   result.state = input;
