@@ -40,7 +40,6 @@ WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const
   const std::filesystem::path csv_path = out.path("wheelset_sweep.csv");
   std::ofstream csv(csv_path);
   if (!csv) throw write_error(csv_path, errno);
-  const std::vector<TangentialSolver>& solvers = wheelset.options().solvers;
   fmt::print(csv,
              "y_mm,vertical_displacement_mm,roll_mrad,side,patch,patches,reference_x_mm,reference_y_mm,reference_z_mm,"
              "rail_profile_y_mm,wheel_profile_y_mm,contact_angle_rad,rolling_radius_mm,xi,eta,phi_per_m,"
