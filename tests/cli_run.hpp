@@ -19,6 +19,19 @@ struct CommandResult {
   std::string err;  // stderr
 };
 
+// A shell prefix that bounds a CLI run: at most `memory_kib` of address space and `seconds` of
+// wall time, so a reader that reads an endless device or waits on a FIFO fails the test in
+// seconds. Under AddressSanitizer only the time is bounded: its shadow memory reserves terabytes
+// of address space, which any ulimit -v refuses.
+inline std::string bounded_run_prefix(long memory_kib, int seconds) {
+#if defined(__SANITIZE_ADDRESS__)
+  (void)memory_kib;
+  return "exec timeout " + std::to_string(seconds) + " ";
+#else
+  return "ulimit -v " + std::to_string(memory_kib) + "; exec timeout " + std::to_string(seconds) + " ";
+#endif
+}
+
 // Runs `railcontact ARGUMENTS`, after `shell_prefix` (e.g. limits: "ulimit -v N; exec timeout S ").
 inline CommandResult run_cli(const std::string& arguments, const std::string& shell_prefix = "") {
   // One file per call: ctest runs the tests in parallel processes.

@@ -97,12 +97,7 @@ void expect_contains(const std::string& message, const std::vector<std::string>&
 // The CLI under a time and memory limit: a reader that hangs or reads an endless device fails
 // the test in seconds instead of blocking the suite or exhausting the machine's memory.
 CommandResult run_cli_bounded(const std::string& arguments) {
-#if defined(__SANITIZE_ADDRESS__)
-  // AddressSanitizer reserves terabytes of address space for its shadow memory: no ulimit -v.
-  return test::run_cli(arguments, "exec timeout 120 ");
-#else
-  return test::run_cli(arguments, "ulimit -v 8000000; exec timeout 120 ");
-#endif
+  return test::run_cli(arguments, test::bounded_run_prefix(8000000, 120));
 }
 
 std::string file_text(const fs::path& path) {

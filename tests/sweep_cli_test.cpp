@@ -195,7 +195,7 @@ TEST(SweepCli, ShardsOfAnotherSetUpFileAreNeitherMergedNorResumed) {
 TEST(SweepCli, MergeRefusesDevicesFifosDirectoriesAndFilesThatAreNotJournals) {
   const ScratchDirectory dir("merge_not_journals");
   const std::string out = " --out " + (dir / "m").string();
-  const std::string limits = "ulimit -v 4000000; exec timeout 60 ";  // without the checks: 20 GB, or a hang
+  const std::string limits = railcontact::test::bounded_run_prefix(4000000, 60);  // without the checks: 20 GB, or a hang
   CommandResult r = run_cli("merge /dev/zero" + out, limits);
   railcontact::test::expect_one_error_line(r, "cannot read the journal /dev/zero: it is a character device");
   EXPECT_EQ(r.exit_code, 3);
