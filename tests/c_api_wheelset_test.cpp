@@ -165,7 +165,7 @@ TEST(CApiWheelset, EqualsTheCppWheelset) {
             EXPECT_EQ(p.x3_axis[i], q.region.x3_axis[i]);
           }
           EXPECT_EQ(p.contact_angle_rad, q.region.contact_angle_rad);
-          EXPECT_EQ(p.rolling_radius_m, q.region.rolling_radius_m);
+          EXPECT_EQ(p.rolling_radius_m, q.rolling_radius_m);
           EXPECT_EQ(p.creepage.xi, q.creepage.xi);
           EXPECT_EQ(p.creepage.eta, q.creepage.eta);
           EXPECT_EQ(p.creepage.phi_per_m, q.creepage.phi);
@@ -699,12 +699,18 @@ TEST(CApiWheelsetRanges, RatesTrackAndCountsOutsideTheirRangesNameTheField) {
   EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
   EXPECT_NE(c.error().find("rc_wheelset_state.wheel_angular_velocity_rad_per_s = 100000 rad/s"), std::string::npos)
       << c.error();
-  // Each rate in range, the wheels turning backwards: the kinematic creepage of a contact, naming
-  // the rotation, before the tangential solve.
+  // Each rate in range, the wheels turning backwards: no rolling, naming the rotation, before the
+  // tangential solve; turning forward too slowly: the kinematic creepage of a contact.
   s.wheel_angular_velocity_rad_per_s = -s.forward_speed_m_per_s / 0.46;
   EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
-  EXPECT_NE(c.error().find("wheel_angular_velocity_rad_per_s = -43.4783 rad/s at the forward speed V = 20 m/s gives "
-                           "the right wheel's contact a longitudinal creepage xi = 1.99"),
+  EXPECT_NE(c.error().find("wheel_angular_velocity_rad_per_s = -43.4783 rad/s does not roll the wheels forward at the "
+                           "forward speed V = 20 m/s"),
+            std::string::npos)
+      << c.error();
+  s.wheel_angular_velocity_rad_per_s = 0.2 * s.forward_speed_m_per_s / 0.46;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("wheel_angular_velocity_rad_per_s = 8.69565 rad/s at the forward speed V = 20 m/s gives "
+                           "the right wheel's contact a longitudinal creepage xi = 1.3"),
             std::string::npos)
       << c.error();
 

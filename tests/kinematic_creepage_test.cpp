@@ -37,17 +37,19 @@ TEST(KinematicCreepage, PureRollingAtTheNominalRadiusHasOnlyTheConicitySpin) {
   }
 }
 
-// A conical wheel touching below the nominal radius: its surface is slower than the axle, ξ = 1 − r/r0.
+// A conical wheel touching below the nominal radius: its surface is slower than the axle,
+// V − Ω r = V (1 − r/r0) over V_ref = V (1 + r/r0)/2: ξ = 2 (r0 − r)/(r0 + r).
 TEST(KinematicCreepage, RollingRadiusDifferenceGivesLongitudinalCreepage) {
   for (double r : {0.455, 0.46, 0.4637}) {
     const Creepage c = kinematic_creepage(rolling(), contact_frame({0, -kL, -r}, 0.05, WheelSide::right));
-    EXPECT_NEAR(c.xi, 1.0 - r / kR0, 1e-15) << r;
+    EXPECT_NEAR(c.xi, 2.0 * (kR0 - r) / (kR0 + r), 1e-15) << r;
     EXPECT_NEAR(c.eta, 0.0, 1e-15);
   }
 }
 
-// Yaw ψ at pure rolling, contact under the yawed axle: v_P = V (1 − cos ψ, −sin ψ, 0), so
-// η = −sin ψ cos γ (≈ −ψ) and ξ = 1 − cos ψ.
+// Yaw ψ at pure rolling, contact under the yawed axle: v_Q = V (1 − cos ψ, −sin ψ, 0), and the
+// wheel's circumferential speed along x is V cos ψ, so V_ref = V (1 + cos ψ)/2,
+// η = −2 sin ψ cos γ / (1 + cos ψ) (≈ −ψ) and ξ = 2 (1 − cos ψ)/(1 + cos ψ).
 TEST(KinematicCreepage, YawAnglePureRollingGivesLateralCreepageMinusPsi) {
   for (double psi : {-0.01, 0.002, 0.01}) {
     for (double gamma : {0.0, 0.04}) {
@@ -55,8 +57,8 @@ TEST(KinematicCreepage, YawAnglePureRollingGivesLateralCreepageMinusPsi) {
       m.yaw_rad = psi;
       const Vector3 p{kL * std::sin(psi), -kL * std::cos(psi), -kR0};  // Rz(ψ) (0, −l, −r0)
       const Creepage c = kinematic_creepage(m, contact_frame(p, gamma, WheelSide::right));
-      EXPECT_NEAR(c.eta, -std::sin(psi) * std::cos(gamma), 1e-15);
-      EXPECT_NEAR(c.xi, 1.0 - std::cos(psi), 1e-15);
+      EXPECT_NEAR(c.eta, -2.0 * std::sin(psi) * std::cos(gamma) / (1.0 + std::cos(psi)), 1e-15);
+      EXPECT_NEAR(c.xi, 2.0 * (1.0 - std::cos(psi)) / (1.0 + std::cos(psi)), 1e-15);
       if (gamma == 0.0) EXPECT_NEAR(c.eta, -psi, 2e-7);
     }
   }

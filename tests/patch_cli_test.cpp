@@ -46,12 +46,14 @@ TEST(PatchCli, JsonIsOneObjectWithTheDocumentedKeys) {
     EXPECT_TRUE(j.contains(key)) << key;
   const double gamma = j["contact_angle_rad"].get<double>();
   EXPECT_EQ(j["y"].get<double>(), 0.0);
-  // On the tread, about the 1:40 cant: the smooth reference's 0.0357 rad at y = 0 (the point of
+  // On the tread, about the 1:40 cant: the smooth reference's 0.0351 rad at y = 0 (the point of
   // first touch: 0.0243 rad).
   EXPECT_GT(gamma, 0.025);
   EXPECT_LT(gamma, 0.045);
   EXPECT_EQ(j["contact_reference"].get<std::string>(), "smooth");
-  EXPECT_NEAR(j["reference_point"]["y_rail_m"].get<double>(), -10.09e-3, 0.05e-3);
+  // The squared-gap weighted reference point (docs/WHEELSET.md §4): CONTACT's y_cp = -750.385 mm
+  // of the wheelset is rail y = -10.15 mm.
+  EXPECT_NEAR(j["reference_point"]["y_rail_m"].get<double>(), -10.15e-3, 0.05e-3);
   EXPECT_NEAR(j["normal_force_N"].get<double>(), 98100.0 / std::cos(gamma), 1e-9 * 98100.0);
   EXPECT_NEAR(j["spin_per_m"].get<double>(), 2.0 * std::sin(gamma) / 0.92, 1e-12);
   EXPECT_NEAR(j["elements_in_contact"].get<double>(), 3000.0, 0.15 * 3000.0);

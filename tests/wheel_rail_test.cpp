@@ -36,7 +36,14 @@ TEST(WheelRail, PlacesProfilesOnTheTrack) {
   // Taping line 70 mm from the flange back (y = -70 mm): the wheel file's origin, radius 0.46 m.
   EXPECT_DOUBLE_EQ(pair.taping_line_y_m(), 0.0);
   EXPECT_NEAR(pair.taping_line_z_m(), 0.0, 1e-7);
-  EXPECT_DOUBLE_EQ(pair.wheel_radius_m(0.0), 0.46);
+  // r0 is measured at the profile's origin (the default): the smoothed profile passes within 1e-10
+  // m of it; at the taping line it is r0 exactly.
+  EXPECT_NEAR(pair.wheel_radius_m(0.0), 0.46, 1e-9);
+  TrackWheelsetParameters at_taping_line;
+  at_taping_line.nominal_radius_at = NominalRadiusDatum::taping_line;
+  const WheelRailPair taping(read_profile(kProfiles / "MBench_S1002_v3.prw"),
+                             read_profile(kProfiles / "MBench_UIC60_v3.prr"), at_taping_line);
+  EXPECT_DOUBLE_EQ(taping.wheel_radius_m(0.0), 0.46);
   EXPECT_NEAR(pair.wheel_radius_m(-54.5 * kMm) - 0.46, 28.0 * kMm, 0.1 * kMm);  // flange tip
   // Top of the rail near the rail file's origin; gauge face 14 mm below it at y = -43.0 mm.
   EXPECT_NEAR(pair.rail_top_z_m(), 0.0, 1e-6);

@@ -209,9 +209,10 @@ TEST(WheelsetTable, TheLeftWheelIsTheMirroredRightWheel) {
 
 // A patch that one node has and its neighbour has not (a flange contact appearing between them)
 // grows from zero force, and the wheel's forces change continuously. The second patch is made by
-// hand: a copy of the tread patch 10 mm towards the gauge face, added to the node at y = −5.4 mm.
+// hand: a copy of the tread patch 10 mm towards the gauge face, added to the node at y = −4.4 mm
+// (both nodes' tread patches lie within 1 mm of each other on the rail: one patch).
 TEST(WheelsetTable, APatchThatAppearsBetweenNodesGrowsFromZero) {
-  const WheelsetTable built = build_wheelset_table(track(), {{-5.4e-3, -5.0e-3}, {0.0}, {100e3}}, coarse_table_options());
+  const WheelsetTable built = build_wheelset_table(track(), {{-4.4e-3, -4.0e-3}, {0.0}, {100e3}}, coarse_table_options());
   std::vector<WheelsetTableNode> nodes = built.nodes();
   ASSERT_EQ(nodes[0].wheels[0].size(), 1u);
   ASSERT_EQ(nodes[1].wheels[0].size(), 1u);
@@ -223,7 +224,7 @@ TEST(WheelsetTable, APatchThatAppearsBetweenNodesGrowsFromZero) {
   Vector3 previous{};
   double largest_step = 0.0, flange_force_near_node = 0.0;
   for (int k = 0; k <= 40; ++k) {
-    const double y = -5.0e-3 - k * 0.01e-3;
+    const double y = -4.0e-3 - k * 0.01e-3;
     const WheelsetResult r = t.evaluate(moving_state(y), WheelLoads{100e3, 100e3, false}, kMu);
     const WheelResult& right = r.wheels[0];
     ASSERT_EQ(right.patches.size(), k == 0 ? 1u : 2u) << "y " << y;
@@ -294,11 +295,22 @@ TEST(WheelsetTable, MismatchesNameEverySettingItWasNotBuiltFor) {
   // A table of an older recipe (format 3: not recorded) differs from this railcontact's.
   nlohmann::json old = nlohmann::json::parse(wheelset_table_json(table()));
   old.erase("nh_fastsim_recipe");
+  old.erase("reference_weighting");
+  old.erase("creepage_point");
   old["format_version"] = 3;
   const std::vector<WheelsetTableMismatch> recipe = parse_wheelset_table(old.dump(), "t.json").mismatches(built);
-  ASSERT_EQ(recipe.size(), 1u);
+  ASSERT_EQ(recipe.size(), 2u);
   EXPECT_EQ(recipe[0].setting, WheelsetTableSetting::nh_fastsim_recipe);
   EXPECT_EQ(recipe[0].table, "1 or 2, not recorded");
+  // ... and its contact definition (format 4 and older: depth-weighted reference points, creepages
+  // on the rail surface) from this railcontact's; so does a table built with the depth weighting.
+  EXPECT_EQ(recipe[1].setting, WheelsetTableSetting::contact_definition);
+  EXPECT_NE(recipe[1].table.find("depth reference point, creepages on the rail surface"), std::string::npos);
+  WheelsetOptions depth = built;
+  depth.search.weighting = ReferenceWeighting::depth;
+  const std::vector<WheelsetTableMismatch> weighting = table().mismatches(depth);
+  ASSERT_EQ(weighting.size(), 1u);
+  EXPECT_EQ(weighting[0].setting, WheelsetTableSetting::contact_definition);
   for (WheelsetTableSetting setting : kWheelsetTableSettings)
     EXPECT_EQ(parse_wheelset_table_setting(wheelset_table_setting_name(setting)), setting);
   EXPECT_THROW((void)parse_wheelset_table_setting("speed"), Error);
@@ -387,7 +399,9 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   // Format 3 names the slip direction; format 1-2 files evaluate with the radial one (Eq 8).
   // Format 4 records the nH-FastSim recipe; older files load with recipe 0 (not recorded).
   nlohmann::json slip = nlohmann::json::parse(wheelset_table_json(table()));
-  EXPECT_EQ(slip["format_version"], 4);
+  EXPECT_EQ(slip["format_version"], 5);
+  EXPECT_EQ(slip["reference_weighting"], "squared-gap");
+  EXPECT_EQ(slip["creepage_point"], "undeformed wheel surface");
   EXPECT_EQ(slip["nh_fastsim_recipe"], kNhFastSimRecipe);
   EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").metadata().nh_fastsim_recipe, kNhFastSimRecipe);
   nlohmann::json newer = slip;
@@ -395,6 +409,8 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   EXPECT_NE(message(newer.dump()).find("nh_fastsim_recipe = 4 must lie in [0, 3]"), std::string::npos)
       << message(newer.dump());
   slip.erase("nh_fastsim_recipe");
+  slip.erase("reference_weighting");
+  slip.erase("creepage_point");
   slip["format_version"] = 3;
   EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").metadata().nh_fastsim_recipe, 0);
   EXPECT_EQ(slip["slip_direction"], slip_direction_name(table().bound().slip_direction));
@@ -432,7 +448,8 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   const std::string v2 = (dir / "v2.json").string();
   std::ofstream(v2) << old_format.dump();
   const auto evaluate = [](const std::string& file, const std::string& extra) {
-    const CommandResult r = run_cli("wheelset --table " + file + " --y -5.3 --load 100 --json --table-override recipe" + extra);
+    const CommandResult r =
+        run_cli("wheelset --table " + file + " --y -5.3 --load 100 --json --table-override recipe contact-definition" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out);
   };
@@ -445,7 +462,8 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
             std::string::npos)
       << refused.err;
   EXPECT_EQ(weighted["wheelset_table_overrides"][0]["setting"], "recipe");
-  const CommandResult noted = run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json --table-override recipe");
+  const CommandResult noted =
+      run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json --table-override recipe contact-definition");
   EXPECT_NE(noted.err.find("note: " + v3 + ": the table was built with an older nH-FastSim recipe"), std::string::npos)
       << noted.err;
   EXPECT_EQ(weighted["nh_fastsim_slip_direction"], "flexibility-weighted");

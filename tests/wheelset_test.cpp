@@ -428,7 +428,9 @@ TEST(Wheelset, KinematicCreepagesHaveTheirClosedForms) {
   const WheelsetResult moving = wheelset.evaluate(lateral);
   for (const WheelResult& w : moving.wheels) {
     const WheelsetPatch& p = w.patches.front();
-    EXPECT_NEAR(p.creepage.eta, 0.05 * std::cos(p.region.contact_angle_rad) / V, 1e-9);
+    // Over the rolling speed V_ref = (V + Ω r_Q)/2 (docs/WHEEL_RAIL.md §12).
+    EXPECT_NEAR(p.creepage.eta, 0.05 * std::cos(p.region.contact_angle_rad) / p.rolling_speed_m_per_s, 1e-9);
+    EXPECT_NEAR(p.rolling_speed_m_per_s, 0.5 * (V + V * p.rolling_radius_m / r0), 1e-9 * V);
   }
   WheelsetState turning = state_at(1e-3);
   turning.velocity.yaw_rate_rad_per_s = 0.02;
@@ -438,7 +440,8 @@ TEST(Wheelset, KinematicCreepagesHaveTheirClosedForms) {
     const WheelsetPatch& q = base.wheels[k].patches.front();
     // 1e-7: by load, the wheel's height (and so its reference point) moves slightly with the
     // creep forces that the yaw rate changes.
-    EXPECT_NEAR(p.creepage.xi - q.creepage.xi, -0.02 * (p.region.reference_point_track_m[1] - 1e-3) / V, 1e-7);
+    EXPECT_NEAR(p.creepage.xi - q.creepage.xi, -0.02 * (p.creepage_point_track_m[1] - 1e-3) / p.rolling_speed_m_per_s,
+                1e-7);
   }
 }
 
@@ -482,7 +485,7 @@ TEST(WheelsetCli, SweepWritesTheCsvAndStopsAtTheFlangeClimbLimit) {
 
 
 // On the flange (y = -7 mm, contact angle 1.16 rad, spin 2 /m), nH-FastSim with the radial
-// limiting of Eq 8 misses the exact F1 by 3.2-4.0 % of mu F3 (docs/WHEELSET.md §8), because in
+// limiting of Eq 8 misses the exact F1 by 2.8-3.2 % of mu F3 (the weighted one 0.5-2.5 %), because in
 // slip its traction points against (xi/L1, ... phi x1/L3) rather than the slip. The
 // flexibility-weighted limiting (TractionBound::slip_direction) keeps every component within 3 %
 // at zero and +-10 mrad of yaw, and the radial one is the default (the figures of the docs).
@@ -507,7 +510,7 @@ TEST(Wheelset, FlexibilityWeightedNhFastSimWithinThreePercentOnTheFlange) {
       worst[direction == SlipDirection::flexibility_weighted] =
           std::max(std::abs(nh.F1_N - exact.F1_N), std::abs(nh.F2_N - exact.F2_N)) / mu_F3;
     }
-    EXPECT_GT(worst[0], 0.03) << "yaw " << yaw_rad;  // the radial limiting's miss
+    EXPECT_GT(worst[0], worst[1] + 0.005) << "yaw " << yaw_rad;  // the radial limiting misses more
     EXPECT_LT(worst[1], 0.03) << "yaw " << yaw_rad;
   }
 }

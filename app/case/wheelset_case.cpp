@@ -77,12 +77,13 @@ void read_velocity(Section s, WheelsetCase& c) {
                               s.location("wheel_angular_velocity_rad_per_s")));
     v.wheel_angular_velocity_rad_per_s = *w;
   }
+  v.free_rolling = optional_bool(s, "free_rolling").value_or(false);
   // The ranges of the library (wheelset.hpp), named as the file gives them: "FILE:5: [velocity] yaw_rate_rad_per_s".
   const auto name = [&](const char* key) { return fmt::format("{}: [velocity] {}", s.location(key), key); };
   validate(v, WheelsetVelocityNames{name("speed_m_per_s"), name("lateral_velocity_m_per_s"),
                                     name("vertical_velocity_m_per_s"), name("roll_rate_rad_per_s"),
                                     name("yaw_rate_rad_per_s"), name("wheel_angular_velocity_rad_per_s"),
-                                    name("extra_longitudinal_creepage")});
+                                    name("extra_longitudinal_creepage"), name("free_rolling")});
   s.finish();
 }
 
@@ -102,6 +103,13 @@ void read_rest(Section friction, Section material, Section mesh, Section solvers
   c.options.material.poisson_ratio = material.optional_number("nu").value_or(c.options.material.poisson_ratio);
   material.finish();
   c.options.element_size_m = mesh.optional_positive("element_size_mm").value_or(c.options.element_size_m * 1e3) * 1e-3;
+  if (const std::optional<std::string> w = mesh.optional_string("reference_weighting")) {
+    try {
+      c.options.search.weighting = parse_reference_weighting(*w);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: [mesh] reference_weighting: {}", mesh.location("reference_weighting"), e.what()));
+    }
+  }
   mesh.finish();
   if (const toml::node* run = solvers.node("run")) {
     const toml::array* list = run->as_array();
@@ -134,6 +142,13 @@ void read_rest(Section friction, Section material, Section mesh, Section solvers
       c.options.nh_fastsim.bound.slip_direction = parse_slip_direction(*d);
     } catch (const Error& e) {
       throw Error(fmt::format("{}: [solvers] slip_direction: {}", solvers.location("slip_direction"), e.what()));
+    }
+  }
+  if (const std::optional<std::string> b = solvers.optional_string("balance_solver")) {
+    try {
+      c.options.balance_solver = parse_tangential_solver(*b);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: [solvers] balance_solver: {}", solvers.location("balance_solver"), e.what()));
     }
   }
   solvers.finish();

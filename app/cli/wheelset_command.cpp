@@ -55,7 +55,10 @@ nlohmann::json patch_json(const WheelsetPatch& p) {
       {"rail_profile_y_m", p.region.rail_profile_y_m},
       {"wheel_profile_y_m", p.region.wheel_profile_y_m},
       {"contact_angle_rad", p.region.contact_angle_rad},
-      {"rolling_radius_m", p.region.rolling_radius_m},
+      {"creepage_point_track_m", vector_json(p.creepage_point_track_m)},
+      {"approach_m", p.approach_m},
+      {"rolling_radius_m", p.rolling_radius_m},
+      {"rolling_speed_m_per_s", p.rolling_speed_m_per_s},
       {"x1_axis_track", vector_json(p.region.x1_axis)},
       {"x2_axis_track", vector_json(p.region.x2_axis)},
       {"x3_axis_track", vector_json(p.region.x3_axis)},
@@ -163,6 +166,7 @@ std::optional<std::string> requested_by(WheelsetTableSetting setting, const Whee
     case WheelsetTableSetting::collocation_offset:
     case WheelsetTableSetting::traction_bound_skew: return option_or_case(nullptr, "default");
     case WheelsetTableSetting::nh_fastsim_recipe: return std::string("this railcontact's");
+    case WheelsetTableSetting::contact_definition: return std::string("this railcontact's");
   }
   return std::nullopt;
 }
@@ -287,11 +291,27 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     for (const WheelResult& w : r.wheels) {
       nlohmann::json patches = nlohmann::json::array();
       for (const WheelsetPatch& p : w.patches) patches.push_back(patch_json(p));
+      // Every solver's totals on the wheel (the table gives nh-fastsim only).
+      nlohmann::json totals = nlohmann::json::object();
+      for (std::size_t s = 0; s < w.solver_force_track_N.size() && s < options.solvers.size(); ++s)
+        totals[solver_name(options.solvers[s])] = vector_json(w.solver_force_track_N[s]);
       wheels.push_back({{"side", side_name(w.side)},
                         {"vertical_displacement_m", w.vertical_displacement_m},
                         {"patches", patches},
-                        {"force_track_N", vector_json(w.force_track_N)}});
+                        {"force_track_N", vector_json(w.force_track_N)},
+                        {"solver_force_track_N", totals}});
     }
+    nlohmann::json totals = nlohmann::json::object();
+    for (std::size_t s = 0; s < r.solver_force_track_N.size() && s < options.solvers.size(); ++s)
+      totals[solver_name(options.solvers[s])] = vector_json(r.solver_force_track_N[s]);
+    const TangentialSolver balance = options.balance_solver.value_or(options.solvers.front());
+    // How the wheels' heights were found: one rigid axle (height and roll), each wheel on its own
+    // (the state's vertical displacement is then the mean of the two), or by position.
+    const char* axle = !options.loads ? "by position" : options.loads->balance_roll ? "rigid axle" : "independent wheels";
+    // The wheels' angular velocity used (pure rolling at r0 resolved).
+    const double omega =
+        wheelset_motion(r.state, table ? table->nominal_rolling_radius_m() : wheelset.track().parameters().nominal_rolling_radius_m)
+            .wheel_angular_velocity_rad_per_s;
     const nlohmann::json out = {
         {"railcontact_version", RC_VERSION_STRING},
         {"state",
@@ -299,7 +319,11 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
           {"vertical_displacement_m", r.state.position.vertical_displacement_m},
           {"roll_rad", r.state.position.roll_rad},
           {"yaw_rad", r.state.position.yaw_rad},
-          {"forward_speed_m_per_s", r.state.velocity.forward_speed_m_per_s}}},
+          {"forward_speed_m_per_s", r.state.velocity.forward_speed_m_per_s},
+          {"wheel_angular_velocity_rad_per_s", omega},
+          {"free_rolling", state.velocity.free_rolling},
+          {"free_rolling_iterations", r.free_rolling_iterations}}},
+        {"load_balance", {{"axle", axle}, {"solver", options.loads ? nlohmann::json(solver_name(balance)) : nlohmann::json(nullptr)}}},
         {"case", c.source},
         {"friction_coefficient", options.friction_coefficient},
         {"nh_fastsim_slip_direction", slip_direction_name(slip_direction)},
@@ -312,6 +336,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
         {"wheelset_table_overrides", overrides},
         {"wheels", wheels},
         {"force_track_N", vector_json(r.force_track_N)},
+        {"solver_force_track_N", totals},
     };
     fmt::print("{}\n", out.dump(2));
     return 0;
@@ -338,7 +363,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
       fmt::print("  at y = {:.2f} mm (rail y_p = {:.2f} mm), angle {:.4f} rad, r = {:.2f} mm: F3 = {:.0f} N, "
                  "{} elements, p max {:.0f} MPa\n",
                  p.region.reference_point_track_m[1] * 1e3, p.region.rail_profile_y_m * 1e3,
-                 p.region.contact_angle_rad, p.region.rolling_radius_m * 1e3, p.normal_force_N, p.elements_in_contact,
+                 p.region.contact_angle_rad, p.rolling_radius_m * 1e3, p.normal_force_N, p.elements_in_contact,
                  p.max_pressure_Pa * 1e-6);
       fmt::print("    creepages xi = {:.4e}, eta = {:.4e}, phi = {:.4f} 1/m\n", p.creepage.xi, p.creepage.eta,
                  p.creepage.phi);

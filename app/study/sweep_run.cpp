@@ -190,7 +190,7 @@ CaseWorkerFactory sweep_worker_factory(const SweepFile& sweep, const WheelsetTra
                                 k, inputs, side_name(w.side), w.vertical_displacement_m * 1e3,
                                 r.state.position.roll_rad * 1e3, p, w.patches.size(), g.reference_point_track_m[1] * 1e3,
                                 g.rail_profile_y_m * 1e3, g.wheel_profile_y_m * 1e3, g.contact_angle_rad,
-                                g.rolling_radius_m * 1e3, patch.creepage.xi, patch.creepage.eta, patch.creepage.phi,
+                                patch.rolling_radius_m * 1e3, patch.creepage.xi, patch.creepage.eta, patch.creepage.phi,
                                 patch.normal_force_N, patch.area_m2 * 1e6, patch.max_pressure_Pa * 1e-6,
                                 patch.elements_in_contact);
             for (const PatchSolverResult& s : patch.solvers)

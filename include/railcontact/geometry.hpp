@@ -194,6 +194,20 @@ class SmoothProfile {
 
 namespace railcontact {
 
+// Where the nominal rolling radius r0 is measured on the wheel profile (docs/WHEEL_RAIL.md §12):
+// - profile_origin: at the profile's origin, the point (0, 0) of its coordinates: the wheel's
+//   radius at profile point (y, z) is r0 + z (z down). The default, as in Kalker's CONTACT
+//   (NOMRADW) and the multibody codes' profile conventions.
+// - taping_line: at the wheel's surface on the taping line (taping_line_from_flange_back_m from the
+//   flange back): r0 + z − z(taping line).
+// On a new S1002 drawn with its origin on the taping line the two agree; on a measured, hollow-worn
+// wheel they differ by the wear depth there (1.2 mm moves ξ by 2.6e-3).
+enum class NominalRadiusDatum { profile_origin, taping_line };
+// "profile-origin" / "taping-line"
+const char* nominal_radius_datum_name(NominalRadiusDatum datum);
+// Throws Error (invalid_input) naming the allowed names.
+NominalRadiusDatum parse_nominal_radius_datum(const std::string& name);
+
 // Track and wheelset data (METHOD.md §9 defaults). The rail inclination (1:40) is part of the
 // rail profile's coordinates and is not applied again.
 struct TrackWheelsetParameters {
@@ -202,7 +216,8 @@ struct TrackWheelsetParameters {
   double flange_back_distance_m = 1.360;      // between the flange backs of the wheelset
   double flange_back_y_m = -0.070;            // the flange back in the wheel profile frame
   double taping_line_from_flange_back_m = 0.070;  // lateral distance flange back -> taping line
-  double nominal_rolling_radius_m = 0.46;     // wheel radius at the taping line
+  double nominal_rolling_radius_m = 0.46;     // wheel radius r0 at nominal_radius_at
+  NominalRadiusDatum nominal_radius_at = NominalRadiusDatum::profile_origin;
 };
 
 // The physical ranges of the track and wheelset data (m; docs/RELIABILITY.md "Values and solvers"):
@@ -281,7 +296,12 @@ class WheelRailPair {
   [[nodiscard]] double rail_gauge_point_y_m() const { return rail_gauge_y_m_; }
   [[nodiscard]] double taping_line_y_m() const { return taping_y_m_; }
   [[nodiscard]] double taping_line_z_m() const { return taping_z_m_; }
-  // Wheel radius at wheel profile position y (r0 + z_w(y) − z_w(taping line)).
+  // The wheel profile's z at which the wheel's radius is r0 (parameters().nominal_radius_at): 0 at
+  // the profile origin, z_w(taping line) at the taping line.
+  [[nodiscard]] double nominal_radius_z_m() const {
+    return parameters_.nominal_radius_at == NominalRadiusDatum::profile_origin ? 0.0 : taping_z_m_;
+  }
+  // Wheel radius at wheel profile position y (r0 + z_w(y) − nominal_radius_z_m()).
   [[nodiscard]] double wheel_radius_m(double y_wheel_m) const;
 
   // Lowers the wheel (vertically, zero roll and yaw) onto the rail until first touch at

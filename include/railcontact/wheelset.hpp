@@ -1,17 +1,22 @@
 #pragma once
 // Stage: wheel–rail contact, the wheelset level (docs/WHEEL_RAIL.md §12). The wheelset's motion on
 // the track and the kinematic creepages of a contact: the rigid velocity of the wheel's material
-// point at the contact, over the rolling speed, in the contact frame.
+// point at the contact, on the undeformed wheel surface, over the rolling speed, in the contact
+// frame (as Kalker's CONTACT defines them, with the opposite sign: CONTACT's are rail − wheel).
 //
 // Frames (docs/GEOMETRY.md §1-3): the track frame x along the track in the direction of travel,
 // y lateral to the LEFT, z UP; the wheelset's axle points along +y when roll and yaw are zero. A
 // contact frame has X1 along the rolling direction, X3 the contact normal into the wheel and
 // X2 = X3 × X1. Creepages as everywhere in railcontact (docs/CONVENTIONS.md): the rigid slip of the
-// wheel relative to the rail is V (ξ − φ x2, η + φ x1), so for the wheel's material point P at the
-// contact, moving with velocity v_P in the track frame (the rail is at rest),
-//   ξ = v_P·X1 / V,   η = v_P·X2 / V,   φ = ω·X3 / V   (1/m),
-// with ω the wheelset's angular velocity and V the rolling (forward) speed. A wheel rolling
-// forward without slip at radius r0 turns with ω = (0, V/r0, 0).
+// wheel relative to the rail is V_ref (ξ − φ x2, η + φ x1), so for the wheel's material point Q at
+// the contact, moving with velocity v_Q in the track frame (the rail is at rest),
+//   ξ = v_Q·X1 / V_ref,   η = v_Q·X2 / V_ref,   φ = ω·X3 / V_ref   (1/m),
+// with ω the wheelset's angular velocity and V_ref = (V + Ω r_Q) / 2 the rolling speed: the mean of
+// the forward speed V and the wheel's circumferential speed at Q (Ω about the axle, r_Q the
+// distance of Q from it). A wheel rolling forward without slip at radius r0 turns with
+// ω = (0, V/r0, 0), and then V_ref = V. In a wheelset, Q lies on the undeformed wheel surface:
+// the reference point P on the rail surface moved into the rail along the normal by the patch's
+// approach (its largest rigid overlap), Q = P − approach X3 (docs/WHEEL_RAIL.md §12).
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -36,8 +41,9 @@ struct WheelsetMotion {
 };
 
 // The common rolling shortcut: pure rolling at the nominal radius r0 plus an extra longitudinal
-// creepage ξ0 (a driven wheelset: ξ0 < 0 for traction, > 0 for braking), i.e.
-// Ω = V (1 − ξ0) / r0. Throws Error unless V > 0, r0 > 0 and all values finite.
+// creepage ξ0 (a driven wheelset: ξ0 < 0 for traction, > 0 for braking) at r0, over the rolling
+// speed: V − Ω r0 = ξ0 (V + Ω r0)/2, i.e. Ω = V (1 − ξ0/2) / ((1 + ξ0/2) r0). Throws Error unless
+// V > 0, r0 > 0 and all values finite.
 double wheel_angular_velocity_for_rolling(double forward_speed_m_per_s, double nominal_rolling_radius_m,
                                           double extra_longitudinal_creepage = 0.0);
 
@@ -45,8 +51,8 @@ double wheel_angular_velocity_for_rolling(double forward_speed_m_per_s, double n
 // yawed x axis, and the wheels' rotation about the axle.
 Vector3 wheelset_angular_velocity(const WheelsetMotion& motion);
 
-// A contact on a wheel: its point relative to the wheelset centre and its frame (unit axes), all
-// in the track frame.
+// A contact on a wheel: its creepage point (the wheel's material point whose velocity gives the
+// creepages) relative to the wheelset centre and its frame (unit axes), all in the track frame.
 struct ContactFrame {
   Vector3 point_from_wheelset_centre_m{};
   Vector3 x1{1.0, 0.0, 0.0};
@@ -58,6 +64,11 @@ struct ContactFrame {
 // (docs/WHEEL_RAIL.md §3): X3 = (0, ±sin γ, cos γ) (+ on the right wheel, leaning towards the
 // track centre), X2 = X3 × X1.
 ContactFrame contact_frame(const Vector3& point_from_wheelset_centre_m, double contact_angle_rad, WheelSide side);
+
+// The rolling speed V_ref = (V + Ω r)/2 at the contact's point (see the top of this header): the
+// divisor of its creepages. Throws Error (invalid_input) when it is not positive (the wheels
+// turning backwards), and as kinematic_creepage.
+double rolling_speed_m_per_s(const WheelsetMotion& motion, const ContactFrame& contact);
 
 // ξ, η, φ of the contact for the wheelset's motion (see the top of this header). Throws Error
 // (invalid_input) unless V > 0 and every input is finite, and unless the frame's axes are unit
@@ -96,10 +107,16 @@ struct WheelsetVelocity {
   double vertical_velocity_m_per_s = 0.0;
   double roll_rate_rad_per_s = 0.0;
   double yaw_rate_rad_per_s = 0.0;
-  // About the axle, positive rolling forward; NaN: pure rolling at the nominal radius r0 with
-  // extra_longitudinal_creepage (wheel_angular_velocity_for_rolling).
+  // The wheels' rotation, one of three (docs/WHEELSET.md §5):
+  // - pure rolling at the nominal radius r0 with extra_longitudinal_creepage (the default: NaN
+  //   angular velocity, wheel_angular_velocity_for_rolling);
+  // - a given angular velocity about the axle (rad/s, positive rolling forward);
+  // - free rolling: the angular velocity at which the wheels' longitudinal forces have no moment
+  //   about the axle (an unbraked, undriven wheelset in steady state), solved by evaluate() and
+  //   returned in the result's state; the other two must then be left at their defaults.
   double wheel_angular_velocity_rad_per_s = std::numeric_limits<double>::quiet_NaN();
   double extra_longitudinal_creepage = 0.0;  // ξ0 of the shortcut (< 0 traction, > 0 braking)
+  bool free_rolling = false;
 };
 
 // The physical ranges of the velocities (docs/RELIABILITY.md "Values and solvers"):
@@ -126,6 +143,7 @@ struct WheelsetVelocityNames {
   std::string yaw_rate = "yaw_rate_rad_per_s";
   std::string wheel_angular_velocity = "wheel_angular_velocity_rad_per_s";
   std::string extra_longitudinal_creepage = "extra_longitudinal_creepage";
+  std::string free_rolling = "free_rolling";
 };
 
 // Throws Error (invalid_input) unless every velocity lies in its range above (the wheels' angular
@@ -151,6 +169,9 @@ TangentialSolver parse_tangential_solver(const std::string& name);
 struct WheelLoads {
   double right_N = 98100.0;
   double left_N = 98100.0;
+  // A rigid axle: both loads met by the wheelset's height and roll together (the roll found is the
+  // result's state.position.roll_rad). false: each wheel's height is solved on its own (two
+  // independent wheels; the result's vertical displacement is then the mean of the two).
   bool balance_roll = false;
 };
 
@@ -161,6 +182,9 @@ struct WheelsetOptions {
   double element_size_m = 0.2e-3;
   // The solvers to run on every patch; the first one's forces are the patch's `forces`.
   std::vector<TangentialSolver> solvers{TangentialSolver::nh_fastsim};
+  // The solver whose forces the vertical load balance (their vertical components) and free rolling
+  // use; one of `solvers`. Unset: the first of them.
+  std::optional<TangentialSolver> balance_solver;
   // nH-FastSim with the flexibility-weighted slip direction (docs/FASTSIM.md "The slip direction"):
   // within 3 % of the exact solver also on the flange, where Eq 8 misses by up to 4 %.
   NhFastSimOptions nh_fastsim{.bound = {TractionBound{}.skew, SlipDirection::flexibility_weighted}};
@@ -202,7 +226,13 @@ struct PatchSolverResult {
 struct WheelsetPatch {
   WheelSide side = WheelSide::right;
   InterpenetrationRegion region;   // reference point, contact angle, frame, overlap
-  Creepage creepage;               // at the reference point (kinematic)
+  Creepage creepage;               // kinematic, of the creepage point, about the reference point
+  // The creepage point Q on the undeformed wheel surface (track frame): the reference point moved
+  // into the rail along the normal by the approach, the patch's largest rigid overlap (m).
+  Vector3 creepage_point_track_m{};
+  double approach_m = 0.0;
+  double rolling_radius_m = 0.0;       // distance of Q from the axle: the radius ξ uses
+  double rolling_speed_m_per_s = 0.0;  // V_ref = (V + Ω rolling_radius_m)/2, the creepages' divisor
   double normal_force_N = 0.0;     // F3
   double area_m2 = 0.0;
   double max_pressure_Pa = 0.0;
@@ -224,6 +254,8 @@ struct WheelResult {
   WheelSide side = WheelSide::right;
   std::vector<WheelsetPatch> patches;  // along the rail profile, gauge side first
   Vector3 force_track_N{};             // sum over the patches (first solver)
+  // The same for every solver, in the order of WheelsetOptions::solvers.
+  std::vector<Vector3> solver_force_track_N;
   double vertical_displacement_m = 0.0;  // the height at which the wheel was solved
   int load_iterations = 0;
 };
@@ -231,7 +263,10 @@ struct WheelResult {
 struct WheelsetResult {
   WheelsetState state;                // as solved (by load: the vertical displacement and roll found)
   std::array<WheelResult, 2> wheels;  // right, left
-  Vector3 force_track_N{};            // on the wheelset, sum of both wheels
+  Vector3 force_track_N{};            // on the wheelset, sum of both wheels (first solver)
+  std::vector<Vector3> solver_force_track_N;  // the same per solver, in the order of the options'
+  // Free rolling: the evaluations of the wheels' angular velocity it took (0 otherwise).
+  int free_rolling_iterations = 0;
 };
 
 namespace detail {
@@ -264,6 +299,8 @@ class Wheelset {
   void reset_warm_start();
 
  private:
+  // evaluate() at a given rotation of the wheels (not free rolling).
+  WheelsetResult evaluate_rolling(const WheelsetState& state);
   WheelsetTrack track_;
   WheelsetOptions options_;
   std::unique_ptr<detail::WheelsetWarmStart> warm_;

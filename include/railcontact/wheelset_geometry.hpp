@@ -20,6 +20,7 @@
 //   X2 = X3 × X1 = (0, cos γ, ∓sin γ) points to the LEFT (+y) on both wheels.
 #include <array>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
@@ -54,8 +55,21 @@ struct WheelsetProfiles {
   Profile right_rail, left_rail;
 };
 
+// How a patch's reference point and contact angle average its interpenetration region
+// (docs/WHEELSET.md §4): each lateral strip of the rigid overlap weighted by
+// - squared_gap: the integral of the squared gap along the strip, ∫ g² dx (the default, and the
+//   default of Kalker's CONTACT, whose wheelset module users validate against);
+// - depth: the strip's depth times its width (railcontact before 3.0).
+// Both fall to zero continuously at the region's ends, so the reference point moves continuously.
+enum class ReferenceWeighting { squared_gap, depth };
+// "squared-gap" / "depth"
+const char* reference_weighting_name(ReferenceWeighting weighting);
+// Throws Error (invalid_input) naming the allowed names.
+ReferenceWeighting parse_reference_weighting(const std::string& name);
+
 // Options of the contact search (docs/WHEELSET.md §2–3).
 struct ContactSearchOptions {
+  ReferenceWeighting weighting = ReferenceWeighting::squared_gap;
   // Spacing of the contact-locus samples along the wheel profile (arc length).
   double locus_step_m = 0.1e-3;
   // Interpenetration regions closer than this along the rail profile are one patch (docs/WHEELSET.md §3) ...

@@ -65,7 +65,9 @@ struct WheelsetTableLobe {
 
 struct WheelsetTablePatch {
   Vector3 reference_point_track_m{};       // reference point, track frame (the node's y, yaw, height)
-  Vector3 point_from_wheelset_centre_m{};  // the same from the wheelset centre
+  // The creepage point (on the undeformed wheel surface, docs/WHEEL_RAIL.md §12) from the
+  // wheelset centre.
+  Vector3 point_from_wheelset_centre_m{};
   Vector3 x1_axis{1.0, 0.0, 0.0}, x2_axis{}, x3_axis{};
   double contact_angle_rad = 0.0;
   double rolling_radius_m = 0.0;
@@ -139,6 +141,12 @@ struct WheelsetTableMetadata {
   int runtime_elements = 0;
   // kNhFastSimRecipe of the build (format version 4; 0 for older tables: recipe 1 or 2).
   int nh_fastsim_recipe = kNhFastSimRecipe;
+  // How the nodes' reference points were averaged (ContactSearchOptions::weighting), and whether
+  // their creepages were taken on the undeformed wheel surface over the rolling speed V_ref
+  // (docs/WHEEL_RAIL.md §12; format version 5). Tables of format 4 and older: depth-weighted
+  // reference points, creepages on the rail surface over the forward speed.
+  ReferenceWeighting reference_weighting = ReferenceWeighting::squared_gap;
+  bool creepage_on_wheel_surface = true;
   std::string railcontact_version;
   std::string created_utc;
 };
@@ -177,14 +185,15 @@ enum class WheelsetTableSetting {
   slip_direction,          // FastSim's slipping traction (TractionBound::slip_direction)
   traction_bound_skew,     // FastSim's traction bound (TractionBound::skew)
   nh_fastsim_recipe,       // kNhFastSimRecipe of the build (this railcontact computes with today's)
+  contact_definition,      // the reference point's weighting and where the creepages are taken
 };
 inline constexpr WheelsetTableSetting kWheelsetTableSettings[] = {
     WheelsetTableSetting::material,           WheelsetTableSetting::element_size,
     WheelsetTableSetting::flexibility_coarsening, WheelsetTableSetting::collocation_offset,
     WheelsetTableSetting::slip_direction,     WheelsetTableSetting::traction_bound_skew,
-    WheelsetTableSetting::nh_fastsim_recipe};
+    WheelsetTableSetting::nh_fastsim_recipe, WheelsetTableSetting::contact_definition};
 // "material", "element-size", "flexibility-coarsening", "collocation-offset", "slip-direction",
-// "traction-bound-skew", "recipe".
+// "traction-bound-skew", "recipe", "contact-definition".
 const char* wheelset_table_setting_name(WheelsetTableSetting setting);
 // Throws Error (invalid_input) naming the allowed names.
 WheelsetTableSetting parse_wheelset_table_setting(const std::string& name);

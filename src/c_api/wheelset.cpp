@@ -166,7 +166,7 @@ rc_wheelset_patch patch_of(const rc::WheelsetPatch& p) {
   copy3(p.region.x2_axis, c.x2_axis);
   copy3(p.region.x3_axis, c.x3_axis);
   c.contact_angle_rad = p.region.contact_angle_rad;
-  c.rolling_radius_m = p.region.rolling_radius_m;
+  c.rolling_radius_m = p.rolling_radius_m;
   c.max_interpenetration_m = p.region.max_interpenetration_m;
   c.creepage = rc_creepage{p.creepage.xi, p.creepage.eta, p.creepage.phi};
   c.normal_force_N = p.normal_force_N;

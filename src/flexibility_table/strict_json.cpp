@@ -132,6 +132,8 @@ json fingerprint_json(const FileFingerprint& fingerprint) {
 }
 
 TrackWheelsetParameters read_track_parameters(StrictJsonReader& parent, const std::string& key) {
+  const nlohmann::json& object = parent.get(key);
+  const bool has_datum = object.is_object() && object.contains("nominal_radius_at");
   StrictJsonReader t = parent.child(key);
   TrackWheelsetParameters track;
   track.track_gauge_m = t.number("track_gauge_m");
@@ -140,6 +142,15 @@ TrackWheelsetParameters read_track_parameters(StrictJsonReader& parent, const st
   track.flange_back_y_m = t.number("flange_back_y_m");
   track.taping_line_from_flange_back_m = t.number("taping_line_from_flange_back_m");
   track.nominal_rolling_radius_m = t.number("nominal_rolling_radius_m");
+  // A file without the datum of r0 was written when r0 was measured at the taping line.
+  track.nominal_radius_at = NominalRadiusDatum::taping_line;
+  if (has_datum) {
+    try {
+      track.nominal_radius_at = parse_nominal_radius_datum(t.string("nominal_radius_at"));
+    } catch (const Error& e) {
+      t.fail(e.what());
+    }
+  }
   t.finish();
   return track;
 }
@@ -150,7 +161,8 @@ json track_parameters_json(const TrackWheelsetParameters& t) {
           {"flange_back_distance_m", t.flange_back_distance_m},
           {"flange_back_y_m", t.flange_back_y_m},
           {"taping_line_from_flange_back_m", t.taping_line_from_flange_back_m},
-          {"nominal_rolling_radius_m", t.nominal_rolling_radius_m}};
+          {"nominal_rolling_radius_m", t.nominal_rolling_radius_m},
+          {"nominal_radius_at", nominal_radius_datum_name(t.nominal_radius_at)}};
 }
 
 }  // namespace railcontact::detail

@@ -196,10 +196,16 @@ void WheelsetTable::check_track(const WheelsetTrack& track) const {
   if (a.track_gauge_m != b.track_gauge_m || a.gauge_measuring_depth_m != b.gauge_measuring_depth_m ||
       a.flange_back_distance_m != b.flange_back_distance_m || a.flange_back_y_m != b.flange_back_y_m ||
       a.taping_line_from_flange_back_m != b.taping_line_from_flange_back_m ||
-      a.nominal_rolling_radius_m != b.nominal_rolling_radius_m)
+      a.nominal_rolling_radius_m != b.nominal_rolling_radius_m || a.nominal_radius_at != b.nominal_radius_at)
     throw Error(fmt::format("{} was built for other track parameters (gauge {} m, flange-back distance {} m, nominal "
-                            "rolling radius {} m)",
-                            name, a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m));
+                            "rolling radius {} m at the {}){}",
+                            name, a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m,
+                            a.nominal_radius_at == NominalRadiusDatum::taping_line ? "taping line" : "profile origin",
+                            a.nominal_radius_at != b.nominal_radius_at
+                                ? fmt::format(": this track measures r0 at the {}; rebuild the table",
+                                              b.nominal_radius_at == NominalRadiusDatum::taping_line ? "taping line"
+                                                                                                     : "profile origin")
+                                : std::string()));
 }
 
 const char* wheelset_table_setting_name(WheelsetTableSetting setting) {
@@ -211,6 +217,7 @@ const char* wheelset_table_setting_name(WheelsetTableSetting setting) {
     case WheelsetTableSetting::slip_direction: return "slip-direction";
     case WheelsetTableSetting::traction_bound_skew: return "traction-bound-skew";
     case WheelsetTableSetting::nh_fastsim_recipe: return "recipe";
+    case WheelsetTableSetting::contact_definition: return "contact-definition";
   }
   return "?";
 }
@@ -255,6 +262,14 @@ std::vector<WheelsetTableMismatch> WheelsetTable::mismatches(const WheelsetOptio
   if (metadata_.nh_fastsim_recipe != kNhFastSimRecipe)
     add(WheelsetTableSetting::nh_fastsim_recipe, std::to_string(kNhFastSimRecipe),
         metadata_.nh_fastsim_recipe == 0 ? std::string("1 or 2, not recorded") : std::to_string(metadata_.nh_fastsim_recipe));
+  if (options.search.weighting != metadata_.reference_weighting || !metadata_.creepage_on_wheel_surface) {
+    const auto definition = [](ReferenceWeighting w, bool wheel_surface) {
+      return fmt::format("{} reference point, creepages on the {}", reference_weighting_name(w),
+                         wheel_surface ? "undeformed wheel surface over V_ref" : "rail surface over V (format 4 or older)");
+    };
+    add(WheelsetTableSetting::contact_definition, definition(options.search.weighting, true),
+        definition(metadata_.reference_weighting, metadata_.creepage_on_wheel_surface));
+  }
   return found;
 }
 
@@ -276,6 +291,9 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
     throw Error(fmt::format("wheelset table: the lateral displacement {} m and yaw {} rad must be finite, |yaw| <= 0.1 rad",
                             position.lateral_displacement_m, position.yaw_rad));
   validate(state.velocity);
+  if (state.velocity.free_rolling)
+    throw Error("wheelset table: free rolling is solved by Wheelset::evaluate only; from a table give the wheels' "
+                "angular velocity or the extra longitudinal creepage");
   const WheelsetMotion motion = wheelset_motion(state, nominal_rolling_radius_m_);
   const Bracket by = bracket(grid_.y_m, position.lateral_displacement_m, "the lateral displacement y", "mm", kMm);
   // One yaw node serves every yaw (the contact point turned); several are interpolated.

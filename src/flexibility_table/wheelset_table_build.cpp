@@ -46,12 +46,13 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   WheelsetTablePatch t;
   const InterpenetrationRegion& region = patch.region;
   t.reference_point_track_m = region.reference_point_track_m;
-  for (int i = 0; i < 3; ++i) t.point_from_wheelset_centre_m[i] = region.reference_point_track_m[i] - centre[i];
+  // The creepage point (on the undeformed wheel surface) from the wheelset centre.
+  for (int i = 0; i < 3; ++i) t.point_from_wheelset_centre_m[i] = patch.creepage_point_track_m[i] - centre[i];
   t.x1_axis = region.x1_axis;
   t.x2_axis = region.x2_axis;
   t.x3_axis = region.x3_axis;
   t.contact_angle_rad = region.contact_angle_rad;
-  t.rolling_radius_m = region.rolling_radius_m;
+  t.rolling_radius_m = patch.rolling_radius_m;
   t.rail_profile_y_m = region.rail_profile_y_m;
   t.wheel_profile_y_m = region.wheel_profile_y_m;
   t.normal_force_N = patch.normal_force_N;
@@ -219,6 +220,8 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   metadata.flexibility_coarsening = wheelset_options.nh_fastsim.flexibility_coarsening;
   metadata.collocation_offset = wheelset_options.nh_fastsim.collocation_offset;
   metadata.runtime_elements = options.runtime_elements;
+  metadata.reference_weighting = wheelset_options.search.weighting;
+  metadata.creepage_on_wheel_surface = true;
   metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
   if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));

@@ -22,7 +22,9 @@ constexpr const char* kKind = "wheelset table";
 constexpr const char* kFormat = "railcontact wheelset table";
 // Version 2 (2026-11-25): each patch's "lobes" (a patch of several lobes); version 1 files read as
 // patches without lobes.
-constexpr int kFormatVersion = 4;  // 3: slip_direction (1-2: the radial one); 4: nh_fastsim_recipe
+// 3: slip_direction (1-2: the radial one); 4: nh_fastsim_recipe; 5: reference_weighting and
+// creepage_point (older: depth, the rail surface).
+constexpr int kFormatVersion = 5;
 // The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
 // At most this many nodes (as a build makes) and elements per runtime mesh.
@@ -212,6 +214,20 @@ WheelsetTableMetadata read_metadata(StrictJsonReader& r, int format_version) {
   m.runtime_elements = read_int(r, "runtime_elements", 1, 1 << 20);
   // Format versions 1 to 3: recipe 1 or 2, not recorded.
   m.nh_fastsim_recipe = format_version >= 4 ? read_int(r, "nh_fastsim_recipe", 0, kNhFastSimRecipe) : 0;
+  // Format versions 1 to 4: depth-weighted reference points, creepages on the rail surface.
+  m.reference_weighting = ReferenceWeighting::depth;
+  m.creepage_on_wheel_surface = false;
+  if (format_version >= 5) {
+    try {
+      m.reference_weighting = parse_reference_weighting(r.string("reference_weighting"));
+    } catch (const Error& e) {
+      r.fail(fmt::format("reference_weighting: {}", e.what()));
+    }
+    const std::string point = r.string("creepage_point");
+    if (point != "undeformed wheel surface")
+      r.fail(fmt::format("creepage_point must be \"undeformed wheel surface\" (got \"{}\")", printable_excerpt(point)));
+    m.creepage_on_wheel_surface = true;
+  }
   return m;
 }
 
@@ -258,6 +274,8 @@ std::string wheelset_table_json(const WheelsetTable& table) {
                     {"slip_direction", slip_direction_name(table.bound().slip_direction)},
                     {"runtime_elements", m.runtime_elements},
                     {"nh_fastsim_recipe", m.nh_fastsim_recipe},
+                    {"reference_weighting", reference_weighting_name(m.reference_weighting)},
+                    {"creepage_point", "undeformed wheel surface"},
                     {"nominal_rolling_radius_m", table.nominal_rolling_radius_m()},
                     {"y_m", table.grid().y_m},
                     {"yaw_rad", table.grid().yaw_rad},

@@ -100,7 +100,7 @@ double TangentPlaneSection::rail_normal_m(double x2_m) const {
 
 double TangentPlaneSection::wheel_normal_m(double x1_m, double x2_m, double& parameter) const {
   const SmoothProfile& wheel = pair_->wheel();
-  const double r_offset = pair_->parameters().nominal_rolling_radius_m - pair_->taping_line_z_m();
+  const double r_offset = pair_->parameters().nominal_rolling_radius_m - pair_->nominal_radius_z_m();
   const double x1_sq = x1_m * x1_m;
   // Wheel surface point in the cross-section x1 (rail profile frame) at parameter s, and its
   // derivative: the profile point raised by r - sqrt(r^2 - x1^2), r = wheel radius there.

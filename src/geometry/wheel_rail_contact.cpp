@@ -59,6 +59,18 @@ std::optional<double> crossing_from_end(const SmoothProfile& profile, double lev
 
 }  // namespace
 
+const char* nominal_radius_datum_name(NominalRadiusDatum datum) {
+  return datum == NominalRadiusDatum::profile_origin ? "profile-origin" : "taping-line";
+}
+
+NominalRadiusDatum parse_nominal_radius_datum(const std::string& name) {
+  for (NominalRadiusDatum d : {NominalRadiusDatum::profile_origin, NominalRadiusDatum::taping_line})
+    if (name == nominal_radius_datum_name(d)) return d;
+  throw Error(fmt::format("nominal_radius_at = \"{}\" is not a datum of the nominal rolling radius (allowed: "
+                          "\"profile-origin\", the default, as in CONTACT; \"taping-line\")",
+                          name));
+}
+
 void validate(const TrackWheelsetParameters& p, std::string_view prefix) {
   const auto check = [&](double value, const char* field, double low, double high, const char* reason) {
     if (std::isfinite(value) && value >= low && value <= high) return;
@@ -150,7 +162,7 @@ WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const Tr
 }
 
 double WheelRailPair::wheel_radius_m(double y_wheel_m) const {
-  return parameters_.nominal_rolling_radius_m + wheel_.z(y_wheel_m) - taping_z_m_;
+  return parameters_.nominal_rolling_radius_m + wheel_.z(y_wheel_m) - nominal_radius_z_m();
 }
 
 WheelRailContactPoint WheelRailPair::contact_point(double lateral_displacement_m) const {
@@ -211,7 +223,7 @@ WheelRailContactPoint WheelRailPair::contact_point(double lateral_displacement_m
   c.z_wheel_m = wheel_.z(c.y_wheel_m);
   c.y_track_m = -(rail_origin_lateral_m_ + y_c);
   c.contact_angle_rad = std::atan(-rail_.dz_dy(y_c));
-  c.rolling_radius_m = parameters_.nominal_rolling_radius_m + c.z_wheel_m - taping_z_m_;
+  c.rolling_radius_m = parameters_.nominal_rolling_radius_m + c.z_wheel_m - nominal_radius_z_m();
   c.rail_curvature_per_m = rail_.curvature_per_m(y_c);
   c.wheel_curvature_per_m = wheel_.curvature_per_m(c.y_wheel_m);
   const double cos_g = std::cos(c.contact_angle_rad), sin_g = std::sin(c.contact_angle_rad);

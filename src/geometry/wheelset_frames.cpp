@@ -29,7 +29,7 @@ WheelOnRail::WheelOnRail(const WheelsetTrack& track, WheelSide side, const Wheel
       wheel_offset_m_(wheel_origin_offset_m(track.parameters())),
       rail_offset_m_(rail_origin_offset_m(track.pair(side), track.parameters())),
       nominal_radius_m_(track.parameters().nominal_rolling_radius_m),
-      taping_z_m_(track.pair(side).taping_line_z_m()) {
+      radius_datum_z_m_(track.pair(side).nominal_radius_z_m()) {
   centre_ = {0.0, position.lateral_displacement_m, track.nominal_axle_height_m() + position.vertical_displacement_m};
   axle_ = axle_direction(position.roll_rad, position.yaw_rad);
   // down = (−e_z) minus its component along the axle, normalised.
@@ -42,7 +42,7 @@ WheelOnRail::WheelOnRail(const WheelsetTrack& track, WheelSide side, const Wheel
 
 bool WheelOnRail::locus_sample(double wheel_parameter_m, ContactLocusSample& sample) const {
   const ProfileCurvePoint p = wheel_->at(wheel_parameter_m);
-  const double radius = nominal_radius_m_ + p.z_m - taping_z_m_;
+  const double radius = nominal_radius_m_ + p.z_m - radius_datum_z_m_;
   sample.wheel_profile_y_m = p.y_m;
   sample.rolling_radius_m = radius;
   if (!(std::abs(p.dy_ds) > 1e-3) || !(radius > 0.0)) return false;  // a vertical part of the profile
@@ -73,15 +73,20 @@ bool WheelOnRail::locus_sample(double wheel_parameter_m, ContactLocusSample& sam
 }
 
 InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>& locus, std::size_t first,
-                                           std::size_t last) const {
+                                           std::size_t last, ReferenceWeighting weighting) const {
   InterpenetrationRegion r;
   r.side = side_;
   r.first_sample = first;
   r.last_sample = last;
-  // Weights: the vertical overlap times the lateral width of each sample, −g |Δy| (equal to the
-  // normal interpenetration times the arc length along the rail). They fall to zero continuously
-  // at the region's ends, so the averages move continuously with the position.
-  double sum_w = 0.0, sum_y = 0.0, sum_yw = 0.0, sum_angle = 0.0, sum_radius = 0.0, sum_x = 0.0;
+  // Each sample stands for a lateral strip of the overlap, |Δy| wide, in which the wheel dips below
+  // the rail by e = −g (the vertical gap g < 0 at the locus point) and rises as x²/2r along the
+  // track (r: the nominal radius r0, as Kalker's CONTACT takes it). Its weight (docs/WHEELSET.md §4):
+  //   depth:        e |Δy|;
+  //   squared gap:  |Δy| ∫ (e − x²/2r)² dx over the strip's overlap |x| < sqrt(2 r e)
+  //                 = |Δy| (16/15) e² sqrt(2 r e).
+  // Both fall to zero continuously at the region's ends, so the averages move continuously with
+  // the position.
+  double sum_w = 0.0, sum_y = 0.0, sum_yw = 0.0, sum_angle = 0.0, sum_radius = 0.0, sum_x = 0.0, sum_depth = 0.0;
   r.max_interpenetration_m = 0.0;
   r.rail_profile_y_min_m = std::numeric_limits<double>::infinity();
   r.rail_profile_y_max_m = -std::numeric_limits<double>::infinity();
@@ -92,7 +97,11 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
     if (!(s.vertical_gap_m < 0.0)) continue;
     const double width =
         0.5 * std::abs(locus[std::min(k + 1, locus.size() - 1)].rail_profile_y_m - locus[k > 0 ? k - 1 : 0].rail_profile_y_m);
-    const double w = -s.vertical_gap_m * width;
+    const double e = -s.vertical_gap_m;
+    const double w = weighting == ReferenceWeighting::depth
+                         ? e * width
+                         : width * (16.0 / 15.0) * e * e * std::sqrt(2.0 * nominal_radius_m_ * e);
+    sum_depth += e * width;
     sum_w += w;
     sum_y += w * s.rail_profile_y_m;
     sum_yw += w * s.wheel_profile_y_m;
@@ -102,7 +111,7 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
     r.max_interpenetration_m = std::max(r.max_interpenetration_m, -s.vertical_gap_m * std::cos(s.contact_angle_rad));
   }
   require(sum_w > 0.0, "contact search: an interpenetration region without overlap");
-  r.interpenetration_area_m2 = sum_w;
+  r.interpenetration_area_m2 = sum_depth;
   r.rail_profile_y_m = sum_y / sum_w;
   r.wheel_profile_y_m = sum_yw / sum_w;
   r.contact_angle_rad = sum_angle / sum_w;
@@ -182,7 +191,7 @@ double WheelOnRail::wheel_normal_m(const InterpenetrationRegion& region, double 
     const Vector3 radial = add(d, axle_, -axial);
     const double rho = std::sqrt(dot(radial, radial));
     const double G1 = axial - sign_ * (wheel_offset_m_ + p.y_m);
-    const double G2 = rho - (nominal_radius_m_ + p.z_m - taping_z_m_);
+    const double G2 = rho - (nominal_radius_m_ + p.z_m - radius_datum_z_m_);
     if (std::abs(G1) < 1e-13 && std::abs(G2) < 1e-13) {
       converged = true;
       break;

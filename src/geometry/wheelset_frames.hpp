@@ -39,7 +39,7 @@ class WheelOnRail {
   // The region of the locus samples first..last (all overlapping ends included): weighted
   // averages, frame and tangent-plane bounding box.
   [[nodiscard]] InterpenetrationRegion region(const std::vector<ContactLocusSample>& locus, std::size_t first,
-                                              std::size_t last) const;
+                                              std::size_t last, ReferenceWeighting weighting) const;
 
   // Rail surface on the normal line through tangent-plane coordinate x2 of a region: its
   // coordinate t along X3 from the reference point. rail_parameter: guess in, root out.
@@ -59,7 +59,7 @@ class WheelOnRail {
   WheelSide side_;
   double sign_;
   double wheel_offset_m_, rail_offset_m_;
-  double nominal_radius_m_, taping_z_m_;
+  double nominal_radius_m_, radius_datum_z_m_;  // r0, and the wheel profile's z where the radius is r0
   Vector3 centre_{};  // wheelset centre, track frame
   Vector3 axle_{};    // unit axle direction
   Vector3 down_{};    // unit vector perpendicular to the axle, as close to −z as possible

@@ -48,6 +48,18 @@ void sample_locus(const geometry::WheelOnRail& w, double step_m, std::vector<Con
 
 const char* side_name(WheelSide side) { return side == WheelSide::right ? "right" : "left"; }
 
+const char* reference_weighting_name(ReferenceWeighting weighting) {
+  return weighting == ReferenceWeighting::squared_gap ? "squared-gap" : "depth";
+}
+
+ReferenceWeighting parse_reference_weighting(const std::string& name) {
+  for (ReferenceWeighting w : {ReferenceWeighting::squared_gap, ReferenceWeighting::depth})
+    if (name == reference_weighting_name(w)) return w;
+  throw Error(fmt::format("unknown reference-point weighting '{}' (allowed: squared-gap, the default of CONTACT; "
+                          "depth)",
+                          name));
+}
+
 void validate(const WheelsetPosition& p) {
   const auto check = [](double value, double limit, const char* name, const char* unit, double scale) {
     require(std::isfinite(value) && std::abs(value) <= limit, [&] {
@@ -236,7 +248,7 @@ WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetP
   }
 
   for (const Run& r : merged) {
-    search.regions.push_back(w.region(search.locus, r.first, r.last));
+    search.regions.push_back(w.region(search.locus, r.first, r.last, options.weighting));
     const InterpenetrationRegion& region = search.regions.back();
     // Beyond the flange's steepest part, where the flange rounds off towards its tip (its slope
     // 5 degrees below the steepest), the wheel is climbing over the rail.

@@ -1,5 +1,7 @@
 // Kinematic creepages of a contact from the wheelset's motion (railcontact/wheelset.hpp,
-// docs/WHEEL_RAIL.md §12): v_P = v_C + ω × p, then ξ = v_P·X1 / V, η = v_P·X2 / V, φ = ω·X3 / V.
+// docs/WHEEL_RAIL.md §12): v_Q = v_C + ω × q at the creepage point Q (on the undeformed wheel
+// surface), the rolling speed V_ref = (V + Ω r_Q)/2, then ξ = v_Q·X1 / V_ref, η = v_Q·X2 / V_ref,
+// φ = ω·X3 / V_ref.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -66,8 +68,9 @@ double wheel_angular_velocity_for_rolling(double forward_speed_m_per_s, double n
     return fmt::format("rolling: the extra longitudinal creepage {} must lie in [{:g}, {:g}]", extra_longitudinal_creepage,
                        -kMaximumCreepage, kMaximumCreepage);
   });
-  // At the nominal radius below the axle, v_P·x = V − Ω r0 = ξ0 V.
-  return forward_speed_m_per_s * (1.0 - extra_longitudinal_creepage) / nominal_rolling_radius_m;
+  // At the nominal radius below the axle, v·x = V − Ω r0 = ξ0 V_ref with V_ref = (V + Ω r0)/2.
+  const double xi0 = extra_longitudinal_creepage;
+  return forward_speed_m_per_s * (1.0 - 0.5 * xi0) / ((1.0 + 0.5 * xi0) * nominal_rolling_radius_m);
 }
 
 Vector3 wheelset_angular_velocity(const WheelsetMotion& m) {
@@ -92,16 +95,46 @@ ContactFrame contact_frame(const Vector3& point_from_wheelset_centre_m, double c
   return frame;
 }
 
-Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& contact) {
+double rolling_speed_m_per_s(const WheelsetMotion& motion, const ContactFrame& contact) {
   validate(motion);
   validate(contact);
+  // The wheel's circumferential speed at the point: the wheels' rotation about the axle alone.
+  const Vector3 axle = axle_direction(motion.roll_rad, motion.yaw_rad);
+  const double W = motion.wheel_angular_velocity_rad_per_s;
+  const Vector3 turning = cross(Vector3{W * axle[0], W * axle[1], W * axle[2]}, contact.point_from_wheelset_centre_m);
+  const double circumferential = -dot(turning, contact.x1);
+  // A wheel that does not turn forward does not roll (a locked wheel slides: ξ = 2).
+  require(circumferential > 0.0, [&] {
+    return fmt::format("wheelset motion: the wheels' rotation wheel_angular_velocity_rad_per_s = {:g} rad/s does not "
+                       "roll the wheels forward at the forward speed V = {:g} m/s (the wheel's surface at the contact "
+                       "moves at {:.3g} m/s about the axle; rolling forward is V / r0 = {:.4g} rad/s at r0 = {:.4g} m)",
+                       W, motion.forward_speed_m_per_s, circumferential,
+                       motion.forward_speed_m_per_s / std::hypot(contact.point_from_wheelset_centre_m[0],
+                                                                  contact.point_from_wheelset_centre_m[2]),
+                       std::hypot(contact.point_from_wheelset_centre_m[0], contact.point_from_wheelset_centre_m[2]));
+  });
+  return 0.5 * (motion.forward_speed_m_per_s + circumferential);
+}
+
+namespace {
+
+// The wheel's velocity at the point along X1 and X2 and its angular velocity along X3: the
+// creepages times the rolling speed.
+Creepage creep_velocities(const WheelsetMotion& motion, const ContactFrame& contact) {
   const Vector3 omega = wheelset_angular_velocity(motion);
   const Vector3 centre_velocity{motion.forward_speed_m_per_s, motion.lateral_velocity_m_per_s,
                                 motion.vertical_velocity_m_per_s};
   const Vector3 spin_part = cross(omega, contact.point_from_wheelset_centre_m);
   const Vector3 v{centre_velocity[0] + spin_part[0], centre_velocity[1] + spin_part[1], centre_velocity[2] + spin_part[2]};
-  const double V = motion.forward_speed_m_per_s;
-  return {dot(v, contact.x1) / V, dot(v, contact.x2) / V, dot(omega, contact.x3) / V};
+  return {dot(v, contact.x1), dot(v, contact.x2), dot(omega, contact.x3)};
+}
+
+}  // namespace
+
+Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& contact) {
+  const double V_ref = rolling_speed_m_per_s(motion, contact);  // validates both
+  const Creepage v = creep_velocities(motion, contact);
+  return {v.xi / V_ref, v.eta / V_ref, v.phi / V_ref};
 }
 
 void check_kinematic_creepage(const Creepage& creepage, const WheelsetMotion& motion, const ContactFrame& contact,
@@ -112,12 +145,13 @@ void check_kinematic_creepage(const Creepage& creepage, const WheelsetMotion& mo
   for (int k = 0; k < 3 && component < 0; ++k)
     if (!(std::abs(values[k]) <= limits[k])) component = k;
   if (component < 0) return;
-  // The creepages are linear in the velocities: the share of each. The rolling part (V with the
-  // wheels' rotation at the roll and yaw angles) is the motion without the rates; each rate's share
-  // is its creepage alone (V kept as the divisor) less that of no motion at all.
+  // The creep velocities are linear in the velocities: the share of each, over the motion's rolling
+  // speed. The rolling part (V with the wheels' rotation at the roll and yaw angles) is the motion
+  // without the rates; each rate's share is its velocity alone less that of no motion at all.
+  const double V_ref = rolling_speed_m_per_s(motion, contact);
   const auto part = [&](const WheelsetMotion& m) {
-    const Creepage c = kinematic_creepage(m, contact);
-    return component == 0 ? c.xi : component == 1 ? c.eta : c.phi;
+    const Creepage c = creep_velocities(m, contact);
+    return (component == 0 ? c.xi : component == 1 ? c.eta : c.phi) / V_ref;
   };
   WheelsetMotion rolling = motion;
   rolling.lateral_velocity_m_per_s = rolling.vertical_velocity_m_per_s = 0.0;

@@ -91,7 +91,7 @@ WheelRailSetup wheel_rail::parse_wheel_rail_setup(std::string_view content, cons
   const std::string track_where = where + ": track";
   refuse_unknown_keys(*track,
                       {"track_gauge_m", "gauge_measuring_depth_m", "flange_back_distance_m", "flange_back_y_m",
-                       "taping_line_from_flange_back_m", "nominal_rolling_radius_m"},
+                       "taping_line_from_flange_back_m", "nominal_rolling_radius_m", "nominal_radius_at"},
                       track_where);
   TrackWheelsetParameters& t = setup.track;
   t.track_gauge_m = number(*track, "track_gauge_m", track_where);
@@ -100,6 +100,16 @@ WheelRailSetup wheel_rail::parse_wheel_rail_setup(std::string_view content, cons
   t.flange_back_y_m = number(*track, "flange_back_y_m", track_where);
   t.taping_line_from_flange_back_m = number(*track, "taping_line_from_flange_back_m", track_where);
   t.nominal_rolling_radius_m = number(*track, "nominal_rolling_radius_m", track_where);
+  // Optional: where r0 is measured (default: the profile's origin).
+  if (const auto datum = track->find("nominal_radius_at"); datum != track->end()) {
+    if (!datum->is_string())
+      throw Error(fmt::format("{}: nominal_radius_at must be a string: \"profile-origin\" or \"taping-line\"", track_where));
+    try {
+      t.nominal_radius_at = parse_nominal_radius_datum(datum->get<std::string>());
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: {}", track_where, e.what()));
+    }
+  }
   try {
     validate(t, "");
   } catch (const Error& e) {

@@ -43,10 +43,25 @@ using detail::equivalent_semi_axes;
 using detail::kFallbackElementsForK2;
 using detail::kMinimumElementsForK2;
 
+// The distance of a point (from the wheelset centre) from the axle.
+double distance_from_axle_m(const Vector3& q, const WheelsetMotion& motion) {
+  const Vector3 a = axle_direction(motion.roll_rad, motion.yaw_rad);
+  const double along = q[0] * a[0] + q[1] * a[1] + q[2] * a[2];
+  const Vector3 radial{q[0] - along * a[0], q[1] - along * a[1], q[2] - along * a[2]};
+  return std::sqrt(radial[0] * radial[0] + radial[1] * radial[1] + radial[2] * radial[2]);
+}
+
 Vector3 combine(const InterpenetrationRegion& r, double F1, double F2, double F3) {
   Vector3 f{};
   for (int i = 0; i < 3; ++i) f[static_cast<std::size_t>(i)] = F1 * r.x1_axis[i] + F2 * r.x2_axis[i] + F3 * r.x3_axis[i];
   return f;
+}
+
+// The index in options.solvers of the solver whose forces the load balance and free rolling use.
+std::size_t balance_index(const WheelsetOptions& options) {
+  if (!options.balance_solver) return 0;
+  const auto it = std::find(options.solvers.begin(), options.solvers.end(), *options.balance_solver);
+  return static_cast<std::size_t>(it - options.solvers.begin());
 }
 
 // One patch's normal problem at a position.
@@ -334,13 +349,21 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     WheelsetPatch patch;
     patch.side = side;
     patch.region = n.region;
+    // The creepage point Q on the undeformed wheel surface: the reference point P moved into the
+    // rail along the normal by the approach, the largest rigid overlap of the patch (as Kalker's
+    // CONTACT takes it; docs/WHEEL_RAIL.md §12).
+    patch.approach_m = std::max(0.0, -*std::min_element(n.area.h_m.begin(), n.area.h_m.end()));
+    for (std::size_t i = 0; i < 3; ++i)
+      patch.creepage_point_track_m[i] = n.region.reference_point_track_m[i] - patch.approach_m * n.region.x3_axis[i];
     ContactFrame frame;
-    for (std::size_t i = 0; i < 3; ++i) frame.point_from_wheelset_centre_m[i] = n.region.reference_point_track_m[i] - centre[i];
+    for (std::size_t i = 0; i < 3; ++i) frame.point_from_wheelset_centre_m[i] = patch.creepage_point_track_m[i] - centre[i];
     frame.x1 = n.region.x1_axis;
     frame.x2 = n.region.x2_axis;
     frame.x3 = n.region.x3_axis;
     patch.creepage = kinematic_creepage(motion, frame);
     check_kinematic_creepage(patch.creepage, motion, frame, side);
+    patch.rolling_speed_m_per_s = rolling_speed_m_per_s(motion, frame);
+    patch.rolling_radius_m = distance_from_axle_m(frame.point_from_wheelset_centre_m, motion);
     patch.normal_force_N = n.normal.normal_force_N;
     patch.elements_in_contact = n.normal.elements_in_contact;
     patch.normal_iterations = n.normal.iterations;
@@ -417,8 +440,11 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     if (options.keep_tractions) patch.patch = std::move(contact);
     wheel.patches.push_back(std::move(patch));
   }
+  wheel.solver_force_track_N.assign(options.solvers.size(), Vector3{});
   for (const WheelsetPatch& p : wheel.patches)
-    for (std::size_t i = 0; i < 3; ++i) wheel.force_track_N[i] += p.solvers.front().force_track_N[i];
+    for (std::size_t s = 0; s < p.solvers.size(); ++s)
+      for (std::size_t i = 0; i < 3; ++i) wheel.solver_force_track_N[s][i] += p.solvers[s].force_track_N[i];
+  wheel.force_track_N = wheel.solver_force_track_N.front();
   // A patch without elements carries only its (zero) normal force: nothing to add.
   return wheel;
 }
@@ -429,10 +455,10 @@ double normal_vertical_force(const std::vector<NormalPatch>& patches) {
   return f;
 }
 
-double tangential_vertical_force(const WheelResult& wheel) {
+double tangential_vertical_force(const WheelResult& wheel, std::size_t solver) {
   double f = 0.0;
   for (const WheelsetPatch& p : wheel.patches) {
-    const TangentialForces& t = p.solvers.front().forces;
+    const TangentialForces& t = p.solvers[solver].forces;
     f += t.F1_N * p.region.x1_axis[2] + t.F2_N * p.region.x2_axis[2];
   }
   return f;
@@ -511,6 +537,14 @@ void validate(const WheelsetOptions& o) {
     return fmt::format("wheelset: the element size {:g} mm must lie in [0.02, 5] mm", o.element_size_m / kMm);
   });
   require(!o.solvers.empty(), "wheelset: at least one tangential solver is needed");
+  if (o.balance_solver) {
+    require(std::find(o.solvers.begin(), o.solvers.end(), *o.balance_solver) != o.solvers.end(), [&] {
+      std::string run;
+      for (TangentialSolver s : o.solvers) run += fmt::format("{}{}", run.empty() ? "" : ", ", solver_name(s));
+      return fmt::format("wheelset: the balance solver {} is not among the solvers run ({}): name one of them",
+                         solver_name(*o.balance_solver), run);
+    });
+  }
   validate(o.rolling);
   validate(o.search);
   if (o.loads) {
@@ -572,12 +606,87 @@ void validate(const WheelsetVelocity& v, const WheelsetVelocityNames& names) {
           " rad/s", "200 m/s on a wheel of 0.2 m radius; V / r0 = 43 rad/s at 20 m/s");
   check(v.extra_longitudinal_creepage, names.extra_longitudinal_creepage, kMaximumCreepage, "",
         "the range of any creepage: beyond, the wheel slides rather than rolls");
+  if (v.free_rolling) {
+    require(std::isnan(v.wheel_angular_velocity_rad_per_s) && v.extra_longitudinal_creepage == 0.0, [&] {
+      return fmt::format("{}: free rolling solves the wheels' angular velocity; it cannot be given as well ({}, {})",
+                         names.free_rolling,
+                         given(names.wheel_angular_velocity, v.wheel_angular_velocity_rad_per_s, " rad/s"),
+                         given(names.extra_longitudinal_creepage, v.extra_longitudinal_creepage, ""));
+    });
+  }
 }
+
+namespace {
+
+// The moment about the axle of the wheels' tangential forces (solver `solver`), each acting at
+// its patch's reference point: zero in free rolling.
+double axle_moment_Nm(const WheelsetTrack& track, const WheelsetResult& r, std::size_t solver) {
+  const Vector3 a = axle_direction(r.state.position.roll_rad, r.state.position.yaw_rad);
+  double moment = 0.0;
+  for (const WheelResult& w : r.wheels) {
+    const Vector3 centre{0.0, r.state.position.lateral_displacement_m,
+                         track.nominal_axle_height_m() + w.vertical_displacement_m};
+    for (const WheelsetPatch& p : w.patches) {
+      const Vector3& f = p.solvers[solver].force_track_N;
+      Vector3 q{};
+      for (std::size_t i = 0; i < 3; ++i) q[i] = p.region.reference_point_track_m[i] - centre[i];
+      const Vector3 m{q[1] * f[2] - q[2] * f[1], q[2] * f[0] - q[0] * f[2], q[0] * f[1] - q[1] * f[0]};
+      moment += m[0] * a[0] + m[1] * a[1] + m[2] * a[2];
+    }
+  }
+  return moment;
+}
+
+}  // namespace
 
 WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
   validate(input.position);
   validate(input.velocity);
+  if (!input.velocity.free_rolling) return evaluate_rolling(input);
 
+  // Free rolling (docs/WHEELSET.md §5): the wheels' angular velocity Ω at which the moment of the
+  // tangential forces about the axle vanishes. Secant steps from pure rolling at r0; the moment
+  // falls with Ω (a faster wheel brakes less, drives more), nearly linearly while the patches
+  // adhere.
+  constexpr int kMaximumFreeRollingIterations = 12;
+  const std::size_t solver = balance_index(options_);
+  WheelsetState state = input;
+  state.velocity.free_rolling = false;
+  const double r0 = track_.parameters().nominal_rolling_radius_m;
+  double omega = input.velocity.forward_speed_m_per_s / r0;
+  double previous_omega = 0.0, previous_moment = 0.0;
+  for (int iteration = 1; iteration <= kMaximumFreeRollingIterations; ++iteration) {
+    state.velocity.wheel_angular_velocity_rad_per_s = omega;
+    WheelsetResult r = evaluate_rolling(state);
+    double vertical = 0.0;
+    for (const WheelResult& w : r.wheels) vertical += w.solver_force_track_N.empty() ? 0.0 : w.solver_force_track_N[solver][2];
+    if (!(vertical > 0.0)) {
+      throw Error(ErrorKind::no_contact, "wheelset: free rolling needs a wheel in contact with its rail to balance the "
+                                         "wheels' rotation (neither wheel touches its rail)");
+    }
+    const double moment = axle_moment_Nm(track_, r, solver);
+    // Settled when the moment is below 1e-6 of the one the friction could give (μ F_z r0).
+    const double tolerance = 1e-6 * options_.friction_coefficient * vertical * r0;
+    if (std::abs(moment) <= tolerance) {
+      r.state.velocity = input.velocity;
+      r.state.velocity.wheel_angular_velocity_rad_per_s = omega;
+      r.free_rolling_iterations = iteration;
+      return r;
+    }
+    double next = omega * (1.0 + 1e-4);  // the first step: ξ changes by about 1e-4
+    if (iteration > 1 && moment != previous_moment)
+      next = omega - moment * (omega - previous_omega) / (moment - previous_moment);
+    previous_omega = omega;
+    previous_moment = moment;
+    omega = next;
+  }
+  throw Error(ErrorKind::not_converged,
+              fmt::format("wheelset: free rolling: the moment of the wheels' tangential forces about the axle did not "
+                          "vanish in {} evaluations (last {:.3g} N m at {:.6g} rad/s)",
+                          kMaximumFreeRollingIterations, previous_moment, previous_omega));
+}
+
+WheelsetResult Wheelset::evaluate_rolling(const WheelsetState& input) {
   WheelsetResult result;
   result.state = input;
   const std::array<WheelSide, 2> sides{WheelSide::right, WheelSide::left};
@@ -629,7 +738,7 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
         result.wheels[k] = finish_wheel(track_, sides[k], wheel_state, normal[k], options_);
         result.wheels[k].load_iterations = iterations[k];
         if (options_.tangential_forces_in_vertical_balance)
-          new_tangential[k] = tangential_vertical_force(result.wheels[k]);
+          new_tangential[k] = tangential_vertical_force(result.wheels[k], balance_index(options_));
         const double tolerance = pass < kStrictBalancePasses ? kTangentialBalanceTolerance : kCoarseTangentialBalanceTolerance;
         settled = settled && std::abs(new_tangential[k] - tangential_vertical[k]) <=
                                  std::max(options_.load_tolerance, tolerance) * loads[k];
@@ -679,6 +788,10 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
     }
     for (std::size_t i = 0; i < 3; ++i) result.force_track_N[i] += result.wheels[k].force_track_N[i];
   }
+  result.solver_force_track_N.assign(options_.solvers.size(), Vector3{});
+  for (const WheelResult& w : result.wheels)
+    for (std::size_t s = 0; s < w.solver_force_track_N.size(); ++s)
+      for (std::size_t i = 0; i < 3; ++i) result.solver_force_track_N[s][i] += w.solver_force_track_N[s][i];
   require_finite(result);
   return result;
 }
