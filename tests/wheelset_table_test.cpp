@@ -516,7 +516,7 @@ TEST(WheelsetTableCli, SettingsTheTableWasNotBuiltForAreRefusedUnlessOverridden)
   EXPECT_EQ(run_cli("wheelset --table " + file + at + " --table-override speed").exit_code, 2);
 }
 
-// --sweep-y with --table evaluates every position from the table: the CSV's forces are the
+// --sweep-y-m with --table evaluates every position from the table: the CSV's forces are the
 // table's point evaluations (to the CSV's 3 decimals); past the table's y range the sweep stops
 // with the rows before it written.
 TEST(WheelsetTableCli, SweepFromTheTableGivesItsPointEvaluations) {
