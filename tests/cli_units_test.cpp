@@ -189,10 +189,13 @@ TEST(CliUnits, OldSpellingsAreRefusedWithTheNewOptionAndTheValueConverted) {
     EXPECT_EQ(r.exit_code, 2) << r.err;
     test::expect_one_error_line(r, message);
   }
-  // A prefix of a new option is not taken for it.
-  const CommandResult prefix = run_cli("wheelset --load-n 98100");
-  EXPECT_EQ(prefix.exit_code, 2);
-  test::expect_one_error_line(prefix, "The following argument was not expected: --load-n");
+  // A prefix of a new option is not taken for it (CLI11 matches long options exactly), nor is
+  // another case of its unit.
+  for (const std::string option : {"--yaw-rate-rad", "--lateral-velocity-m", "--load-n"}) {
+    const CommandResult prefix = run_cli("wheelset " + option + " 1");
+    EXPECT_EQ(prefix.exit_code, 2) << option;
+    test::expect_one_error_line(prefix, "The following argument was not expected: " + option);
+  }
   // No old spelling is shown in a help.
   for (const std::string& path : command_paths())
     for (const HelpOption& o : help_section(run_cli(path + " --help").out, "Options:"))

@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
@@ -82,10 +83,8 @@ std::string converted(std::string_view text, double old_per_new) {
   return out;
 }
 
-}  // namespace
-
-std::span<const RenamedOption> renamed_options() { return kRenamedOptions; }
-
+// The error of an old option given with `values`, converted when they are numbers (also
+// FROM:TO:STEP or a comma list), else the row's example converted.
 std::string renamed_option_message(const RenamedOption& row, const std::vector<std::string>& values) {
   // The values given, converted; the row's example when they are none or not numbers.
   std::string old_values, new_values;
@@ -108,6 +107,8 @@ std::string renamed_option_message(const RenamedOption& row, const std::vector<s
                      row.command, row.old_name, row.new_name, row.new_unit, row.old_name, row.old_unit,
                      same_unit ? " too" : "", row.old_name, old_values, row.new_name, new_values);
 }
+
+}  // namespace
 
 void refuse_renamed_options(CLI::App& app) {
   for (const RenamedOption& row : kRenamedOptions) {

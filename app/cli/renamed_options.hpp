@@ -4,12 +4,12 @@
 // name without its unit are refused with one error that says what changed and how to convert:
 //   railcontact: error: wheelset --y is no longer accepted: the command line is SI throughout, with
 //   the unit in the option's name: give --y-m in metres (--y was in millimetres: --y 3 is --y-m 0.003)
-// renamed_options() lists them, per command; refuse_renamed_options() registers each old name on its
-// command as a hidden option that fails the parse as soon as it is met (so also when old and new
-// spellings are mixed). A new option is named with its unit from the start and needs no row here.
+// One table in renamed_options.cpp lists them, per command; refuse_renamed_options() registers each
+// old name on its command as a hidden option that fails the parse as soon as it is met (so also when
+// old and new spellings are mixed). A new option is named with its unit from the start and needs no
+// row. CLI11 (2.1) matches long options exactly, so a prefix such as --y is never taken for --y-m.
 #include <CLI/CLI.hpp>
 
-#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,14 +26,7 @@ struct RenamedOption {
   std::string_view example;   // an old value, shown converted when the one given is not a number
 };
 
-// The renamed options of every command.
-std::span<const RenamedOption> renamed_options();
-
-// The error of an old option given with `values` (converted when they are numbers, or
-// FROM:TO:STEP, or a comma list; else the row's example).
-std::string renamed_option_message(const RenamedOption& row, const std::vector<std::string>& values);
-
-// Registers the old names of renamed_options() on their commands under `app` (call it once the
+// Registers the old names of the table on their commands under `app` (call it once the
 // commands are added). Throws std::logic_error for a row whose command or new option does not exist.
 void refuse_renamed_options(CLI::App& app);
 
