@@ -142,7 +142,7 @@ void add_patch_command(CLI::App& app, Action& action) {
   CLI::App* cmd = app.add_subcommand(
       "patch", "wheel-rail normal contact at one wheelset position (default: S1002 on UIC60 1:40, 98.1 kN)");
   cmd->add_option("--y-m", args->y_m,
-                  "wheelset lateral displacement (m, track frame, to the left; y < 0 towards the flange)")
+                  "wheelset lateral displacement (m, track frame, + to the left; y < 0 towards the flange)")
       ->capture_default_str();
   cmd->add_option("--wheel", args->wheel, "wheel profile file (.prw, .whl or text; default: the shipped S1002)");
   cmd->add_option("--rail", args->rail, "rail profile file (.prr, .ban or text; default: the shipped UIC60 1:40)");
