@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Figures of a wheelset sweep over y (`railcontact wheelset --sweep-y ... --out DIR`, wheelset_sweep.csv in
+"""Figures of a wheelset sweep over y (`railcontact wheelset --sweep-y-m ... --out DIR`, wheelset_sweep.csv in
 DIR) -> wheelset_sweep.png: for each wheel and patch against the wheelset's lateral displacement y, the
 reference point on the rail, the contact angle, the creepages, the normal force and the creep forces."""
 import csv

@@ -564,7 +564,7 @@ TEST(CApiEqualsCli, SinglePatchAndWheelsetToTheLastDigit) {
     rc_solver_destroy(solver);
   }
 
-  const test::CommandResult wheelset_cli = test::run_cli("wheelset --y 1.3 --yaw 0.5 --element-size 0.5 --json");
+  const test::CommandResult wheelset_cli = test::run_cli("wheelset --y-m 0.0013 --yaw-rad 0.0005 --element-size-m 0.0005 --json");
   ASSERT_EQ(wheelset_cli.exit_code, 0) << wheelset_cli.err;
   const nlohmann::json w = nlohmann::json::parse(wheelset_cli.out);
   rc_wheelset* wheelset = nullptr;
@@ -576,8 +576,8 @@ TEST(CApiEqualsCli, SinglePatchAndWheelsetToTheLastDigit) {
   ASSERT_EQ(rc_wheelset_set_options(wheelset, &o), RC_OK);
   rc_wheelset_state s;
   rc_wheelset_state_default(&s);
-  s.y_m = 1.3 * 1e-3;  // as the CLI converts --y 1.3 (mm): 1.3e-3 is another double
-  s.yaw_rad = 0.5 * 1e-3;
+  s.y_m = 0.0013;  // the CLI's --y-m 0.0013 and --yaw-rad 0.0005: the same doubles
+  s.yaw_rad = 0.0005;
   rc_wheelset_result r{};
   ASSERT_EQ(rc_wheelset_evaluate(wheelset, &s, &r), RC_OK);
   for (int k = 0; k < 2; ++k)

@@ -75,8 +75,8 @@ TEST(ErrorKinds, UnreadableFilesAreIo) {
 TEST(ErrorKinds, CliExitCodeNamesTheKind) {
   using test::run_cli;
   EXPECT_EQ(run_cli("run /nonexistent/case.toml").exit_code, 3);                 // io
-  EXPECT_EQ(run_cli("patch --y -0.005 --load 10000 --elements 600 --json").exit_code, 5);  // several patches
-  EXPECT_EQ(run_cli("patch --y 0.2 --json").exit_code, 4);                       // no contact
+  EXPECT_EQ(run_cli("patch --y-m -0.005 --load-N 10000 --elements 600 --json").exit_code, 5);  // several patches
+  EXPECT_EQ(run_cli("patch --y-m 0.2 --json").exit_code, 4);                       // no contact
   EXPECT_EQ(run_cli("coefficients --a-over-b -2 --nu 0.3").exit_code, 2);        // invalid input
   EXPECT_EQ(run_cli("run --no-such-option").exit_code, 2);                       // command line
   EXPECT_EQ(run_cli("no-such-command").exit_code, 2);

@@ -55,7 +55,7 @@ TEST(FlextableCli, BuildWritesATableThatRunUses) {
   const ScratchDirectory dir("flextable_build");
   const std::string table = (dir / "t.json").string();
   const CommandResult b =
-      run_cli("flextable build --out " + table + " --y-from 0 --y-to 0.5e-3 --y-step 0.25e-3 --elements 800");
+      run_cli("flextable build --out " + table + " --y-from-m 0 --y-to-m 0.5e-3 --y-step-m 0.25e-3 --elements 800");
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_NE(b.out.find("3 solved"), std::string::npos) << b.out;
   EXPECT_NE(b.err.find("node 3/3"), std::string::npos) << b.err;  // progress on stderr
@@ -141,15 +141,15 @@ TEST(FlextableCli, BadInputGivesOneClearErrorLine) {
       {"run --flextable " + (dir / "broken.json").string(), "malformed JSON"},
       {"run --flextable " + (dir / "not_a_table.json").string(), "not a flexibility table"},
       {"flextable check --table " + table + " --rail " + rail, "was built for other profiles"},
-      {"flextable check --table " + table + " --y 0.001", "outside its range"},
-      {"flextable check --table " + table + " --load 90000", "holds the one vertical load"},
+      {"flextable check --table " + table + " --y-m 0.001", "outside its range"},
+      {"flextable check --table " + table + " --load-N 90000", "holds the one vertical load"},
       {"flextable check --table " + table + " --mu 0", "mu"},
       {"flextable check --table " + table + " --interpolation cubic", "interpolation"},
       {"flextable check", "--table"},
       {"flextable build", "--out"},
-      {"flextable build --out " + (dir / "t.json").string() + " --y-step 0", "y step"},
-      {"flextable build --out " + (dir / "t.json").string() + " --y-from 1e-3 --y-to 0", "y_to >= y_from"},
-      {"flextable build --out " + (dir / "t.json").string() + " --load -1", "--load"},
+      {"flextable build --out " + (dir / "t.json").string() + " --y-step-m 0", "y step"},
+      {"flextable build --out " + (dir / "t.json").string() + " --y-from-m 1e-3 --y-to-m 0", "y_to >= y_from"},
+      {"flextable build --out " + (dir / "t.json").string() + " --load-N -1", "--load-N"},
       {"flextable build --out " + (dir / "t.json").string() + " --elements 0", "--elements"},
       {"flextable build --out " + missing_dir, "no directory"},
       {"flextable build --out " + (dir / "t.json").string() + " --wheel " + (dir / "none.prw").string(), "none.prw"},

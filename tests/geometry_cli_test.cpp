@@ -31,7 +31,7 @@ std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path
 
 TEST(GeometryCli, WritesTheSweepTheConicityAndTheFigures) {
   const ScratchDirectory dir("geometry_cli");
-  const CommandResult r = run_cli("geometry --y-from -6 --y-to 6 --y-step 0.5 --json --out " + dir.string());
+  const CommandResult r = run_cli("geometry --y-from-m -0.006 --y-to-m 0.006 --y-step-m 0.0005 --json --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j.at("positions").get<int>(), 25);
@@ -67,7 +67,7 @@ TEST(GeometryCli, WritesTheSweepTheConicityAndTheFigures) {
 
 TEST(GeometryCli, PrintsTheConicitySummary) {
   const ScratchDirectory dir("geometry_cli_text");
-  const CommandResult r = run_cli("geometry --y-from -5 --y-to 5 --y-step 0.5 --amplitude 2 --out " + dir.string());
+  const CommandResult r = run_cli("geometry --y-from-m -0.005 --y-to-m 0.005 --y-step-m 0.0005 --amplitude-m 0.002 --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("Equivalent conicity at amplitude 2 mm"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("geometry.csv"), std::string::npos) << r.out;

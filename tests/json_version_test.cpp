@@ -104,13 +104,13 @@ TEST(JsonVersion, EveryJsonOutputOfTheToolCarriesTheLibraryVersion) {
   // patch: stdout and DIR/patch.json.
   run_json("patch", "--elements 500 --json --out " + (dir / "patch").string());
   expect_version(parse_file(dir / "patch" / "patch.json"), "patch --out DIR/patch.json");
-  run_json("wheelset", "--element-size 1 --json");
+  run_json("wheelset", "--element-size-m 0.001 --json");
   // flextable build writes the table file; flextable check prints its JSON.
   {
     covered.insert("flextable build");
     const std::string table = (dir / "table.json").string();
     const CommandResult b =
-        run_cli("flextable build --out " + table + " --y-from 0 --y-to 0.5e-3 --y-step 0.5e-3 --elements 300");
+        run_cli("flextable build --out " + table + " --y-from-m 0 --y-to-m 0.5e-3 --y-step-m 0.5e-3 --elements 300");
     ASSERT_EQ(b.exit_code, 0) << b.err;
     expect_version(parse_file(table), "flextable build --out FILE");
     run_json("flextable check", "--table " + table + " --elements 300 --json");
@@ -119,12 +119,12 @@ TEST(JsonVersion, EveryJsonOutputOfTheToolCarriesTheLibraryVersion) {
   {
     covered.insert("wheelset-table build");
     const std::string table = (dir / "wheelset_table.json").string();
-    const CommandResult b = run_cli("wheelset-table build --out " + table + " --y=0:0.5:0.5 --load 100 --element-size 1");
+    const CommandResult b = run_cli("wheelset-table build --out " + table + " --y-m=0:0.0005:0.0005 --load-N 100000 --element-size-m 0.001");
     ASSERT_EQ(b.exit_code, 0) << b.err;
     expect_version(parse_file(table), "wheelset-table build --out FILE");
-    run_json("wheelset", "--table " + table + " --y 0.2 --load 100 --json");
+    run_json("wheelset", "--table " + table + " --y-m 0.0002 --load-N 100000 --json");
   }
-  run_json("geometry", "--y-from=-2 --y-to 2 --y-step 0.5 --amplitude 1 --json --out " + (dir / "geometry").string());
+  run_json("geometry", "--y-from-m=-0.002 --y-to-m 0.002 --y-step-m 0.0005 --amplitude-m 0.001 --json --out " + (dir / "geometry").string());
   // sweep writes DIR/sweep.json; a shard's journal holds it and merge writes it again.
   {
     covered.insert("sweep");

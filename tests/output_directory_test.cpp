@@ -236,7 +236,7 @@ TEST(OutputDirectory, InterruptedStudyLeavesTheOldOutputs) {
 // well under the time of one node).
 void expect_fails_before_building(const std::string& out) {
   const auto start = std::chrono::steady_clock::now();
-  const CommandResult r = run_cli("flextable build --out " + out + " --y-from 0 --y-to 0.001 --y-step 0.001");
+  const CommandResult r = run_cli("flextable build --out " + out + " --y-from-m 0 --y-to-m 0.001 --y-step-m 0.001");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(r.exit_code, 3) << r.err;  // io
   EXPECT_EQ(r.err.find("node"), std::string::npos) << r.err;
@@ -295,7 +295,7 @@ TEST(OutputDirectory, AFailedWriteNamesTheFileAndTheReason) {
   EXPECT_EQ(staging_directories(out), 0);
   const fs::path table = dir / "t.json";
   expect_one_write_error(
-      run_cli("flextable build --out " + table.string() + " --y-from 0 --y-to 0.001 --y-step 0.001 --elements 3000",
+      run_cli("flextable build --out " + table.string() + " --y-from-m 0 --y-to-m 0.001 --y-step-m 0.001 --elements 3000",
               "trap '' XFSZ; ulimit -f 1; exec "),
       "cannot write the flexibility table " + table.string() + ": File too large", true);
   EXPECT_FALSE(fs::exists(table));

@@ -63,7 +63,7 @@ TEST(PatchCli, JsonIsOneObjectWithTheDocumentedKeys) {
 
 TEST(PatchCli, TextTableAndOutputFiles) {
   const ScratchDirectory dir("patch_out");
-  const CommandResult r = run_cli("patch --y -0.003 --load 80000 --elements 1500 --out " + dir.string());
+  const CommandResult r = run_cli("patch --y-m -0.003 --load-N 80000 --elements 1500 --out " + dir.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("contact angle"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("normal force F3"), std::string::npos) << r.out;
@@ -137,18 +137,18 @@ INSTANTIATE_TEST_SUITE_P(
     Patch, PatchCliBadInput,
     ::testing::Values(std::pair{"patch --wheel /nonexistent/wheel.prw", "/nonexistent/wheel.prw"},
                       std::pair{"patch --rail /nonexistent/rail.prr", "cannot open"},
-                      std::pair{"patch --load -1", "--load must be positive"},
-                      std::pair{"patch --load 0", "--load must be positive"},
-                      std::pair{"patch --y 1", "never touch"},
-                      std::pair{"patch --y -0.005 --load 10000", "several contact patches"},
-                      std::pair{"patch --y nan", "--y"},
+                      std::pair{"patch --load-N -1", "--load-N must be positive"},
+                      std::pair{"patch --load-N 0", "--load-N must be positive"},
+                      std::pair{"patch --y-m 1", "never touch"},
+                      std::pair{"patch --y-m -0.005 --load-N 10000", "several contact patches"},
+                      std::pair{"patch --y-m nan", "--y-m"},
                       std::pair{"patch --elements 0", "--elements"},
                       std::pair{"patch --mesh hexagonal", "mesh"},
-                      std::pair{"patch --load 1e9", "too large"},
+                      std::pair{"patch --load-N 1e9", "too large"},
                       std::pair{"patch --wheel " RAILCONTACT_DATA_DIR "/profiles/MBench_UIC60_v3.prr", "rail profile"},
-                      std::pair{"study patches --out /nonexistent/railcontact --y-step 0", "step"},
-                      std::pair{"study patches --out /nonexistent/railcontact --load -5", "--load"},
+                      std::pair{"study patches --out /nonexistent/railcontact --y-step-m 0", "step"},
+                      std::pair{"study patches --out /nonexistent/railcontact --load-N -5", "--load-N"},
                       std::pair{"study bound --out /nonexistent/railcontact --elements 10", "--elements"},
-                      std::pair{"study bound --out /nonexistent/railcontact --y-step 0", "--y-step"}));
+                      std::pair{"study bound --out /nonexistent/railcontact --y-step-m 0", "--y-step-m"}));
 
 }  // namespace

@@ -250,9 +250,9 @@ TEST(NormalForce, CaseAndCliNameTheKeyAndTheOption) {
   const ScratchDirectory dir("values_load");
   const std::string file = write_case(dir, "case.toml", ellipse_case("E = 2.1e11\nnu = 0.3\n", "normal_force = 1e300\n"));
   expect_one_error_line(run_cli("run " + file), "[load] normal_force is too large (1e+300 N; allowed [1, 1e+07] N)");
-  expect_one_error_line(run_cli("patch --load 1e300"), "--load is too large (1e+300 N; allowed [1, 1e+07] N)");
-  expect_one_error_line(run_cli("flextable build --out " + (dir / "t.json").string() + " --load 1e300"),
-                        "--load is too large (1e+300 N; allowed [1, 1e+07] N)");
+  expect_one_error_line(run_cli("patch --load-N 1e300"), "--load-N is too large (1e+300 N; allowed [1, 1e+07] N)");
+  expect_one_error_line(run_cli("flextable build --out " + (dir / "t.json").string() + " --load-N 1e300"),
+                        "--load-N is too large (1e+300 N; allowed [1, 1e+07] N)");
 }
 
 // Pure longitudinal creepage on an ellipse: the exact M3 vanishes up to noise (~1e-12 N m against
@@ -532,8 +532,8 @@ TEST(WheelsetRates, EveryRateOutsideItsRangeIsNamedAsGiven) {
   v = {};
   v.yaw_rate_rad_per_s = 1e6;
   WheelsetVelocityNames names;
-  names.yaw_rate = "--yaw-rate";
-  expect_error([&] { validate(v, names); }, ErrorKind::invalid_input, {"--yaw-rate 1e+06 rad/s must lie in [-10, 10] rad/s"});
+  names.yaw_rate = "--yaw-rate-rad-per-s";
+  expect_error([&] { validate(v, names); }, ErrorKind::invalid_input, {"--yaw-rate-rad-per-s 1e+06 rad/s must lie in [-10, 10] rad/s"});
   // The limits are velocities.
   v = {};
   v.forward_speed_m_per_s = kMaximumForwardSpeed_m_per_s;
@@ -562,22 +562,22 @@ TEST(WheelsetRates, KinematicCreepageBeyondAContactsRangeNamesTheRate) {
 }
 
 TEST(WheelsetRates, CliAndCaseNameTheOptionAndTheKey) {
-  CommandResult r = run_cli("wheelset --yaw-rate 1e6");
-  expect_one_error_line(r, "--yaw-rate 1e+06 rad/s must lie in [-10, 10] rad/s");
+  CommandResult r = run_cli("wheelset --yaw-rate-rad-per-s 1e6");
+  expect_one_error_line(r, "--yaw-rate-rad-per-s 1e+06 rad/s must lie in [-10, 10] rad/s");
   EXPECT_EQ(r.exit_code, 2);
-  r = run_cli("wheelset --yaw-rate 1e300");
-  expect_one_error_line(r, "--yaw-rate 1e+300 rad/s must lie in [-10, 10] rad/s");
-  r = run_cli("wheelset --speed 1e6");
-  expect_one_error_line(r, "--speed 1e+06 m/s must lie in (0, 200] m/s");
-  r = run_cli("wheelset --lateral-velocity -50");
-  expect_one_error_line(r, "--lateral-velocity -50 m/s must lie in [-10, 10] m/s");
+  r = run_cli("wheelset --yaw-rate-rad-per-s 1e300");
+  expect_one_error_line(r, "--yaw-rate-rad-per-s 1e+300 rad/s must lie in [-10, 10] rad/s");
+  r = run_cli("wheelset --speed-m-per-s 1e6");
+  expect_one_error_line(r, "--speed-m-per-s 1e+06 m/s must lie in (0, 200] m/s");
+  r = run_cli("wheelset --lateral-velocity-m-per-s -50");
+  expect_one_error_line(r, "--lateral-velocity-m-per-s -50 m/s must lie in [-10, 10] m/s");
   r = run_cli("wheelset --extra-creepage 0.9");
   expect_one_error_line(r, "--extra-creepage 0.9 must lie in [-0.5, 0.5]");
   r = run_cli(std::string("wheelset ") + RAILCONTACT_SOURCE_DIR "/tests/data/bad_inputs/wheelset_yaw_rate.toml");
   expect_one_error_line(r, "wheelset_yaw_rate.toml:3: [velocity] yaw_rate_rad_per_s = 1e+06 rad/s must lie in [-10, 10]");
   EXPECT_EQ(r.exit_code, 2);
   // Rates in range whose combination is not: the creepage, named by its rate, before the tangential solve.
-  r = run_cli("wheelset --yaw-rate 10 --speed 1 --element-size 0.5");
+  r = run_cli("wheelset --yaw-rate-rad-per-s 10 --speed-m-per-s 1 --element-size-m 0.0005");
   expect_one_error_line(r, "the yaw rate yaw_rate_rad_per_s = 10 rad/s at the forward speed V = 1 m/s gives the right "
                            "wheel's contact a longitudinal creepage xi =");
   EXPECT_EQ(r.exit_code, 2);
@@ -623,9 +623,9 @@ TEST(TrackRanges, SetUpFileAndGeometryOptionsNameTheKeyAndTheOption) {
   expect_one_error_line(r, "setup_radius_46.json: track: nominal_rolling_radius_m = 46 m must lie in [0.04, 1.5] m");
   EXPECT_NE(r.err.find("46 mm would be 0.046 m"), std::string::npos) << r.err;
   EXPECT_EQ(r.exit_code, 2);
-  expect_one_error_line(run_cli("geometry --rolling-radius 46000"), "--rolling-radius 46000 mm must lie in [40, 1500] mm");
-  expect_one_error_line(run_cli("geometry --gauge 1000"),
-                        "the gauge 1000 mm less the flange backs' distance 1360 mm (--gauge, --flange-back) is -360 mm");
+  expect_one_error_line(run_cli("geometry --rolling-radius-m 46"), "--rolling-radius-m 46 m must lie in [0.04, 1.5] m");
+  expect_one_error_line(run_cli("geometry --gauge-m 1"),
+                        "the gauge 1 m less the flange backs' distance 1.36 m (--gauge-m, --flange-back-m) is -0.36 m");
 }
 
 }  // namespace

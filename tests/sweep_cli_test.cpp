@@ -95,7 +95,7 @@ TEST(SweepCli, TwoThreadsWriteTheBytesOfOneAndTheNumbersOfTheWheelset) {
   }
   EXPECT_EQ(checked, 2);
   // The same state on its own (railcontact wheelset) gives the sweep's numbers.
-  const CommandResult single = run_cli("wheelset --y 1 --yaw 2 --element-size 1 --solver nh-fastsim --solver fastsim --json");
+  const CommandResult single = run_cli("wheelset --y-m 0.001 --yaw-rad 0.002 --element-size-m 0.001 --solver nh-fastsim --solver fastsim --json");
   ASSERT_EQ(single.exit_code, 0) << single.err;
   const nlohmann::json j = nlohmann::json::parse(single.out);
   for (std::size_t r = 1; r < rows.size(); ++r) {
@@ -307,7 +307,7 @@ TEST(SweepCli, FailedCasesAreRowsWithTheirErrorAndTheExitCodeSaysSo) {
   EXPECT_EQ(static_cast<std::size_t>(std::count(before_message.begin(), before_message.end(), ',')) + 2, h.size());
   EXPECT_EQ(rows[4][column(h, "mu")], "0.2");
   // A case of its own friction (a wheelset of its own in the worker) gives `railcontact wheelset`'s numbers.
-  const CommandResult single = run_cli("wheelset --y 1 --mu 0.2 --element-size 1 --json");
+  const CommandResult single = run_cli("wheelset --y-m 0.001 --mu 0.2 --element-size-m 0.001 --json");
   ASSERT_EQ(single.exit_code, 0) << single.err;
   const nlohmann::json j = nlohmann::json::parse(single.out);
   EXPECT_NEAR(std::stod(rows[4][column(h, "nh-fastsim_F1_N")]), j["wheels"][0]["patches"][0]["nh-fastsim"]["F1_N"].get<double>(),
@@ -321,11 +321,11 @@ TEST(TableBuildThreads, TwoThreadsWriteTheBytesOfOne) {
   const ScratchDirectory dir("table_threads");
   const std::string epoch = "SOURCE_DATE_EPOCH=1700000000 ";
   for (const char* threads : {"1", "2"}) {
-    CommandResult r = run_cli("flextable build --y-from -0.002 --y-to 0.002 --y-step 0.0005 --elements 300 --load 80000 "
-                              "--load 100000 --threads " + std::string(threads) + " --out " +
+    CommandResult r = run_cli("flextable build --y-from-m -0.002 --y-to-m 0.002 --y-step-m 0.0005 --elements 300 --load-N 80000 "
+                              "--load-N 100000 --threads " + std::string(threads) + " --out " +
                               (dir / ("f" + std::string(threads) + ".json")).string(), epoch);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    r = run_cli("wheelset-table build --y=-2:2:0.25 --load 90,110 --element-size 1 --threads " + std::string(threads) +
+    r = run_cli("wheelset-table build --y-m=-0.002:0.002:0.00025 --load-N 90000,110000 --element-size-m 0.001 --threads " + std::string(threads) +
                 " --out " + (dir / ("w" + std::string(threads) + ".json")).string(), epoch);
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
@@ -371,13 +371,13 @@ TEST(StudyThreads, PaperFig5PatchesAndBoundWriteTheSameFilesOnTwoThreads) {
   const ScratchDirectory dir("study_threads");
   for (const char* threads : {"1", "2"}) {
     const std::string t(threads);
-    CommandResult r = run_cli("study paper --elements 300 --y-step 1.5e-3 --samples 1 --no-figures --threads " + t +
+    CommandResult r = run_cli("study paper --elements 300 --y-step-m 1.5e-3 --samples 1 --no-figures --threads " + t +
                               " --out " + (dir / ("paper" + t)).string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    r = run_cli("study patches --elements 300 --y-step 1e-3 --no-figures --threads " + t + " --out " +
+    r = run_cli("study patches --elements 300 --y-step-m 1e-3 --no-figures --threads " + t + " --out " +
                 (dir / ("patches" + t)).string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    r = run_cli("study bound --elements 300 --y-step 1.5e-3 --threads " + t + " --out " + (dir / ("bound" + t)).string(),
+    r = run_cli("study bound --elements 300 --y-step-m 1.5e-3 --threads " + t + " --out " + (dir / ("bound" + t)).string(),
                 kNoFigures);
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
@@ -418,8 +418,8 @@ namespace {
 TEST(TableShards, FlexibilityTableShardsMergeToTheBytesOfOneBuild) {
   const ScratchDirectory dir("flextable_shards");
   const std::string epoch = "SOURCE_DATE_EPOCH=1700000000 ";
-  const std::string build = "flextable build --y-from -0.003 --y-to 0.003 --y-step 0.0005 --elements 300 --load 80000 "
-                            "--load 100000 --threads 1 ";
+  const std::string build = "flextable build --y-from-m -0.003 --y-to-m 0.003 --y-step-m 0.0005 --elements 300 --load-N 80000 "
+                            "--load-N 100000 --threads 1 ";
   ASSERT_EQ(run_cli(build + "--out " + (dir / "one.json").string(), epoch).exit_code, 0);
   const std::string part = (dir / "t.json").string();
   for (const char* i : {"0", "1", "2"}) {

@@ -448,36 +448,36 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   const std::string v2 = (dir / "v2.json").string();
   std::ofstream(v2) << old_format.dump();
   const auto evaluate = [](const std::string& file, const std::string& extra) {
-    const CommandResult r =
-        run_cli("wheelset --table " + file + " --y -5.3 --load 100 --json --table-override recipe contact-definition" + extra);
+    const CommandResult r = run_cli("wheelset --table " + file +
+                                    " --y-m -0.0053 --load-N 100000 --json --table-override recipe contact-definition" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out);
   };
   const nlohmann::json weighted = evaluate(v3, ""), radial = evaluate(v2, "");
   // A table of an older nH-FastSim recipe (format 3: not recorded) is refused unless the override
   // names it; then it is used with a note, and the JSON records the override.
-  const CommandResult refused = run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json");
+  const CommandResult refused = run_cli("wheelset --table " + v3 + " --y-m -0.0053 --load-N 100000 --json");
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("recipe 3 (this railcontact's) differs from the table's 1 or 2, not recorded"),
             std::string::npos)
       << refused.err;
   EXPECT_EQ(weighted["wheelset_table_overrides"][0]["setting"], "recipe");
-  const CommandResult noted =
-      run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --json --table-override recipe contact-definition");
+  const CommandResult noted = run_cli("wheelset --table " + v3 +
+                                      " --y-m -0.0053 --load-N 100000 --json --table-override recipe contact-definition");
   EXPECT_NE(noted.err.find("note: " + v3 + ": the table was built with an older nH-FastSim recipe"), std::string::npos)
       << noted.err;
   EXPECT_EQ(weighted["nh_fastsim_slip_direction"], "flexibility-weighted");
   EXPECT_EQ(radial["nh_fastsim_slip_direction"], "radial");
   EXPECT_EQ(evaluate(v3, " --slip-direction flexibility-weighted")["wheels"], weighted["wheels"]);
   EXPECT_NE(weighted["wheels"][0]["force_track_N"], radial["wheels"][0]["force_track_N"]);
-  EXPECT_EQ(run_cli("wheelset --table " + v3 + " --y -5.3 --load 100 --slip-direction radial").exit_code, 2);
+  EXPECT_EQ(run_cli("wheelset --table " + v3 + " --y-m -0.0053 --load-N 100000 --slip-direction radial").exit_code, 2);
 }
 
 // A small table built by the command (0.5 mm elements, y = -0.5, 0, 0.5 mm, 90 and 110 kN).
 std::string built_table(const std::filesystem::path& dir) {
   const std::string file = (dir / "table.json").string();
   const CommandResult build =
-      run_cli("wheelset-table build --y=-0.5:0.5:0.5 --load 90,110 --element-size 0.5 --out " + file);
+      run_cli("wheelset-table build --y-m=-0.0005:0.0005:0.0005 --load-N 90000,110000 --element-size-m 0.0005 --out " + file);
   EXPECT_EQ(build.exit_code, 0) << build.err;
   return file;
 }
@@ -489,7 +489,7 @@ std::string built_table(const std::filesystem::path& dir) {
 TEST(WheelsetTableCli, SettingsTheTableWasNotBuiltForAreRefusedUnlessOverridden) {
   const test::ScratchDirectory dir("wheelset_table_settings");
   const std::string file = built_table(dir.path());
-  const std::string at = " --y 0.2 --load 100 --json";
+  const std::string at = " --y-m 0.0002 --load-N 100000 --json";
   const CommandResult plain = run_cli("wheelset --table " + file + at);
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   const nlohmann::json j = nlohmann::json::parse(plain.out);
@@ -508,15 +508,15 @@ TEST(WheelsetTableCli, SettingsTheTableWasNotBuiltForAreRefusedUnlessOverridden)
             std::string::npos)
       << material.err;
 
-  const CommandResult mesh = run_cli("wheelset --table " + file + at + " --element-size 2 --flexibility-coarsening 1");
+  const CommandResult mesh = run_cli("wheelset --table " + file + at + " --element-size-m 0.002 --flexibility-coarsening 1");
   EXPECT_EQ(mesh.exit_code, 2);
-  EXPECT_NE(mesh.err.find("element-size 2 mm (--element-size) differs from the table's 0.5 mm; flexibility-coarsening 1 "
+  EXPECT_NE(mesh.err.find("element-size 2 mm (--element-size-m) differs from the table's 0.5 mm; flexibility-coarsening 1 "
                           "(--flexibility-coarsening) differs from the table's 0 (automatic)"),
             std::string::npos)
       << mesh.err;
   EXPECT_NE(mesh.err.find("--table-override element-size,flexibility-coarsening"), std::string::npos) << mesh.err;
   const CommandResult overridden = run_cli("wheelset --table " + file + at +
-                                           " --element-size 2 --flexibility-coarsening 1 --table-override "
+                                           " --element-size-m 0.002 --flexibility-coarsening 1 --table-override "
                                            "element-size,flexibility-coarsening");
   ASSERT_EQ(overridden.exit_code, 0) << overridden.err;
   const nlohmann::json o = nlohmann::json::parse(overridden.out);
@@ -528,21 +528,21 @@ TEST(WheelsetTableCli, SettingsTheTableWasNotBuiltForAreRefusedUnlessOverridden)
             (nlohmann::json{{"setting", "element-size"}, {"requested", "2 mm"}, {"used", "0.5 mm"}}));
   EXPECT_EQ(o["wheelset_table_overrides"][1]["setting"], "flexibility-coarsening");
 
-  const CommandResult rolled = run_cli("wheelset --table " + file + at + " --roll 10");
+  const CommandResult rolled = run_cli("wheelset --table " + file + at + " --roll-rad 0.01");
   EXPECT_EQ(rolled.exit_code, 2);
-  EXPECT_NE(rolled.err.find("--roll 10 mrad (given) cannot be evaluated from --table"), std::string::npos) << rolled.err;
+  EXPECT_NE(rolled.err.find("--roll-rad 0.01 rad cannot be evaluated from --table"), std::string::npos) << rolled.err;
   EXPECT_EQ(run_cli("wheelset --table " + file + at + " --table-override speed").exit_code, 2);
 }
 
-// --sweep-y with --table evaluates every position from the table: the CSV's forces are the
+// --sweep-y-m with --table evaluates every position from the table: the CSV's forces are the
 // table's point evaluations (to the CSV's 3 decimals); past the table's y range the sweep stops
 // with the rows before it written.
 TEST(WheelsetTableCli, SweepFromTheTableGivesItsPointEvaluations) {
   const test::ScratchDirectory dir("wheelset_table_sweep");
   const std::string file = built_table(dir.path());
   const std::string no_figures = "RAILCONTACT_SCRIPTS=/nonexistent-railcontact-scripts ";
-  const CommandResult sweep = run_cli("wheelset --table " + file + " --sweep-y 0.5:-0.5:0.25 --load 100 --speed 30 "
-                                      "--lateral-velocity 0.02 --out " + (dir / "a").string(), no_figures);
+  const CommandResult sweep = run_cli("wheelset --table " + file + " --sweep-y-m 0.0005:-0.0005:0.00025 --load-N 100000 --speed-m-per-s 30 "
+                                      "--lateral-velocity-m-per-s 0.02 --out " + (dir / "a").string(), no_figures);
   ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
   EXPECT_NE(sweep.out.find("Wrote 5 evaluations"), std::string::npos) << sweep.out;
   const WheelsetTable table = load_wheelset_table(file);
@@ -566,7 +566,7 @@ TEST(WheelsetTableCli, SweepFromTheTableGivesItsPointEvaluations) {
     ++rows;
   }
   EXPECT_EQ(rows, 10);  // 5 positions, one tread patch on each wheel
-  const CommandResult past = run_cli("wheelset --table " + file + " --sweep-y 0:1:0.5 --load 100 --out " +
+  const CommandResult past = run_cli("wheelset --table " + file + " --sweep-y-m 0:0.001:0.0005 --load-N 100000 --out " +
                                      (dir / "b").string(), no_figures);
   EXPECT_EQ(past.exit_code, 2);
   EXPECT_NE(past.err.find("the sweep stopped at y = 1 mm after 2 evaluations (written): wheelset table: the lateral "
@@ -579,12 +579,12 @@ TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
   const std::filesystem::path dir = scratch_directory("wheelset_table_cli");
   const std::string file = (dir / "table.json").string();
   const CommandResult build =
-      run_cli("wheelset-table build --y=-0.5:0.5:0.5 --load 90,110 --element-size 0.5 --out " + file);
+      run_cli("wheelset-table build --y-m=-0.0005:0.0005:0.0005 --load-N 90000,110000 --element-size-m 0.0005 --out " + file);
   ASSERT_EQ(build.exit_code, 0) << build.err;
   EXPECT_NE(build.out.find("nodes     6 (0 gaps)"), std::string::npos) << build.out;
   EXPECT_NE(build.err.find("[100 %] 6/6 nodes"), std::string::npos) << build.err;
   const WheelsetTable table = load_wheelset_table(file);
-  const CommandResult run = run_cli("wheelset --table " + file + " --y 0.2 --yaw 1.5 --load 97 --speed 30 --json");
+  const CommandResult run = run_cli("wheelset --table " + file + " --y-m 0.0002 --yaw-rad 0.0015 --load-N 97000 --speed-m-per-s 30 --json");
   ASSERT_EQ(run.exit_code, 0) << run.err;
   const nlohmann::json j = nlohmann::json::parse(run.out);
   WheelsetState state;

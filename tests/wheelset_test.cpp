@@ -283,7 +283,7 @@ using test::expect_one_error_line;
 using test::run_cli;
 
 TEST(WheelsetCli, PrintsOneJsonObjectWithEveryPatch) {
-  const CommandResult r = run_cli("wheelset --y -6.8 --element-size 0.5 --json");
+  const CommandResult r = run_cli("wheelset --y-m -0.0068 --element-size-m 0.0005 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_EQ(j["wheels"].size(), 2u);
@@ -295,9 +295,9 @@ TEST(WheelsetCli, PrintsOneJsonObjectWithEveryPatch) {
   EXPECT_EQ(flange["reference_point_track_m"].size(), 3u);
   EXPECT_TRUE(flange["nh-fastsim"].contains("F1_N"));
   EXPECT_NEAR(j["wheels"][0]["force_track_N"][2].get<double>(), 98.1e3, 98.1);  // the settling tolerance, 1e-3
-  const CommandResult bad = run_cli("wheelset --speed 0");
+  const CommandResult bad = run_cli("wheelset --speed-m-per-s 0");
   EXPECT_EQ(bad.exit_code, 2);
-  expect_one_error_line(bad, "--speed 0 m/s must lie in (0, 200] m/s");
+  expect_one_error_line(bad, "--speed-m-per-s 0 m/s must lie in (0, 200] m/s");
 }
 
 }  // namespace
@@ -315,7 +315,7 @@ using test::run_cli;
 TEST(WheelsetCli, RunsTheExampleCases) {
   const std::string examples = std::string(RAILCONTACT_SOURCE_DIR) + "/examples/";
   for (const char* name : {"wheelset_tread", "wheelset_flange", "wheelset_yaw", "wheelset_traction"}) {
-    const CommandResult r = run_cli("wheelset " + examples + name + ".toml --element-size 0.5 --solver nh-fastsim --json");
+    const CommandResult r = run_cli("wheelset " + examples + name + ".toml --element-size-m 0.0005 --solver nh-fastsim --json");
     ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
     const auto j = nlohmann::json::parse(r.out);
     ASSERT_EQ(j["wheels"].size(), 2u) << name;
@@ -361,7 +361,7 @@ TEST(WheelsetCli, RefusesBadCaseFiles) {
 TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
   const test::ScratchDirectory dir("railcontact_wheelset_slip");
   const auto flange_json = [](const std::string& extra) {
-    const CommandResult r = run_cli("wheelset --y -7 --element-size 0.4 --solver nh-fastsim --solver fastsim --json" + extra);
+    const CommandResult r = run_cli("wheelset --y-m -0.007 --element-size-m 0.0004 --solver nh-fastsim --solver fastsim --json" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out)["wheels"][0]["patches"][0];
   };
@@ -377,8 +377,8 @@ TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
   const double F1_weighted = weighted["nh-fastsim"]["F1_N"].get<double>();
   EXPECT_GT(std::abs(F1_weighted - F1_radial), 0.01 * 0.3 * F3);
   // Kalker's FastSim keeps Eq 8 (with nh-fastsim first, the load balance moves the state).
-  const CommandResult kalker = run_cli("wheelset --y -7 --element-size 0.4 --solver fastsim --json --slip-direction radial");
-  const CommandResult kalker_weighted = run_cli("wheelset --y -7 --element-size 0.4 --solver fastsim --json");
+  const CommandResult kalker = run_cli("wheelset --y-m -0.007 --element-size-m 0.0004 --solver fastsim --json --slip-direction radial");
+  const CommandResult kalker_weighted = run_cli("wheelset --y-m -0.007 --element-size-m 0.0004 --solver fastsim --json");
   const nlohmann::json kalker_json = nlohmann::json::parse(kalker.out);
   const nlohmann::json kalker_weighted_json = nlohmann::json::parse(kalker_weighted.out);
   EXPECT_EQ(kalker_json["wheels"], kalker_weighted_json["wheels"]);
@@ -451,7 +451,7 @@ TEST(Wheelset, KinematicCreepagesHaveTheirClosedForms) {
 namespace railcontact {
 namespace {
 
-// `railcontact wheelset --sweep-y`: one CSV row per patch and position; a sweep that runs into the
+// `railcontact wheelset --sweep-y-m`: one CSV row per patch and position; a sweep that runs into the
 // flange-climb limit keeps the rows before it, and its error says where and why it stopped.
 TEST(WheelsetCli, SweepWritesTheCsvAndStopsAtTheFlangeClimbLimit) {
   const std::filesystem::path dir = test::scratch_directory("wheelset_sweep_cli");
@@ -465,14 +465,14 @@ TEST(WheelsetCli, SweepWritesTheCsvAndStopsAtTheFlangeClimbLimit) {
     return y;
   };
   const test::CommandResult ok =
-      test::run_cli("wheelset --sweep-y 0:-1:0.5 --element-size 0.5 --out " + (dir / "a").string(), no_figures);
+      test::run_cli("wheelset --sweep-y-m 0:-0.001:0.0005 --element-size-m 0.0005 --out " + (dir / "a").string(), no_figures);
   ASSERT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("Wrote 3 evaluations"), std::string::npos) << ok.out;
   EXPECT_EQ(rows_at(dir / "a" / "wheelset_sweep.csv"),
             (std::vector<std::string>{"0.000000", "0.000000", "-0.500000", "-0.500000", "-1.000000", "-1.000000"}));
 
   const test::CommandResult stopped =
-      test::run_cli("wheelset --sweep-y -8.75:-9.5:0.25 --element-size 0.5 --out " + (dir / "b").string(), no_figures);
+      test::run_cli("wheelset --sweep-y-m -0.00875:-0.0095:0.00025 --element-size-m 0.0005 --out " + (dir / "b").string(), no_figures);
   EXPECT_EQ(stopped.exit_code, 2);
   EXPECT_NE(stopped.err.find("railcontact: error: the sweep stopped at y = -9.25 mm after 2 evaluations (written)"),
             std::string::npos)

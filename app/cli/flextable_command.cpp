@@ -121,16 +121,16 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
                        args.elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
   });
   for (double load : args.loads_N) {
-    require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load must be positive (got {} N)", load); });
-    validate_normal_force(load, "--load");
+    require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load-N must be positive (got {} N)", load); });
+    validate_normal_force(load, "--load-N");
   }
   std::vector<double> loads = args.loads_N;
   std::sort(loads.begin(), loads.end());
-  require(std::adjacent_find(loads.begin(), loads.end()) == loads.end(), "--load values must differ");
+  require(std::adjacent_find(loads.begin(), loads.end()) == loads.end(), "--load-N values must differ");
   require(loads.size() <= kMaximumFlexibilityTableLoads, [&] {
-    return fmt::format("--load: {} loads; a table holds at most {}", loads.size(), kMaximumFlexibilityTableLoads);
+    return fmt::format("--load-N: {} loads; a table holds at most {}", loads.size(), kMaximumFlexibilityTableLoads);
   });
-  for (const auto& [option, value] : {std::pair{"--y-from", args.y_from_m}, std::pair{"--y-to", args.y_to_m}})
+  for (const auto& [option, value] : {std::pair{"--y-from-m", args.y_from_m}, std::pair{"--y-to-m", args.y_to_m}})
     require(std::abs(value) <= kMaximumWheelRailLateralDisplacement_m, [&] {
       return fmt::format("{} {:g} m must lie in [{:g}, {:g}] m (a lateral displacement in metres: beyond it the wheel "
                          "is off its rail)",
@@ -398,10 +398,11 @@ void add_flextable_command(CLI::App& app, Action& action) {
   auto build = std::make_shared<BuildArguments>();
   CLI::App* b = flextable->add_subcommand("build", "precompute nH-FastSim's L1-L3 and f11, f22, f23 over y (and Fz)");
   b->add_option("--out", build->out, "table file to write (JSON, docs/FLEXTABLE.md)")->required();
-  b->add_option("--y-from", build->y_from_m, "first wheelset displacement (m)")->capture_default_str();
-  b->add_option("--y-to", build->y_to_m, "last wheelset displacement (m)")->capture_default_str();
-  b->add_option("--y-step", build->y_step_m, "step of the displacement (m)")->capture_default_str();
-  b->add_option("--load", build->loads_N, "vertical wheel load(s) Fz (N); several give a load axis")->capture_default_str();
+  b->add_option("--y-from-m", build->y_from_m, "first wheelset displacement (m, + to the left)")->capture_default_str();
+  b->add_option("--y-to-m", build->y_to_m, "last wheelset displacement (m, + to the left)")->capture_default_str();
+  b->add_option("--y-step-m", build->y_step_m, "step of the displacement (m, > 0)")->capture_default_str();
+  b->add_option("--load-N", build->loads_N, "vertical wheel load(s) Fz (N, > 0); several give a load axis")
+      ->capture_default_str();
   b->add_option("--wheel", build->wheel, "wheel profile file (default: the shipped S1002)");
   b->add_option("--rail", build->rail, "rail profile file (default: the shipped UIC60 1:40)");
   b->add_option("--elements", build->elements, "about this many elements in contact")->capture_default_str();
@@ -421,9 +422,12 @@ void add_flextable_command(CLI::App& app, Action& action) {
   c->add_option("--table", check->table, "flexibility table file")->required();
   c->add_option("--wheel", check->wheel, "wheel profile file (default: the shipped S1002)");
   c->add_option("--rail", check->rail, "rail profile file (default: the shipped UIC60 1:40)");
-  c->add_option("--y", check->y_m, "check at these y (m; default: the midpoints between the table's nodes)");
-  c->add_option("--load", check->loads_N, "check at these Fz (N; default: the table's loads and their geometric midpoints)");
-  c->add_option("--mu", check->mu, "friction coefficient")->capture_default_str();
+  c->add_option("--y-m", check->y_m,
+                "check at these wheelset displacements y (m, + to the left; default: the midpoints between the table's "
+                "nodes)");
+  c->add_option("--load-N", check->loads_N,
+                "check at these vertical loads Fz (N, > 0; default: the table's loads and their geometric midpoints)");
+  c->add_option("--mu", check->mu, "friction coefficient (dimensionless)")->capture_default_str();
   c->add_option("--elements", check->elements, "elements in contact of the check patches (default: the table's)");
   c->add_option("--interpolation", check->interpolation, "area-scaled (the table's lookup) or plain (L and f themselves)")
       ->check(CLI::IsMember({"area-scaled", "plain"}))

@@ -26,9 +26,9 @@ namespace {
 struct GeometryArguments {
   std::string case_file;
   std::string wheel_file, rail_file;
-  double gauge_mm = 0.0, flange_back_mm = 0.0, radius_mm = 0.0;
-  double y_from_mm = -6.0, y_to_mm = 6.0, y_step_mm = 0.1;
-  double amplitude_mm = 3.0;
+  double gauge_m = 0.0, flange_back_m = 0.0, radius_m = 0.0;
+  double y_from_m = -6e-3, y_to_m = 6e-3, y_step_m = 0.1e-3;
+  double amplitude_m = 3e-3;
   bool json = false;
   std::string out = "railcontact-out/geometry";
 };
@@ -46,7 +46,7 @@ Profile read_option_profile(const std::string& option, const std::string& file) 
 WheelsetTrack geometry_track(const GeometryArguments& a, const CLI::App& sub, std::string& description) {
   const auto given = [&](const char* option) { return sub.count(option) > 0; };
   if (!a.case_file.empty()) {
-    for (const char* option : {"--wheel", "--rail", "--gauge", "--flange-back", "--rolling-radius"}) {
+    for (const char* option : {"--wheel", "--rail", "--gauge-m", "--flange-back-m", "--rolling-radius-m"}) {
       require(!given(option), [&] {
         return fmt::format("{} cannot be combined with a case file ({}): the case file sets the profiles and track",
                            option, a.case_file);
@@ -65,26 +65,26 @@ WheelsetTrack geometry_track(const GeometryArguments& a, const CLI::App& sub, st
                               a.rail_file.empty() ? setup.rail_profile.filename().string() : a.rail_file);
   }
   TrackWheelsetParameters& t = setup.track;
-  // The ranges of the library (geometry.hpp), in the options' millimetres.
-  const auto length_mm = [&](const char* option, double value_mm, double low_m, double high_m) {
-    require(std::isfinite(value_mm) && value_mm >= low_m * 1e3 && value_mm <= high_m * 1e3, [&] {
-      return fmt::format("{} {:g} mm must lie in [{:g}, {:g}] mm", option, value_mm, low_m * 1e3, high_m * 1e3);
+  // The ranges of the library (geometry.hpp).
+  const auto length_m = [&](const char* option, double value_m, double low_m, double high_m) {
+    require(std::isfinite(value_m) && value_m >= low_m && value_m <= high_m, [&] {
+      return fmt::format("{} {:g} m must lie in [{:g}, {:g}] m", option, value_m, low_m, high_m);
     });
-    return value_mm * 1e-3;
+    return value_m;
   };
-  if (given("--gauge")) t.track_gauge_m = length_mm("--gauge", a.gauge_mm, kMinimumTrackGauge_m, kMaximumTrackGauge_m);
-  if (given("--flange-back"))
+  if (given("--gauge-m")) t.track_gauge_m = length_m("--gauge-m", a.gauge_m, kMinimumTrackGauge_m, kMaximumTrackGauge_m);
+  if (given("--flange-back-m"))
     t.flange_back_distance_m =
-        length_mm("--flange-back", a.flange_back_mm, kMinimumFlangeBackDistance_m, kMaximumFlangeBackDistance_m);
-  if (given("--rolling-radius"))
+        length_m("--flange-back-m", a.flange_back_m, kMinimumFlangeBackDistance_m, kMaximumFlangeBackDistance_m);
+  if (given("--rolling-radius-m"))
     t.nominal_rolling_radius_m =
-        length_mm("--rolling-radius", a.radius_mm, kMinimumNominalRollingRadius_m, kMaximumNominalRollingRadius_m);
+        length_m("--rolling-radius-m", a.radius_m, kMinimumNominalRollingRadius_m, kMaximumNominalRollingRadius_m);
   const double play_m = t.track_gauge_m - t.flange_back_distance_m;
   require(play_m >= kMinimumGaugeMinusFlangeBack_m && play_m <= kMaximumGaugeMinusFlangeBack_m, [&] {
-    return fmt::format("the gauge {:g} mm less the flange backs' distance {:g} mm (--gauge, --flange-back) is {:g} mm; "
-                       "it must lie in [{:g}, {:g}] mm (two flanges and their play: 75 mm on standard gauge)",
-                       t.track_gauge_m * 1e3, t.flange_back_distance_m * 1e3, play_m * 1e3,
-                       kMinimumGaugeMinusFlangeBack_m * 1e3, kMaximumGaugeMinusFlangeBack_m * 1e3);
+    return fmt::format("the gauge {:g} m less the flange backs' distance {:g} m (--gauge-m, --flange-back-m) is {:g} m; "
+                       "it must lie in [{:g}, {:g}] m (two flanges and their play: 0.075 m on standard gauge)",
+                       t.track_gauge_m, t.flange_back_distance_m, play_m, kMinimumGaugeMinusFlangeBack_m,
+                       kMaximumGaugeMinusFlangeBack_m);
   });
   description += fmt::format(", gauge {:g} mm, flange backs {:g} mm", t.track_gauge_m * 1e3,
                              t.flange_back_distance_m * 1e3);
@@ -95,10 +95,10 @@ int run_geometry(const GeometryArguments& a, const CLI::App& sub) {
   std::string description;
   const WheelsetTrack track = geometry_track(a, sub, description);
   study::ContactGeometryStudy s;
-  s.y_from_m = a.y_from_mm * 1e-3;
-  s.y_to_m = a.y_to_mm * 1e-3;
-  s.y_step_m = a.y_step_mm * 1e-3;
-  s.amplitude_m = a.amplitude_mm * 1e-3;
+  s.y_from_m = a.y_from_m;
+  s.y_to_m = a.y_to_m;
+  s.y_step_m = a.y_step_m;
+  s.amplitude_m = a.amplitude_m;
   study::validate(s);
   study::OutputDirectory out(a.out, &std::cerr);
   const study::ContactGeometryResult r = study::run_contact_geometry_study(track, s, out, std::cerr);
@@ -128,10 +128,10 @@ int run_geometry(const GeometryArguments& a, const CLI::App& sub) {
     return 0;
   }
   fmt::print("Contact geometry of {} (rigid wheels and rails, yaw 0), {} positions y = {:g} ... {:g} mm\n",
-             description, r.sweep.size(), a.y_from_mm, a.y_to_mm);
+             description, r.sweep.size(), a.y_from_m * 1e3, a.y_to_m * 1e3);
   fmt::print("Equivalent conicity at amplitude {:g} mm (EN 15302): tan γe = {:.4f} (kinematic wavelength, Annex B), "
              "{:.4f} (linear regression, Annex C)\n",
-             a.amplitude_mm, e.tan_gamma_e_wavelength, e.tan_gamma_e_regression);
+             a.amplitude_m * 1e3, e.tan_gamma_e_wavelength, e.tan_gamma_e_regression);
   fmt::print("Klingel wavelength {:.1f} m (e0 = {:.1f} mm, r0 = {:.0f} mm); amplitudes up to {:.2f} mm in "
              "conicity.csv\n",
              klingel_wavelength_m(e.tan_gamma_e_wavelength, r.half_contact_distance_m, r.nominal_rolling_radius_m),
@@ -153,13 +153,13 @@ void add_geometry_command(CLI::App& app, Action& action) {
   sub->add_option("case", args->case_file, "wheelset case file (TOML): its profiles and track; default: S1002/UIC60");
   sub->add_option("--wheel", args->wheel_file, "wheel profile file (both wheels; .prw, .whl or y z text in mm)");
   sub->add_option("--rail", args->rail_file, "rail profile file (both rails; .prr, .ban or y z text in mm)");
-  sub->add_option("--gauge", args->gauge_mm, "track gauge (mm; default 1435)");
-  sub->add_option("--flange-back", args->flange_back_mm, "distance between the flange backs (mm; default 1360)");
-  sub->add_option("--rolling-radius", args->radius_mm, "nominal rolling radius at the taping line (mm; default 460)");
-  sub->add_option("--y-from", args->y_from_mm, "first lateral displacement (mm, + to the left; default -6)");
-  sub->add_option("--y-to", args->y_to_mm, "last lateral displacement (mm; default 6)");
-  sub->add_option("--y-step", args->y_step_mm, "step of the lateral displacement (mm; default 0.1)");
-  sub->add_option("--amplitude", args->amplitude_mm, "amplitude of the equivalent conicity (mm; default 3)");
+  sub->add_option("--gauge-m", args->gauge_m, "track gauge (m; default 1.435)");
+  sub->add_option("--flange-back-m", args->flange_back_m, "distance between the flange backs (m; default 1.36)");
+  sub->add_option("--rolling-radius-m", args->radius_m, "nominal rolling radius at the taping line (m; default 0.46)");
+  sub->add_option("--y-from-m", args->y_from_m, "first lateral displacement (m, + to the left; default -0.006)");
+  sub->add_option("--y-to-m", args->y_to_m, "last lateral displacement (m, + to the left; default 0.006)");
+  sub->add_option("--y-step-m", args->y_step_m, "step of the lateral displacement (m, > 0; default 0.0001)");
+  sub->add_option("--amplitude-m", args->amplitude_m, "amplitude of the equivalent conicity (m, > 0; default 0.003)");
   sub->add_flag("--json", args->json, "print the summary as one JSON object");
   sub->add_option("--out", args->out, "output directory (default railcontact-out/geometry)");
   sub->callback([&action, args, sub] { action = [args, sub] { return run_geometry(*args, *sub); }; });

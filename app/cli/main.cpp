@@ -6,6 +6,7 @@
 #include <string>
 
 #include "cli/commands.hpp"
+#include "cli/renamed_options.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/version.h"
 #include "study/mpi_cases.hpp"
@@ -45,6 +46,11 @@ int run(int argc, char** argv) {
   railcontact::cli::add_wheelset_table_command(app, action);
   railcontact::cli::add_geometry_command(app, action);
   railcontact::cli::add_sweep_command(app, action);
+  railcontact::cli::refuse_renamed_options(app);  // the options renamed to SI, refused with how to convert
+  // Said once, in the top-level help (set after the commands, which would otherwise inherit it).
+  app.footer("Units: the command line is SI throughout (m, rad, N, Pa, m/s, rad/s); the unit is in each option's name "
+             "(--y-m, --yaw-rad, --load-N, --speed-m-per-s); JSON is SI. Human-readable output labels its units "
+             "(it may show mm, mrad, kN).");
   if (argc > 1 && argv[1][0] != '-') {
     try {
       app.get_subcommand(argv[1]);

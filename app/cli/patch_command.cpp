@@ -75,10 +75,10 @@ void print_table(const WheelRailPatch& p, const std::string& wheel, const std::s
 }
 
 int run_patch(const PatchArguments& args) {
-  require(std::isfinite(args.y_m), "--y must be a finite number of metres");
+  require(std::isfinite(args.y_m), "--y-m must be a finite number of metres");
   require(std::isfinite(args.load_N) && args.load_N > 0.0,
-          [&] { return fmt::format("--load must be positive (got {} N)", args.load_N); });
-  validate_normal_force(args.load_N, "--load");
+          [&] { return fmt::format("--load-N must be positive (got {} N)", args.load_N); });
+  validate_normal_force(args.load_N, "--load-N");
   require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
     return fmt::format("--elements {} must lie in [{}, {}] (with fewer, the elements are too large for the patch and "
                        "the profiles)",
@@ -104,7 +104,7 @@ int run_patch(const PatchArguments& args) {
       // Refused before the work: named by the options that give it.
       const std::string_view message = e.what();
       if (!message.starts_with(kWheelRailElementsTooSmall)) throw;
-      throw Error(fmt::format("--elements {} with --load {:g} N:{}", args.elements, args.load_N,
+      throw Error(fmt::format("--elements {} with --load-N {:g} N:{}", args.elements, args.load_N,
                               message.substr(kWheelRailElementsTooSmall.size())));
     }
   }();
@@ -141,12 +141,12 @@ void add_patch_command(CLI::App& app, Action& action) {
   auto args = std::make_shared<PatchArguments>();
   CLI::App* cmd = app.add_subcommand(
       "patch", "wheel-rail normal contact at one wheelset position (default: S1002 on UIC60 1:40, 98.1 kN)");
-  cmd->add_option("--y", args->y_m,
-                  "wheelset lateral displacement (m, track frame, to the left; y < 0 towards the flange)")
+  cmd->add_option("--y-m", args->y_m,
+                  "wheelset lateral displacement (m, track frame, + to the left; y < 0 towards the flange)")
       ->capture_default_str();
   cmd->add_option("--wheel", args->wheel, "wheel profile file (.prw, .whl or text; default: the shipped S1002)");
   cmd->add_option("--rail", args->rail, "rail profile file (.prr, .ban or text; default: the shipped UIC60 1:40)");
-  cmd->add_option("--load", args->load_N, "vertical wheel load Fz (N); F3 = Fz / cos(gamma)")->capture_default_str();
+  cmd->add_option("--load-N", args->load_N, "vertical wheel load Fz (N, > 0; F3 = Fz / cos(gamma))")->capture_default_str();
   cmd->add_option("--elements", args->elements, "about this many elements in contact")->capture_default_str();
   cmd->add_option("--mesh", args->layout, "element shape: rolling-resolved (dx1 <= dx2) or square")
       ->check(CLI::IsMember({"rolling-resolved", "square"}))

@@ -71,7 +71,7 @@ void add_bound_study(CLI::App* study, Action& action) {
   CLI::App* b = study->add_subcommand("bound", "nH-FastSim's error vs the traction-bound skew: ellipses and S1002/UIC60");
   b->add_option("--out", *bound_out, "output directory")->required();
   b->add_option("--elements", bound->elements, "elements in contact per patch")->capture_default_str();
-  b->add_option("--y-step", bound->y_step_m, "step of the wheel-rail displacement (m)")->capture_default_str();
+  b->add_option("--y-step-m", bound->y_step_m, "step of the wheel-rail displacement (m, > 0)")->capture_default_str();
   auto bound_threads = std::make_shared<std::string>();
   b->add_option("--threads", *bound_threads, kThreadsHelp);
   b->callback([bound, bound_out, bound_threads, &action] {
@@ -93,10 +93,12 @@ void add_patch_study(CLI::App* study, Action& action) {
   CLI::App* patch_cmd =
       study->add_subcommand("patches", "wheel-rail normal contact for y = -4.5 ... 4.5 mm (METHOD.md §9)");
   patch_cmd->add_option("--out", *patches_out, "output directory")->required();
-  patch_cmd->add_option("--y-from", patches->y_from_m, "first wheelset displacement (m)")->capture_default_str();
-  patch_cmd->add_option("--y-to", patches->y_to_m, "last wheelset displacement (m)")->capture_default_str();
-  patch_cmd->add_option("--y-step", patches->y_step_m, "step of the displacement (m)")->capture_default_str();
-  patch_cmd->add_option("--load", patches->vertical_load_N, "vertical wheel load Fz (N)")->capture_default_str();
+  patch_cmd->add_option("--y-from-m", patches->y_from_m, "first wheelset displacement (m, + to the left)")
+      ->capture_default_str();
+  patch_cmd->add_option("--y-to-m", patches->y_to_m, "last wheelset displacement (m, + to the left)")
+      ->capture_default_str();
+  patch_cmd->add_option("--y-step-m", patches->y_step_m, "step of the displacement (m, > 0)")->capture_default_str();
+  patch_cmd->add_option("--load-N", patches->vertical_load_N, "vertical wheel load Fz (N, > 0)")->capture_default_str();
   patch_cmd->add_option("--elements", patches->elements, "about this many elements in contact")->capture_default_str();
   patch_cmd->add_option("--wheel", *wheel, "wheel profile file (default: the shipped S1002)");
   patch_cmd->add_option("--rail", *rail, "rail profile file (default: the shipped UIC60 1:40)");
@@ -122,7 +124,7 @@ void add_paper_study(CLI::App* study, Action& action) {
   CLI::App* pc = study->add_subcommand("paper", "paper §4 on S1002/UIC60: Fig 5 (error vs y), 6 (tractions), 7 (creep curves), 8 (time)");
   pc->add_option("--out", *paper_out, "output directory")->required();
   pc->add_option("--elements", paper->elements, "elements in contact per patch")->capture_default_str();
-  pc->add_option("--y-step", paper->y_step_m, "step of y for Fig 5 (m)")->capture_default_str();
+  pc->add_option("--y-step-m", paper->y_step_m, "step of y for Fig 5 (m, > 0)")->capture_default_str();
   pc->add_option("--samples", paper->timing_samples, "random cases per mesh size for Fig 8")->capture_default_str();
   pc->add_flag("!--no-figures", paper->figures, "skip the figures");
   auto paper_threads = std::make_shared<std::string>();

@@ -27,21 +27,21 @@ namespace {
 
 struct WheelsetArguments {
   std::string case_file;
-  double y_mm = 0.0;
-  double yaw_mrad = 0.0;
-  double roll_mrad = 0.0;
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+  double roll_rad = 0.0;
   double speed_m_per_s = 20.0;
   double extra_creepage = 0.0;
   double lateral_velocity_m_per_s = 0.0;
   double yaw_rate_rad_per_s = 0.0;
-  double load_kN = 98.1;
+  double load_N = 98100.0;
   double mu = 0.3;
-  double element_size_mm = 0.2;
+  double element_size_m = 0.2e-3;
   std::vector<std::string> solvers;
   bool json = false;
   int flexibility_coarsening = 0;
   std::string slip_direction;  // --slip-direction (radial, flexibility-weighted)
-  std::string sweep_y;  // FROM:TO:STEP in mm
+  std::string sweep_y_m;  // FROM:TO:STEP in m
   std::string table;    // a wheelset table to evaluate from (docs/WHEELSET_TABLE.md)
   std::vector<std::string> table_overrides;  // --table-override: settings the table's values replace
   std::string out = "railcontact-out/wheelset";
@@ -90,31 +90,32 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
   const auto given = [&](const char* option) { return sub.count(option) > 0; };
   WheelsetPosition& p = c.state.position;
   WheelsetVelocity& v = c.state.velocity;
-  if (given("--y")) p.lateral_displacement_m = a.y_mm * 1e-3;
-  if (given("--yaw")) p.yaw_rad = a.yaw_mrad * 1e-3;
-  if (given("--roll")) p.roll_rad = a.roll_mrad * 1e-3;
-  if (given("--speed")) v.forward_speed_m_per_s = a.speed_m_per_s;
+  if (given("--y-m")) p.lateral_displacement_m = a.y_m;
+  if (given("--yaw-rad")) p.yaw_rad = a.yaw_rad;
+  if (given("--roll-rad")) p.roll_rad = a.roll_rad;
+  if (given("--speed-m-per-s")) v.forward_speed_m_per_s = a.speed_m_per_s;
   if (given("--extra-creepage")) v.extra_longitudinal_creepage = a.extra_creepage;
-  if (given("--lateral-velocity")) v.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
-  if (given("--yaw-rate")) v.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
-  // The velocities' ranges (wheelset.hpp), an option given named as given: "--yaw-rate 1e+06 rad/s must lie in …".
+  if (given("--lateral-velocity-m-per-s")) v.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
+  if (given("--yaw-rate-rad-per-s")) v.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
+  // The velocities' ranges (wheelset.hpp), an option given named as given:
+  // "--yaw-rate-rad-per-s 1e+06 rad/s must lie in …".
   WheelsetVelocityNames names;
-  if (given("--speed")) names.forward_speed = "--speed";
+  if (given("--speed-m-per-s")) names.forward_speed = "--speed-m-per-s";
   if (given("--extra-creepage")) names.extra_longitudinal_creepage = "--extra-creepage";
-  if (given("--lateral-velocity")) names.lateral_velocity = "--lateral-velocity";
-  if (given("--yaw-rate")) names.yaw_rate = "--yaw-rate";
+  if (given("--lateral-velocity-m-per-s")) names.lateral_velocity = "--lateral-velocity-m-per-s";
+  if (given("--yaw-rate-rad-per-s")) names.yaw_rate = "--yaw-rate-rad-per-s";
   validate(v, names);
   if (given("--mu")) c.options.friction_coefficient = a.mu;
-  if (given("--element-size")) c.options.element_size_m = a.element_size_mm * 1e-3;
-  if (given("--load")) {
-    require(std::isfinite(a.load_kN) && a.load_kN > 0.0,
-            [&] { return fmt::format("--load {:g} kN must be positive", a.load_kN); });
-    require(a.load_kN * 1e3 >= kMinimumNormalForce_N && a.load_kN * 1e3 <= kMaximumNormalForce_N, [&] {
-      return fmt::format("--load {:g} kN must lie in [{:g}, {:g}] kN (a wheel's vertical load: a heavy-haul wheel under "
+  if (given("--element-size-m")) c.options.element_size_m = a.element_size_m;
+  if (given("--load-N")) {
+    require(std::isfinite(a.load_N) && a.load_N > 0.0,
+            [&] { return fmt::format("--load-N {:g} N must be positive", a.load_N); });
+    require(a.load_N >= kMinimumNormalForce_N && a.load_N <= kMaximumNormalForce_N, [&] {
+      return fmt::format("--load-N {:g} N must lie in [{:g}, {:g}] N (a wheel's vertical load: a heavy-haul wheel under "
                          "the largest dynamic factors with a factor 10 to spare)",
-                         a.load_kN, kMinimumNormalForce_N * 1e-3, kMaximumNormalForce_N * 1e-3);
+                         a.load_N, kMinimumNormalForce_N, kMaximumNormalForce_N);
     });
-    c.options.loads = WheelLoads{a.load_kN * 1e3, a.load_kN * 1e3, false};
+    c.options.loads = WheelLoads{a.load_N, a.load_N, false};
   }
   if (given("--flexibility-coarsening")) {
     require(a.flexibility_coarsening >= 0 && a.flexibility_coarsening <= kMaximumCoarsening, [&] {
@@ -159,7 +160,7 @@ std::optional<std::string> requested_by(WheelsetTableSetting setting, const Whee
   };
   switch (setting) {
     case WheelsetTableSetting::material: return option_or_case(nullptr, "[material]");
-    case WheelsetTableSetting::element_size: return option_or_case("--element-size", "[mesh] element_size_mm");
+    case WheelsetTableSetting::element_size: return option_or_case("--element-size-m", "[mesh] element_size_mm");
     case WheelsetTableSetting::flexibility_coarsening:
       return option_or_case("--flexibility-coarsening", "[solvers] flexibility_coarsening");
     case WheelsetTableSetting::slip_direction: return option_or_case("--slip-direction", "[solvers] slip_direction");
@@ -196,9 +197,12 @@ TableUse table_use(const WheelsetArguments& a, const CLI::App& sub, const Wheels
           "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
   const double roll_rad = c.state.position.roll_rad;
   require(roll_rad == 0.0, [&] {
-    return fmt::format("--roll {:g} mrad ({}) cannot be evaluated from --table {}: its nodes have zero roll; leave out "
-                       "--table to solve the rolled wheelset",
-                       roll_rad * 1e3, sub.count("--roll") > 0 ? "given" : "the case's [position] roll_mrad", a.table);
+    const std::string roll = sub.count("--roll-rad") > 0
+                                 ? fmt::format("--roll-rad {:g} rad", roll_rad)
+                                 : fmt::format("the case's [position] roll_mrad = {:g} mrad", roll_rad * 1e3);
+    return fmt::format("{} cannot be evaluated from --table {}: its nodes have zero roll; leave out --table to solve "
+                       "the rolled wheelset",
+                       roll, a.table);
   });
   use.table = load_wheelset_table(a.table);
   const WheelsetTable& table = *use.table;
@@ -236,24 +240,25 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
   const TableUse use = table_use(a, sub, c, wheelset, recipe_note);
   const WheelsetTable* table = use.table ? &*use.table : nullptr;
 
-  if (!a.sweep_y.empty()) {
-    // FROM:TO:STEP in mm.
+  if (!a.sweep_y_m.empty()) {
+    // FROM:TO:STEP in m.
     study::WheelsetSweep sweep;
-    std::istringstream in(a.sweep_y);
+    std::istringstream in(a.sweep_y_m);
     char c1 = 0, c2 = 0;
     double from = 0, to = 0, step = 0;
     in >> from >> c1 >> to >> c2 >> step;
     require(in && c1 == ':' && c2 == ':' && in.peek() == std::char_traits<char>::eof() && std::isfinite(from) &&
                 std::isfinite(to) && std::isfinite(step) && step > 0.0,
             [&] {
-              return fmt::format("--sweep-y '{}' must be FROM:TO:STEP in mm with a positive step, e.g. 0:-7:0.1",
-                                 a.sweep_y);
+              return fmt::format("--sweep-y-m '{}' must be FROM:TO:STEP in m with a positive step, e.g. "
+                                 "0:-0.007:0.0001",
+                                 a.sweep_y_m);
             });
-    sweep.y_from_m = from * 1e-3;
-    sweep.y_to_m = to * 1e-3;
-    sweep.y_step_m = step * 1e-3;
+    sweep.y_from_m = from;
+    sweep.y_to_m = to;
+    sweep.y_step_m = step;
     study::OutputDirectory out(a.out, &std::cerr);
-    fmt::print(std::cerr, "wheelset sweep: y = {:g} ... {:g} mm in steps of {:g} mm{}\n", from, to, step,
+    fmt::print(std::cerr, "wheelset sweep: y = {:g} ... {:g} mm in steps of {:g} mm{}\n", from * 1e3, to * 1e3, step * 1e3,
                table ? " from the table " + a.table : std::string());
     const study::WheelsetSweepResult done =
         table ? study::run_wheelset_sweep(
@@ -386,17 +391,19 @@ void add_wheelset_command(CLI::App& app, Action& action) {
       "Both wheels of a wheelset on the track (S1002 / UIC60 1:40, 1435 mm gauge): every contact patch and the "
       "forces on each wheel, the vertical position solved for the wheel load (docs/WHEELSET.md)");
   sub->add_option("case", args->case_file, "wheelset case file (TOML, docs/CASE_FILES.md); default: S1002/UIC60");
-  sub->add_option("--y", args->y_mm, "lateral displacement of the wheelset (mm, + to the left)");
-  sub->add_option("--yaw", args->yaw_mrad, "yaw angle (mrad, + the axle's left end backwards)");
-  sub->add_option("--roll", args->roll_mrad, "roll angle (mrad, + the left wheel up)");
-  sub->add_option("--speed", args->speed_m_per_s, "forward speed (m/s)");
+  sub->add_option("--y-m", args->y_m, "lateral displacement of the wheelset (m, + to the left; default 0)");
+  sub->add_option("--yaw-rad", args->yaw_rad, "yaw angle (rad, + the axle's left end backwards; default 0)");
+  sub->add_option("--roll-rad", args->roll_rad, "roll angle (rad, + the left wheel up; default 0)");
+  sub->add_option("--speed-m-per-s", args->speed_m_per_s, "forward speed (m/s, > 0; default 20)");
   sub->add_option("--extra-creepage", args->extra_creepage,
-                  "extra longitudinal creepage of a driven wheelset (< 0 traction, > 0 braking)");
-  sub->add_option("--lateral-velocity", args->lateral_velocity_m_per_s, "lateral velocity (m/s)");
-  sub->add_option("--yaw-rate", args->yaw_rate_rad_per_s, "yaw rate (rad/s)");
-  sub->add_option("--load", args->load_kN, "vertical load per wheel (kN)");
-  sub->add_option("--mu", args->mu, "friction coefficient");
-  sub->add_option("--element-size", args->element_size_mm, "element size of the contact meshes (mm)");
+                  "extra longitudinal creepage of a driven wheelset (dimensionless; < 0 traction, > 0 braking)");
+  sub->add_option("--lateral-velocity-m-per-s", args->lateral_velocity_m_per_s,
+                  "lateral velocity of the wheelset centre (m/s, + to the left; default 0)");
+  sub->add_option("--yaw-rate-rad-per-s", args->yaw_rate_rad_per_s,
+                  "yaw rate (rad/s, + turning as a positive yaw angle; default 0)");
+  sub->add_option("--load-N", args->load_N, "vertical load per wheel (N, > 0 pressing the wheel on its rail; default 98100)");
+  sub->add_option("--mu", args->mu, "friction coefficient (dimensionless)");
+  sub->add_option("--element-size-m", args->element_size_m, "element size of the contact meshes (m; default 0.0002)");
   sub->add_option("--solver", args->solvers, "tangential solver(s): nh-fastsim, fastsim, exact, exact-regularised");
   sub->add_flag("--json", args->json, "print one JSON object");
   sub->add_option("--flexibility-coarsening", args->flexibility_coarsening,
@@ -404,12 +411,13 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--slip-direction", args->slip_direction,
                   "nH-FastSim's slipping traction: flexibility-weighted (default; within 3 % on the flange too) "
                   "or radial (Eq 8, the paper's); docs/FASTSIM.md \"The slip direction\"");
-  sub->add_option("--sweep-y", args->sweep_y,
-                  "sweep the lateral displacement, FROM:TO:STEP in mm (e.g. 0:-7:0.1): CSV and figures in --out");
+  sub->add_option("--sweep-y-m", args->sweep_y_m,
+                  "sweep the lateral displacement, FROM:TO:STEP in m (+ to the left; e.g. 0:-0.007:0.0001): CSV and "
+                  "figures in --out");
   sub->add_option("--out", args->out, "output directory of a sweep");
   sub->add_option("--table", args->table,
                   "evaluate from this wheelset table (`railcontact wheelset-table build`; nh-fastsim, by load, zero "
-                  "roll; also a --sweep-y); the settings the run asks for must be the table's");
+                  "roll; also a --sweep-y-m); the settings the run asks for must be the table's");
   sub->add_option("--table-override", args->table_overrides,
                   "with --table: evaluate with the table's value of these settings where the run asks for others "
                   "(material, element-size, flexibility-coarsening, collocation-offset, slip-direction, "

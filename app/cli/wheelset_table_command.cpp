@@ -26,16 +26,16 @@ namespace {
 struct BuildArguments {
   std::string case_file;
   std::string out;
-  std::string y_mm = "-7:7:0.1";
-  std::string yaw_mrad = "0:0:1";
-  std::vector<double> loads_kN{80.0, 100.0, 120.0};
-  double element_size_mm = 0.2;
+  std::string y_m = "-0.007:0.007:0.0001";
+  std::string yaw_rad = "0:0:0.001";
+  std::vector<double> loads_N{80e3, 100e3, 120e3};
+  double element_size_m = 0.2e-3;
   std::string threads;
 };
 
-// FROM:TO:STEP (in the option's unit, times `scale`), TO reached within 1e-9 of a step; FROM = TO
-// gives one value.
-std::vector<double> range_values(const std::string& text, const char* option, double scale) {
+// FROM:TO:STEP (in the option's SI unit), TO reached within 1e-9 of a step; FROM = TO gives one
+// value.
+std::vector<double> range_values(const std::string& text, const char* option) {
   std::istringstream in(text);
   char c1 = 0, c2 = 0;
   double from = 0, to = 0, step = 0;
@@ -43,13 +43,14 @@ std::vector<double> range_values(const std::string& text, const char* option, do
   require(in && c1 == ':' && c2 == ':' && in.peek() == std::char_traits<char>::eof() && std::isfinite(from) &&
               std::isfinite(to) && std::isfinite(step) && step > 0.0 && to >= from,
           [&] {
-            return fmt::format("{} '{}' must be FROM:TO:STEP with FROM <= TO and a positive STEP, e.g. -7:7:0.1",
+            return fmt::format("{} '{}' must be FROM:TO:STEP with FROM <= TO and a positive STEP, e.g. "
+                               "-0.007:0.007:0.0001",
                                option, text);
           });
   const double count = std::floor((to - from) / step + 1e-9) + 1.0;
   require(count <= 20000.0, [&] { return fmt::format("{} '{}' gives {} values; at most 20000", option, text, count_text(count)); });
   std::vector<double> values;
-  for (int k = 0; k < static_cast<int>(count); ++k) values.push_back((from + k * step) * scale);
+  for (int k = 0; k < static_cast<int>(count); ++k) values.push_back(from + k * step);
   return values;
 }
 
@@ -62,18 +63,18 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
   WheelsetCase c;
   if (!a.case_file.empty()) c = read_wheelset_case(a.case_file);
   WheelsetTableGrid grid;
-  grid.y_m = range_values(a.y_mm, "--y", 1e-3);
-  grid.yaw_rad = range_values(a.yaw_mrad, "--yaw", 1e-3);
+  grid.y_m = range_values(a.y_m, "--y-m");
+  grid.yaw_rad = range_values(a.yaw_rad, "--yaw-rad");
   grid.wheel_load_N.clear();
-  for (double load : a.loads_kN) {
-    require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load {:g} kN must be positive", load); });
-    grid.wheel_load_N.push_back(load * 1e3);
+  for (double load : a.loads_N) {
+    require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load-N {:g} N must be positive", load); });
+    grid.wheel_load_N.push_back(load);
   }
   std::sort(grid.wheel_load_N.begin(), grid.wheel_load_N.end());
   validate(grid);
   WheelsetTableOptions options;
   options.wheelset = c.options;
-  if (sub.count("--element-size") > 0 || a.case_file.empty()) options.wheelset.element_size_m = a.element_size_mm * 1e-3;
+  if (sub.count("--element-size-m") > 0 || a.case_file.empty()) options.wheelset.element_size_m = a.element_size_m;
   const WheelsetTrack track = wheelset_track(c);
   const std::filesystem::path out(a.out);
   if (rank0) check_table_writable(out, "wheelset table");  // before the work
@@ -143,13 +144,14 @@ void add_wheelset_table_command(CLI::App& app, Action& action) {
                     "wheelset case file (TOML, docs/CASE_FILES.md): its profiles, track, material, mesh; default "
                     "S1002/UIC60");
   build->add_option("--out", args->out, "the table file to write (JSON)")->required();
-  build->add_option("--y", args->y_mm, "lateral displacements FROM:TO:STEP (mm)")->capture_default_str();
-  build->add_option("--yaw", args->yaw_mrad, "yaw angles FROM:TO:STEP (mrad); one value serves every yaw")
+  build->add_option("--y-m", args->y_m, "lateral displacements FROM:TO:STEP (m, + to the left)")->capture_default_str();
+  build->add_option("--yaw-rad", args->yaw_rad,
+                    "yaw angles FROM:TO:STEP (rad, + the axle's left end backwards); one value serves every yaw")
       ->capture_default_str();
-  build->add_option("--load", args->loads_kN, "vertical loads per wheel (kN; repeat or list)")
+  build->add_option("--load-N", args->loads_N, "vertical loads per wheel (N, > 0; repeat or list)")
       ->capture_default_str()
       ->delimiter(',');
-  build->add_option("--element-size", args->element_size_mm, "element size of the contact meshes (mm)")
+  build->add_option("--element-size-m", args->element_size_m, "element size of the contact meshes (m)")
       ->capture_default_str();
   build->add_option("--threads", args->threads,
                     "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any "

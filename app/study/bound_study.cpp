@@ -143,7 +143,7 @@ std::vector<BoundCase> compute_cases(const BoundStudyOptions& options, std::ostr
 void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
   require(options.elements >= 200 && options.elements <= 30000,
           [&] { return fmt::format("study bound: --elements must lie in [200, 30000] (got {})", options.elements); });
-  require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study bound: --y-step must lie in (0, 4.5e-3] m");
+  require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study bound: --y-step-m must lie in (0, 4.5e-3] m");
   if (MpiWorld::rank() != 0) {  // under mpirun: compute the patches rank 0 hands out, nothing else
     compute_cases(options, progress);
     return;

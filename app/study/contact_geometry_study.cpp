@@ -34,29 +34,30 @@ void close_csv(std::ofstream& csv, const std::filesystem::path& path) {
 
 void validate(const ContactGeometryStudy& s) {
   require(std::isfinite(s.y_from_m) && std::abs(s.y_from_m) <= 0.1, [&] {
-    return fmt::format("--y-from {:g} mm must be finite and lie in [-100, 100] mm", s.y_from_m / kMm);
+    return fmt::format("--y-from-m {:g} m must be finite and lie in [-0.1, 0.1] m", s.y_from_m);
   });
   require(std::isfinite(s.y_to_m) && std::abs(s.y_to_m) <= 0.1, [&] {
-    return fmt::format("--y-to {:g} mm must be finite and lie in [-100, 100] mm", s.y_to_m / kMm);
+    return fmt::format("--y-to-m {:g} m must be finite and lie in [-0.1, 0.1] m", s.y_to_m);
   });
   require(s.y_from_m < 0.0 && s.y_to_m > 0.0, [&] {
-    return fmt::format("--y-from {:g} mm and --y-to {:g} mm must enclose the centred wheelset: --y-from < 0 < --y-to",
-                       s.y_from_m / kMm, s.y_to_m / kMm);
+    return fmt::format("--y-from-m {:g} m and --y-to-m {:g} m must enclose the centred wheelset: --y-from-m < 0 < "
+                       "--y-to-m",
+                       s.y_from_m, s.y_to_m);
   });
   const double range = s.y_to_m - s.y_from_m;
   require(std::isfinite(s.y_step_m) && s.y_step_m >= 1e-6 && s.y_step_m <= 0.25 * range, [&] {
-    return fmt::format("--y-step {:g} mm must lie in [0.001, {:g}] mm (a quarter of the range --y-from .. --y-to)",
-                       s.y_step_m / kMm, 0.25 * range / kMm);
+    return fmt::format("--y-step-m {:g} m must lie in [1e-06, {:g}] m (a quarter of the range --y-from-m .. --y-to-m)",
+                       s.y_step_m, 0.25 * range);
   });
   require(range / s.y_step_m <= 20000.0, [&] {
-    return fmt::format("--y-step {:g} mm gives {:.0f} positions (at most 20000); use a larger step", s.y_step_m / kMm,
+    return fmt::format("--y-step-m {:g} m gives {:.0f} positions (at most 20000); use a larger step", s.y_step_m,
                        range / s.y_step_m + 1);
   });
   const double largest = std::min(-s.y_from_m, s.y_to_m);
   require(std::isfinite(s.amplitude_m) && s.amplitude_m > 0.0 && s.amplitude_m <= largest, [&] {
-    return fmt::format("--amplitude {:g} mm must lie in (0, {:g}] mm: the motion must stay within the swept y = {:g} "
-                       ".. {:g} mm (widen --y-from / --y-to)",
-                       s.amplitude_m / kMm, largest / kMm, s.y_from_m / kMm, s.y_to_m / kMm);
+    return fmt::format("--amplitude-m {:g} m must lie in (0, {:g}] m: the motion must stay within the swept y = {:g} "
+                       ".. {:g} m (widen --y-from-m / --y-to-m)",
+                       s.amplitude_m, largest, s.y_from_m, s.y_to_m);
   });
 }
 
@@ -74,8 +75,8 @@ ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, con
     try {
       result.sweep.push_back(rigid_contact_geometry(track, y));
     } catch (const Error& e) {
-      throw Error(e.kind(), fmt::format("--y-from {:g} mm .. --y-to {:g} mm: at y = {:g} mm: {}", study.y_from_m / kMm,
-                                        study.y_to_m / kMm, y / kMm, e.what()));
+      throw Error(e.kind(), fmt::format("--y-from-m {:g} m .. --y-to-m {:g} m: at y = {:g} m: {}", study.y_from_m,
+                                        study.y_to_m, y, e.what()));
     }
     if (k == 0) {
       fmt::print(log, "contact geometry: y = {:g} ... {:g} mm in steps of {:g} mm\n", study.y_from_m / kMm,
@@ -87,10 +88,9 @@ ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, con
   const RollingRadiusDifference delta_r(result.sweep);
   result.largest_amplitude_m = largest_conicity_amplitude_m(delta_r);
   require(study.amplitude_m <= result.largest_amplitude_m, [&] {
-    return fmt::format("--amplitude {:g} mm must lie in (0, {:.2f}] mm: the motion must stay within the swept "
-                       "y = {:g} .. {:g} mm (widen --y-from / --y-to)",
-                       study.amplitude_m / kMm, result.largest_amplitude_m / kMm, study.y_from_m / kMm,
-                       study.y_to_m / kMm);
+    return fmt::format("--amplitude-m {:g} m must lie in (0, {:.5f}] m: the motion must stay within the swept "
+                       "y = {:g} .. {:g} m (widen --y-from-m / --y-to-m)",
+                       study.amplitude_m, result.largest_amplitude_m, study.y_from_m, study.y_to_m);
   });
   result.at_amplitude = equivalent_conicity(delta_r, study.amplitude_m);
 

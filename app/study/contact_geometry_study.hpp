@@ -27,11 +27,11 @@ struct ContactGeometryResult {
   int conicity_rows = 0;
 };
 
-// Throws Error naming the option (--y-from, --y-to, --y-step, --amplitude) and its allowed range.
+// Throws Error naming the option (--y-from-m, --y-to-m, --y-step-m, --amplitude-m) and its allowed range.
 void validate(const ContactGeometryStudy& study);
 
 // Sweeps y, writes the CSV files into `out` and draws the figures (progress to `log`). Throws Error
-// naming the option (--y-from, --y-to, --y-step, --amplitude) for a bad range or amplitude.
+// naming the option (--y-from-m, --y-to-m, --y-step-m, --amplitude-m) for a bad range or amplitude.
 ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, const ContactGeometryStudy& study,
                                                  OutputDirectory& out, std::ostream& log);
 

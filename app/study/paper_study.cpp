@@ -146,7 +146,7 @@ struct SummaryInputs {
 void check_options(const PaperStudyOptions& options) {
   require(options.elements >= 200 && options.elements <= 30000,
           [&] { return fmt::format("study paper: --elements must lie in [200, 30000] (got {})", options.elements); });
-  require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study paper: --y-step must lie in (0, 4.5e-3] m");
+  require(options.y_step_m > 0 && options.y_step_m <= 4.5e-3, "study paper: --y-step-m must lie in (0, 4.5e-3] m");
   require(options.timing_samples >= 1 && options.timing_samples <= 50, "study paper: --samples must lie in [1, 50]");
 }
 

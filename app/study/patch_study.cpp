@@ -47,8 +47,8 @@ struct Row {
 
 std::vector<double> displacements(const PatchStudyOptions& o) {
   require(std::isfinite(o.y_from_m) && std::isfinite(o.y_to_m) && o.y_to_m >= o.y_from_m,
-          "study patches: the y range must be finite with y_to >= y_from");
-  require(std::isfinite(o.y_step_m) && o.y_step_m > 0.0, "study patches: the y step must be positive");
+          "study patches: the y range must be finite with --y-to-m >= --y-from-m");
+  require(std::isfinite(o.y_step_m) && o.y_step_m > 0.0, "study patches: --y-step-m must be positive");
   const double count = std::floor((o.y_to_m - o.y_from_m) / o.y_step_m + 1e-9) + 1.0;
   require(count <= 1000, "study patches: at most 1000 values of y");
   std::vector<double> y;
@@ -215,7 +215,7 @@ void write_summary(const std::filesystem::path& path, const PatchStudyOptions& o
 
 int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
   require(std::isfinite(options.vertical_load_N) && options.vertical_load_N > 0.0,
-          [&] { return fmt::format("study patches: --load must be positive (got {} N)", options.vertical_load_N); });
+          [&] { return fmt::format("study patches: --load-N must be positive (got {} N)", options.vertical_load_N); });
   require(options.elements >= kMinimumWheelRailElements && options.elements <= kMaximumWheelRailElements, [&] {
     return fmt::format("study patches: --elements {} must lie in [{}, {}]", options.elements, kMinimumWheelRailElements,
                        kMaximumWheelRailElements);

@@ -39,24 +39,24 @@ rows=$(wc -l < "$work/serial/sweep.csv")
 test "$rows" -gt 18
 
 step flextable build
-flex="flextable build --y-from -0.003 --y-to 0.003 --y-step 0.0005 --elements 300"
+flex="flextable build --y-from-m -0.003 --y-to-m 0.003 --y-step-m 0.0005 --elements 300"
 "$cli" $flex --threads 1 --out "$work/f1.json" > /dev/null 2>&1
 $mpi "$cli" $flex --out "$work/f3.json" > /dev/null 2> "$work/err" || { cat "$work/err"; exit 1; }
 cmp "$work/f1.json" "$work/f3.json"
 
 step wheelset-table build
-wheelset="wheelset-table build --y=-3:3:0.5 --load 100 --element-size 1"
+wheelset="wheelset-table build --y-m=-0.003:0.003:0.0005 --load-N 100000 --element-size-m 0.001"
 "$cli" $wheelset --threads 1 --out "$work/w1.json" > /dev/null 2>&1
 $mpi "$cli" $wheelset --out "$work/w3.json" > /dev/null 2> "$work/err" || { cat "$work/err"; exit 1; }
 cmp "$work/w1.json" "$work/w3.json"
 step study paper
-paper="study paper --elements 300 --y-step 1.5e-3 --samples 1 --no-figures"
+paper="study paper --elements 300 --y-step-m 1.5e-3 --samples 1 --no-figures"
 "$cli" $paper --threads 1 --out "$work/p1" > /dev/null 2>&1
 $mpi "$cli" $paper --out "$work/p3" > /dev/null 2> "$work/err" || { cat "$work/err"; exit 1; }
 cmp "$work/p1/fig5.csv" "$work/p3/fig5.csv"
 cmp "$work/p1/fig5_patches.csv" "$work/p3/fig5_patches.csv"
 step study bound
-bound="study bound --elements 300 --y-step 1.5e-3"
+bound="study bound --elements 300 --y-step-m 1.5e-3"
 "$cli" $bound --threads 1 --out "$work/b1" > /dev/null 2>&1
 $mpi "$cli" $bound --out "$work/b3" > /dev/null 2> "$work/err" || { cat "$work/err"; exit 1; }
 cmp "$work/b1/bound_sweep.csv" "$work/b3/bound_sweep.csv"
