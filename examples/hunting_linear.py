@@ -1,0 +1,463 @@
+#!/usr/bin/python3
+"""The linear critical speed of the hunting example's wheelset (examples/hunting_simulation.py,
+docs/PYTHON.md "Hunting: the linear critical speed"): the eigenvalues of its linearised equations of
+motion against speed, beside the onset of hunting that the time-domain simulation finds.
+
+The vehicle is the simulation's own (its constants are imported from hunting_simulation.py). The
+contact is linearised about the centred wheelset:
+
+- creep forces with Kalker's linear theory, f11 = G c² C11, f22 = G c² C22, f23 = G c³ C23,
+  f33 = G c⁴ C33 (c² = ab), on the local Hertz ellipse of the centred patch (`railcontact patch`,
+  its defaults: y = 0 and the example's 98.1 kN) and the wheelset's shear modulus and Poisson's
+  ratio; the coefficients are the exact solver's at zero creepage (railcontact.Solver("exact"),
+  the same numbers as `railcontact coefficients` to 1 %);
+- the rolling-radius difference, the gravitational stiffness and the contact-angle (spin)
+  parameter from the rigid geometry of `railcontact geometry` (its defaults: S1002/UIC60 1:40, y
+  within ±6 mm), each linearised harmonically over a sinusoidal motion of amplitude A as EN 15302's
+  regression (Annex C) does for Δr; A = 3 mm (the geometry's default amplitude) gives the linear
+  critical speed, every A from 0.5 mm the quasi-linear stability boundary.
+
+The equations (y to the left, ψ the yaw, b the half distance of the contact points, r0 the
+rolling radius, W the wheel load, λ the conicity, ε_t and ε_s the harmonic slopes of
+(tan γ_left − tan γ_right)/2 and (sin γ_left − sin γ_right)/2):
+
+    m y''  + (c_y + 2 f22/V) y' + 2 f23/V ψ' + (k_y + 2 W ε_t − 2 f23 ε_s/r0) y − 2 f22 ψ = 0
+    Iz ψ'' + 2 b² f11/V ψ' + 2 b f11 λ/r0 y + k_ψ ψ = 0
+
+The simulation's yaw moment is that of the patches' forces about the wheelset centre, without
+their spin moments M3 (hunting_simulation.Contact.forces, Wheelset.table_forces): f33 and the
+f23 term of M3 are not felt, and the linear model leaves them out as well; `spin_moment=True`
+adds them (2 f23 (y'/V − ψ) − 2 f33 (ψ'/V − ε_s y/r0) on the yaw).
+
+Usage: /usr/bin/python3 examples/hunting_linear.py [--out DIR] [--simulation DIR] [--cli PATH]
+Writes hunting_linear.json, hunting_linear.csv (the least-damped eigenvalue against speed at 3 mm),
+hunting_linear_amplitudes.csv (the linear critical speed against amplitude) and the figure
+hunting_linear.png into DIR. With the simulation's output directory (its hunting.csv), the
+simulated onset and amplitudes are printed and drawn beside the linear results.
+"""
+import argparse
+import csv
+import dataclasses
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import hunting_simulation as simulation  # noqa: E402 -- the vehicle, and railcontact found as it finds it
+
+railcontact = simulation.railcontact
+
+REFERENCE_AMPLITUDE_M = 3e-3  # `railcontact geometry`'s default amplitude (EN 15302's usual one)
+SMALL_AMPLITUDE_M = 1e-3  # up to which the contact model's own forces are linearised over y alone
+
+
+@dataclasses.dataclass
+class LinearWheelset:
+    """The linearised wheelset on tangent track (SI units), two degrees of freedom q = (y, ψ):
+
+        M q'' + (C_s + D/V) q' + (K_s + K) q = 0,
+
+    M = diag(m, Iz), C_s and K_s the suspension's, and the contact's forces (Fy, Mz) linearised as
+    −K q − D q'/V (K, D: 2 × 2, independent of V)."""
+    mass_kg: float
+    yaw_inertia_kg_m2: float
+    lateral_stiffness_N_per_m: float
+    lateral_damping_N_s_per_m: float
+    yaw_stiffness_N_m_per_rad: float
+    contact_stiffness: np.ndarray  # K: N/m, N/rad; N m/m, N m/rad
+    contact_damping: np.ndarray  # D: V times the N s/m, N s/rad; N m s/m, N m s/rad
+    half_contact_distance_m: float = 0.0  # for the Klingel frequency
+    rolling_radius_m: float = 0.0
+    conicity: float = 0.0
+
+    def matrices(self, speed):
+        """M, C, K of M q'' + C q' + K q = 0 at speed V (m/s)."""
+        mass = np.diag([self.mass_kg, self.yaw_inertia_kg_m2])
+        damping = np.diag([self.lateral_damping_N_s_per_m, 0.0]) + np.asarray(self.contact_damping) / speed
+        stiffness = np.diag([self.lateral_stiffness_N_per_m, self.yaw_stiffness_N_m_per_rad]) + \
+            np.asarray(self.contact_stiffness)
+        return mass, damping, stiffness
+
+    def eigenvalues(self, speed):
+        """The four eigenvalues (1/s) of the first-order system at speed V."""
+        mass, damping, stiffness = self.matrices(speed)
+        inverse = np.linalg.inv(mass)
+        system = np.block([[np.zeros((2, 2)), np.eye(2)], [-inverse @ stiffness, -inverse @ damping]])
+        return np.linalg.eigvals(system)
+
+    def least_damped(self, speed):
+        """The eigenvalue with the largest real part."""
+        values = self.eigenvalues(speed)
+        return values[np.argmax(values.real)]
+
+    def klingel_frequency_Hz(self, speed):
+        """The kinematic (Klingel) frequency V sqrt(λ / (b r0)) / 2π."""
+        return speed * math.sqrt(self.conicity / (self.half_contact_distance_m * self.rolling_radius_m)) / (2 * math.pi)
+
+    def critical_speed(self, lowest=1.0, highest=300.0, step=1.0, tolerance=1e-6):
+        """The lowest speed (m/s) in [lowest, highest] where the least-damped eigenvalue's real part
+        crosses zero upwards (a scan in `step`, then bisection to `tolerance` m/s), and that
+        eigenvalue there; (None, None) when it stays negative, (lowest, …) when it is positive
+        already at `lowest`."""
+        previous = None
+        for v in np.arange(lowest, highest + 0.5 * step, step):
+            if self.least_damped(v).real > 0.0:
+                if previous is None:
+                    return float(v), self.least_damped(v)
+                low, high = previous, float(v)
+                while high - low > tolerance:
+                    middle = 0.5 * (low + high)
+                    if self.least_damped(middle).real > 0.0:
+                        high = middle
+                    else:
+                        low = middle
+                return high, self.least_damped(high)
+            previous = float(v)
+        return None, None
+
+
+def kalker_contact(*, half_contact_distance_m, rolling_radius_m, conicity, f11_N, f22_N, f23_N_m=0.0, f33_N_m2=0.0,
+                   wheel_load_N=0.0, tan_gamma_slope_per_m=0.0, sin_gamma_slope_per_m=0.0, spin_moment=False):
+    """K and D of both wheels' contact with Kalker's linear creep coefficients (module docstring):
+    ε_t = d(tan γ_left − tan γ_right)/dy / 2, ε_s the same of sin γ; `spin_moment` adds the
+    patches' spin moments M3 to the yaw moment."""
+    b, r0 = half_contact_distance_m, rolling_radius_m
+    stiffness = np.array([[2 * wheel_load_N * tan_gamma_slope_per_m - 2 * f23_N_m * sin_gamma_slope_per_m / r0,
+                           -2 * f22_N],
+                          [2 * b * f11_N * conicity / r0, 0.0]])
+    damping = np.array([[2 * f22_N, 2 * f23_N_m], [0.0, 2 * b * b * f11_N]])
+    if spin_moment:
+        stiffness += np.array([[0.0, 0.0], [-2 * f33_N_m2 * sin_gamma_slope_per_m / r0, 2 * f23_N_m]])
+        damping += np.array([[0.0, 0.0], [-2 * f23_N_m, 2 * f33_N_m2]])
+    return stiffness, damping
+
+
+def find_cli(given=None):
+    """The `railcontact` command: `given`, RAILCONTACT_CLI, the build's (BUILD/railcontact next to
+    BUILD/python/railcontact) or the one on PATH."""
+    candidates = [given, os.environ.get("RAILCONTACT_CLI"),
+                  os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(railcontact.__file__)), "..", "..",
+                                                "railcontact")),
+                  shutil.which("railcontact")]
+    for path in candidates:
+        if path and os.path.isfile(path) and os.access(path, os.X_OK):
+            return path
+    raise SystemExit("hunting_linear: error: the railcontact command is neither given (--cli), nor RAILCONTACT_CLI, "
+                     "nor next to the module's build, nor on PATH")
+
+
+def run_json(command):
+    """The JSON object a railcontact command prints with --json."""
+    r = subprocess.run(command + ["--json"], capture_output=True, text=True, timeout=300)
+    if r.returncode != 0:
+        raise SystemExit(f"hunting_linear: error: {' '.join(command)} exited {r.returncode}: {r.stderr.strip()}")
+    return json.loads(r.stdout)
+
+
+def read_columns(path):
+    """A CSV file as a dict of float arrays by column name."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    return {key: np.array([float(row[key]) for row in rows]) for key in rows[0]}
+
+
+def harmonic_slope(y, values, amplitude):
+    """The least-squares slope of values(y) (linear between samples) over one cycle y = A sin θ,
+    θ uniform: each y weighted by the time spent there (EN 15302 Annex C's regression of Δr)."""
+    theta = (np.arange(4000) + 0.5) * (2 * math.pi / 4000)
+    ys = amplitude * np.sin(theta)
+    fs = np.interp(ys, y, values)
+    return float(np.sum((ys - ys.mean()) * (fs - fs.mean())) / np.sum((ys - ys.mean()) ** 2))
+
+
+def contact_data(cli, work):
+    """The centred patch, Kalker's coefficients and the rigid geometry, from railcontact."""
+    patch = run_json([cli, "patch"])  # defaults: y = 0, the 98.1 kN wheel load
+    if abs(patch["vertical_load_N"] - simulation.WHEEL_LOAD_N) > 1e-6 * simulation.WHEEL_LOAD_N:
+        raise SystemExit(f"hunting_linear: error: `railcontact patch` loads the wheel with {patch['vertical_load_N']} N, "
+                         f"the simulation with {simulation.WHEEL_LOAD_N} N")
+    geometry = run_json([cli, "geometry", "--out", work])  # defaults: S1002/UIC60 1:40, y within ±6 mm
+    wheelset = simulation_wheelset()
+    youngs, nu = wheelset.options["youngs_modulus_Pa"], wheelset.options["poisson_ratio"]
+    shear = youngs / (2 * (1 + nu))
+    a, b = patch["local_hertz"]["a_m"], patch["local_hertz"]["b_m"]
+    solver = railcontact.Solver("exact", mu=simulation.MU, youngs_modulus=youngs, poisson_ratio=nu)
+    solver.set_ellipse(a, b, patch["normal_force_N"])
+    jacobian = solver.solve(0.0, 0.0, 0.0, jacobian=True).jacobian  # ∂(F1, F2, M3)/∂(ξ, η, φ)
+    c = math.sqrt(a * b)
+    coefficients = {"C11": -jacobian[0, 0] / (shear * c ** 2), "C22": -jacobian[1, 1] / (shear * c ** 2),
+                    "C23": -jacobian[1, 2] / (shear * c ** 3), "C33": -jacobian[2, 2] / (shear * c ** 4)}
+    rows = read_columns(os.path.join(work, "geometry.csv"))
+    conicity = read_columns(os.path.join(work, "conicity.csv"))
+
+    return {"patch_a_m": a, "patch_b_m": b, "normal_force_N": patch["normal_force_N"],
+            "contact_angle_rad": patch["contact_angle_rad"], "youngs_modulus_Pa": youngs, "poisson_ratio": nu,
+            "shear_modulus_Pa": shear, "coefficients": coefficients,
+            "f11_N": shear * c ** 2 * coefficients["C11"], "f22_N": shear * c ** 2 * coefficients["C22"],
+            "f23_N_m": shear * c ** 3 * coefficients["C23"], "f33_N_m2": shear * c ** 4 * coefficients["C33"],
+            "half_contact_distance_m": geometry["half_contact_distance_m"],
+            "rolling_radius_m": geometry["nominal_rolling_radius_m"],
+            "geometry_conicity_3mm_regression": geometry["tan_gamma_e_regression"],
+            "geometry_conicity_3mm_wavelength": geometry["tan_gamma_e_wavelength"],
+            "geometry_amplitude_m": geometry["amplitude_m"],
+            "y_m": 1e-3 * rows["y_mm"], "delta_r_m": 1e-3 * rows["delta_r_mm"],
+            "delta_tan_gamma": np.tan(rows["left_contact_angle_rad"]) - np.tan(rows["right_contact_angle_rad"]),
+            "delta_sin_gamma": np.sin(rows["left_contact_angle_rad"]) - np.sin(rows["right_contact_angle_rad"]),
+            "amplitudes_m": 1e-3 * conicity["amplitude_mm"],
+            "conicity_regression": conicity["tan_gamma_e_regression"]}
+
+
+def simulation_wheelset():
+    """The simulation's wheelset (its on-the-fly nh-fastsim model: the table's nodes)."""
+    return railcontact.Wheelset(element_size=0.5e-3, loads=(simulation.WHEEL_LOAD_N,) * 2, mu=simulation.MU)
+
+
+def vehicle(contact, conicity=0.0, half_contact_distance_m=0.0, rolling_radius_m=0.0):
+    """The example's wheelset and suspension with the contact's (K, D)."""
+    return LinearWheelset(
+        mass_kg=simulation.MASS_KG, yaw_inertia_kg_m2=simulation.YAW_INERTIA_KG_M2,
+        lateral_stiffness_N_per_m=simulation.LATERAL_STIFFNESS_N_PER_M,
+        lateral_damping_N_s_per_m=simulation.LATERAL_DAMPING_N_S_PER_M,
+        yaw_stiffness_N_m_per_rad=simulation.LONGITUDINAL_STIFFNESS_N_PER_M * simulation.HALF_BOX_SPACING_M ** 2,
+        contact_stiffness=contact[0], contact_damping=contact[1], half_contact_distance_m=half_contact_distance_m,
+        rolling_radius_m=rolling_radius_m, conicity=conicity)
+
+
+def kalker_model(data, y, delta_r, delta_tan_gamma, delta_sin_gamma, amplitude, spin_moment=False):
+    """Kalker's coefficients with the geometry Δr(y), Δtan γ(y), Δsin γ(y) linearised over a motion
+    of amplitude A (m)."""
+    conicity = 0.5 * harmonic_slope(y, delta_r, amplitude)
+    geometry = {"half_contact_distance_m": data["half_contact_distance_m"], "rolling_radius_m": data["rolling_radius_m"]}
+    contact = kalker_contact(**geometry, conicity=conicity, f11_N=data["f11_N"], f22_N=data["f22_N"],
+                             f23_N_m=data["f23_N_m"], f33_N_m2=data["f33_N_m2"], wheel_load_N=simulation.WHEEL_LOAD_N,
+                             tan_gamma_slope_per_m=0.5 * harmonic_slope(y, delta_tan_gamma, amplitude),
+                             sin_gamma_slope_per_m=0.5 * harmonic_slope(y, delta_sin_gamma, amplitude),
+                             spin_moment=spin_moment)
+    return vehicle(contact, conicity, **geometry)
+
+
+def contact_forces(wheelset, y=0.0, yaw=0.0, speed=50.0, lateral_velocity=0.0, yaw_rate=0.0):
+    """(Fy, Mz) of the simulation's contact model (hunting_simulation.Contact.forces on the fly)."""
+    contact = simulation.Contact("on the fly", wheelset, False)
+    return np.array(contact.forces(y, yaw, speed, lateral_velocity, yaw_rate))
+
+
+def contact_model_sweep(wheelset, largest_m=7e-3, step_m=0.1e-3):
+    """The simulation's contact model over y (zero yaw and velocities), on the table's y nodes:
+    y, Fy, Mz, and the elastic geometry Δr, Δtan γ, Δsin γ (each wheel's patches weighted by their
+    normal forces), mirrored to negative y (the wheelset is symmetric)."""
+    ys = np.round(np.arange(0.0, largest_m + 0.5 * step_m, step_m), 9)
+    rows = []
+    for y in ys:
+        r = wheelset.evaluate(y)
+        sides = []
+        for wheel in r.wheels:
+            load = sum(p.normal_force_N for p in wheel.patches)
+            sides.append([sum(f(p) * p.normal_force_N for p in wheel.patches) / load
+                          for f in (lambda p: p.rolling_radius_m, lambda p: math.tan(p.contact_angle_rad),
+                                    lambda p: math.sin(p.contact_angle_rad))])
+        fy, mz = contact_forces(wheelset, y)
+        rows.append([fy, mz] + [left - right for right, left in zip(*sides)])
+    rows = np.array(rows)
+    full = np.concatenate([-rows[:0:-1], rows])
+    return {"y_m": np.concatenate([-ys[:0:-1], ys]), "Fy_N": full[:, 0], "Mz_N_m": full[:, 1],
+            "delta_r_m": full[:, 2], "delta_tan_gamma": full[:, 3], "delta_sin_gamma": full[:, 4]}
+
+
+def contact_model_derivatives(wheelset, speed=50.0):
+    """The columns of K for ψ and of D of the simulation's contact model at the centre, by central
+    differences: ψ ± 0.1 mrad, y' and b ψ' ± 1e-4 V (creepages of 1e-4, linear; V only scales them)."""
+    def column(step, **state):
+        (key, value), = state.items()
+        return (contact_forces(wheelset, speed=speed, **{key: value}) -
+                contact_forces(wheelset, speed=speed, **{key: -value})) / (2 * step)
+
+    k_yaw = -column(1e-4, yaw=1e-4)
+    d_y = -speed * column(1e-4 * speed, lateral_velocity=1e-4 * speed)
+    d_yaw = -speed * column(1e-4 * speed / 0.75, yaw_rate=1e-4 * speed / 0.75)
+    return k_yaw, np.column_stack([d_y, d_yaw])
+
+
+def contact_model(sweep, derivatives, amplitude):
+    """The simulation's contact model linearised: Fy and Mz harmonically over y = A sin θ, the rest
+    at the centre."""
+    k_y = [-harmonic_slope(sweep["y_m"], sweep[key], amplitude) for key in ("Fy_N", "Mz_N_m")]
+    k_yaw, damping = derivatives
+    return vehicle((np.column_stack([k_y, k_yaw]), damping))
+
+
+def simulated(directory):
+    """The simulation's amplitudes (hunting.csv) and its onset: the lowest speed whose amplitude
+    exceeds its hunting threshold, from the small and the large start; None without the file."""
+    path = os.path.join(directory, "hunting.csv") if directory else None
+    if not path or not os.path.exists(path):
+        return None
+    with open(path, newline="") as f:
+        rows = [{k: (float(v) if k.startswith(("speed", "amplitude")) else v) for k, v in r.items()}
+                for r in csv.DictReader(f)]
+
+    def onset(key):
+        hunting = [r["speed_m_per_s"] for r in rows if r[key] > simulation.HUNTING_AMPLITUDE_M]
+        return min(hunting) if hunting else None
+
+    return {"file": path, "rows": rows, "onset_small_start_m_per_s": onset("amplitude_small_start_m"),
+            "onset_large_start_m_per_s": onset("amplitude_large_start_m")}
+
+
+def crossing(m):
+    """The model's critical speed (m/s), frequency there and Klingel frequency (Hz); Nones when
+    it is stable up to 300 m/s."""
+    v, value = m.critical_speed()
+    if v is None:
+        return {"critical_speed_m_per_s": None, "frequency_Hz": None, "klingel_frequency_Hz": None}
+    return {"critical_speed_m_per_s": v, "frequency_Hz": abs(value.imag) / (2 * math.pi),
+            "klingel_frequency_Hz": m.klingel_frequency_Hz(v) if m.conicity > 0 else None}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", default="railcontact-out/hunting", help="output directory")
+    parser.add_argument("--simulation", default=None,
+                        help="the simulation's output directory (its hunting.csv); default: --out")
+    parser.add_argument("--cli", default=None, help="the railcontact command (default: found next to the module)")
+    args = parser.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    cli = find_cli(args.cli)
+    with tempfile.TemporaryDirectory(prefix="hunting_linear_") as work:
+        data = contact_data(cli, os.path.join(work, "geometry"))
+    wheelset = simulation_wheelset()
+    sweep = contact_model_sweep(wheelset)
+    derivatives = contact_model_derivatives(wheelset)
+
+    def rigid(amplitude, spin_moment=False):
+        return kalker_model(data, data["y_m"], data["delta_r_m"], data["delta_tan_gamma"], data["delta_sin_gamma"],
+                            amplitude, spin_moment)
+
+    def elastic(amplitude):
+        return kalker_model(data, sweep["y_m"], sweep["delta_r_m"], sweep["delta_tan_gamma"], sweep["delta_sin_gamma"],
+                            amplitude)
+
+    reference = rigid(REFERENCE_AMPLITUDE_M)
+    models = {"rigid": reference, "rigid_with_spin_moments": rigid(REFERENCE_AMPLITUDE_M, True),
+              "elastic_centred": elastic(0.1e-3), "contact_model_0.5mm": contact_model(sweep, derivatives, 0.5e-3)}
+    results = {name: dict(crossing(m), conicity=m.conicity) for name, m in models.items()}
+    amplitudes = np.round(np.arange(0.1e-3, 6.0001e-3, 0.1e-3), 7)
+    by_amplitude = []
+    for amplitude in amplitudes:
+        row = {"amplitude_m": float(amplitude)}
+        for name, m in (("rigid", rigid(amplitude)), ("elastic", elastic(amplitude)),
+                        ("contact_model", contact_model(sweep, derivatives, amplitude))):
+            if name != "contact_model":
+                row[f"{name}_conicity"] = m.conicity
+            c = crossing(m)
+            row[f"{name}_critical_speed_m_per_s"] = c["critical_speed_m_per_s"]
+            row[f"{name}_frequency_Hz"] = c["frequency_Hz"]
+        by_amplitude.append(row)
+
+    speeds = np.arange(5.0, 120.01, 0.5)
+    least = [reference.least_damped(v) for v in speeds]
+    sim = simulated(args.simulation or args.out)
+
+    with open(os.path.join(args.out, "hunting_linear.csv"), "w") as f:
+        f.write("speed_m_per_s,real_part_per_s,frequency_Hz\n")
+        for v, lam in zip(speeds, least):
+            f.write(f"{v:g},{lam.real:.6e},{abs(lam.imag) / (2 * math.pi):.6f}\n")
+    with open(os.path.join(args.out, "hunting_linear_amplitudes.csv"), "w") as f:
+        f.write(",".join(by_amplitude[0]) + "\n")
+        for r in by_amplitude:
+            f.write(",".join("" if v is None else f"{v:.6g}" for v in r.values()) + "\n")
+    summary = {"railcontact_version": railcontact.__version__,
+               "contact": {k: v for k, v in data.items() if not isinstance(v, np.ndarray)},
+               "contact_model_0.5mm": {"K": models["contact_model_0.5mm"].contact_stiffness.tolist(),
+                                       "D": models["contact_model_0.5mm"].contact_damping.tolist()},
+               "kalker_rigid_3mm": {"K": reference.contact_stiffness.tolist(), "D": reference.contact_damping.tolist()},
+               "amplitude_m": REFERENCE_AMPLITUDE_M, "linear": results, "by_amplitude": by_amplitude,
+               "simulation": None if sim is None else {k: v for k, v in sim.items() if k != "rows"}}
+    with open(os.path.join(args.out, "hunting_linear.json"), "w") as f:
+        json.dump(summary, f, indent=2)
+
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 4.8))
+    ax.plot(speeds, [lam.real for lam in least], label=f"least-damped eigenvalue (Kalker, rigid geometry at "
+                                                        f"{REFERENCE_AMPLITUDE_M * 1e3:g} mm)")
+    ax.axhline(0.0, color="black", linewidth=0.8)
+    v_crit = results["rigid"]["critical_speed_m_per_s"]
+    if v_crit:
+        ax.axvline(v_crit, color="C0", linestyle="--", label=f"linear critical speed {v_crit:.1f} m/s")
+    if sim and sim["onset_small_start_m_per_s"]:
+        ax.axvline(sim["onset_small_start_m_per_s"], color="C3", linestyle=":",
+                   label=f"simulated onset {sim['onset_small_start_m_per_s']:g} m/s")
+    ax.set_xlabel("speed V (m/s)")
+    ax.set_ylabel("real part (1/s)")
+    ax.set_title("Linearised wheelset: stability against speed")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    for name, label, style in (("rigid", "Kalker, rigid geometry (railcontact geometry)", "k-"),
+                               ("elastic", "Kalker, the contact model's elastic geometry", "k--"),
+                               ("contact_model", "the contact model's own forces (small A)", "C2-")):
+        # The contact model's Fy(y), Mz(y) at zero yaw and velocities overstate the creep saturation at
+        # large amplitudes (in the motion the yaw rate cancels most of Δr's longitudinal creepage).
+        shown = [r for r in by_amplitude if r[f"{name}_critical_speed_m_per_s"] and
+                 (name != "contact_model" or r["amplitude_m"] <= SMALL_AMPLITUDE_M + 1e-12)]
+        bx.plot([r[f"{name}_critical_speed_m_per_s"] for r in shown], [1e3 * r["amplitude_m"] for r in shown], style,
+                label=label)
+    if sim:
+        for key, label, marker in (("amplitude_small_start_m", "simulated, start 0.5 mm", "o"),
+                                   ("amplitude_large_start_m", "simulated, start 5 mm", "s")):
+            rows = [r for r in sim["rows"] if np.isfinite(r[key])]
+            bx.plot([r["speed_m_per_s"] for r in rows], [1e3 * r[key] for r in rows], marker=marker, linestyle="",
+                    label=label)
+    bx.set_xlabel("speed V (m/s)")
+    bx.set_ylabel("amplitude A (mm)")
+    bx.set_title("Critical speed of the harmonically linearised model, and the simulated amplitudes")
+    bx.grid(True, alpha=0.3)
+    bx.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(args.out, "hunting_linear.png"), dpi=120)
+
+    c = data["coefficients"]
+    print(f"Linear stability of the hunting example's wheelset, {args.out}")
+    print(f"  centred patch: a = {1e3 * data['patch_a_m']:.3f} mm, b = {1e3 * data['patch_b_m']:.3f} mm, "
+          f"nu = {data['poisson_ratio']:g}; C11 {c['C11']:.3f}, C22 {c['C22']:.3f}, C23 {c['C23']:.3f}, "
+          f"C33 {c['C33']:.3f}; f11 {data['f11_N'] / 1e6:.2f} MN, f22 {data['f22_N'] / 1e6:.2f} MN, "
+          f"f23 {data['f23_N_m'] / 1e3:.2f} kN m, f33 {data['f33_N_m2']:.1f} N m^2")
+    print(f"  railcontact geometry at {1e3 * data['geometry_amplitude_m']:g} mm: conicity "
+          f"{data['geometry_conicity_3mm_regression']:.4f} (regression; this script's {reference.conicity:.4f}), "
+          f"{data['geometry_conicity_3mm_wavelength']:.4f} (wavelength); b = {1e3 * data['half_contact_distance_m']:.1f} mm, "
+          f"r0 = {1e3 * data['rolling_radius_m']:g} mm")
+    labels = {"rigid": f"Kalker, rigid geometry at {REFERENCE_AMPLITUDE_M * 1e3:g} mm",
+              "rigid_with_spin_moments": "  the same with the spin moments M3",
+              "elastic_centred": "Kalker, the contact model's elastic geometry, centred",
+              "contact_model_0.5mm": "the contact model's own forces at 0.5 mm"}
+    for name, r in results.items():
+        v = r["critical_speed_m_per_s"]
+        text = (f"{v:.2f} m/s, {r['frequency_Hz']:.2f} Hz" if v else "none up to 300 m/s")
+        if v and r["klingel_frequency_Hz"]:
+            text += f" (Klingel {r['klingel_frequency_Hz']:.2f} Hz, conicity {r['conicity']:.4f})"
+        print(f"  linear critical speed, {labels[name]}: {text}")
+    print("  by amplitude A (mm): conicity rigid / elastic; critical speed (m/s) rigid / elastic / contact model")
+    for r in by_amplitude:
+        mm = 1e3 * r["amplitude_m"]
+        if abs(mm - round(mm)) < 1e-9 or abs(mm - 0.5) < 1e-9 or abs(mm - 0.1) < 1e-9:
+            speeds_text = " / ".join(f"{r[f'{n}_critical_speed_m_per_s']:.1f}" if r[f"{n}_critical_speed_m_per_s"]
+                                     else "-" for n in ("rigid", "elastic", "contact_model"))
+            print(f"    {mm:.1f}: {r['rigid_conicity']:.3f} / {r['elastic_conicity']:.3f}; {speeds_text}")
+    if sim:
+        print(f"  simulated onset ({sim['file']}): {sim['onset_small_start_m_per_s']} m/s from a 0.5 mm start, "
+              f"{sim['onset_large_start_m_per_s']} m/s from a 5 mm start")
+    else:
+        print("  no simulation output (hunting.csv) in the --simulation directory: run examples/hunting_simulation.py")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
