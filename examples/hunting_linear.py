@@ -4,18 +4,17 @@ docs/PYTHON.md "Hunting: the linear critical speed"): the eigenvalues of its lin
 motion against speed, beside the onset of hunting that the time-domain simulation finds.
 
 The vehicle is the simulation's own (its constants are imported from hunting_simulation.py). The
-contact is linearised about the centred wheelset:
+linear critical speed is that of the textbook linearisation about the centred wheelset:
 
 - creep forces with Kalker's linear theory, f11 = G c² C11, f22 = G c² C22, f23 = G c³ C23,
   f33 = G c⁴ C33 (c² = ab), on the local Hertz ellipse of the centred patch (`railcontact patch`,
-  its defaults: y = 0 and the example's 98.1 kN) and the wheelset's shear modulus and Poisson's
+  its defaults: y = 0 and the example's 98.1 kN) with the wheelset's shear modulus and Poisson's
   ratio; the coefficients are the exact solver's at zero creepage (railcontact.Solver("exact"),
-  the same numbers as `railcontact coefficients` to 1 %);
+  the numbers of `railcontact coefficients` to 1.2 %);
 - the rolling-radius difference, the gravitational stiffness and the contact-angle (spin)
   parameter from the rigid geometry of `railcontact geometry` (its defaults: S1002/UIC60 1:40, y
   within ±6 mm), each linearised harmonically over a sinusoidal motion of amplitude A as EN 15302's
-  regression (Annex C) does for Δr; A = 3 mm (the geometry's default amplitude) gives the linear
-  critical speed, every A from 0.5 mm the quasi-linear stability boundary.
+  regression (Annex C) does for Δr, at A = 3 mm (the geometry's default amplitude).
 
 The equations (y to the left, ψ the yaw, b the half distance of the contact points, r0 the
 rolling radius, W the wheel load, λ the conicity, ε_t and ε_s the harmonic slopes of
@@ -26,16 +25,30 @@ rolling radius, W the wheel load, λ the conicity, ε_t and ε_s the harmonic sl
 
 The simulation's yaw moment is that of the patches' forces about the wheelset centre, without
 their spin moments M3 (hunting_simulation.Contact.forces, Wheelset.table_forces): f33 and the
-f23 term of M3 are not felt, and the linear model leaves them out as well; `spin_moment=True`
-adds them (2 f23 (y'/V − ψ) − 2 f33 (ψ'/V − ε_s y/r0) on the yaw).
+f23 term of M3 are not felt, and the linear model leaves them out as well (the variant with them
+is printed too).
 
-Usage: /usr/bin/python3 examples/hunting_linear.py [--out DIR] [--simulation DIR] [--cli PATH]
-Writes hunting_linear.json, hunting_linear.csv (the least-damped eigenvalue against speed at 3 mm),
-hunting_linear_amplitudes.csv (the linear critical speed against amplitude) and the figure
-hunting_linear.png into DIR. With the simulation's output directory (its hunting.csv), the
-simulated onset and amplitudes are printed and drawn beside the linear results.
+To explain the difference from the simulation, two more linearisations:
+
+- Kalker's coefficients with the contact model's own (elastic) geometry: Δr, tan γ and sin γ of
+  the patches of Wheelset.evaluate, which the simulation's table holds;
+- the contact model's own forces (hunting_simulation.Contact.forces on the fly): Fy and Mz over y
+  (harmonically, at zero yaw and velocities), their derivatives by ψ, y' and ψ' at the centre.
+  Centred (over the table's first y interval, ±0.1 mm) this is the simulation's linearisation.
+
+Each is also given against the amplitude A (0.1 … 6 mm). `--simulate` runs the simulation itself
+(its table and its simulate(), 20 s) near the critical speeds: the growth or decay rate and the
+frequency while the motion is linear (|y| < 0.08 mm), and the limit cycle.
+
+Usage: /usr/bin/python3 examples/hunting_linear.py [--out DIR] [--simulation DIR] [--simulate] [--cli PATH]
+Writes hunting_linear.json, hunting_linear.csv (the least-damped eigenvalue against speed),
+hunting_linear_amplitudes.csv (the critical speed against amplitude), hunting_linear_runs.csv (with
+--simulate) and the figure hunting_linear.png into DIR. The simulation's output directory (default
+DIR) gives its hunting.csv (its onset and amplitudes, printed and drawn beside) and, for
+--simulate, its wheelset table.
 """
 import argparse
+import copy
 import csv
 import dataclasses
 import json
@@ -45,6 +58,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from typing import Optional
 
 import numpy as np
 
@@ -75,6 +89,7 @@ class LinearWheelset:
     half_contact_distance_m: float = 0.0  # for the Klingel frequency
     rolling_radius_m: float = 0.0
     conicity: float = 0.0
+    lateral_parts_N_per_m: Optional[dict] = None  # K_yy's parts, where known
 
     def matrices(self, speed):
         """M, C, K of M q'' + C q' + K q = 0 at speed V (m/s)."""
@@ -180,7 +195,8 @@ def contact_data(cli, work):
     """The centred patch, Kalker's coefficients and the rigid geometry, from railcontact."""
     patch = run_json([cli, "patch"])  # defaults: y = 0, the 98.1 kN wheel load
     if abs(patch["vertical_load_N"] - simulation.WHEEL_LOAD_N) > 1e-6 * simulation.WHEEL_LOAD_N:
-        raise SystemExit(f"hunting_linear: error: `railcontact patch` loads the wheel with {patch['vertical_load_N']} N, "
+        raise SystemExit("hunting_linear: error: `railcontact patch` loads the wheel with "
+                         f"{patch['vertical_load_N']} N, "
                          f"the simulation with {simulation.WHEEL_LOAD_N} N")
     geometry = run_json([cli, "geometry", "--out", work])  # defaults: S1002/UIC60 1:40, y within ±6 mm
     wheelset = simulation_wheelset()
@@ -233,13 +249,16 @@ def kalker_model(data, y, delta_r, delta_tan_gamma, delta_sin_gamma, amplitude, 
     """Kalker's coefficients with the geometry Δr(y), Δtan γ(y), Δsin γ(y) linearised over a motion
     of amplitude A (m)."""
     conicity = 0.5 * harmonic_slope(y, delta_r, amplitude)
-    geometry = {"half_contact_distance_m": data["half_contact_distance_m"], "rolling_radius_m": data["rolling_radius_m"]}
+    tan_slope = 0.5 * harmonic_slope(y, delta_tan_gamma, amplitude)
+    sin_slope = 0.5 * harmonic_slope(y, delta_sin_gamma, amplitude)
+    geometry = {key: data[key] for key in ("half_contact_distance_m", "rolling_radius_m")}
     contact = kalker_contact(**geometry, conicity=conicity, f11_N=data["f11_N"], f22_N=data["f22_N"],
                              f23_N_m=data["f23_N_m"], f33_N_m2=data["f33_N_m2"], wheel_load_N=simulation.WHEEL_LOAD_N,
-                             tan_gamma_slope_per_m=0.5 * harmonic_slope(y, delta_tan_gamma, amplitude),
-                             sin_gamma_slope_per_m=0.5 * harmonic_slope(y, delta_sin_gamma, amplitude),
-                             spin_moment=spin_moment)
-    return vehicle(contact, conicity, **geometry)
+                             tan_gamma_slope_per_m=tan_slope, sin_gamma_slope_per_m=sin_slope, spin_moment=spin_moment)
+    m = vehicle(contact, conicity, **geometry)
+    m.lateral_parts_N_per_m = {"gravitational": 2 * simulation.WHEEL_LOAD_N * tan_slope,
+                               "spin": -2 * data["f23_N_m"] * sin_slope / data["rolling_radius_m"]}
+    return m
 
 
 def contact_forces(wheelset, y=0.0, yaw=0.0, speed=50.0, lateral_velocity=0.0, yaw_rate=0.0):
@@ -310,6 +329,67 @@ def simulated(directory):
             "onset_large_start_m_per_s": onset("amplitude_large_start_m")}
 
 
+SIMULATED_SPEEDS_M_PER_S = [float(v) for v in range(36, 61, 2)]
+SIMULATED_STARTS_M = (0.01e-3, 5e-3)  # within the table's first y interval (linear there), and large
+SIMULATED_DURATION_S = 20.0
+
+
+LINEAR_RANGE_M = (1e-6, 0.08e-3)  # above the integrator's tolerance, within the table's first y interval
+
+
+def linear_stretch(t, y):
+    """The growth (+) or decay (−) rate (1/s) and the frequency (Hz) of the motion while it is
+    linear: over the seconds after the first whose largest |y| lies in LINEAR_RANGE_M (the table is
+    linear within its first y interval, ±0.1 mm), the slope of log(largest |y|) and the upward zero
+    crossings; (None, None) with fewer than three such seconds."""
+    seconds = np.arange(1, int(t[-1] + 1e-9))
+    peaks = np.array([np.max(np.abs(y[(t >= k) & (t < k + 1)])) for k in seconds])
+    chosen = (peaks > LINEAR_RANGE_M[0]) & (peaks < LINEAR_RANGE_M[1])
+    if np.count_nonzero(chosen) < 3:
+        return None, None
+    rate = float(np.polyfit(seconds[chosen], np.log(peaks[chosen]), 1)[0])
+    first, last = seconds[chosen][0], seconds[chosen][-1] + 1
+    return rate, frequency_Hz(t, y, first, last)
+
+
+def frequency_Hz(t, y, start_s, end_s):
+    """The frequency of the motion between start_s and end_s from its upward zero crossings; None
+    without two."""
+    keep = (t >= start_s) & (t <= end_s)
+    t, y = t[keep], y[keep] - np.mean(y[keep])
+    up = np.nonzero((y[:-1] < 0.0) & (y[1:] >= 0.0))[0]
+    if len(up) < 2:
+        return None
+    times = t[up] - y[up] * (t[up + 1] - t[up]) / (y[up + 1] - y[up])
+    return float((len(times) - 1) / (times[-1] - times[0]))
+
+
+def simulate_near(table_file):
+    """Runs of the simulation (its table, its simulate()) of SIMULATED_DURATION_S at
+    SIMULATED_SPEEDS_M_PER_S from SIMULATED_STARTS_M: the limit-cycle amplitude, the growth or
+    decay rate and the frequency of each."""
+    if not os.path.exists(table_file):
+        raise SystemExit(f"hunting_linear: error: --simulate needs the simulation's wheelset table {table_file}: "
+                         "run examples/hunting_simulation.py with --out the --simulation directory first")
+    wheelset = simulation_wheelset()
+    wheelset.load_table(table_file)
+    contact = simulation.Contact("table", wheelset, True)
+    rows = []
+    for v in SIMULATED_SPEEDS_M_PER_S:
+        for y0 in SIMULATED_STARTS_M:
+            t, y, _, status = simulation.simulate(contact, v, y0, SIMULATED_DURATION_S)
+            amplitude = simulation.amplitude(t, y, SIMULATED_DURATION_S)
+            ok = status == "ok"
+            rate, frequency = linear_stretch(t, y) if ok else (None, None)
+            rows.append({"speed_m_per_s": v, "start_m": y0, "amplitude_m": amplitude, "linear_stretch_rate_per_s": rate,
+                         "linear_stretch_frequency_Hz": frequency,
+                         "limit_cycle_frequency_Hz":
+                             frequency_Hz(t, y, SIMULATED_DURATION_S - 5.0, SIMULATED_DURATION_S)
+                             if ok and amplitude > LINEAR_RANGE_M[0] else None, "status": status})
+            print(f"  V = {v:g} m/s from {y0 * 1e3:g} mm: {status}", file=sys.stderr, flush=True)
+    return rows
+
+
 def crossing(m):
     """The model's critical speed (m/s), frequency there and Klingel frequency (Hz); Nones when
     it is stable up to 300 m/s."""
@@ -324,16 +404,24 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", default="railcontact-out/hunting", help="output directory")
     parser.add_argument("--simulation", default=None,
-                        help="the simulation's output directory (its hunting.csv); default: --out")
+                        help="the simulation's output directory (its hunting.csv and wheelset table); default: --out")
+    parser.add_argument("--simulate", action="store_true",
+                        help=f"also run the simulation ({SIMULATED_DURATION_S:g} s, its table) at "
+                             f"{SIMULATED_SPEEDS_M_PER_S[0]:g} ... {SIMULATED_SPEEDS_M_PER_S[-1]:g} m/s: the growth "
+                             "or decay rates and limit cycles beside the eigenvalues (about a minute)")
     parser.add_argument("--cli", default=None, help="the railcontact command (default: found next to the module)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
+    simulation_dir = args.simulation or args.out
     cli = find_cli(args.cli)
     with tempfile.TemporaryDirectory(prefix="hunting_linear_") as work:
         data = contact_data(cli, os.path.join(work, "geometry"))
     wheelset = simulation_wheelset()
     sweep = contact_model_sweep(wheelset)
     derivatives = contact_model_derivatives(wheelset)
+    # The spin coefficient −F2/φ of each wheel's patch, centred and at y = +0.1 mm.
+    spin_coefficients = [[-w.patches[0].F2_N / w.patches[0].phi_per_m for w in wheelset.evaluate(y).wheels]
+                         for y in (0.0, 0.1e-3)]
 
     def rigid(amplitude, spin_moment=False):
         return kalker_model(data, data["y_m"], data["delta_r_m"], data["delta_tan_gamma"], data["delta_sin_gamma"],
@@ -343,10 +431,16 @@ def main():
         return kalker_model(data, sweep["y_m"], sweep["delta_r_m"], sweep["delta_tan_gamma"], sweep["delta_sin_gamma"],
                             amplitude)
 
-    reference = rigid(REFERENCE_AMPLITUDE_M)
-    models = {"rigid": reference, "rigid_with_spin_moments": rigid(REFERENCE_AMPLITUDE_M, True),
-              "elastic_centred": elastic(0.1e-3), "contact_model_0.5mm": contact_model(sweep, derivatives, 0.5e-3)}
-    results = {name: dict(crossing(m), conicity=m.conicity) for name, m in models.items()}
+    # Centred: over the table's first y interval (±0.1 mm), where the simulation's forces are linear.
+    models = {"kalker_rigid_3mm": rigid(REFERENCE_AMPLITUDE_M),
+              "kalker_rigid_3mm_with_spin_moments": rigid(REFERENCE_AMPLITUDE_M, True),
+              "kalker_elastic_centred": elastic(0.1e-3),
+              "contact_model_centred": contact_model(sweep, derivatives, 0.1e-3)}
+    labels = {"kalker_rigid_3mm": f"Kalker, rigid geometry at {REFERENCE_AMPLITUDE_M * 1e3:g} mm",
+              "kalker_rigid_3mm_with_spin_moments": "  the same with the spin moments M3",
+              "kalker_elastic_centred": "Kalker, the contact model's elastic geometry, centred",
+              "contact_model_centred": "the contact model's own forces, centred (the simulation linearised)"}
+    results = {name: dict(crossing(m), conicity=m.conicity or None) for name, m in models.items()}
     amplitudes = np.round(np.arange(0.1e-3, 6.0001e-3, 0.1e-3), 7)
     by_amplitude = []
     for amplitude in amplitudes:
@@ -355,29 +449,49 @@ def main():
                         ("contact_model", contact_model(sweep, derivatives, amplitude))):
             if name != "contact_model":
                 row[f"{name}_conicity"] = m.conicity
+            else:
+                row["contact_model_K_yy_N_per_m"] = float(m.contact_stiffness[0, 0])
             c = crossing(m)
             row[f"{name}_critical_speed_m_per_s"] = c["critical_speed_m_per_s"]
             row[f"{name}_frequency_Hz"] = c["frequency_Hz"]
         by_amplitude.append(row)
 
+    drawn = ("kalker_rigid_3mm", "kalker_elastic_centred", "contact_model_centred")
     speeds = np.arange(5.0, 120.01, 0.5)
-    least = [reference.least_damped(v) for v in speeds]
-    sim = simulated(args.simulation or args.out)
+    least = {name: [models[name].least_damped(v) for v in speeds] for name in drawn}
+    sim = simulated(simulation_dir)
+    runs = None
+    if args.simulate:
+        runs = simulate_near(os.path.join(simulation_dir, "wheelset_table_0.5mm.json"))
+        for r in runs:
+            value = models["contact_model_centred"].least_damped(r["speed_m_per_s"])
+            r["linear_rate_per_s"], r["linear_frequency_Hz"] = value.real, abs(value.imag) / (2 * math.pi)
+    growing = [r["speed_m_per_s"] for r in runs or [] if r["start_m"] == SIMULATED_STARTS_M[0] and
+               r["linear_stretch_rate_per_s"] is not None and r["linear_stretch_rate_per_s"] > 0.0]
+    stability_loss = min(growing) if growing else None
 
     with open(os.path.join(args.out, "hunting_linear.csv"), "w") as f:
-        f.write("speed_m_per_s,real_part_per_s,frequency_Hz\n")
-        for v, lam in zip(speeds, least):
-            f.write(f"{v:g},{lam.real:.6e},{abs(lam.imag) / (2 * math.pi):.6f}\n")
-    with open(os.path.join(args.out, "hunting_linear_amplitudes.csv"), "w") as f:
-        f.write(",".join(by_amplitude[0]) + "\n")
-        for r in by_amplitude:
-            f.write(",".join("" if v is None else f"{v:.6g}" for v in r.values()) + "\n")
+        f.write("speed_m_per_s," + ",".join(f"{n}_real_part_per_s,{n}_frequency_Hz" for n in drawn) + "\n")
+        for i, v in enumerate(speeds):
+            f.write(f"{v:g}," + ",".join(f"{least[n][i].real:.6e},{abs(least[n][i].imag) / (2 * math.pi):.6f}"
+                                         for n in drawn) + "\n")
+
+    def write_rows(name, rows):
+        with open(os.path.join(args.out, name), "w") as f:
+            f.write(",".join(rows[0]) + "\n")
+            for r in rows:
+                f.write(",".join("" if v is None else f"\"{v}\"" if isinstance(v, str) else f"{v:.6g}"
+                                 for v in r.values()) + "\n")
+
+    write_rows("hunting_linear_amplitudes.csv", by_amplitude)
+    if runs:
+        write_rows("hunting_linear_runs.csv", runs)
     summary = {"railcontact_version": railcontact.__version__,
                "contact": {k: v for k, v in data.items() if not isinstance(v, np.ndarray)},
-               "contact_model_0.5mm": {"K": models["contact_model_0.5mm"].contact_stiffness.tolist(),
-                                       "D": models["contact_model_0.5mm"].contact_damping.tolist()},
-               "kalker_rigid_3mm": {"K": reference.contact_stiffness.tolist(), "D": reference.contact_damping.tolist()},
-               "amplitude_m": REFERENCE_AMPLITUDE_M, "linear": results, "by_amplitude": by_amplitude,
+               "matrices": {name: {"K": models[name].contact_stiffness.tolist(),
+                                   "D": models[name].contact_damping.tolist()} for name in models},
+               "linear": results, "by_amplitude": by_amplitude, "runs": runs,
+               "simulated_stability_loss_m_per_s": stability_loss,
                "simulation": None if sim is None else {k: v for k, v in sim.items() if k != "rows"}}
     with open(os.path.join(args.out, "hunting_linear.json"), "w") as f:
         json.dump(summary, f, indent=2)
@@ -386,24 +500,32 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 4.8))
-    ax.plot(speeds, [lam.real for lam in least], label=f"least-damped eigenvalue (Kalker, rigid geometry at "
-                                                        f"{REFERENCE_AMPLITUDE_M * 1e3:g} mm)")
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(13, 5))
+    for name, style in zip(drawn, ("C0-", "C0--", "C2-")):
+        ax.plot(speeds, [value.real for value in least[name]], style, label=labels[name].strip())
+    if runs:
+        for y0, marker in zip(SIMULATED_STARTS_M, ("C3o", "C1s")):
+            shown = [r for r in runs if r["start_m"] == y0 and r["linear_stretch_rate_per_s"] is not None]
+            ax.plot([r["speed_m_per_s"] for r in shown], [r["linear_stretch_rate_per_s"] for r in shown], marker,
+                    markerfacecolor="none", label=f"simulated growth or decay within ±0.08 mm, start {y0 * 1e3:g} mm")
     ax.axhline(0.0, color="black", linewidth=0.8)
-    v_crit = results["rigid"]["critical_speed_m_per_s"]
+    v_crit = results["kalker_rigid_3mm"]["critical_speed_m_per_s"]
     if v_crit:
-        ax.axvline(v_crit, color="C0", linestyle="--", label=f"linear critical speed {v_crit:.1f} m/s")
+        ax.axvline(v_crit, color="C0", linestyle=":", label=f"linear critical speed {v_crit:.1f} m/s")
     if sim and sim["onset_small_start_m_per_s"]:
         ax.axvline(sim["onset_small_start_m_per_s"], color="C3", linestyle=":",
-                   label=f"simulated onset {sim['onset_small_start_m_per_s']:g} m/s")
+                   label=f"simulated onset (> {simulation.HUNTING_AMPLITUDE_M * 1e3:g} mm) "
+                         f"{sim['onset_small_start_m_per_s']:g} m/s")
+    ax.set_xlim(speeds[0], speeds[-1])
+    ax.set_ylim(-3.0, 3.0)
     ax.set_xlabel("speed V (m/s)")
-    ax.set_ylabel("real part (1/s)")
+    ax.set_ylabel("real part of the least-damped eigenvalue (1/s)")
     ax.set_title("Linearised wheelset: stability against speed")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
-    for name, label, style in (("rigid", "Kalker, rigid geometry (railcontact geometry)", "k-"),
-                               ("elastic", "Kalker, the contact model's elastic geometry", "k--"),
-                               ("contact_model", "the contact model's own forces (small A)", "C2-")):
+    ax.legend(fontsize=7)
+    for name, label, style in (("rigid", "Kalker, rigid geometry (railcontact geometry)", "C0-"),
+                               ("elastic", "Kalker, the contact model's elastic geometry", "C0--"),
+                               ("contact_model", "the contact model's own forces (A ≤ 1 mm)", "C2-")):
         # The contact model's Fy(y), Mz(y) at zero yaw and velocities overstate the creep saturation at
         # large amplitudes (in the motion the yaw rate cancels most of Δr's longitudinal creepage).
         shown = [r for r in by_amplitude if r[f"{name}_critical_speed_m_per_s"] and
@@ -411,20 +533,29 @@ def main():
         bx.plot([r[f"{name}_critical_speed_m_per_s"] for r in shown], [1e3 * r["amplitude_m"] for r in shown], style,
                 label=label)
     if sim:
-        for key, label, marker in (("amplitude_small_start_m", "simulated, start 0.5 mm", "o"),
-                                   ("amplitude_large_start_m", "simulated, start 5 mm", "s")):
-            rows = [r for r in sim["rows"] if np.isfinite(r[key])]
-            bx.plot([r["speed_m_per_s"] for r in rows], [1e3 * r[key] for r in rows], marker=marker, linestyle="",
-                    label=label)
+        rows = [r for r in sim["rows"] if np.isfinite(r["amplitude_small_start_m"])]
+        bx.plot([r["speed_m_per_s"] for r in rows], [1e3 * r["amplitude_small_start_m"] for r in rows], "C7x",
+                linestyle="", label="simulated, 5 s from 0.5 mm (hunting.csv)")
+    if runs:
+        for y0, marker in zip(SIMULATED_STARTS_M, ("C3o", "C1s")):
+            shown = [r for r in runs if r["start_m"] == y0 and np.isfinite(r["amplitude_m"])]
+            bx.plot([r["speed_m_per_s"] for r in shown], [1e3 * r["amplitude_m"] for r in shown], marker,
+                    linestyle="", markerfacecolor="none",
+                    label=f"simulated, {SIMULATED_DURATION_S:g} s from {y0 * 1e3:g} mm")
+    bx.set_xlim(25.0, 95.0)
     bx.set_xlabel("speed V (m/s)")
     bx.set_ylabel("amplitude A (mm)")
-    bx.set_title("Critical speed of the harmonically linearised model, and the simulated amplitudes")
+    bx.set_title("Critical speed at amplitude A, and the simulated limit cycles")
     bx.grid(True, alpha=0.3)
-    bx.legend(fontsize=8)
+    bx.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(args.out, "hunting_linear.png"), dpi=120)
 
+    def number(value, form):
+        return "-" if value is None else format(value, form)
+
     c = data["coefficients"]
+    reference = models["kalker_rigid_3mm"]
     print(f"Linear stability of the hunting example's wheelset, {args.out}")
     print(f"  centred patch: a = {1e3 * data['patch_a_m']:.3f} mm, b = {1e3 * data['patch_b_m']:.3f} mm, "
           f"nu = {data['poisson_ratio']:g}; C11 {c['C11']:.3f}, C22 {c['C22']:.3f}, C23 {c['C23']:.3f}, "
@@ -432,30 +563,61 @@ def main():
           f"f23 {data['f23_N_m'] / 1e3:.2f} kN m, f33 {data['f33_N_m2']:.1f} N m^2")
     print(f"  railcontact geometry at {1e3 * data['geometry_amplitude_m']:g} mm: conicity "
           f"{data['geometry_conicity_3mm_regression']:.4f} (regression; this script's {reference.conicity:.4f}), "
-          f"{data['geometry_conicity_3mm_wavelength']:.4f} (wavelength); b = {1e3 * data['half_contact_distance_m']:.1f} mm, "
+          f"{data['geometry_conicity_3mm_wavelength']:.4f} (wavelength); "
+          f"b = {1e3 * data['half_contact_distance_m']:.1f} mm, "
           f"r0 = {1e3 * data['rolling_radius_m']:g} mm")
-    labels = {"rigid": f"Kalker, rigid geometry at {REFERENCE_AMPLITUDE_M * 1e3:g} mm",
-              "rigid_with_spin_moments": "  the same with the spin moments M3",
-              "elastic_centred": "Kalker, the contact model's elastic geometry, centred",
-              "contact_model_0.5mm": "the contact model's own forces at 0.5 mm"}
     for name, r in results.items():
+        k = models[name].contact_stiffness
         v = r["critical_speed_m_per_s"]
-        text = (f"{v:.2f} m/s, {r['frequency_Hz']:.2f} Hz" if v else "none up to 300 m/s")
+        text = f"{v:.2f} m/s, {r['frequency_Hz']:.2f} Hz" if v else "none up to 300 m/s"
         if v and r["klingel_frequency_Hz"]:
             text += f" (Klingel {r['klingel_frequency_Hz']:.2f} Hz, conicity {r['conicity']:.4f})"
-        print(f"  linear critical speed, {labels[name]}: {text}")
-    print("  by amplitude A (mm): conicity rigid / elastic; critical speed (m/s) rigid / elastic / contact model")
+        parts = models[name].lateral_parts_N_per_m
+        parts = (f" (gravitational {parts['gravitational'] / 1e6:+.2f}, spin {parts['spin'] / 1e6:+.2f})"
+                 if parts else "")
+        print(f"  {labels[name]}: linear critical speed {text}; contact K_yy {k[0, 0] / 1e6:+.2f} MN/m{parts}")
+    print(f"  the contact model's spin coefficient -F2/phi (kN m), right / left: {spin_coefficients[0][0] / 1e3:.2f} / "
+          f"{spin_coefficients[0][1] / 1e3:.2f} centred, {spin_coefficients[1][0] / 1e3:.2f} / "
+          f"{spin_coefficients[1][1] / 1e3:.2f} at y = +0.1 mm")
+    steps = [("Kalker, elastic geometry", models["kalker_elastic_centred"])]
+    own = models["contact_model_centred"]
+    for label, rows, columns, matrix in (("the contact model's K_yy", 0, 0, "contact_stiffness"),
+                                         ("its whole K", slice(None), slice(None), "contact_stiffness"),
+                                         ("its D (the contact model)", slice(None), slice(None), "contact_damping")):
+        m = copy.deepcopy(steps[-1][1])
+        getattr(m, matrix)[rows, columns] = getattr(own, matrix)[rows, columns]
+        steps.append((label, m))
+    print("  centred, from Kalker's to the contact model's linearisation one part at a time: " + " -> ".join(
+        f"{label} {number(m.critical_speed()[0], '.2f')} m/s" for label, m in steps))
+    print("  by amplitude A (mm): conicity rigid / elastic; critical speed (m/s) rigid / elastic / contact model; "
+          "the contact model's K_yy (MN/m)")
     for r in by_amplitude:
         mm = 1e3 * r["amplitude_m"]
-        if abs(mm - round(mm)) < 1e-9 or abs(mm - 0.5) < 1e-9 or abs(mm - 0.1) < 1e-9:
+        if min(abs(mm - x) for x in (0.1, 0.5, 1, 2, 3, 4, 5, 6)) < 1e-9:
             speeds_text = " / ".join(f"{r[f'{n}_critical_speed_m_per_s']:.1f}" if r[f"{n}_critical_speed_m_per_s"]
                                      else "-" for n in ("rigid", "elastic", "contact_model"))
-            print(f"    {mm:.1f}: {r['rigid_conicity']:.3f} / {r['elastic_conicity']:.3f}; {speeds_text}")
+            print(f"    {mm:.1f}: {r['rigid_conicity']:.3f} / {r['elastic_conicity']:.3f}; {speeds_text}; "
+                  f"{r['contact_model_K_yy_N_per_m'] / 1e6:+.2f}")
     if sim:
-        print(f"  simulated onset ({sim['file']}): {sim['onset_small_start_m_per_s']} m/s from a 0.5 mm start, "
-              f"{sim['onset_large_start_m_per_s']} m/s from a 5 mm start")
+        print(f"  simulated onset ({sim['file']}, amplitude > {simulation.HUNTING_AMPLITUDE_M * 1e3:g} mm): "
+              f"{sim['onset_small_start_m_per_s']} m/s from a 0.5 mm start, {sim['onset_large_start_m_per_s']} m/s "
+              "from a 5 mm start")
     else:
-        print("  no simulation output (hunting.csv) in the --simulation directory: run examples/hunting_simulation.py")
+        print(f"  no simulation output ({os.path.join(simulation_dir, 'hunting.csv')}): "
+              "run examples/hunting_simulation.py")
+    if runs:
+        print(f"  simulated, {SIMULATED_DURATION_S:g} s runs: growth (+) or decay (-) rate (1/s) and frequency while "
+              "|y| < 0.08 mm | limit cycle (largest |y| over the last second, frequency over the last 5 s) | the "
+              "contact model's centred eigenvalue")
+
+        for r in runs:
+            print(f"    V = {r['speed_m_per_s']:g} m/s from {r['start_m'] * 1e3:g} mm: "
+                  f"{number(r['linear_stretch_rate_per_s'], '+.3f')}, "
+                  f"{number(r['linear_stretch_frequency_Hz'], '.2f')} Hz"
+                  f" | {r['amplitude_m'] * 1e3:.3f} mm, {number(r['limit_cycle_frequency_Hz'], '.2f')} Hz | "
+                  f"{r['linear_rate_per_s']:+.3f}, {r['linear_frequency_Hz']:.2f} Hz")
+        print(f"  the simulation's centre loses stability at {stability_loss} m/s (the lowest speed whose "
+              f"{SIMULATED_STARTS_M[0] * 1e3:g} mm start grows)")
     return 0
 
 
