@@ -17,8 +17,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "cli_run.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset.hpp"
 
@@ -166,6 +168,59 @@ TEST(WheelsetBalanceSolver, TheNamedSolverMeetsTheLoad) {
   WheelsetOptions wrong = alone;
   wrong.balance_solver = TangentialSolver::exact;
   EXPECT_THROW(Wheelset(track(), wrong), Error);
+}
+
+}  // namespace
+}  // namespace railcontact
+
+// The command: every solver's totals and the balance solver in the JSON, a rigid axle's roll, free
+// rolling's angular velocity, the depth weighting on request.
+namespace railcontact {
+namespace {
+
+nlohmann::json wheelset_json(const std::string& options) {
+  const test::CommandResult r = test::run_cli("wheelset --json --element-size-m 0.0005 " + options);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return nlohmann::json::parse(r.out);
+}
+
+TEST(WheelsetCli, NamesTheBalanceSolverGivesEveryTotalTheRigidAxleAndFreeRolling) {
+  const nlohmann::json both =
+      wheelset_json("--y-m -0.005 --solver exact --solver nh-fastsim --balance-solver nh-fastsim");
+  EXPECT_EQ(both["load_balance"]["solver"], "nh-fastsim");
+  EXPECT_EQ(both["load_balance"]["axle"], "independent wheels");
+  ASSERT_TRUE(both["solver_force_track_N"].contains("exact"));
+  ASSERT_TRUE(both["solver_force_track_N"].contains("nh-fastsim"));
+  // nH-FastSim's vertical forces meet the loads (it balances); the first solver's totals are
+  // force_track_N, as before.
+  for (const auto& w : both["wheels"])
+    EXPECT_NEAR(w["solver_force_track_N"]["nh-fastsim"][2].get<double>(), 98100.0, 2e-5 * 98100.0);
+  EXPECT_EQ(both["force_track_N"], both["solver_force_track_N"]["exact"]);
+  const nlohmann::json alone = wheelset_json("--y-m -0.005");
+  EXPECT_NEAR(alone["wheels"][0]["patches"][0]["normal_force_N"].get<double>(),
+              both["wheels"][0]["patches"][0]["normal_force_N"].get<double>(), 1e-5 * 98100.0);
+
+  // A rigid axle: both wheels at one height (its balance's tolerance, 1e-8 m), the roll found.
+  // Off centre the two contacts differ (flange side and field side), so the roll is not zero.
+  const nlohmann::json rigid = wheelset_json("--y-m 0.003 --rigid-axle");
+  EXPECT_EQ(rigid["load_balance"]["axle"], "rigid axle");
+  EXPECT_NEAR(rigid["wheels"][0]["vertical_displacement_m"].get<double>(),
+              rigid["wheels"][1]["vertical_displacement_m"].get<double>(), 1e-7);
+  EXPECT_GT(std::abs(rigid["state"]["roll_rad"].get<double>()), 1e-6);
+  for (const auto& w : rigid["wheels"]) EXPECT_NEAR(w["force_track_N"][2].get<double>(), 98100.0, 2e-5 * 98100.0);
+
+  const nlohmann::json free = wheelset_json("--free-rolling --solver exact");
+  EXPECT_TRUE(free["state"]["free_rolling"].get<bool>());
+  EXPECT_GT(free["state"]["free_rolling_iterations"].get<int>(), 1);
+  EXPECT_NE(free["state"]["wheel_angular_velocity_rad_per_s"].get<double>(), 20.0 / 0.46);
+  EXPECT_LT(std::abs(free["wheels"][0]["force_track_N"][0].get<double>()), 1e-3 * 0.3 * 98100.0);
+
+  // The depth weighting moves the centred patch's reference point (CONTACT's squared-gap one is
+  // 10.15 mm on the rail's gauge side, the depth-weighted 10.09 mm).
+  const nlohmann::json depth = wheelset_json("--reference-weighting depth");
+  const nlohmann::json squared = wheelset_json("");
+  EXPECT_NEAR(squared["wheels"][0]["patches"][0]["rail_profile_y_m"].get<double>(), -10.15e-3, 0.03e-3);
+  EXPECT_NEAR(depth["wheels"][0]["patches"][0]["rail_profile_y_m"].get<double>(), -10.09e-3, 0.03e-3);
 }
 
 }  // namespace

@@ -28,6 +28,7 @@ struct PatchArguments {
   int elements = WheelRailPatchOptions{}.target_elements;
   std::string layout = "rolling-resolved";
   std::string reference = "smooth";
+  std::string reference_weighting = "squared-gap";
   bool json = false;
   std::optional<std::string> out;
 };
@@ -97,6 +98,11 @@ int run_patch(const PatchArguments& args) {
   options.target_elements = args.elements;
   options.layout = args.layout == "square" ? PatchMeshLayout::square : PatchMeshLayout::rolling_resolved;
   options.reference = parse_contact_reference(args.reference);
+  try {
+    options.search.weighting = parse_reference_weighting(args.reference_weighting);
+  } catch (const Error& e) {
+    throw Error(fmt::format("--reference-weighting: {}", e.what()));
+  }
   const WheelRailPatch patch = [&] {
     try {
       return solve_wheel_rail_patch(pair, args.y_m, options);
@@ -154,6 +160,9 @@ void add_patch_command(CLI::App& app, Action& action) {
   cmd->add_option("--reference", args->reference,
                   "contact reference: smooth (averaged over the overlap, as railcontact wheelset) or first-touch")
       ->check(CLI::IsMember({"smooth", "first-touch"}))
+      ->capture_default_str();
+  cmd->add_option("--reference-weighting", args->reference_weighting,
+                  "the smooth reference's weights: squared-gap (as Kalker's CONTACT) or depth (docs/WHEELSET.md §4)")
       ->capture_default_str();
   cmd->add_flag("--json", args->json, "print one JSON object");
   cmd->add_option("--out", args->out, "write pressure.csv, patch.json and pressure.png into this directory");

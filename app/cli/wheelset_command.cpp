@@ -4,6 +4,7 @@
 #include <fmt/ostream.h>
 
 #include <algorithm>
+#include <limits>
 #include <cmath>
 #include <iostream>
 #include <optional>
@@ -42,6 +43,11 @@ struct WheelsetArguments {
   int flexibility_coarsening = 0;
   std::string slip_direction;  // --slip-direction (radial, flexibility-weighted)
   std::string sweep_y_m;  // FROM:TO:STEP in m
+  double wheel_angular_velocity_rad_per_s = 0.0;
+  bool free_rolling = false;
+  bool rigid_axle = false;
+  std::string balance_solver;       // --balance-solver (default: the first --solver)
+  std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
   std::string table;    // a wheelset table to evaluate from (docs/WHEELSET_TABLE.md)
   std::vector<std::string> table_overrides;  // --table-override: settings the table's values replace
   std::string out = "railcontact-out/wheelset";
@@ -97,6 +103,18 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
   if (given("--extra-creepage")) v.extra_longitudinal_creepage = a.extra_creepage;
   if (given("--lateral-velocity-m-per-s")) v.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
   if (given("--yaw-rate-rad-per-s")) v.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
+  // The wheels' rotation: one of pure rolling (with --extra-creepage), a given angular velocity, free rolling.
+  const int rotations = (given("--extra-creepage") ? 1 : 0) + (given("--wheel-angular-velocity-rad-per-s") ? 1 : 0) +
+                        (a.free_rolling ? 1 : 0);
+  require(rotations <= 1, "--extra-creepage, --wheel-angular-velocity-rad-per-s and --free-rolling each set the wheels' "
+                          "rotation: give one of them");
+  if (given("--wheel-angular-velocity-rad-per-s") || a.free_rolling) {
+    v.wheel_angular_velocity_rad_per_s = std::numeric_limits<double>::quiet_NaN();
+    v.extra_longitudinal_creepage = 0.0;
+    v.free_rolling = false;
+  }
+  if (given("--wheel-angular-velocity-rad-per-s")) v.wheel_angular_velocity_rad_per_s = a.wheel_angular_velocity_rad_per_s;
+  if (a.free_rolling) v.free_rolling = true;
   // The velocities' ranges (wheelset.hpp), an option given named as given:
   // "--yaw-rate-rad-per-s 1e+06 rad/s must lie in …".
   WheelsetVelocityNames names;
@@ -104,6 +122,8 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
   if (given("--extra-creepage")) names.extra_longitudinal_creepage = "--extra-creepage";
   if (given("--lateral-velocity-m-per-s")) names.lateral_velocity = "--lateral-velocity-m-per-s";
   if (given("--yaw-rate-rad-per-s")) names.yaw_rate = "--yaw-rate-rad-per-s";
+  if (given("--wheel-angular-velocity-rad-per-s")) names.wheel_angular_velocity = "--wheel-angular-velocity-rad-per-s";
+  if (a.free_rolling) names.free_rolling = "--free-rolling";
   validate(v, names);
   if (given("--mu")) c.options.friction_coefficient = a.mu;
   if (given("--element-size-m")) c.options.element_size_m = a.element_size_m;
@@ -139,6 +159,33 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
               [&] { return fmt::format("--solver {} is given twice; name each solver once", name); });
       c.options.solvers.push_back(solver);
     }
+  }
+  if (given("--balance-solver")) {
+    try {
+      c.options.balance_solver = parse_tangential_solver(a.balance_solver);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--balance-solver: {}", e.what()));
+    }
+    const auto& run = c.options.solvers;
+    require(std::find(run.begin(), run.end(), *c.options.balance_solver) != run.end(), [&] {
+      std::string names;
+      for (TangentialSolver s : run) names += fmt::format("{}{}", names.empty() ? "" : ", ", solver_name(s));
+      return fmt::format("--balance-solver {} is not among the solvers run ({}): add --solver {} or name one of them",
+                         a.balance_solver, names, a.balance_solver);
+    });
+  }
+  if (given("--reference-weighting")) {
+    try {
+      c.options.search.weighting = parse_reference_weighting(a.reference_weighting);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--reference-weighting: {}", e.what()));
+    }
+  }
+  if (a.rigid_axle) {
+    require(c.options.loads.has_value(), "--rigid-axle balances the wheels' loads: it needs the wheelset by load, not "
+                                         "the case's vertical position");
+    c.options.loads->balance_roll = true;
+    require(!given("--roll-rad"), "--rigid-axle solves the roll for the loads: leave out --roll-rad");
   }
   return c;
 }
@@ -195,6 +242,11 @@ TableUse table_use(const WheelsetArguments& a, const CLI::App& sub, const Wheels
   require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
   require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
           "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
+  require(!options.loads->balance_roll, [&] {
+    return fmt::format("--rigid-axle cannot be evaluated from --table {}: its nodes have zero roll; leave out --table "
+                       "to solve the rigid axle",
+                       a.table);
+  });
   const double roll_rad = c.state.position.roll_rad;
   require(roll_rad == 0.0, [&] {
     const std::string roll = sub.count("--roll-rad") > 0
@@ -405,6 +457,20 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--mu", args->mu, "friction coefficient (dimensionless)");
   sub->add_option("--element-size-m", args->element_size_m, "element size of the contact meshes (m; default 0.0002)");
   sub->add_option("--solver", args->solvers, "tangential solver(s): nh-fastsim, fastsim, exact, exact-regularised");
+  sub->add_option("--balance-solver", args->balance_solver,
+                  "the solver whose tangential forces the load balance (and free rolling) use; one of --solver "
+                  "(default: the first); the JSON's load_balance.solver");
+  sub->add_option("--wheel-angular-velocity-rad-per-s", args->wheel_angular_velocity_rad_per_s,
+                  "the wheels' angular velocity about the axle (rad/s, + rolling forward; default: pure rolling at r0, V/r0)");
+  sub->add_flag("--free-rolling", args->free_rolling,
+                "solve the wheels' angular velocity so that their tangential forces have no moment about the axle "
+                "(an unbraked wheelset; docs/WHEELSET.md §6)");
+  sub->add_flag("--rigid-axle", args->rigid_axle,
+                "by load: meet both wheels' loads with one rigid axle's height and roll (the roll found is in the JSON's "
+                "state); default: each wheel's height on its own");
+  sub->add_option("--reference-weighting", args->reference_weighting,
+                  "how a patch's reference point and contact angle average its overlap: squared-gap (default, as "
+                  "Kalker's CONTACT) or depth (docs/WHEELSET.md §4)");
   sub->add_flag("--json", args->json, "print one JSON object");
   sub->add_option("--flexibility-coarsening", args->flexibility_coarsening,
                   "nH-FastSim: K2 on the patch coarsened in square blocks of this factor (0: automatic, 1: the patch itself)");
