@@ -376,7 +376,7 @@ typedef struct rc_track_parameters {
   double flange_back_distance_m;         /* between the wheels' flange backs; 1.360 */
   double flange_back_y_m;                /* the flange back in the wheel profile frame; -0.070 */
   double taping_line_from_flange_back_m; /* lateral distance flange back -> taping line; 0.070 */
-  double nominal_rolling_radius_m;       /* wheel radius at the taping line (r0); 0.46 (ranges: geometry.hpp) */
+  double nominal_rolling_radius_m;       /* wheel radius r0 at the wheel profile's origin; 0.46 (ranges: geometry.hpp) */
 } rc_track_parameters;
 
 RC_API rc_status rc_track_parameters_default(rc_track_parameters* track);
@@ -422,7 +422,7 @@ RC_API rc_status rc_wheelset_options_default(rc_wheelset_options* options);
 /* How the wheels turn about their axle. */
 typedef enum rc_wheel_rotation {
   RC_ROTATION_ROLLING = 0, /* pure rolling at the nominal radius r0 with the extra longitudinal
-                              creepage xi0: Omega = V (1 - xi0) / r0 */
+                              creepage xi0 at r0: V - Omega r0 = xi0 (V + Omega r0) / 2 */
   RC_ROTATION_GIVEN = 1    /* wheel_angular_velocity_rad_per_s */
 } rc_wheel_rotation;
 
