@@ -410,6 +410,20 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
   for (const WheelsetTableMismatch& m : use.overridden)
     fmt::print("Table override: {} {} (the table's) instead of {}\n", wheelset_table_setting_name(m.setting), m.table,
                m.requested);
+  {
+    const double nominal = table ? table->nominal_rolling_radius_m() : wheelset.track().parameters().nominal_rolling_radius_m;
+    const double omega = wheelset_motion(r.state, nominal).wheel_angular_velocity_rad_per_s;
+    fmt::print("Wheels' angular velocity {:.6g} rad/s ({}; V / r0 = {:.6g} rad/s){}\n", omega,
+               state.velocity.free_rolling ? fmt::format("free rolling, {} evaluations", r.free_rolling_iterations)
+               : std::isnan(state.velocity.wheel_angular_velocity_rad_per_s)
+                   ? fmt::format("rolling at r0 with extra creepage {:g}", state.velocity.extra_longitudinal_creepage)
+                   : std::string("given"),
+               state.velocity.forward_speed_m_per_s / nominal,
+               options.loads ? fmt::format("; loads met with {}'s forces, {}",
+                                           solver_name(options.balance_solver.value_or(options.solvers.front())),
+                                           options.loads->balance_roll ? "one rigid axle" : "each wheel's height on its own")
+                             : std::string());
+  }
   fmt::print("Forces on the wheels in the track frame (x forward, y left, z up), N; patch forces in the contact "
              "frame.\n\n");
   for (const WheelResult& w : r.wheels) {
