@@ -55,6 +55,18 @@ TEST(WheelRailSetup, ProfilePathsResolveAgainstTheSetUpFileAndBadFilesAreNamed) 
   EXPECT_EQ(load_wheel_rail_pair(setup).contact_point(0.0).contact_angle_rad,
             default_wheel_rail_pair().contact_point(0.0).contact_angle_rad);
   EXPECT_NE(message_of(write("unknown.json", ", \"gauge\": 1")).find("unknown key 'gauge'"), std::string::npos);
+  // Where r0 is measured: the profile's origin by default, the taping line on request; another
+  // name is refused naming the key and the names allowed.
+  EXPECT_EQ(setup.track.nominal_radius_at, NominalRadiusDatum::profile_origin);
+  EXPECT_EQ(read_wheel_rail_setup(write("taping.json", ", \"nominal_radius_at\": \"taping-line\"")).track.nominal_radius_at,
+            NominalRadiusDatum::taping_line);
+  const std::string datum = message_of(write("datum.json", ", \"nominal_radius_at\": \"tape\""));
+  EXPECT_NE(datum.find("nominal_radius_at = \"tape\" is not a datum of the nominal rolling radius (allowed: "
+                       "\"profile-origin\", the default, as in CONTACT; \"taping-line\")"),
+            std::string::npos)
+      << datum;
+  EXPECT_NE(message_of(write("datum_number.json", ", \"nominal_radius_at\": 0")).find("nominal_radius_at must be a string"),
+            std::string::npos);
   std::ofstream(dir / "missing.json") << "{\"wheel_profile\": \"wheel.prw\", \"rail_profile\": \"rail.prr\"}";
   EXPECT_NE(message_of(dir / "missing.json").find("missing object 'track'"), std::string::npos);
   std::ofstream(dir / "broken.json") << "{\"wheel_profile\": ";
