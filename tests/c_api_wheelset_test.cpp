@@ -744,5 +744,35 @@ TEST(CApiWheelsetRanges, RatesTrackAndCountsOutsideTheirRangesNameTheField) {
       << c.error();
 }
 
+// Free rolling through the C API: the C++ Wheelset's angular velocity and forces (the same code
+// path: to rounding), each centred wheel's F1 below 0.1 % of mu Fz; pure rolling's angular velocity
+// is V / r0; a rotation that is none of the three is refused.
+TEST(CApiWheelset, FreeRollingIsTheCppWheelsets) {
+  CWheelset c;
+  rc_wheelset_state s;
+  rc_wheelset_state_default(&s);
+  rc_wheelset_result r;
+  ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_OK) << c.error();
+  double omega = 0.0;
+  ASSERT_EQ(rc_wheelset_wheel_angular_velocity(c.h, &omega), RC_OK) << c.error();
+  EXPECT_NEAR(omega, s.forward_speed_m_per_s / 0.46, 1e-12 * omega);
+  s.rotation = RC_ROTATION_FREE;
+  ASSERT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_OK) << c.error();
+  ASSERT_EQ(rc_wheelset_wheel_angular_velocity(c.h, &omega), RC_OK) << c.error();
+  WheelsetOptions options;
+  options.element_size_m = 0.5e-3;
+  WheelsetState state;
+  state.velocity.free_rolling = true;
+  const WheelsetResult cpp = Wheelset(default_wheelset_track(), options).evaluate(state);
+  EXPECT_NEAR(omega, cpp.state.velocity.wheel_angular_velocity_rad_per_s, 1e-9 * omega);
+  for (int w = 0; w < 2; ++w) EXPECT_LT(std::abs(r.wheel_force_track_N[w][0]), 1e-3 * 0.3 * 98100.0);
+  EXPECT_EQ(rc_wheelset_wheel_angular_velocity(c.h, nullptr), RC_INVALID_INPUT);
+  s.rotation = 3;
+  EXPECT_EQ(rc_wheelset_evaluate(c.h, &s, &r), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_state.rotation = 3 is not an rc_wheel_rotation (0 rolling, 1 given, 2 free)"),
+            std::string::npos)
+      << c.error();
+}
+
 }  // namespace
 }  // namespace railcontact

@@ -423,7 +423,10 @@ RC_API rc_status rc_wheelset_options_default(rc_wheelset_options* options);
 typedef enum rc_wheel_rotation {
   RC_ROTATION_ROLLING = 0, /* pure rolling at the nominal radius r0 with the extra longitudinal
                               creepage xi0 at r0: V - Omega r0 = xi0 (V + Omega r0) / 2 */
-  RC_ROTATION_GIVEN = 1    /* wheel_angular_velocity_rad_per_s */
+  RC_ROTATION_GIVEN = 1,   /* wheel_angular_velocity_rad_per_s */
+  RC_ROTATION_FREE = 2     /* free rolling: the angular velocity at which the wheels' tangential forces
+                              have no moment about the axle, solved (rc_wheelset_wheel_angular_velocity);
+                              rc_wheelset_evaluate only, not from a table */
 } rc_wheel_rotation;
 
 /* A wheelset's state: its position and velocity on the track (SI units, rad, rad/s). */
@@ -523,6 +526,9 @@ RC_API rc_status rc_wheelset_evaluate(rc_wheelset* wheelset, const rc_wheelset_s
 RC_API rc_status rc_wheelset_reset_warm_start(rc_wheelset* wheelset);
 /* The last evaluation's totals and solved state. */
 RC_API rc_status rc_wheelset_result_get(const rc_wheelset* wheelset, rc_wheelset_result* result);
+/* The wheels' angular velocity of the last evaluation (rad/s, + rolling forward): RC_ROTATION_FREE's
+   solution, the given one, or pure rolling's V (1 - xi0/2) / ((1 + xi0/2) r0). */
+RC_API rc_status rc_wheelset_wheel_angular_velocity(const rc_wheelset* wheelset, double* rad_per_s);
 /* The number of patches of a wheel (side: rc_wheel_side) in the last evaluation. */
 RC_API rc_status rc_wheelset_patch_count(const rc_wheelset* wheelset, int side, size_t* count);
 /* Copies the patches of a wheel, along the rail profile (gauge side first), into the caller's

@@ -106,8 +106,9 @@ rc::WheelsetState state_of(const rc_wheelset_state& c) {
   require_finite(c.yaw_rate_rad_per_s, s, "yaw_rate_rad_per_s", " rad/s");
   require_finite(c.wheel_angular_velocity_rad_per_s, s, "wheel_angular_velocity_rad_per_s", " rad/s");
   require_finite(c.extra_longitudinal_creepage, s, "extra_longitudinal_creepage", "");
-  require(c.rotation == RC_ROTATION_ROLLING || c.rotation == RC_ROTATION_GIVEN, [&] {
-    return fmt::format("rc_wheelset_state.rotation = {} is not an rc_wheel_rotation (0 rolling, 1 given)", c.rotation);
+  require(c.rotation == RC_ROTATION_ROLLING || c.rotation == RC_ROTATION_GIVEN || c.rotation == RC_ROTATION_FREE, [&] {
+    return fmt::format("rc_wheelset_state.rotation = {} is not an rc_wheel_rotation (0 rolling, 1 given, 2 free)",
+                       c.rotation);
   });
   rc::WheelsetState state;
   state.position.lateral_displacement_m = c.y_m;
@@ -125,6 +126,10 @@ rc::WheelsetState state_of(const rc_wheelset_state& c) {
     v.wheel_angular_velocity_rad_per_s = c.wheel_angular_velocity_rad_per_s;
     v.extra_longitudinal_creepage = 0.0;
   }  // else NaN: pure rolling with the extra creepage (WheelsetVelocity)
+  if (c.rotation == RC_ROTATION_FREE) {
+    v.free_rolling = true;
+    v.extra_longitudinal_creepage = 0.0;
+  }
   static const rc::WheelsetVelocityNames names{
       "rc_wheelset_state.forward_speed_m_per_s", "rc_wheelset_state.lateral_velocity_m_per_s",
       "rc_wheelset_state.vertical_velocity_m_per_s", "rc_wheelset_state.roll_rate_rad_per_s",
@@ -494,6 +499,17 @@ rc_status rc_wheelset_result_get(const rc_wheelset* w, rc_wheelset_result* resul
   return guarded(&w->error, [&] {
     require_pointer(result, "rc_wheelset_result_get: result");
     *result = result_of(require_result(w));
+  });
+}
+
+rc_status rc_wheelset_wheel_angular_velocity(const rc_wheelset* w, double* rad_per_s) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(rad_per_s, "rc_wheelset_wheel_angular_velocity: rad_per_s");
+    const rc::WheelsetResult& r = require_result(w);
+    const double r0 = w->wheelset ? w->wheelset->track().parameters().nominal_rolling_radius_m
+                                  : w->table->nominal_rolling_radius_m();
+    *rad_per_s = rc::wheelset_motion(r.state, r0).wheel_angular_velocity_rad_per_s;
   });
 }
 
