@@ -478,6 +478,8 @@ class WheelsetResult:
     force_track_N: np.ndarray   #: on the wheelset, both wheels, track frame (N), (3,)
     vertical_displacement_m: float  #: the state as solved: z of the centre (m; by load: found)
     roll_rad: float             #: the state as solved: roll (rad; balance_roll: found)
+    #: the wheels' angular velocity used (rad/s; free rolling: found); None from a batch
+    wheel_angular_velocity_rad_per_s: Optional[float] = None
 
     @property
     def right(self) -> WheelResult:
@@ -500,7 +502,8 @@ def _wheelset_result(d, solver_names):
                                          force_track_N=first.force_track_N, solvers=solvers))
         wheels.append(WheelResult(w["side"], patches, w["force_track_N"], w["vertical_displacement_m"],
                                   w["load_iterations"]))
-    return WheelsetResult(wheels, d["force_track_N"], d["vertical_displacement_m"], d["roll_rad"])
+    return WheelsetResult(wheels, d["force_track_N"], d["vertical_displacement_m"], d["roll_rad"],
+                          d.get("wheel_angular_velocity_rad_per_s"))
 
 
 class Wheelset:
@@ -603,7 +606,7 @@ class Wheelset:
     def evaluate(self, y: float = 0.0, z: float = 0.0, roll: float = 0.0, yaw: float = 0.0, *, speed: float = 20.0,
                  lateral_velocity: float = 0.0, vertical_velocity: float = 0.0, roll_rate: float = 0.0,
                  yaw_rate: float = 0.0, wheel_angular_velocity: Optional[float] = None,
-                 extra_creepage: Optional[float] = None) -> WheelsetResult:
+                 extra_creepage: Optional[float] = None, free_rolling: bool = False) -> WheelsetResult:
         """Evaluates one state of the wheelset.
 
         Position: y lateral displacement of the centre (m, + to the left), z vertical displacement
@@ -612,12 +615,21 @@ class Wheelset:
         lateral_velocity, vertical_velocity (m/s), roll_rate, yaw_rate (rad/s),
         wheel_angular_velocity (rad/s about the axle, + rolling forward; None: pure rolling at the
         nominal radius with extra_creepage xi0 (None: 0), < 0 traction, > 0 braking; the two
-        exclude each other).
-        Returns a WheelsetResult (wheels[0] right, wheels[1] left, each with its patches).
+        exclude each other). free_rolling=True solves the angular velocity at which the wheels'
+        tangential forces have no moment about the axle (docs/WHEELSET.md §6; not with the other two).
+        Returns a WheelsetResult (wheels[0] right, wheels[1] left, each with its patches, and the
+        angular velocity used).
         """
+        if not isinstance(free_rolling, bool):
+            raise TypeError(f"free_rolling must be True or False, not {type(free_rolling).__name__}")
+        if free_rolling and (wheel_angular_velocity is not None or extra_creepage is not None):
+            given = "wheel_angular_velocity" if wheel_angular_velocity is not None else "extra_creepage"
+            raise ValueError(f"free_rolling=True solves the wheels' angular velocity; leave out {given}")
         row = _state_row(y=y, z=z, roll=roll, yaw=yaw, speed=speed, lateral_velocity=lateral_velocity,
                          vertical_velocity=vertical_velocity, roll_rate=roll_rate, yaw_rate=yaw_rate,
                          wheel_angular_velocity=wheel_angular_velocity, extra_creepage=extra_creepage)
+        if free_rolling:
+            row[_STATE_COLUMN["wheel_angular_velocity"]] = np.inf  # the extension's mark of free rolling
         with _check.library_names(_STATE_LIBRARY_NAMES):
             return _wheelset_result(self._core.evaluate(row), self._solvers)
 

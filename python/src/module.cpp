@@ -557,7 +557,7 @@ py::dict wheelset_result_dict(const rc_wheelset_result& r, const rc_wheelset_pat
 // A state from a row y, z, roll, yaw, V, vy, vz, roll rate, yaw rate, Omega (NaN: pure rolling),
 // xi0 (docs/PYTHON.md "Wheelset").
 constexpr int kStateColumns = 11;
-rc_wheelset_state wheelset_state(const double* row) {
+rc_wheelset_state wheelset_state(const double* row, bool free_rolling_mark = false) {
   rc_wheelset_state s;
   rc_wheelset_state_default(&s);
   s.y_m = row[0];
@@ -569,8 +569,12 @@ rc_wheelset_state wheelset_state(const double* row) {
   s.vertical_velocity_m_per_s = row[6];
   s.roll_rate_rad_per_s = row[7];
   s.yaw_rate_rad_per_s = row[8];
-  s.rotation = std::isnan(row[9]) ? RC_ROTATION_ROLLING : RC_ROTATION_GIVEN;
-  s.wheel_angular_velocity_rad_per_s = std::isnan(row[9]) ? 0.0 : row[9];
+  // The angular velocity column: NaN pure rolling; with free_rolling_mark (evaluate(...,
+  // free_rolling=True), whose user values are checked finite first) +inf free rolling; else the
+  // value (a batch's infinity is refused by the C API as any other).
+  const bool free = free_rolling_mark && std::isinf(row[9]) && row[9] > 0.0;
+  s.rotation = std::isnan(row[9]) ? RC_ROTATION_ROLLING : free ? RC_ROTATION_FREE : RC_ROTATION_GIVEN;
+  s.wheel_angular_velocity_rad_per_s = std::isnan(row[9]) || free ? 0.0 : row[9];
   s.extra_longitudinal_creepage = row[10];
   return s;
 }
@@ -798,12 +802,14 @@ class WheelsetHandle {
   // One state, on the fly or from the table, with both wheels' patches read under the same lock.
   py::dict evaluate_row(const DoubleArray& row, bool from_table) {
     if (row.ndim() != 1 || row.shape(0) != kStateColumns) raise(RC_INVALID_INPUT, "a wheelset state has 11 values");
-    const rc_wheelset_state s = wheelset_state(row.data());
+    const rc_wheelset_state s = wheelset_state(row.data(), true);
     rc_wheelset_result r{};
     std::vector<rc_wheelset_patch> patches;
     std::size_t per_wheel = 0;
+    double omega = 0.0;
     lock_.exclusive("Wheelset", [&] {
       rc_status status = from_table ? rc_wheelset_evaluate_table(handle_, &s, &r) : rc_wheelset_evaluate(handle_, &s, &r);
+      if (status == RC_OK) status = rc_wheelset_wheel_angular_velocity(handle_, &omega);
       if (status != RC_OK) return outcome(status);
       for (int w = 0; w < 2; ++w) per_wheel = std::max(per_wheel, static_cast<std::size_t>(r.patch_count[w]));
       patches.resize(2 * per_wheel);
@@ -811,7 +817,9 @@ class WheelsetHandle {
         status = rc_wheelset_patches(handle_, w, per_wheel, patches.data() + static_cast<std::size_t>(w) * per_wheel);
       return outcome(status);
     }).raise_if_failed();
-    return wheelset_result_dict(r, patches.data(), per_wheel);
+    py::dict d = wheelset_result_dict(r, patches.data(), per_wheel);
+    d["wheel_angular_velocity_rad_per_s"] = omega;
+    return d;
   }
 
   HandleLock lock_;

@@ -281,3 +281,26 @@ def test_a_table_is_used_only_with_the_settings_it_was_built_for(tabled):
                 railcontact.Wheelset(**options).load_table(path)
     finally:
         os.remove(path)
+
+
+def test_free_rolling_balances_the_wheels_rotation(wheelset):
+    # Free rolling: the angular velocity at which the wheels' tangential forces have no moment about
+    # the axle; centred, each wheel's F1 vanishes with it (below 0.1 % of mu Fz). Pure rolling at r0
+    # reports V / r0 and brakes the centred wheelset slightly (its contacts do not roll on r0).
+    rolling = wheelset.evaluate(0.0)
+    assert rolling.wheel_angular_velocity_rad_per_s == pytest.approx(20.0 / 0.46, rel=1e-12)
+    free = wheelset.evaluate(0.0, free_rolling=True)
+    omega = free.wheel_angular_velocity_rad_per_s
+    assert abs(omega - 20.0 / 0.46) > 1e-5 * omega
+    for wheel in free.wheels:
+        assert abs(wheel.force_track_N[0]) < 1e-3 * 0.3 * 98.1e3
+    given = wheelset.evaluate(0.0, wheel_angular_velocity=omega)
+    assert given.right.force_track_N[0] == pytest.approx(free.right.force_track_N[0], abs=1e-6 * 0.3 * 98.1e3)
+    with pytest.raises(ValueError, match="free_rolling=True solves the wheels' angular velocity; leave out "
+                                         "wheel_angular_velocity"):
+        wheelset.evaluate(0.0, free_rolling=True, wheel_angular_velocity=43.0)
+    with pytest.raises(TypeError, match="free_rolling must be True or False"):
+        wheelset.evaluate(0.0, free_rolling=1)
+    # A batch's infinite angular velocity is an error, not free rolling.
+    results = wheelset.batch(np.array([[0.0, 0, 0, 0, 20, 0, 0, 0, 0, np.inf, 0]]), errors="none")
+    assert results == [None]
