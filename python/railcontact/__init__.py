@@ -620,8 +620,7 @@ class Wheelset:
         Returns a WheelsetResult (wheels[0] right, wheels[1] left, each with its patches, and the
         angular velocity used).
         """
-        if not isinstance(free_rolling, bool):
-            raise TypeError(f"free_rolling must be True or False, not {type(free_rolling).__name__}")
+        free_rolling = _check.flag("free_rolling", free_rolling)
         if free_rolling and (wheel_angular_velocity is not None or extra_creepage is not None):
             given = "wheel_angular_velocity" if wheel_angular_velocity is not None else "extra_creepage"
             raise ValueError(f"free_rolling=True solves the wheels' angular velocity; leave out {given}")

@@ -299,7 +299,7 @@ def test_free_rolling_balances_the_wheels_rotation(wheelset):
     with pytest.raises(ValueError, match="free_rolling=True solves the wheels' angular velocity; leave out "
                                          "wheel_angular_velocity"):
         wheelset.evaluate(0.0, free_rolling=True, wheel_angular_velocity=43.0)
-    with pytest.raises(TypeError, match="free_rolling must be True or False"):
+    with pytest.raises(TypeError, match="free_rolling"):
         wheelset.evaluate(0.0, free_rolling=1)
     # A batch's infinite angular velocity is an error, not free rolling.
     results = wheelset.batch(np.array([[0.0, 0, 0, 0, 20, 0, 0, 0, 0, np.inf, 0]]), errors="none")
