@@ -242,6 +242,11 @@ TableUse table_use(const WheelsetArguments& a, const CLI::App& sub, const Wheels
   require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
   require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
           "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
+  require(!c.state.velocity.free_rolling, [&] {
+    return fmt::format("--free-rolling cannot be evaluated from --table {}: free rolling is solved on the fly; give "
+                       "--wheel-angular-velocity-rad-per-s or --extra-creepage with --table, or leave out --table",
+                       a.table);
+  });
   require(!options.loads->balance_roll, [&] {
     return fmt::format("--rigid-axle cannot be evaluated from --table {}: its nodes have zero roll; leave out --table "
                        "to solve the rigid axle",
