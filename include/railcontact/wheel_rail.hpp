@@ -86,7 +86,7 @@ inline constexpr std::string_view kWheelRailElementsTooSmall = "wheel-rail patch
 // from which F3 = Fz / cos γ, the spin and the rolling radius follow (docs/WHEEL_RAIL.md §6).
 enum class ContactReference {
   // The wheelset's smooth reference (docs/WHEELSET.md §4): averages over the interpenetration
-  // region at the wheel's height that carries the load, weighted by the interpenetration. It
+  // region at the wheel's height that carries the load (ContactSearchOptions::weighting). It
   // moves continuously with y, and it is the reference of `railcontact wheelset`: a single patch
   // and the wheelset's right wheel at the same y and load (zero roll and yaw) agree.
   smooth,

@@ -93,7 +93,8 @@ struct ContactLocusSample {
 
 // An interpenetration region of one wheel: where the undeformed wheel at the given position
 // overlaps its rail. It becomes one contact patch. Its reference point and contact angle are
-// averages over the region weighted by the interpenetration (docs/WHEELSET.md §4), so they move
+// averages over the region, by default weighted by the squared gap as Kalker's CONTACT
+// (ContactSearchOptions::weighting, docs/WHEELSET.md §4), so they move
 // continuously with the wheelset's position; a region that appears starts with zero weight.
 struct InterpenetrationRegion {
   WheelSide side = WheelSide::right;
@@ -108,7 +109,7 @@ struct InterpenetrationRegion {
   Vector3 x2_axis{};
   Vector3 x3_axis{};
   // Extent and depth of the overlap: lateral range on the rail profile, largest normal
-  // interpenetration, and its integral over the rail profile (m²: the weight of the averages).
+  // interpenetration, and its integral over the rail profile (m²: the depth weighting's total).
   double rail_profile_y_min_m = 0.0, rail_profile_y_max_m = 0.0;
   double max_interpenetration_m = 0.0;
   double interpenetration_area_m2 = 0.0;
