@@ -575,6 +575,27 @@ TEST(WheelsetTableCli, SweepFromTheTableGivesItsPointEvaluations) {
       << past.err;
 }
 
+// A table built with the depth-weighted reference point records it; a run evaluates it with that
+// weighting only (the default, CONTACT's squared gap, is another contact definition).
+TEST(WheelsetTableCli, ATableRecordsItsReferenceWeighting) {
+  const std::filesystem::path dir = scratch_directory("wheelset_table_weighting");
+  const std::string file = (dir / "depth.json").string();
+  const CommandResult build = run_cli("wheelset-table build --y-m=0:0:0.001 --load-N 98100 --element-size-m 0.0005 "
+                                      "--reference-weighting depth --out " + file);
+  ASSERT_EQ(build.exit_code, 0) << build.err;
+  EXPECT_EQ(load_wheelset_table(file).metadata().reference_weighting, ReferenceWeighting::depth);
+  const std::string state = " --y-m 0 --load-N 98100 --element-size-m 0.0005 --json";
+  const CommandResult same = run_cli("wheelset --table " + file + state + " --reference-weighting depth");
+  EXPECT_EQ(same.exit_code, 0) << same.err;
+  const CommandResult other = run_cli("wheelset --table " + file + state);
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("contact-definition squared-gap reference point, creepages on the undeformed wheel surface "
+                           "over V_ref (this railcontact's) differs from the table's depth reference point"),
+            std::string::npos)
+      << other.err;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
   const std::filesystem::path dir = scratch_directory("wheelset_table_cli");
   const std::string file = (dir / "table.json").string();

@@ -30,6 +30,7 @@ struct BuildArguments {
   std::string yaw_rad = "0:0:0.001";
   std::vector<double> loads_N{80e3, 100e3, 120e3};
   double element_size_m = 0.2e-3;
+  std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
   std::string threads;
 };
 
@@ -75,6 +76,13 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
   WheelsetTableOptions options;
   options.wheelset = c.options;
   if (sub.count("--element-size-m") > 0 || a.case_file.empty()) options.wheelset.element_size_m = a.element_size_m;
+  if (sub.count("--reference-weighting") > 0) {
+    try {
+      options.wheelset.search.weighting = parse_reference_weighting(a.reference_weighting);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--reference-weighting: {}", e.what()));
+    }
+  }
   const WheelsetTrack track = wheelset_track(c);
   const std::filesystem::path out(a.out);
   if (rank0) check_table_writable(out, "wheelset table");  // before the work
@@ -153,6 +161,9 @@ void add_wheelset_table_command(CLI::App& app, Action& action) {
       ->delimiter(',');
   build->add_option("--element-size-m", args->element_size_m, "element size of the contact meshes (m)")
       ->capture_default_str();
+  build->add_option("--reference-weighting", args->reference_weighting,
+                    "the nodes' reference points: squared-gap (default, as Kalker's CONTACT) or depth (docs/WHEELSET.md "
+                    "§4); recorded in the table");
   build->add_option("--threads", args->threads,
                     "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any "
                     "number");
