@@ -778,5 +778,104 @@ TEST(CApiWheelset, FreeRollingIsTheCppWheelsets) {
       << c.error();
 }
 
+// The options behind the CLI's --balance-solver and --reference-weighting and the set-up's
+// track.nominal_radius_at, through the C API: the C++ Wheelset's numbers (the same code path: to
+// 1e-12 relative), each with an effect (the balance solver moves the wheel heights, the depth
+// weighting the contact angle of the two-lobe patch at y = −5.5 mm by several mrad, a taping line
+// 1 mm from the profile origin moves ξ by about z_w(taping line) / r0), and out-of-range values
+// named.
+TEST(CApiWheelset, BalanceSolverWeightingAndRadiusDatumAreTheCppWheelsets) {
+  const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(1.0, std::abs(b)); };
+  rc_wheelset_options o;
+  rc_wheelset_options_default(&o);
+  EXPECT_EQ(o.balance_solver, -1);
+  EXPECT_EQ(o.reference_weighting, RC_WEIGHTING_SQUARED_GAP);
+
+  // Balance by the exact solver's forces, nH-FastSim's the totals.
+  const rc_wheelset_state flange = c_state(-6e-3);
+  CWheelset first(true, 0, {RC_METHOD_NH_FASTSIM, RC_METHOD_EXACT}), by_exact(true, 0, {RC_METHOD_NH_FASTSIM, RC_METHOD_EXACT});
+  ASSERT_EQ(rc_wheelset_get_options(by_exact.h, &o), RC_OK);
+  o.balance_solver = RC_METHOD_EXACT;
+  ASSERT_EQ(rc_wheelset_set_options(by_exact.h, &o), RC_OK) << by_exact.error();
+  rc_wheelset_result a, b;
+  ASSERT_EQ(rc_wheelset_evaluate(first.h, &flange, &a), RC_OK) << first.error();
+  ASSERT_EQ(rc_wheelset_evaluate(by_exact.h, &flange, &b), RC_OK) << by_exact.error();
+  WheelsetOptions options = coarse(true, {TangentialSolver::nh_fastsim, TangentialSolver::exact});
+  options.balance_solver = TangentialSolver::exact;
+  Wheelset cpp(track(), options);
+  const WheelsetResult e = cpp.evaluate(cpp_state(flange));
+  for (int i = 0; i < 3; ++i) EXPECT_TRUE(near(b.force_track_N[i], e.force_track_N[i])) << i;
+  EXPECT_GT(std::abs(b.wheel_vertical_displacement_m[RC_WHEEL_RIGHT] - a.wheel_vertical_displacement_m[RC_WHEEL_RIGHT]),
+            1e-9);  // m
+  o.balance_solver = RC_METHOD_FASTSIM;
+  EXPECT_EQ(rc_wheelset_set_options(by_exact.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(by_exact.error().find("rc_wheelset_options.balance_solver = 1 (fastsim) is not one of solvers"),
+            std::string::npos)
+      << by_exact.error();
+  o.balance_solver = 7;
+  EXPECT_EQ(rc_wheelset_set_options(by_exact.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(by_exact.error().find("rc_wheelset_options.balance_solver: 7 is not an rc_method"), std::string::npos)
+      << by_exact.error();
+
+  // The depth weighting on the two-lobe patch.
+  const rc_wheelset_state lobes = c_state(-5.5e-3);
+  CWheelset squared(true, 0), depth(true, 0);
+  ASSERT_EQ(rc_wheelset_get_options(depth.h, &o), RC_OK);
+  o.reference_weighting = RC_WEIGHTING_DEPTH;
+  ASSERT_EQ(rc_wheelset_set_options(depth.h, &o), RC_OK) << depth.error();
+  ASSERT_EQ(rc_wheelset_evaluate(squared.h, &lobes, &a), RC_OK) << squared.error();
+  ASSERT_EQ(rc_wheelset_evaluate(depth.h, &lobes, &b), RC_OK) << depth.error();
+  WheelsetOptions depth_options = coarse(true);
+  depth_options.search.weighting = ReferenceWeighting::depth;
+  Wheelset cpp_depth(track(), depth_options);
+  const WheelsetResult d = cpp_depth.evaluate(cpp_state(lobes));
+  const std::vector<rc_wheelset_patch> ps = squared.patches(RC_WHEEL_RIGHT), pd = depth.patches(RC_WHEEL_RIGHT);
+  ASSERT_EQ(pd.size(), d.wheels[0].patches.size());
+  ASSERT_FALSE(ps.empty());
+  EXPECT_TRUE(near(pd[0].contact_angle_rad, d.wheels[0].patches[0].region.contact_angle_rad));
+  EXPECT_GT(std::abs(pd[0].contact_angle_rad - ps[0].contact_angle_rad), 3e-3);  // rad
+  o.reference_weighting = 2;
+  EXPECT_EQ(rc_wheelset_set_options(depth.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(depth.error().find("rc_wheelset_options.reference_weighting = 2 is not an rc_reference_weighting"),
+            std::string::npos)
+      << depth.error();
+
+  // r0 at a taping line 1 mm towards the field side of the profile origin.
+  rc_track_parameters t;
+  rc_track_parameters_default(&t);
+  EXPECT_EQ(t.nominal_radius_at, RC_RADIUS_AT_PROFILE_ORIGIN);
+  t.taping_line_from_flange_back_m = 0.071;
+  const std::string wheel = default_wheel_profile_path().string(), rail = default_rail_profile_path().string();
+  CWheelset origin(true, 0), taping(true, 0);
+  ASSERT_EQ(rc_wheelset_set_track(origin.h, wheel.c_str(), rail.c_str(), &t), RC_OK) << origin.error();
+  t.nominal_radius_at = RC_RADIUS_AT_TAPING_LINE;
+  ASSERT_EQ(rc_wheelset_set_track(taping.h, wheel.c_str(), rail.c_str(), &t), RC_OK) << taping.error();
+  rc_track_parameters back;
+  ASSERT_EQ(rc_wheelset_get_track(taping.h, &back, nullptr), RC_OK);
+  EXPECT_EQ(back.nominal_radius_at, RC_RADIUS_AT_TAPING_LINE);
+  rc_wheelset_state centred;
+  rc_wheelset_state_default(&centred);
+  ASSERT_EQ(rc_wheelset_evaluate(origin.h, &centred, &a), RC_OK) << origin.error();
+  ASSERT_EQ(rc_wheelset_evaluate(taping.h, &centred, &b), RC_OK) << taping.error();
+  TrackWheelsetParameters parameters;
+  parameters.taping_line_from_flange_back_m = 0.071;
+  parameters.nominal_radius_at = NominalRadiusDatum::taping_line;
+  Wheelset cpp_taping(WheelsetTrack(read_profile(wheel), read_profile(rail), parameters), coarse(true));
+  const WheelsetResult tr = cpp_taping.evaluate(cpp_state(centred));
+  const double z_taping_m = cpp_taping.track().pair(WheelSide::right).taping_line_z_m();
+  const std::vector<rc_wheelset_patch> po = origin.patches(RC_WHEEL_RIGHT), pt = taping.patches(RC_WHEEL_RIGHT);
+  ASSERT_FALSE(po.empty());
+  ASSERT_FALSE(pt.empty());
+  EXPECT_TRUE(near(pt[0].creepage.xi, tr.wheels[0].patches[0].creepage.xi));
+  ASSERT_GT(std::abs(z_taping_m), 1e-5);  // m: the taping line is off the profile origin's height
+  EXPECT_NEAR(std::abs(pt[0].creepage.xi - po[0].creepage.xi), std::abs(z_taping_m) / 0.46,
+              0.05 * std::abs(z_taping_m) / 0.46);
+  t.nominal_radius_at = 5;
+  EXPECT_EQ(rc_wheelset_set_track(taping.h, wheel.c_str(), rail.c_str(), &t), RC_INVALID_INPUT);
+  EXPECT_NE(taping.error().find("rc_track_parameters.nominal_radius_at = 5 is not an rc_nominal_radius_datum"),
+            std::string::npos)
+      << taping.error();
+}
+
 }  // namespace
 }  // namespace railcontact

@@ -369,6 +369,13 @@ typedef enum rc_wheel_side {
   RC_WHEEL_LEFT = 1
 } rc_wheel_side;
 
+/* Where the wheel's radius is the nominal radius r0 (docs/WHEEL_RAIL.md; the set-up key
+   track.nominal_radius_at). On a new S1002 drawn from its taping line the two agree. */
+typedef enum rc_nominal_radius_datum {
+  RC_RADIUS_AT_PROFILE_ORIGIN = 0, /* the wheel profile's origin (z = 0), as Kalker's CONTACT */
+  RC_RADIUS_AT_TAPING_LINE = 1     /* the taping line (the flange back + taping_line_from_flange_back_m) */
+} rc_nominal_radius_datum;
+
 /* The track and wheelset dimensions (m), as in the wheel-rail set-up files. */
 typedef struct rc_track_parameters {
   double track_gauge_m;                  /* between the gauge faces; default 1.435 */
@@ -376,7 +383,9 @@ typedef struct rc_track_parameters {
   double flange_back_distance_m;         /* between the wheels' flange backs; 1.360 */
   double flange_back_y_m;                /* the flange back in the wheel profile frame; -0.070 */
   double taping_line_from_flange_back_m; /* lateral distance flange back -> taping line; 0.070 */
-  double nominal_rolling_radius_m;       /* wheel radius r0 at the wheel profile's origin; 0.46 (ranges: geometry.hpp) */
+  double nominal_rolling_radius_m;       /* wheel radius r0 at nominal_radius_at; 0.46 (ranges: geometry.hpp) */
+  int nominal_radius_at;                 /* rc_nominal_radius_datum: where the wheel's radius is r0;
+                                            default RC_RADIUS_AT_PROFILE_ORIGIN */
 } rc_track_parameters;
 
 RC_API rc_status rc_track_parameters_default(rc_track_parameters* track);
@@ -387,6 +396,14 @@ typedef enum rc_wheelset_normal {
                                  its load (the state's z is ignored) */
   RC_WHEELSET_BY_POSITION = 1 /* the state's z and roll give the overlap; the forces follow */
 } rc_wheelset_normal;
+
+/* How a patch's reference point and contact angle average its contact locus (docs/WHEELSET.md §4). */
+typedef enum rc_reference_weighting {
+  RC_WEIGHTING_SQUARED_GAP = 0, /* each lateral strip by the integral of its squared rigid overlap
+                                   along the track, as Kalker's CONTACT (default) */
+  RC_WEIGHTING_DEPTH = 1        /* by the overlap depth (smoother where the contact runs onto the
+                                   flange) */
+} rc_reference_weighting;
 
 /* The options of a wheelset (defaults from rc_wheelset_options_default). */
 typedef struct rc_wheelset_options {
@@ -415,6 +432,11 @@ typedef struct rc_wheelset_options {
   int solver_count;            /* 1 .. 4: the tangential solvers run on every patch */
   int solvers[4];              /* rc_method values, distinct; the first one's forces make the
                                   wheels' totals */
+  int balance_solver;          /* the rc_method whose forces the load balance (BY_LOAD: their
+                                  vertical components) and RC_ROTATION_FREE use, one of solvers;
+                                  -1 (default): the first of solvers */
+  int reference_weighting;     /* rc_reference_weighting of each patch's reference point and
+                                  contact angle; default RC_WEIGHTING_SQUARED_GAP */
 } rc_wheelset_options;
 
 RC_API rc_status rc_wheelset_options_default(rc_wheelset_options* options);

@@ -34,10 +34,14 @@ abi_version = _core.abi_version()
 METHODS = {"nh-fastsim": 0, "fastsim": 1, "exact": 2, "exact-regularised": 3}
 #: nH-FastSim's slipping traction (the C API's rc_slip_direction; docs/FASTSIM.md "The slip direction").
 SLIP_DIRECTIONS = {"radial": 0, "flexibility-weighted": 1}
+#: how a wheelset patch's reference point and contact angle are averaged (rc_reference_weighting).
+REFERENCE_WEIGHTINGS = {"squared-gap": 0, "depth": 1}
+#: where the wheel's radius is the nominal radius (rc_nominal_radius_datum).
+NOMINAL_RADIUS_DATUMS = {"profile-origin": 0, "taping-line": 1}
 _GEOMETRIES = {"ellipse": 0, "hertz": 1}
 
 __all__ = ["Solver", "Result", "NormalResult", "Tractions", "FlexibilityTable", "FlexibilityTableValues",
-           "creep_forces", "METHODS", "SLIP_DIRECTIONS", "Wheelset", "WheelsetResult", "WheelResult", "WheelsetPatch", "SolverForces",
+           "creep_forces", "METHODS", "SLIP_DIRECTIONS", "REFERENCE_WEIGHTINGS", "NOMINAL_RADIUS_DATUMS", "Wheelset", "WheelsetResult", "WheelResult", "WheelsetPatch", "SolverForces",
            "WHEELSET_STATE_COLUMNS", "abi_version", "RailcontactError", "InvalidInputError", "NoContactError",
            "SeveralPatchesError", "NotConvergedError", "RailcontactIOError", "InternalError", "CancelledError"]
 
@@ -522,6 +526,11 @@ class Wheelset:
     wheel); warm_start [True] (each evaluation starts from the previous one's pressures; False:
     every evaluation from a cold start, as in batch()); slip_direction ["flexibility-weighted"]
     (nh-fastsim's slipping traction, within 3 % of the exact solver on the flange; "radial": Eq 8).
+    balance_solver [None: the first of solvers] (the solver whose forces the load balance and free
+    rolling use, one of solvers); reference_weighting ["squared-gap"] (each patch's reference point
+    and contact angle as Kalker's CONTACT weights them; "depth": by the overlap depth, smoother onto
+    the flange); nominal_radius_at ["profile-origin"] (where the wheel's radius is nominal_radius;
+    "taping-line"; with profiles only).
     A Wheelset may be shared between threads (one call at a time); evaluations release the GIL.
     """
 
@@ -542,7 +551,8 @@ class Wheelset:
                  poisson_ratio: float = 0.3, element_size: float = 0.2e-3, solvers=("nh-fastsim",),
                  loads=(98100.0, 98100.0), balance_roll: bool = False, tangential_in_balance: bool = True,
                  allow_wheel_lift: bool = False, warm_start: bool = True,
-                 slip_direction: str = "flexibility-weighted"):
+                 slip_direction: str = "flexibility-weighted", balance_solver=None,
+                 reference_weighting: str = "squared-gap", nominal_radius_at=None):
         if isinstance(solvers, str):
             solvers = (solvers,)
         if not isinstance(solvers, (tuple, list)) or not solvers:
@@ -558,7 +568,16 @@ class Wheelset:
                    "tangential_in_balance": int(_check.flag("tangential_in_balance", tangential_in_balance)),
                    "allow_wheel_lift": int(_check.flag("allow_wheel_lift", allow_wheel_lift)),
                    "warm_start": int(_check.flag("warm_start", warm_start)),
-                   "slip_direction": _slip_direction(slip_direction)}
+                   "slip_direction": _slip_direction(slip_direction),
+                   "reference_weighting": REFERENCE_WEIGHTINGS[_check.choice("reference_weighting",
+                                                                             reference_weighting,
+                                                                             REFERENCE_WEIGHTINGS)],
+                   "balance_solver": -1}
+        if balance_solver is not None:
+            named = _check.choice("balance_solver", balance_solver, METHODS)
+            if named not in self._solvers:
+                raise InvalidInputError(f"balance_solver = {named!r} is not one of solvers {self._solvers}")
+            options["balance_solver"] = METHODS[named]
         if loads is not None:  # one load for both wheels, or (right, left)
             pair = _check.grid("loads", loads)
             if pair.size not in (1, 2):
@@ -569,6 +588,11 @@ class Wheelset:
                  "nominal_radius": nominal_radius}
         dimensions = {_TRACK_KEYWORDS[key]: _check.number(key, value) for key, value in given.items()
                       if value is not None}
+        if nominal_radius_at is not None:
+            given["nominal_radius_at"] = nominal_radius_at
+            dimensions["nominal_radius_at"] = NOMINAL_RADIUS_DATUMS[_check.choice("nominal_radius_at",
+                                                                                 nominal_radius_at,
+                                                                                 NOMINAL_RADIUS_DATUMS)]
         profiles = {"wheel": wheel, "rail": rail, "right_wheel": right_wheel, "left_wheel": left_wheel,
                     "right_rail": right_rail, "left_rail": left_rail}
         paths = {key: _check.path(key, value) for key, value in profiles.items() if value is not None}

@@ -591,6 +591,7 @@ rc_track_parameters track_parameters(const py::dict& d) {
     else if (key == "flange_back_y_m") t.flange_back_y_m = value;
     else if (key == "taping_line_from_flange_back_m") t.taping_line_from_flange_back_m = value;
     else if (key == "nominal_rolling_radius_m") t.nominal_rolling_radius_m = value;
+    else if (key == "nominal_radius_at") t.nominal_radius_at = static_cast<int>(value);
     else raise(RC_INVALID_INPUT, "unknown track parameter '" + key + "'");
   }
   return t;
@@ -599,7 +600,8 @@ rc_track_parameters track_parameters(const py::dict& d) {
 #define RC_WHEELSET_DOUBLES(X) \
   X(youngs_modulus_Pa) X(poisson_ratio) X(friction_coefficient) X(element_size_m) X(right_load_N) X(left_load_N)
 #define RC_WHEELSET_INTS(X) \
-  X(normal_mode) X(balance_roll) X(tangential_in_balance) X(allow_wheel_lift) X(warm_start) X(slip_direction)
+  X(normal_mode) X(balance_roll) X(tangential_in_balance) X(allow_wheel_lift) X(warm_start) X(slip_direction) \
+      X(balance_solver) X(reference_weighting)
 
 bool assign_option(rc_wheelset_options& o, const std::string& key, double value) {
 #define RC_DOUBLE(name) if (key == #name) { o.name = value; return true; }
@@ -645,6 +647,7 @@ class WheelsetHandle {
     d["flange_back_y_m"] = t.flange_back_y_m;
     d["taping_line_from_flange_back_m"] = t.taping_line_from_flange_back_m;
     d["nominal_rolling_radius_m"] = t.nominal_rolling_radius_m;
+    d["nominal_radius_at"] = t.nominal_radius_at == RC_RADIUS_AT_TAPING_LINE ? "taping-line" : "profile-origin";
     d["nominal_axle_height_m"] = height;
     return d;
   }

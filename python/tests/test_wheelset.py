@@ -168,6 +168,45 @@ def test_slip_direction_on_the_flange():
         railcontact.Wheelset(element_size=COARSE, slip_direction="sideways")
 
 
+def test_balance_solver_reference_weighting_and_radius_datum():
+    """balance_solver moves the wheel heights (the exact solver's vertical force components carry
+    the load); reference_weighting="depth" moves the contact angle of the two-lobe patch at
+    y = -5.5 mm by more than 3 mrad; nominal_radius_at="taping-line" with a taping line 1 mm off the
+    profile origin moves xi. Wrong names are refused, naming the option."""
+    solvers = ("nh-fastsim", "exact")
+    first = railcontact.Wheelset(element_size=COARSE, warm_start=False, solvers=solvers)
+    by_exact = railcontact.Wheelset(element_size=COARSE, warm_start=False, solvers=solvers, balance_solver="exact")
+    assert by_exact.options["balance_solver"] == railcontact.METHODS["exact"]
+    a, b = first.evaluate(y=-6e-3), by_exact.evaluate(y=-6e-3)
+    assert abs(a.right.vertical_displacement_m - b.right.vertical_displacement_m) > 1e-9
+    with pytest.raises(railcontact.InvalidInputError, match="balance_solver = 'fastsim' is not one of solvers"):
+        railcontact.Wheelset(element_size=COARSE, solvers=solvers, balance_solver="fastsim")
+
+    squared = railcontact.Wheelset(element_size=COARSE, warm_start=False)
+    depth = railcontact.Wheelset(element_size=COARSE, warm_start=False, reference_weighting="depth")
+    gamma_squared = squared.evaluate(y=-5.5e-3).right.patches[0].contact_angle_rad
+    gamma_depth = depth.evaluate(y=-5.5e-3).right.patches[0].contact_angle_rad
+    assert abs(gamma_depth - gamma_squared) > 3e-3
+    with pytest.raises(railcontact.InvalidInputError, match="reference_weighting = 'mean' is not one of squared-gap"):
+        railcontact.Wheelset(element_size=COARSE, reference_weighting="mean")
+
+    profiles = os.path.join(os.path.dirname(__file__), "..", "..", "data", "profiles")
+    wheel = os.path.join(profiles, "MBench_S1002_v3.prw")
+    rail = os.path.join(profiles, "MBench_UIC60_v3.prr")
+    origin = railcontact.Wheelset(wheel, rail, taping_line_distance=0.071, element_size=COARSE, warm_start=False)
+    taping = railcontact.Wheelset(wheel, rail, taping_line_distance=0.071, nominal_radius_at="taping-line",
+                                  element_size=COARSE, warm_start=False)
+    assert origin.track["nominal_radius_at"] == "profile-origin"
+    assert taping.track["nominal_radius_at"] == "taping-line"
+    xi_origin = origin.evaluate().right.patches[0].xi
+    xi_taping = taping.evaluate().right.patches[0].xi
+    assert abs(xi_taping - xi_origin) > 1e-5
+    with pytest.raises(railcontact.InvalidInputError, match="nominal_radius_at = 'flange' is not one of profile-origin"):
+        railcontact.Wheelset(wheel, rail, nominal_radius_at="flange")
+    with pytest.raises(railcontact.InvalidInputError, match="nominal_radius_at: track dimensions need profile files"):
+        railcontact.Wheelset(nominal_radius_at="taping-line")
+
+
 def test_exceptions(wheelset):
     with pytest.raises(railcontact.InvalidInputError, match="y = nan"):
         wheelset.evaluate(y=float("nan"))

@@ -38,7 +38,7 @@ void require_flag(int value, const char* field) {
           [&] { return fmt::format("rc_wheelset_options.{} = {} must be 0 or 1", field, value); });
 }
 
-rc::TangentialSolver solver_of(int method) {
+rc::TangentialSolver solver_of(int method, const char* field = "solvers") {
   switch (method) {
     case RC_METHOD_NH_FASTSIM: return rc::TangentialSolver::nh_fastsim;
     case RC_METHOD_FASTSIM: return rc::TangentialSolver::fastsim;
@@ -46,9 +46,9 @@ rc::TangentialSolver solver_of(int method) {
     case RC_METHOD_EXACT_REGULARISED: return rc::TangentialSolver::exact_regularised;
     default: break;
   }
-  throw Error(fmt::format("rc_wheelset_options.solvers: {} is not an rc_method (0 nh-fastsim, 1 fastsim, 2 exact, "
+  throw Error(fmt::format("rc_wheelset_options.{}: {} is not an rc_method (0 nh-fastsim, 1 fastsim, 2 exact, "
                           "3 exact-regularised)",
-                          method));
+                          field, method));
 }
 
 rc::WheelsetOptions options_of(const rc_wheelset_options& o) {
@@ -83,6 +83,21 @@ rc::WheelsetOptions options_of(const rc_wheelset_options& o) {
     });
     options.solvers.push_back(solver);
   }
+  if (o.balance_solver != -1) {
+    const rc::TangentialSolver balance = solver_of(o.balance_solver, "balance_solver");
+    require(std::find(options.solvers.begin(), options.solvers.end(), balance) != options.solvers.end(), [&] {
+      return fmt::format("rc_wheelset_options.balance_solver = {} ({}) is not one of solvers; -1 for the first of them",
+                         o.balance_solver, rc::solver_name(balance));
+    });
+    options.balance_solver = balance;
+  }
+  require(o.reference_weighting == RC_WEIGHTING_SQUARED_GAP || o.reference_weighting == RC_WEIGHTING_DEPTH, [&] {
+    return fmt::format("rc_wheelset_options.reference_weighting = {} is not an rc_reference_weighting (0 squared gap, "
+                       "1 depth)",
+                       o.reference_weighting);
+  });
+  options.search.weighting = o.reference_weighting == RC_WEIGHTING_DEPTH ? rc::ReferenceWeighting::depth
+                                                                          : rc::ReferenceWeighting::squared_gap;
   if (o.normal_mode == RC_WHEELSET_BY_LOAD)
     options.loads = rc::WheelLoads{o.right_load_N, o.left_load_N, o.balance_roll != 0};
   else
@@ -139,6 +154,10 @@ rc::WheelsetState state_of(const rc_wheelset_state& c) {
   return state;
 }
 
+int datum_of(rc::NominalRadiusDatum datum) {
+  return datum == rc::NominalRadiusDatum::taping_line ? RC_RADIUS_AT_TAPING_LINE : RC_RADIUS_AT_PROFILE_ORIGIN;
+}
+
 rc::TrackWheelsetParameters track_of(const rc_track_parameters* t) {
   rc::TrackWheelsetParameters p;
   if (t == nullptr) return p;
@@ -155,6 +174,13 @@ rc::TrackWheelsetParameters track_of(const rc_track_parameters* t) {
   p.flange_back_y_m = t->flange_back_y_m;
   p.taping_line_from_flange_back_m = t->taping_line_from_flange_back_m;
   p.nominal_rolling_radius_m = t->nominal_rolling_radius_m;
+  require(t->nominal_radius_at == RC_RADIUS_AT_PROFILE_ORIGIN || t->nominal_radius_at == RC_RADIUS_AT_TAPING_LINE, [&] {
+    return fmt::format("rc_track_parameters.nominal_radius_at = {} is not an rc_nominal_radius_datum (0 profile "
+                       "origin, 1 taping line)",
+                       t->nominal_radius_at);
+  });
+  p.nominal_radius_at = t->nominal_radius_at == RC_RADIUS_AT_TAPING_LINE ? rc::NominalRadiusDatum::taping_line
+                                                                         : rc::NominalRadiusDatum::profile_origin;
   rc::validate(p, "rc_track_parameters.");
   return p;
 }
@@ -236,6 +262,7 @@ const char* options_field(rc::WheelsetTableSetting setting) {
     case rc::WheelsetTableSetting::material: return "youngs_modulus_Pa, poisson_ratio";
     case rc::WheelsetTableSetting::element_size: return "element_size_m";
     case rc::WheelsetTableSetting::slip_direction: return "slip_direction";
+    case rc::WheelsetTableSetting::contact_definition: return "reference_weighting";
     default: return "not an option: rebuild the table";
   }
 }
@@ -356,6 +383,7 @@ rc_status rc_track_parameters_default(rc_track_parameters* t) {
   t->flange_back_y_m = p.flange_back_y_m;
   t->taping_line_from_flange_back_m = p.taping_line_from_flange_back_m;
   t->nominal_rolling_radius_m = p.nominal_rolling_radius_m;
+  t->nominal_radius_at = datum_of(p.nominal_radius_at);
   return RC_OK;
 }
 
@@ -379,6 +407,9 @@ rc_status rc_wheelset_options_default(rc_wheelset_options* o) {
                           : RC_SLIP_RADIAL;
   o->solver_count = 1;
   o->solvers[0] = RC_METHOD_NH_FASTSIM;
+  o->balance_solver = -1;
+  o->reference_weighting =
+      d.search.weighting == rc::ReferenceWeighting::depth ? RC_WEIGHTING_DEPTH : RC_WEIGHTING_SQUARED_GAP;
   return RC_OK;
 }
 
@@ -447,6 +478,7 @@ rc_status rc_wheelset_get_track(const rc_wheelset* w, rc_track_parameters* track
       track->flange_back_y_m = p.flange_back_y_m;
       track->taping_line_from_flange_back_m = p.taping_line_from_flange_back_m;
       track->nominal_rolling_radius_m = p.nominal_rolling_radius_m;
+      track->nominal_radius_at = datum_of(p.nominal_radius_at);
     }
     if (nominal_axle_height_m != nullptr) *nominal_axle_height_m = t.nominal_axle_height_m();
   });

@@ -1,6 +1,6 @@
 /* ABI check of railcontact/railcontact.h (ctest c_api.abi_c, c_api.abi_cxx): compiled with
    gcc -std=c11 -Wall -Wextra -pedantic -Werror and as C++ with g++. The layouts below are the ABI
-   of RC_ABI_VERSION 2: a change that breaks one of them must raise RAILCONTACT_ABI_VERSION in
+   of RC_ABI_VERSION 3: a change that breaks one of them must raise RAILCONTACT_ABI_VERSION in
    CMakeLists.txt (and these numbers). x86-64 / AArch64 (LP64) layouts. */
 #include <stddef.h>
 
@@ -12,7 +12,7 @@
 #define RC_STATIC_ASSERT _Static_assert
 #endif
 
-RC_STATIC_ASSERT(RC_ABI_VERSION == 2, "the layouts below are those of ABI version 2");
+RC_STATIC_ASSERT(RC_ABI_VERSION == 3, "the layouts below are those of ABI version 3");
 RC_STATIC_ASSERT(sizeof(rc_status) == sizeof(int), "enumerations are int-sized");
 RC_STATIC_ASSERT(sizeof(rc_method) == sizeof(int), "enumerations are int-sized");
 RC_STATIC_ASSERT(RC_OK == 0 && RC_INVALID_INPUT == 1 && RC_INTERNAL == 6 && RC_CANCELLED == 9, "status values");
@@ -33,9 +33,14 @@ RC_STATIC_ASSERT(sizeof(rc_flextable_info) == 6 * 8 + 4 * 4, "rc_flextable_info"
 RC_STATIC_ASSERT(RC_SLIP_RADIAL == 0 && RC_SLIP_FLEXIBILITY_WEIGHTED == 1, "slip direction values");
 RC_STATIC_ASSERT(RC_WHEEL_LEFT == 1 && RC_WHEELSET_BY_POSITION == 1 && RC_ROTATION_GIVEN == 1,
                  "wheelset enumeration values");
-RC_STATIC_ASSERT(sizeof(rc_track_parameters) == 6 * 8, "rc_track_parameters");
-RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 11 * 4 + 4,
-                 "rc_wheelset_options: 6 doubles, 11 ints, 4 bytes padding");
+RC_STATIC_ASSERT(sizeof(rc_track_parameters) == 6 * 8 + 4 + 4, "rc_track_parameters: 6 doubles, 1 int, 4 bytes padding");
+RC_STATIC_ASSERT(offsetof(rc_track_parameters, nominal_radius_at) == 48, "rc_track_parameters.nominal_radius_at");
+RC_STATIC_ASSERT(RC_RADIUS_AT_TAPING_LINE == 1 && RC_WEIGHTING_DEPTH == 1, "datum and weighting values");
+RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 13 * 4 + 4,
+                 "rc_wheelset_options: 6 doubles, 13 ints, 4 bytes padding");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_options, balance_solver) == 92 &&
+                     offsetof(rc_wheelset_options, reference_weighting) == 96,
+                 "rc_wheelset_options.balance_solver, reference_weighting");
 RC_STATIC_ASSERT(offsetof(rc_wheelset_options, normal_mode) == 48 &&
                      offsetof(rc_wheelset_options, slip_direction) == 68 && offsetof(rc_wheelset_options, solvers) == 76,
                  "rc_wheelset_options fields");
