@@ -264,8 +264,8 @@ TEST(ProfileReaders, DecimalCommasAreNamedWithTheirLine) {
 
 // An undercut profile (the gauge face overhangs: y goes back along the points) is not a graph
 // z(y), which the contact search takes: the part under the overhang is missing from it (a flange
-// contact there would fail with a message about the load). validate names the overhang, as
-// tests/data/bad_inputs/uic60_undercut.prr is made: the gauge face below z = 20 mm leans back
+// contact there would fail with a message about the load). validate names the overhang (read_profile
+// first curates it, tests/profile_curation_test.cpp), as tests/data/uic60_undercut.prr is made: the gauge face below z = 20 mm leans back
 // under the head by 0.15 mm per mm. The shipped profiles, whose y is monotonic, pass, and so does
 // an overhang of measurement noise (ProfileLimits::max_lateral_retreat_m).
 TEST(Profile, UndercutProfileNamesTheOverhang) {

@@ -210,12 +210,12 @@ WheelsetCase read_wheelset_case(const std::filesystem::path& path) {
 
 WheelsetTrack wheelset_track(const WheelsetCase& c) {
   if (!c.right_wheel_profile.empty()) {
-    WheelsetProfiles p{read_profile(c.right_wheel_profile), read_profile(c.left_wheel_profile),
-                       read_profile(c.right_rail_profile), read_profile(c.left_rail_profile)};
+    WheelsetProfiles p{read_profile(c.right_wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}), read_profile(c.left_wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}),
+                       read_profile(c.right_rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), read_profile(c.left_rail_profile, ProfileReadOptions{.role = ProfileKind::rail})};
     return WheelsetTrack(p);
   }
   const WheelRailSetup setup = read_wheel_rail_setup(c.setup_file.empty() ? default_wheel_rail_setup_path() : c.setup_file);
-  return WheelsetTrack(read_profile(setup.wheel_profile), read_profile(setup.rail_profile), setup.track);
+  return WheelsetTrack(read_profile(setup.wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}), read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), setup.track);
 }
 
 }  // namespace railcontact

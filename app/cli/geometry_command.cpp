@@ -33,9 +33,9 @@ struct GeometryArguments {
   std::string out = "railcontact-out/geometry";
 };
 
-Profile read_option_profile(const std::string& option, const std::string& file) {
+Profile read_option_profile(const std::string& option, const std::string& file, ProfileKind role) {
   try {
-    return read_profile(file);
+    return read_profile(file, ProfileReadOptions{.role = role});
   } catch (const Error& e) {
     throw Error(e.kind(), fmt::format("{} {}: {}", option, file, e.what()));
   }
@@ -58,8 +58,10 @@ WheelsetTrack geometry_track(const GeometryArguments& a, const CLI::App& sub, st
   }
   WheelRailSetup setup = read_wheel_rail_setup(default_wheel_rail_setup_path());
   description = "S1002 / UIC60 1:40";
-  const Profile wheel = a.wheel_file.empty() ? read_profile(setup.wheel_profile) : read_option_profile("--wheel", a.wheel_file);
-  const Profile rail = a.rail_file.empty() ? read_profile(setup.rail_profile) : read_option_profile("--rail", a.rail_file);
+  const Profile wheel = a.wheel_file.empty() ? read_profile(setup.wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel})
+                                           : read_option_profile("--wheel", a.wheel_file, ProfileKind::wheel);
+  const Profile rail = a.rail_file.empty() ? read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail})
+                                         : read_option_profile("--rail", a.rail_file, ProfileKind::rail);
   if (!a.wheel_file.empty() || !a.rail_file.empty()) {
     description = fmt::format("wheel {}, rail {}", a.wheel_file.empty() ? setup.wheel_profile.filename().string() : a.wheel_file,
                               a.rail_file.empty() ? setup.rail_profile.filename().string() : a.rail_file);

@@ -28,6 +28,16 @@ namespace railcontact {
 
 enum class ProfileKind { unknown, wheel, rail };
 
+// What curated() changed in a profile's point list (docs/GEOMETRY.md §8 "Measured profiles").
+struct ProfileCuration {
+  int zigzags_repaired = 0;         // pairs of stitched points replaced by their mean
+  double largest_overhang_m = 0.0;  // the largest lateral fold-back of the points read (undercut)
+  std::size_t hidden_points = 0;    // points dropped behind the envelope the other body sees
+  double hidden_from_y_m = 0.0;     // ... their lateral range (profile frame), when any
+  double hidden_to_y_m = 0.0;
+  [[nodiscard]] bool changed() const { return zigzags_repaired > 0 || hidden_points > 0; }
+};
+
 // A profile as a point list in the profile frame (metres), in file order after the file's own
 // processing flags (SIMPACK mirroring, inversion, units) have been applied.
 struct Profile {
@@ -35,9 +45,31 @@ struct Profile {
   std::vector<double> z_m;
   ProfileKind kind = ProfileKind::unknown;
   std::string source;  // file name (or a description) used in error messages
+  ProfileCuration curation;  // what read_profile's curation changed (nothing for a clean profile)
 
   [[nodiscard]] std::size_t size() const { return y_m.size(); }
 };
+
+// The curation of a measured profile (docs/GEOMETRY.md §8 "Measured profiles").
+struct ProfileCurationOptions {
+  // Two consecutive points at which the direction turns back by more than 150 degrees (a point
+  // stitched twice where two measured sections meet) are replaced by their mean.
+  bool repair_zigzags = true;
+  // A profile that folds back laterally by more than ProfileLimits::max_lateral_retreat_m (an
+  // undercut) is replaced by its envelope on the side the other body sees (a wheel's from below, a
+  // rail's from above): the points behind it cannot be touched by a body approaching from that
+  // side and are dropped. Needs the profile's role (a wheel or a rail).
+  bool hide_undercuts = true;
+  // More hidden points than this share of the profile is refused: the profile is upside down or
+  // given in the other body's role.
+  double max_hidden_fraction = 0.5;
+};
+
+// The profile with its zig-zags repaired and its undercuts hidden (the report in .curation);
+// role: the profile's role in the pair (unknown: its file's kind; no envelope when both are
+// unknown). A profile without these faults is returned unchanged, point for point. Throws Error
+// when more than max_hidden_fraction of the points would be hidden.
+Profile curated(Profile profile, ProfileKind role = ProfileKind::unknown, const ProfileCurationOptions& options = {});
 
 // Options of the readers.
 struct ProfileReadOptions {
@@ -48,9 +80,14 @@ struct ProfileReadOptions {
   // highest point is an interior maximum, a wheel whose flange tip is an interior minimum) is
   // rotated by 180 degrees about the longitudinal axis (y -> -y, z -> -z).
   bool miniprof_auto_vertical = true;
-  // Applied last, to any format: y -> -y and/or z -> -z.
+  // Applied after reading, to any format: y -> -y and/or z -> -z.
   bool mirror_y = false;
   bool mirror_z = false;
+  // The profile's role where the caller knows it (the wheel or the rail of a pair); unknown: the
+  // file's own kind (SIMPACK type, MiniProf extension). Decides the side of the curation's envelope.
+  ProfileKind role = ProfileKind::unknown;
+  // Applied last, before the checks (validate).
+  ProfileCurationOptions curation{};
 };
 
 // Reads a profile, choosing the format by the file extension (case-insensitive):

@@ -251,9 +251,9 @@ const rc::WheelsetResult& require_result(const rc_wheelset* w) {
   return *w->last;
 }
 
-rc::Profile profile(const char* path, const char* what) {
+rc::Profile profile(const char* path, const char* what, rc::ProfileKind role) {
   require_pointer(path, what);
-  return rc::read_profile(path);
+  return rc::read_profile(path, rc::ProfileReadOptions{.role = role});
 }
 
 // The fields of rc_wheelset_options behind a table's setting (docs/C_API.md "The wheelset table").
@@ -442,8 +442,8 @@ rc_status rc_wheelset_set_track(rc_wheelset* w, const char* wheel_profile_path, 
   if (w == nullptr) return RC_INVALID_INPUT;
   return guarded(&w->error, [&] {
     const rc::TrackWheelsetParameters parameters = track_of(track);
-    const rc::Profile wheel = profile(wheel_profile_path, "rc_wheelset_set_track: wheel_profile_path");
-    const rc::Profile rail = profile(rail_profile_path, "rc_wheelset_set_track: rail_profile_path");
+    const rc::Profile wheel = profile(wheel_profile_path, "rc_wheelset_set_track: wheel_profile_path", rc::ProfileKind::wheel);
+    const rc::Profile rail = profile(rail_profile_path, "rc_wheelset_set_track: rail_profile_path", rc::ProfileKind::rail);
     set_track(w, rc::WheelsetTrack(wheel, rail, parameters), "rc_wheelset_set_track");
   });
 }
@@ -455,10 +455,10 @@ rc_status rc_wheelset_set_track_profiles(rc_wheelset* w, const char* right_wheel
   return guarded(&w->error, [&] {
     const rc::TrackWheelsetParameters parameters = track_of(track);
     rc::WheelsetProfiles profiles;
-    profiles.right_wheel = profile(right_wheel_path, "rc_wheelset_set_track_profiles: right_wheel_path");
-    profiles.left_wheel = profile(left_wheel_path, "rc_wheelset_set_track_profiles: left_wheel_path");
-    profiles.right_rail = profile(right_rail_path, "rc_wheelset_set_track_profiles: right_rail_path");
-    profiles.left_rail = profile(left_rail_path, "rc_wheelset_set_track_profiles: left_rail_path");
+    profiles.right_wheel = profile(right_wheel_path, "rc_wheelset_set_track_profiles: right_wheel_path", rc::ProfileKind::wheel);
+    profiles.left_wheel = profile(left_wheel_path, "rc_wheelset_set_track_profiles: left_wheel_path", rc::ProfileKind::wheel);
+    profiles.right_rail = profile(right_rail_path, "rc_wheelset_set_track_profiles: right_rail_path", rc::ProfileKind::rail);
+    profiles.left_rail = profile(left_rail_path, "rc_wheelset_set_track_profiles: left_rail_path", rc::ProfileKind::rail);
     set_track(w, rc::WheelsetTrack(profiles, parameters), "rc_wheelset_set_track_profiles");
   });
 }

@@ -108,7 +108,7 @@ Profile geometry::parse_miniprof_profile(std::string_view bytes, const std::file
     for (auto& v : profile.y_m) v = -v;
     for (auto& v : profile.z_m) v = -v;
   }
-  geometry::check_profile(profile, "a MiniProf profile: the numbers are read as millimetres");
+  geometry::check_profile(profile, "a MiniProf profile: the numbers are read as millimetres", geometry::ProfileCheckScope::points);
   return profile;
 }
 

@@ -77,7 +77,7 @@ void check_extent(const Profile& p, const std::string& name, std::string_view un
   });
 }
 
-// Consecutive points: distinct, at most max_point_gap apart, no reversal, a bounded length.
+// Consecutive points: distinct, at most max_point_gap apart, a bounded length.
 void check_spacing(const Profile& p, const std::string& name) {
   double length = 0.0;
   for (std::size_t i = 0; i + 1 < p.size(); ++i) {
@@ -99,6 +99,10 @@ void check_spacing(const Profile& p, const std::string& name) {
                        "long: are the points in order along the profile?",
                        name, length / kMm, ProfileLimits::max_length_m / kMm);
   });
+}
+
+// No reversal of direction (more than 150 degrees) at a point.
+void check_turns(const Profile& p, const std::string& name) {
   for (std::size_t i = 1; i + 1 < p.size(); ++i) {
     const double ay = p.y_m[i] - p.y_m[i - 1], az = p.z_m[i] - p.z_m[i - 1];
     const double by = p.y_m[i + 1] - p.y_m[i], bz = p.z_m[i + 1] - p.z_m[i];
@@ -175,7 +179,7 @@ void check_single_valued(const Profile& p, const std::string& name) {
 
 }  // namespace
 
-void check_profile(const Profile& profile, std::string_view unit_hint) {
+void check_profile(const Profile& profile, std::string_view unit_hint, ProfileCheckScope scope) {
   const std::string name = name_of(profile);
   require(profile.y_m.size() == profile.z_m.size(), [&] {
     return fmt::format("profile {}: {} y values but {} z values", name, profile.y_m.size(), profile.z_m.size());
@@ -193,6 +197,8 @@ void check_profile(const Profile& profile, std::string_view unit_hint) {
   check_extent(profile, name, unit_hint);
   check_spacing(profile, name);
   check_no_crossing(profile, name);
+  if (scope == ProfileCheckScope::points) return;
+  check_turns(profile, name);
   check_single_valued(profile, name);
 }
 

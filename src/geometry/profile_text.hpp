@@ -50,10 +50,15 @@ std::string lower_case(std::string_view text);
 // File content for a message: escaped and shortened (printable_excerpt, railcontact/error.hpp).
 std::string quoted(std::string_view text);
 
-// The checks of validate (railcontact/geometry.hpp, ProfileLimits); a wrong extent adds
+// The checks of validate (railcontact/geometry.hpp, ProfileLimits), all of them or those of the
+// point list as read (the readers; read_profile curates and then checks all); a wrong extent adds
 // unit_hint, the reader's statement of the length unit it applied (e.g. "units.len.f = 1 at
 // line 37: the numbers are read as metres").
-void check_profile(const Profile& profile, std::string_view unit_hint);
+// What check_profile checks: the point list as read (count, finite, extent, gaps, length,
+// crossings), or that and the shape the contact search needs (no turn back, no undercut), which the
+// curation (curated) may repair in between.
+enum class ProfileCheckScope { points, all };
+void check_profile(const Profile& profile, std::string_view unit_hint, ProfileCheckScope scope = ProfileCheckScope::all);
 // "the numbers are read as millimetres" (1e-3), "... as metres" (1), "... in units of X m".
 std::string length_unit_hint(double length_unit_m);
 

@@ -21,6 +21,7 @@ Profile read_profile(const std::filesystem::path& path, const ProfileReadOptions
   }
   if (options.mirror_y) profile = mirrored_y(std::move(profile));
   if (options.mirror_z) profile = mirrored_z(std::move(profile));
+  profile = curated(std::move(profile), options.role, options.curation);
   validate(profile);
   return profile;
 }

@@ -257,7 +257,7 @@ Profile geometry::parse_simpack_profile(std::string_view bytes, const std::files
     fail(path, fmt::format("{} points left after the bounds/point distance; at least 4 are needed", file.y.size()));
   profile.y_m = std::move(file.y);
   profile.z_m = std::move(file.z);
-  geometry::check_profile(profile, unit_hint(file.spline_keys));
+  geometry::check_profile(profile, unit_hint(file.spline_keys), geometry::ProfileCheckScope::points);
   return profile;
 }
 

@@ -34,7 +34,7 @@ Profile geometry::parse_text_profile(std::string_view bytes, const std::filesyst
     profile.z_m.push_back((*values)[1] * length_unit_m);
   }
   if (profile.size() < 4) geometry::fail(path, fmt::format("{} points; at least 4 are needed", profile.size()));
-  geometry::check_profile(profile, "a plain-text profile: " + geometry::length_unit_hint(length_unit_m));
+  geometry::check_profile(profile, "a plain-text profile: " + geometry::length_unit_hint(length_unit_m), geometry::ProfileCheckScope::points);
   return profile;
 }
 

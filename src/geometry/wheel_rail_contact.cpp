@@ -112,8 +112,14 @@ WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const Tr
   // Wheel: taping line, and the flange on the side of negative y.
   taping_y_m_ = parameters_.flange_back_y_m + parameters_.taping_line_from_flange_back_m;
   require(taping_y_m_ > wheel_.y_min_m() && taping_y_m_ < wheel_.y_max_m(), [&] {
-    return fmt::format("wheel profile {}: the taping line y = {:.3f} mm lies outside the profile [{:.3f}, {:.3f}] mm",
-                       wheel.source, taping_y_m_ * 1e3, wheel_.y_min_m() * 1e3, wheel_.y_max_m() * 1e3);
+    // A measured profile (MiniProf) has its origin at the flange back, where it starts.
+    return fmt::format(
+        "wheel profile {}: the taping line y = {:.3f} mm (flange_back_y_m {:g} m + taping_line_from_flange_back_m {:g} "
+        "m) lies outside the profile [{:.3f}, {:.3f}] mm; flange_back_y_m is where the flange back lies in the "
+        "profile's coordinates: a profile measured from its flange back (MiniProf) has flange_back_y_m = 0, one drawn "
+        "from its taping line -0.070",
+        wheel.source, taping_y_m_ * 1e3, parameters_.flange_back_y_m, parameters_.taping_line_from_flange_back_m,
+        wheel_.y_min_m() * 1e3, wheel_.y_max_m() * 1e3);
   });
   taping_z_m_ = wheel_.z(taping_y_m_);
   {

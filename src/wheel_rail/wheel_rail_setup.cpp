@@ -123,7 +123,7 @@ std::filesystem::path default_wheel_profile_path() { return read_wheel_rail_setu
 std::filesystem::path default_rail_profile_path() { return read_wheel_rail_setup(default_wheel_rail_setup_path()).rail_profile; }
 
 WheelRailPair load_wheel_rail_pair(const WheelRailSetup& setup) {
-  return WheelRailPair(read_profile(setup.wheel_profile), read_profile(setup.rail_profile), setup.track);
+  return WheelRailPair(read_profile(setup.wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}), read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), setup.track);
 }
 
 WheelRailPair default_wheel_rail_pair() { return load_wheel_rail_pair(read_wheel_rail_setup(default_wheel_rail_setup_path())); }
@@ -131,7 +131,7 @@ WheelRailPair default_wheel_rail_pair() { return load_wheel_rail_pair(read_wheel
 WheelRailPair load_wheel_rail_pair(const std::filesystem::path& wheel_profile,
                                    const std::filesystem::path& rail_profile,
                                    const TrackWheelsetParameters& parameters) {
-  return WheelRailPair(read_profile(wheel_profile), read_profile(rail_profile), parameters);
+  return WheelRailPair(read_profile(wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}), read_profile(rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), parameters);
 }
 
 }  // namespace railcontact

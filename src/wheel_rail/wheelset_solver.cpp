@@ -798,7 +798,7 @@ WheelsetResult Wheelset::evaluate_rolling(const WheelsetState& input) {
 
 WheelsetTrack default_wheelset_track() {
   const WheelRailSetup setup = read_wheel_rail_setup(default_wheel_rail_setup_path());
-  return WheelsetTrack(read_profile(setup.wheel_profile), read_profile(setup.rail_profile), setup.track);
+  return WheelsetTrack(read_profile(setup.wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}), read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), setup.track);
 }
 
 }  // namespace railcontact
