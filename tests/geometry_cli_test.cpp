@@ -73,4 +73,24 @@ TEST(GeometryCli, PrintsTheConicitySummary) {
   EXPECT_NE(r.out.find("geometry.csv"), std::string::npos) << r.out;
 }
 
+// A measured wheel whose flange climbs before ±6 mm (tests/data/car7216_uic60.toml): the default
+// range ends where the flange climbs, on both sides, and says so; a range given explicitly that
+// reaches beyond it is an error naming the position.
+TEST(GeometryCli, TheDefaultRangeEndsWhereTheFlangeClimbs) {
+  const ScratchDirectory dir("geometry_cli_climb");
+  const std::string setup = std::string(RAILCONTACT_SOURCE_DIR) + "/tests/data/car7216_uic60.toml";
+  const CommandResult r = run_cli("geometry " + setup + " --json --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  const double from = j.at("swept_from_m").get<double>(), to = j.at("swept_to_m").get<double>();
+  EXPECT_GT(from, -6e-3);
+  EXPECT_LT(to, 6e-3);
+  EXPECT_GT(to, 3e-3);
+  EXPECT_NEAR(from, -to, 1e-9);  // the wheelset is symmetric
+  EXPECT_NE(r.err.find("the flange climbs beyond it"), std::string::npos) << r.err;
+  const CommandResult given = run_cli("geometry " + setup + " --y-from-m -0.006 --y-to-m 0.006 --out " + dir.string());
+  EXPECT_EQ(given.exit_code, 2);
+  EXPECT_NE(given.err.find("the flange is climbing over the rail"), std::string::npos) << given.err;
+}
+
 }  // namespace

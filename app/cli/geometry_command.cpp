@@ -101,6 +101,7 @@ int run_geometry(const GeometryArguments& a, const CLI::App& sub) {
   s.y_to_m = a.y_to_m;
   s.y_step_m = a.y_step_m;
   s.amplitude_m = a.amplitude_m;
+  s.stop_at_flange_climb = sub.count("--y-from-m") == 0 && sub.count("--y-to-m") == 0;
   study::validate(s);
   study::OutputDirectory out(a.out, &std::cerr);
   const study::ContactGeometryResult r = study::run_contact_geometry_study(track, s, out, std::cerr);
@@ -114,6 +115,8 @@ int run_geometry(const GeometryArguments& a, const CLI::App& sub) {
         {"y_to_m", s.y_to_m},
         {"y_step_m", s.y_step_m},
         {"positions", r.sweep.size()},
+        {"swept_from_m", r.swept_from_m},
+        {"swept_to_m", r.swept_to_m},
         {"amplitude_m", e.amplitude_m},
         {"tan_gamma_e_wavelength", e.tan_gamma_e_wavelength},
         {"tan_gamma_e_regression", e.tan_gamma_e_regression},
@@ -130,7 +133,7 @@ int run_geometry(const GeometryArguments& a, const CLI::App& sub) {
     return 0;
   }
   fmt::print("Contact geometry of {} (rigid wheels and rails, yaw 0), {} positions y = {:g} ... {:g} mm\n",
-             description, r.sweep.size(), a.y_from_m * 1e3, a.y_to_m * 1e3);
+             description, r.sweep.size(), r.swept_from_m * 1e3, r.swept_to_m * 1e3);
   fmt::print("Equivalent conicity at amplitude {:g} mm (EN 15302): tan γe = {:.4f} (kinematic wavelength, Annex B), "
              "{:.4f} (linear regression, Annex C)\n",
              a.amplitude_m * 1e3, e.tan_gamma_e_wavelength, e.tan_gamma_e_regression);
@@ -157,9 +160,9 @@ void add_geometry_command(CLI::App& app, Action& action) {
   sub->add_option("--rail", args->rail_file, "rail profile file (both rails; .prr, .ban or y z text in mm)");
   sub->add_option("--gauge-m", args->gauge_m, "track gauge (m; default 1.435)");
   sub->add_option("--flange-back-m", args->flange_back_m, "distance between the flange backs (m; default 1.36)");
-  sub->add_option("--rolling-radius-m", args->radius_m, "nominal rolling radius at the taping line (m; default 0.46)");
-  sub->add_option("--y-from-m", args->y_from_m, "first lateral displacement (m, + to the left; default -0.006)");
-  sub->add_option("--y-to-m", args->y_to_m, "last lateral displacement (m, + to the left; default 0.006)");
+  sub->add_option("--rolling-radius-m", args->radius_m, "nominal rolling radius r0 (m; default 0.46) at the wheel profile's origin (a set-up's track.nominal_radius_at may put it at the taping line)");
+  sub->add_option("--y-from-m", args->y_from_m, "first lateral displacement (m, + to the left; default -0.006, or where the flange climbs)");
+  sub->add_option("--y-to-m", args->y_to_m, "last lateral displacement (m, + to the left; default 0.006, or where the flange climbs)");
   sub->add_option("--y-step-m", args->y_step_m, "step of the lateral displacement (m, > 0; default 0.0001)");
   sub->add_option("--amplitude-m", args->amplitude_m, "amplitude of the equivalent conicity (m, > 0; default 0.003)");
   sub->add_flag("--json", args->json, "print the summary as one JSON object");

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 #include <fstream>
 #include <string>
 
@@ -75,22 +76,38 @@ ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, con
     try {
       result.sweep.push_back(rigid_contact_geometry(track, y));
     } catch (const Error& e) {
+      // check_flange's message (src/geometry/contact_geometry.cpp): the flange climbs at this y.
+      const bool climbs = std::string_view(e.what()).find("the flange is climbing") != std::string_view::npos;
+      if (study.stop_at_flange_climb && climbs && y < 0.0 && result.sweep.empty()) continue;  // not yet in range
+      if (study.stop_at_flange_climb && climbs && y > 0.0) break;                             // out of range
       throw Error(e.kind(), fmt::format("--y-from-m {:g} m .. --y-to-m {:g} m: at y = {:g} m: {}", study.y_from_m,
                                         study.y_to_m, y, e.what()));
     }
-    if (k == 0) {
+    if (result.sweep.size() == 1) {
       fmt::print(log, "contact geometry: y = {:g} ... {:g} mm in steps of {:g} mm\n", study.y_from_m / kMm,
                  study.y_to_m / kMm, study.y_step_m / kMm);
+      if (k > 0) fmt::print(log, "  from y = {:+.3f} mm: the flange climbs beyond it\n", y / kMm);
     }
     if (k % 40 == 0 || k == steps) fmt::print(log, "  y = {:+.3f} mm ({}/{})\n", y / kMm, k + 1, steps + 1);
   }
 
+  require(result.sweep.size() >= 5, [&] {
+    return fmt::format("y = {:g} .. {:g} m: fewer than 5 positions before the flange climbs", study.y_from_m, study.y_to_m);
+  });
+  result.swept_from_m = result.sweep.front().lateral_displacement_m;
+  result.swept_to_m = result.sweep.back().lateral_displacement_m;
+  if (result.swept_to_m < study.y_to_m - 0.5 * study.y_step_m)
+    fmt::print(log, "  to y = {:+.3f} mm: the flange climbs beyond it\n", result.swept_to_m / kMm);
   const RollingRadiusDifference delta_r(result.sweep);
   result.largest_amplitude_m = largest_conicity_amplitude_m(delta_r);
   require(study.amplitude_m <= result.largest_amplitude_m, [&] {
+    const bool clipped = result.swept_from_m > study.y_from_m + 0.5 * study.y_step_m ||
+                         result.swept_to_m < study.y_to_m - 0.5 * study.y_step_m;
     return fmt::format("--amplitude-m {:g} m must lie in (0, {:.5f}] m: the motion must stay within the swept "
-                       "y = {:g} .. {:g} m (widen --y-from-m / --y-to-m)",
-                       study.amplitude_m, result.largest_amplitude_m, study.y_from_m, study.y_to_m);
+                       "y = {:g} .. {:g} m ({})",
+                       study.amplitude_m, result.largest_amplitude_m, result.swept_from_m, result.swept_to_m,
+                       clipped ? "the flange climbs beyond it: check the track's gauge and flange back distance"
+                               : "widen --y-from-m / --y-to-m");
   });
   result.at_amplitude = equivalent_conicity(delta_r, study.amplitude_m);
 

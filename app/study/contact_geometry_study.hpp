@@ -16,10 +16,15 @@ struct ContactGeometryStudy {
   double amplitude_m = 3e-3;          // the amplitude of the summary
   double amplitude_step_m = 0.1e-3;   // conicity.csv: ŷ = 0.5 mm, 0.6 mm, ... up to the largest allowed
   double first_amplitude_m = 0.5e-3;
+  // The default range: positions beyond flange climb at either end (a worn or thin flange climbs
+  // before ±6 mm) are left out and the swept range ends there; a range the user gave is kept whole
+  // (a position beyond flange climb is an error).
+  bool stop_at_flange_climb = false;
 };
 
 struct ContactGeometryResult {
   std::vector<RigidContactGeometry> sweep;
+  double swept_from_m = 0.0, swept_to_m = 0.0;  // the first and last y swept
   EquivalentConicity at_amplitude;
   double largest_amplitude_m = 0.0;
   double half_contact_distance_m = 0.0;  // e0: half the lateral distance of the contact points at y_c
