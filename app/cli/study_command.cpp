@@ -10,6 +10,7 @@
 #include "study/mpi_cases.hpp"
 #include "study/paper_study.hpp"
 #include "study/patch_study.hpp"
+#include "study/profile_pair_study.hpp"
 
 namespace railcontact::cli {
 
@@ -139,6 +140,32 @@ void add_paper_study(CLI::App* study, Action& action) {
   });
 }
 
+// `study profiles`: every wheel-rail set-up end to end (docs/VALIDATION.md "Other profile pairs").
+void add_profile_pair_study(CLI::App* study, Action& action) {
+  auto options = std::make_shared<study::ProfilePairStudyOptions>();
+  auto out = std::make_shared<std::string>();
+  auto setups = std::make_shared<std::vector<std::string>>();
+  auto yaws = std::make_shared<std::vector<double>>();
+  CLI::App* cmd = study->add_subcommand(
+      "profiles", "every wheel-rail set-up end to end: conicity, the wheelset from y = 0 to flange climb at each yaw, "
+                  "nH-FastSim against the exact solver, jumps along y");
+  cmd->add_option("--out", *out, "output directory")->required();
+  cmd->add_option("setups", *setups, "wheel-rail set-up files (JSON; default: every shipped data/wheel_rail/*.json)");
+  cmd->add_option("--element-size-m", options->element_size_m, "element size (m)")->capture_default_str();
+  cmd->add_option("--y-step-m", options->y_step_m, "step of the lateral displacement (m, > 0)")->capture_default_str();
+  cmd->add_option("--yaw-rad", *yaws, "yaw angles (rad; default 0, 0.01, -0.01)");
+  cmd->add_flag("!--no-figures", options->figures, "skip the figures");
+  cmd->callback([options, out, setups, yaws, &action] {
+    action = [options, out, setups, yaws] {
+      options->output_directory = *out;
+      for (const std::string& s : *setups) options->setups.emplace_back(s);
+      if (!yaws->empty()) options->yaws_rad = *yaws;
+      study::run_profile_pair_study(*options, std::cerr);
+      return 0;
+    };
+  });
+}
+
 }  // namespace
 
 void add_study_command(CLI::App& app, Action& action) {
@@ -149,6 +176,7 @@ void add_study_command(CLI::App& app, Action& action) {
   add_bound_study(study, action);
   add_patch_study(study, action);
   add_paper_study(study, action);
+  add_profile_pair_study(study, action);
 }
 
 }  // namespace railcontact::cli

@@ -1,0 +1,256 @@
+// `railcontact study profiles`: every wheel–rail set-up checked end to end (see the header).
+#include "study/profile_pair_study.hpp"
+
+#include <fmt/core.h>
+#include <fmt/ostream.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <string_view>
+
+#include "railcontact/contact_geometry.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/geometry.hpp"
+#include "railcontact/wheel_rail.hpp"
+#include "railcontact/wheelset.hpp"
+#include "study/figures.hpp"
+#include "study/output_directory.hpp"
+
+namespace railcontact::study {
+
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kConicityAmplitude_m = 3e-3;  // EN 15302's usual amplitude
+constexpr double kTarget_percent = 3.0;        // nH-FastSim against the exact solver, % of μ F3
+
+// The set-up files: those given, or every shipped one, by name.
+std::vector<std::filesystem::path> setup_files(const ProfilePairStudyOptions& o) {
+  if (!o.setups.empty()) return o.setups;
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(default_wheel_rail_setup_path().parent_path()))
+    if (entry.path().extension() == ".json") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+WheelsetTrack track_of(const WheelRailSetup& setup) {
+  return WheelsetTrack(read_profile(setup.wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}),
+                       read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), setup.track);
+}
+
+bool flange_climbs(const Error& e) {
+  return std::string_view(e.what()).find("the flange is climbing") != std::string_view::npos;
+}
+
+// The rigid contact geometry: where the right wheel's flange climbs (towards −y, at most 10 mm) and
+// the equivalent conicity at 3 mm (NaN when the flange climbs before it).
+struct PairGeometry {
+  double climb_y_m = -10e-3;  // the last y (≤ 0) before the flange climbs
+  double tan_gamma_e = kNaN;
+};
+
+PairGeometry pair_geometry(const WheelsetTrack& track, double step_m) {
+  PairGeometry g;
+  const auto reach = [&](double direction) {
+    double last = 0.0;
+    for (int k = 1; k * step_m <= 10e-3 + 1e-12; ++k) {
+      try {
+        (void)rigid_contact_geometry(track, direction * k * step_m);
+      } catch (const Error& e) {
+        if (!flange_climbs(e)) throw;
+        break;
+      }
+      last = direction * k * step_m;
+    }
+    return last;
+  };
+  g.climb_y_m = reach(-1.0);
+  const double half = std::min({-g.climb_y_m, reach(1.0), 6e-3});
+  if (half < kConicityAmplitude_m) return g;
+  const RollingRadiusDifference delta_r(rigid_contact_sweep(track, -half, half, step_m));
+  if (largest_conicity_amplitude_m(delta_r) >= kConicityAmplitude_m)
+    g.tan_gamma_e = equivalent_conicity(delta_r, kConicityAmplitude_m).tan_gamma_e_regression;
+  return g;
+}
+
+// One (set-up, yaw) sweep, summarised.
+struct SweepSummary {
+  std::string setup;
+  double yaw_rad = 0.0;
+  int states = 0;
+  double last_y_m = 0.0;
+  std::string stop;  // why the sweep ended before the flange-climb limit (empty: it reached it)
+  std::size_t most_patches = 0;
+  double worst_dF1_percent = 0.0, worst_dF1_y_m = 0.0;
+  double worst_dF2_percent = 0.0, worst_dF2_y_m = 0.0;
+  double worst_step_N = 0.0, worst_step_y_m = 0.0;  // the largest step of a wheel force between two y
+  int jumps = 0;                                     // steps standing out from their neighbours (see below)
+  double tan_gamma_e = kNaN;
+};
+
+// A jump: a step of a wheel's force larger than 1 % of its load and three times both neighbouring
+// steps, with the number of patches unchanged (a patch that appears starts from zero force and
+// grows; a jump is a discontinuity of the model).
+void count_jumps(const std::vector<std::array<double, 3>>& force, const std::vector<std::size_t>& patches,
+                 const std::vector<double>& y, double load_N, SweepSummary& s) {
+  std::vector<double> step(force.size(), 0.0);
+  for (std::size_t k = 1; k < force.size(); ++k)
+    for (int i = 0; i < 3; ++i) step[k] = std::max(step[k], std::abs(force[k][i] - force[k - 1][i]));
+  for (std::size_t k = 1; k < force.size(); ++k) {
+    if (step[k] > s.worst_step_N) s.worst_step_N = step[k], s.worst_step_y_m = y[k];
+    const double before = k >= 2 ? step[k - 1] : 0.0, after = k + 1 < step.size() ? step[k + 1] : 0.0;
+    if (patches[k] == patches[k - 1] && step[k] > 0.01 * load_N && step[k] > 3.0 * std::max(before, after)) ++s.jumps;
+  }
+}
+
+std::ofstream open_file(const std::filesystem::path& path) {
+  std::ofstream f(path);
+  if (!f) throw write_error(path, errno);
+  return f;
+}
+
+std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:+.2f} %", v) : "–"; }
+
+}  // namespace
+
+void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log) {
+  require(std::isfinite(o.element_size_m) && o.element_size_m >= 0.05e-3 && o.element_size_m <= 2e-3, [&] {
+    return fmt::format("--element-size-m {:g} m must lie in [5e-05, 0.002] m", o.element_size_m);
+  });
+  require(std::isfinite(o.y_step_m) && o.y_step_m >= 0.01e-3 && o.y_step_m <= 1e-3,
+          [&] { return fmt::format("--y-step-m {:g} m must lie in [1e-05, 0.001] m", o.y_step_m); });
+  require(!o.yaws_rad.empty() && o.yaws_rad.size() <= 10, "--yaw-rad: 1 to 10 yaw angles");
+  for (const double yaw : o.yaws_rad)
+    require(std::isfinite(yaw) && std::abs(yaw) <= 0.05,
+            [&] { return fmt::format("--yaw-rad {:g} rad must lie in [-0.05, 0.05] rad", yaw); });
+  const std::vector<std::filesystem::path> files = setup_files(o);
+  require(!files.empty(), "study profiles: no wheel-rail set-up files");
+
+  OutputDirectory out(o.output_directory, &log);
+  std::ofstream rows = open_file(out.path("profile_pairs.csv"));
+  fmt::print(rows,
+             "setup,yaw_mrad,y_mm,side,patch,patches,contact_angle_rad,rail_profile_y_mm,normal_force_N,xi,eta,"
+             "phi_per_m,exact_F1_N,exact_F2_N,nh_fastsim_F1_N,nh_fastsim_F2_N,dF1_percent_mu_F3,dF2_percent_mu_F3,"
+             "wheel_Fx_N,wheel_Fy_N,wheel_Fz_N\n");
+  std::vector<SweepSummary> summaries;
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t sweeps = files.size() * o.yaws_rad.size();
+  std::size_t done = 0;
+  for (const std::filesystem::path& file : files) {
+    const WheelRailSetup setup = read_wheel_rail_setup(file);
+    const WheelsetTrack track = track_of(setup);
+    const PairGeometry geometry = pair_geometry(track, 0.1e-3);  // EN 15302 resolution, whatever the sweep step
+    const std::string name = file.stem().string();
+    fmt::print(log, "{}: the flange climbs beyond y = {:.2f} mm; tan γe(3 mm) = {:.4f}\n", name,
+               geometry.climb_y_m / kMm, geometry.tan_gamma_e);
+    for (const double yaw : o.yaws_rad) {
+      WheelsetOptions options;
+      options.element_size_m = o.element_size_m;
+      options.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
+      Wheelset wheelset(track, options);
+      SweepSummary s;
+      s.setup = name;
+      s.yaw_rad = yaw;
+      s.tan_gamma_e = geometry.tan_gamma_e;
+      const double mu = options.friction_coefficient;
+      std::vector<std::array<double, 3>> right_force;
+      std::vector<std::size_t> right_patches;
+      std::vector<double> ys;
+      const int steps = static_cast<int>(std::floor(-geometry.climb_y_m / o.y_step_m + 1e-9));
+      for (int k = 0; k <= steps; ++k) {
+        WheelsetState state;
+        state.position.lateral_displacement_m = -k * o.y_step_m;
+        state.position.yaw_rad = yaw;
+        WheelsetResult r;
+        try {
+          r = wheelset.evaluate(state);
+        } catch (const Error& e) {
+          if (k == 0) throw Error(e.kind(), fmt::format("study profiles: {} at y = 0, yaw {:g} rad: {}", name, yaw, e.what()));
+          s.stop = fmt::format("y = {:.2f} mm: {}", state.position.lateral_displacement_m / kMm, e.what());
+          break;
+        }
+        ++s.states;
+        s.last_y_m = state.position.lateral_displacement_m;
+        for (const WheelResult& w : r.wheels) {
+          s.most_patches = std::max(s.most_patches, w.patches.size());
+          for (std::size_t p = 0; p < w.patches.size(); ++p) {
+            const WheelsetPatch& patch = w.patches[p];
+            const TangentialForces& exact = patch.solvers[0].forces;
+            const TangentialForces& fast = patch.solvers[1].forces;
+            const double scale = 100.0 / (mu * patch.normal_force_N);
+            const double d1 = (fast.F1_N - exact.F1_N) * scale, d2 = (fast.F2_N - exact.F2_N) * scale;
+            if (std::abs(d1) > std::abs(s.worst_dF1_percent)) s.worst_dF1_percent = d1, s.worst_dF1_y_m = s.last_y_m;
+            if (std::abs(d2) > std::abs(s.worst_dF2_percent)) s.worst_dF2_percent = d2, s.worst_dF2_y_m = s.last_y_m;
+            fmt::print(rows, "{},{:.3f},{:.4f},{},{},{},{:.8f},{:.6f},{:.3f},{:.8e},{:.8e},{:.8e},{:.3f},{:.3f},{:.3f},{:.3f},"
+                             "{:.4f},{:.4f},{:.3f},{:.3f},{:.3f}\n",
+                       name, yaw * 1e3, s.last_y_m / kMm, side_name(w.side), p, w.patches.size(),
+                       patch.region.contact_angle_rad, patch.region.rail_profile_y_m / kMm, patch.normal_force_N,
+                       patch.creepage.xi, patch.creepage.eta, patch.creepage.phi, exact.F1_N, exact.F2_N, fast.F1_N,
+                       fast.F2_N, d1, d2, w.force_track_N[0], w.force_track_N[1], w.force_track_N[2]);
+          }
+        }
+        const WheelResult& right = r.wheels[0];
+        right_force.push_back({right.force_track_N[0], right.force_track_N[1], right.force_track_N[2]});
+        right_patches.push_back(right.patches.size());
+        ys.push_back(s.last_y_m);
+      }
+      count_jumps(right_force, right_patches, ys, options.loads ? options.loads->right_N : 98100.0, s);
+      summaries.push_back(s);
+      ++done;
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fmt::print(log, "  yaw {:+.0f} mrad: {} states to y = {:.2f} mm ({}/{}), {:.0f} s left\n", yaw * 1e3, s.states,
+                 s.last_y_m / kMm, done, sweeps, elapsed / static_cast<double>(done) * static_cast<double>(sweeps - done));
+    }
+  }
+  rows.close();
+  if (rows.fail()) throw write_error(out.path("profile_pairs.csv"), errno);
+
+  std::ofstream pairs = open_file(out.path("pairs.csv"));
+  fmt::print(pairs, "setup,yaw_mrad,tan_gamma_e_3mm,states,last_y_mm,most_patches,worst_dF1_percent,worst_dF1_y_mm,"
+                    "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,stop\n");
+  for (const SweepSummary& s : summaries)
+    fmt::print(pairs, "{},{:.3f},{:.5f},{},{:.4f},{},{:.3f},{:.4f},{:.3f},{:.4f},{:.1f},{:.4f},{},\"{}\"\n", s.setup,
+               s.yaw_rad * 1e3, s.tan_gamma_e, s.states, s.last_y_m / kMm, s.most_patches, s.worst_dF1_percent,
+               s.worst_dF1_y_m / kMm, s.worst_dF2_percent, s.worst_dF2_y_m / kMm, s.worst_step_N,
+               s.worst_step_y_m / kMm, s.jumps, s.stop);
+  pairs.close();
+  if (pairs.fail()) throw write_error(out.path("pairs.csv"), errno);
+
+  std::ofstream md = open_file(out.path("summary.md"));
+  fmt::print(md, "# Profile pairs end to end\n\n");
+  fmt::print(md,
+             "Each wheel–rail set-up: the wheelset by load (98.1 kN per wheel, μ = 0.3, 20 m/s, pure rolling) from y = 0 "
+             "towards the right wheel's flange in steps of {:g} mm until the flange climbs, {:g} mm elements, the exact "
+             "solver and nH-FastSim on every patch. nH-FastSim's largest miss per component as a share of μ F3 (target "
+             "{:g} %); the largest step of the right wheel's force between two positions, and the jumps: steps above 1 % "
+             "of the load and three times both neighbouring steps with the number of patches unchanged.\n\n",
+             o.y_step_m / kMm, o.element_size_m / kMm, kTarget_percent);
+  fmt::print(md, "| set-up | yaw (mrad) | tan γe (3 mm) | states | to y (mm) | patches | F1 miss (at y mm) | F2 miss (at y mm) "
+                 "| largest step (kN, at y mm) | jumps | within target |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const SweepSummary& s : summaries) {
+    const bool ok = std::abs(s.worst_dF1_percent) <= kTarget_percent && std::abs(s.worst_dF2_percent) <= kTarget_percent &&
+                    s.jumps == 0;
+    fmt::print(md, "| {} | {:+.0f} | {} | {} | {:.2f} | {} | {} ({:.2f}) | {} ({:.2f}) | {:.1f} ({:.2f}) | {} | {} |\n",
+               s.setup, s.yaw_rad * 1e3, std::isfinite(s.tan_gamma_e) ? fmt::format("{:.4f}", s.tan_gamma_e) : "–",
+               s.states, s.last_y_m / kMm, s.most_patches, percent(s.worst_dF1_percent), s.worst_dF1_y_m / kMm,
+               percent(s.worst_dF2_percent), s.worst_dF2_y_m / kMm, s.worst_step_N / 1e3, s.worst_step_y_m / kMm, s.jumps,
+               ok ? "yes" : "**no**");
+  }
+  for (const SweepSummary& s : summaries)
+    if (!s.stop.empty()) fmt::print(md, "\n- {} at yaw {:+.0f} mrad stopped before the flange-climb limit: {}\n", s.setup,
+                                    s.yaw_rad * 1e3, s.stop);
+  md.close();
+  if (md.fail()) throw write_error(out.path("summary.md"), errno);
+  if (o.figures) draw_figures("plot_profile_pairs.py", out.staging(), log);
+  out.commit();
+}
+
+}  // namespace railcontact::study

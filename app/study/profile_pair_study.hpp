@@ -1,0 +1,29 @@
+#pragma once
+// `railcontact study profiles` (docs/VALIDATION.md "Other profile pairs"): each wheel–rail set-up
+// checked end to end — the rigid contact geometry and its equivalent conicity, then the wheelset
+// by load from y = 0 towards the right wheel's flange until the flange climbs, at each yaw, with
+// the exact solver and nH-FastSim on every patch: the patches found, nH-FastSim against the exact
+// solver, and the steps of the wheel forces, reference point and contact angle along y.
+#include <filesystem>
+#include <ostream>
+#include <vector>
+
+namespace railcontact::study {
+
+struct ProfilePairStudyOptions {
+  std::filesystem::path output_directory;
+  // Wheel–rail set-up files (docs/WHEEL_RAIL.md "Set-up files"); empty: every *.json of the shipped
+  // data/wheel_rail/.
+  std::vector<std::filesystem::path> setups;
+  double element_size_m = 0.2e-3;  // the accuracy targets' mesh
+  double y_step_m = 0.1e-3;
+  std::vector<double> yaws_rad{0.0, 0.01, -0.01};
+  bool figures = true;
+};
+
+// Writes profile_pairs.csv (one row per patch), pairs.csv (one row per set-up and yaw), summary.md
+// and the figure; progress with the time left on `log`. Throws Error for a set-up that cannot be
+// read or whose centred wheelset has no contact.
+void run_profile_pair_study(const ProfilePairStudyOptions& options, std::ostream& log);
+
+}  // namespace railcontact::study

@@ -1,0 +1,73 @@
+// `railcontact study profiles` on a coarse mesh (docs/VALIDATION.md "Other profile pairs"): each
+// set-up swept from y = 0 to where its flange climbs, the conicity of the shipped pair as EN 15302
+// gives it (docs/CONTACT_GEOMETRY.md), nH-FastSim's miss against the exact solver reported for
+// every patch, and a bad yaw named.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_run.hpp"
+
+namespace {
+
+using railcontact::test::CommandResult;
+using railcontact::test::run_cli;
+using railcontact::test::ScratchDirectory;
+
+std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(file, line);) {
+    std::vector<std::string> fields;
+    std::stringstream stream(line);
+    for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+TEST(ProfilePairStudy, SweepsEachSetUpToItsFlangeClimb) {
+  const ScratchDirectory dir("profile_pair_study");
+  const std::string data = std::string(RAILCONTACT_DATA_DIR) + "/wheel_rail/";
+  const CommandResult r = run_cli("study profiles " + data + "s1002_uic60.json " + data + "car7358_uic60.json" +
+                                  " --element-size-m 0.001 --y-step-m 0.001 --yaw-rad 0 --no-figures --out " +
+                                  dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto pairs = read_csv(dir.path() / "pairs.csv");
+  ASSERT_EQ(pairs.size(), 3u);
+  EXPECT_EQ(pairs[0][0], "setup");
+  EXPECT_EQ(pairs[0][2], "tan_gamma_e_3mm");
+  // The shipped pair: y = 0, -1, ..., -6 mm (its flange climbs beyond -6.5 mm), one patch a wheel
+  // up to there, and tan γe(3 mm) = 0.1854 (docs/CONTACT_GEOMETRY.md, EN 15302 Annex C).
+  const auto& s1002 = pairs[2][0] == "s1002_uic60" ? pairs[2] : pairs[1];
+  EXPECT_EQ(s1002[0], "s1002_uic60");
+  EXPECT_NEAR(std::stod(s1002[2]), 0.1854, 5e-4);
+  EXPECT_EQ(std::stoi(s1002[3]), 7);
+  EXPECT_NEAR(std::stod(s1002[4]), -6.0, 1e-9);
+  // The measured wheel reaches further before its flange climbs.
+  const auto& car = pairs[1][0] == "car7358_uic60" ? pairs[1] : pairs[2];
+  EXPECT_LT(std::stod(car[4]), -6.0);
+  // Every patch row has finite misses; on 1 mm elements nH-FastSim stays within 6 % of μF3.
+  const auto rows = read_csv(dir.path() / "profile_pairs.csv");
+  ASSERT_GT(rows.size(), 20u);
+  EXPECT_EQ(rows[0][16], "dF1_percent_mu_F3");
+  for (std::size_t k = 1; k < rows.size(); ++k) {
+    EXPECT_LT(std::abs(std::stod(rows[k][16])), 6.0) << k;
+    EXPECT_LT(std::abs(std::stod(rows[k][17])), 6.0) << k;
+  }
+  std::ifstream summary(dir.path() / "summary.md");
+  std::stringstream text;
+  text << summary.rdbuf();
+  EXPECT_NE(text.str().find("| s1002_uic60 | +0 | 0.185"), std::string::npos) << text.str();
+
+  const CommandResult bad = run_cli("study profiles --yaw-rad 1 --out " + dir.string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--yaw-rad 1 rad must lie in [-0.05, 0.05] rad"), std::string::npos) << bad.err;
+}
+
+}  // namespace
