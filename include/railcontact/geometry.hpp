@@ -237,9 +237,10 @@ struct TrackWheelsetParameters {
 //   about 135 mm, the taping line 70 mm from the back);
 // - nominal rolling radius [0.04, 1.5]: from a 1:10 scale roller-rig wheel to a steam locomotive's
 //   driving wheel (about 1.15 m); 0.46 for a new UIC freight or passenger wheel;
-// - rail cant |cant| <= 0.1 rad (1:10): the rail inclinations in use are 0 (vertical), 1:40, 1:30
-//   and 1:20 (0.05 rad); a value given as the ratio's denominator (40) or as the ratio (0.025 for
-//   atan(1/40) = 0.0249948 works) is named in the message.
+// - rail cant |cant| <= 0.1 rad (1:10, twice the steepest in use): the rail inclinations in use are
+//   0 (vertical), 1:40, 1:30 and 1:20 (0.05 rad). The message of a value in [10, 100] reads it as a
+//   ratio's denominator (40: 1:40 is atan(1/40) = 0.0249948 rad), of one up to 5.73 as degrees;
+//   the ratio itself (0.025 for 1:40) lies within 5e-6 rad of the angle and is accepted.
 // A value above a range that would lie in it in millimetres is said to be (a value of 46 for
 // nominal_rolling_radius_m ran as a 46 m wheel).
 inline constexpr double kMinimumTrackGauge_m = 0.38, kMaximumTrackGauge_m = 2.2;

@@ -83,10 +83,11 @@ void validate_rail_cant(double cant_rad, std::string_view name) {
                        magnitude, std::copysign(std::atan(1.0 / magnitude), cant_rad));
   } else if (std::isfinite(magnitude) && magnitude * kDegree_rad <= kMaximumRailCant_rad) {
     hint = fmt::format("; the value is in radians: {:g} degrees would be {:.6g} rad", cant_rad, cant_rad * kDegree_rad);
+  } else {
+    hint = "; 1:40 is atan(1/40) = 0.0249948 rad";
   }
   throw Error(fmt::format("{} = {:g} rad must lie in [{:g}, {:g}] rad (the rail inclinations in use are 0, 1:40, 1:30 "
-                          "and 1:20; positive leans the rail's top towards the track centre; 1:40 is atan(1/40) = "
-                          "0.0249948){}",
+                          "and 1:20; positive leans the rail's top towards the track centre){}",
                           name, cant_rad, -kMaximumRailCant_rad, kMaximumRailCant_rad, hint));
 }
 
