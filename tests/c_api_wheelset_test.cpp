@@ -877,5 +877,38 @@ TEST(CApiWheelset, BalanceSolverWeightingAndRadiusDatumAreTheCppWheelsets) {
       << taping.error();
 }
 
+// rc_track_parameters.rail_cant_rad (default 0) cants the rail profile as the C++ track does: the
+// upright UIC60 canted 1:40 through the C API gives the C++ Wheelset's forces (the same code path:
+// within 1e-12 relative, the C API only copies), reads back, and a ratio given for the angle is
+// refused naming the field, the value and the range.
+TEST(CApiWheelset, RailCantIsTheCppWheelsets) {
+  rc_track_parameters t;
+  rc_track_parameters_default(&t);
+  EXPECT_EQ(t.rail_cant_rad, 0.0);
+  t.rail_cant_rad = std::atan(1.0 / 40.0);
+  const std::string wheel = default_wheel_profile_path().string();
+  const std::string rail = std::string(RAILCONTACT_SOURCE_DIR) + "/data/profiles/UIC60_upright.prr";
+  CWheelset canted(true, 0);
+  ASSERT_EQ(rc_wheelset_set_track(canted.h, wheel.c_str(), rail.c_str(), &t), RC_OK) << canted.error();
+  rc_track_parameters back;
+  ASSERT_EQ(rc_wheelset_get_track(canted.h, &back, nullptr), RC_OK);
+  EXPECT_EQ(back.rail_cant_rad, std::atan(1.0 / 40.0));
+  const rc_wheelset_state state = c_state(-2e-3);
+  rc_wheelset_result r;
+  ASSERT_EQ(rc_wheelset_evaluate(canted.h, &state, &r), RC_OK) << canted.error();
+  TrackWheelsetParameters parameters;
+  parameters.rail_cant_rad = std::atan(1.0 / 40.0);
+  Wheelset cpp(WheelsetTrack(read_profile(wheel), read_profile(rail), parameters), coarse(true));
+  const WheelsetResult expected = cpp.evaluate(cpp_state(state));
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(r.wheel_force_track_N[0][i], expected.wheels[0].force_track_N[i],
+                1e-12 * std::abs(expected.wheels[0].force_track_N[2]));
+  t.rail_cant_rad = 40.0;
+  EXPECT_EQ(rc_wheelset_set_track(canted.h, wheel.c_str(), rail.c_str(), &t), RC_INVALID_INPUT);
+  EXPECT_NE(canted.error().find("rc_track_parameters.rail_cant_rad = 40 rad must lie in [-0.1, 0.1] rad"),
+            std::string::npos)
+      << canted.error();
+}
+
 }  // namespace
 }  // namespace railcontact

@@ -366,6 +366,32 @@ TEST(WheelsetTableFile, ARoundTripGivesTheSameForcesToTheLastDigit) {
     for (int i = 0; i < 3; ++i) EXPECT_EQ(a.wheels[w].force_track_N[i], b.wheels[w].force_track_N[i]);
 }
 
+// The table records the track's rail cant: a table on the rail as given (cant 0) has no key
+// (files of builds before the key read as cant 0), refuses a canted track, and one whose file
+// records a cant refuses the uncanted track, naming the cant.
+TEST(WheelsetTableFile, TheRailCantIsRecordedAndChecked) {
+  nlohmann::json j = nlohmann::json::parse(wheelset_table_json(table()));
+  EXPECT_FALSE(j["track"].contains("rail_cant_rad"));
+  TrackWheelsetParameters canted = track().parameters();
+  canted.rail_cant_rad = 0.01;
+  const WheelsetTrack canted_track(read_profile(default_wheel_profile_path()), read_profile(default_rail_profile_path()),
+                                   canted);
+  try {
+    table().check_track(canted_track);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("rail cant 0 rad): this track's rail cant is 0.01 rad; rebuild the table"),
+              std::string::npos)
+        << e.what();
+  }
+  j["track"]["rail_cant_rad"] = 0.01;
+  const WheelsetTable recorded = parse_wheelset_table(j.dump(), "canted.json");
+  EXPECT_EQ(recorded.metadata().track.rail_cant_rad, 0.01);
+  EXPECT_NO_THROW(recorded.check_track(canted_track));
+  EXPECT_THROW(recorded.check_track(track()), Error);
+  EXPECT_EQ(nlohmann::json::parse(wheelset_table_json(recorded))["track"]["rail_cant_rad"], 0.01);
+}
+
 TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   const auto message = [](const std::string& text) {
     try {

@@ -26,7 +26,7 @@ namespace {
 struct GeometryArguments {
   std::string case_file;
   std::string wheel_file, rail_file;
-  double gauge_m = 0.0, flange_back_m = 0.0, radius_m = 0.0;
+  double gauge_m = 0.0, flange_back_m = 0.0, radius_m = 0.0, rail_cant_rad = 0.0;
   double y_from_m = -6e-3, y_to_m = 6e-3, y_step_m = 0.1e-3;
   double amplitude_m = 3e-3;
   bool json = false;
@@ -46,7 +46,7 @@ Profile read_option_profile(const std::string& option, const std::string& file, 
 WheelsetTrack geometry_track(const GeometryArguments& a, const CLI::App& sub, std::string& description) {
   const auto given = [&](const char* option) { return sub.count(option) > 0; };
   if (!a.case_file.empty()) {
-    for (const char* option : {"--wheel", "--rail", "--gauge-m", "--flange-back-m", "--rolling-radius-m"}) {
+    for (const char* option : {"--wheel", "--rail", "--gauge-m", "--flange-back-m", "--rolling-radius-m", "--rail-cant-rad"}) {
       require(!given(option), [&] {
         return fmt::format("{} cannot be combined with a case file ({}): the case file sets the profiles and track",
                            option, a.case_file);
@@ -81,6 +81,10 @@ WheelsetTrack geometry_track(const GeometryArguments& a, const CLI::App& sub, st
   if (given("--rolling-radius-m"))
     t.nominal_rolling_radius_m =
         length_m("--rolling-radius-m", a.radius_m, kMinimumNominalRollingRadius_m, kMaximumNominalRollingRadius_m);
+  if (given("--rail-cant-rad")) {
+    validate_rail_cant(a.rail_cant_rad, "--rail-cant-rad");
+    t.rail_cant_rad = a.rail_cant_rad;
+  }
   const double play_m = t.track_gauge_m - t.flange_back_distance_m;
   require(play_m >= kMinimumGaugeMinusFlangeBack_m && play_m <= kMaximumGaugeMinusFlangeBack_m, [&] {
     return fmt::format("the gauge {:g} m less the flange backs' distance {:g} m (--gauge-m, --flange-back-m) is {:g} m; "
@@ -90,6 +94,7 @@ WheelsetTrack geometry_track(const GeometryArguments& a, const CLI::App& sub, st
   });
   description += fmt::format(", gauge {:g} mm, flange backs {:g} mm", t.track_gauge_m * 1e3,
                              t.flange_back_distance_m * 1e3);
+  if (t.rail_cant_rad != 0.0) description += fmt::format(", rail cant {:g} rad", t.rail_cant_rad);
   return WheelsetTrack(wheel, rail, t);
 }
 
@@ -161,6 +166,9 @@ void add_geometry_command(CLI::App& app, Action& action) {
   sub->add_option("--gauge-m", args->gauge_m, "track gauge (m; default 1.435)");
   sub->add_option("--flange-back-m", args->flange_back_m, "distance between the flange backs (m; default 1.36)");
   sub->add_option("--rolling-radius-m", args->radius_m, "nominal rolling radius r0 (m; default 0.46) at the wheel profile's origin (a set-up's track.nominal_radius_at may put it at the taping line)");
+  sub->add_option("--rail-cant-rad", args->rail_cant_rad,
+                  "rail inclination towards the track centre applied to the rail profile (rad, |x| <= 0.1; "
+                  "default 0: the profile as given, the shipped UIC60 is inclined 1:40; 1:40 is 0.0249948)");
   sub->add_option("--y-from-m", args->y_from_m, "first lateral displacement (m, + to the left; default -0.006, or where the flange climbs)");
   sub->add_option("--y-to-m", args->y_to_m, "last lateral displacement (m, + to the left; default 0.006, or where the flange climbs)");
   sub->add_option("--y-step-m", args->y_step_m, "step of the lateral displacement (m, > 0; default 0.0001)");

@@ -150,7 +150,7 @@ void add_profile_pair_study(CLI::App* study, Action& action) {
       "profiles", "every wheel-rail set-up end to end: conicity, the wheelset from y = 0 to flange climb at each yaw, "
                   "nH-FastSim against the exact solver, jumps along y");
   cmd->add_option("--out", *out, "output directory")->required();
-  cmd->add_option("setups", *setups, "wheel-rail set-up files (JSON; default: every shipped data/wheel_rail/*.json)");
+  cmd->add_option("setups", *setups, "wheel-rail set-up files (default: every shipped set-up in data/wheel_rail)");
   cmd->add_option("--element-size-m", options->element_size_m, "element size (m)")->capture_default_str();
   cmd->add_option("--y-step-m", options->y_step_m, "step of the lateral displacement (m, > 0)")->capture_default_str();
   cmd->add_option("--yaw-rad", *yaws, "yaw angles (rad; default 0, 0.01, -0.01)");

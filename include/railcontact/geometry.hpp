@@ -245,8 +245,9 @@ const char* nominal_radius_datum_name(NominalRadiusDatum datum);
 // Throws Error (invalid_input) naming the allowed names.
 NominalRadiusDatum parse_nominal_radius_datum(const std::string& name);
 
-// Track and wheelset data (METHOD.md §9 defaults). The rail inclination (1:40) is part of the
-// rail profile's coordinates and is not applied again.
+// Track and wheelset data (METHOD.md §9 defaults). By default (rail_cant_rad = 0) the rail
+// inclination is part of the rail profile's coordinates (the shipped UIC60 is inclined 1:40) and
+// is not applied again; a non-zero rail_cant_rad inclines the rail profile (canted_rail_profile).
 struct TrackWheelsetParameters {
   double track_gauge_m = 1.435;               // between the gauge faces ...
   double gauge_measuring_depth_m = 0.014;     // ... measured this far below the top of the rails
@@ -255,6 +256,10 @@ struct TrackWheelsetParameters {
   double taping_line_from_flange_back_m = 0.070;  // lateral distance flange back -> taping line
   double nominal_rolling_radius_m = 0.46;     // wheel radius r0 at nominal_radius_at
   NominalRadiusDatum nominal_radius_at = NominalRadiusDatum::profile_origin;
+  // Rail inclination (cant) towards the track centre, applied to the rail profile before anything
+  // else uses it (canted_rail_profile): atan(1/40) = 0.0249948 for an upright rail laid at 1:40;
+  // 0 uses the rail profile as given.
+  double rail_cant_rad = 0.0;
 };
 
 // The physical ranges of the track and wheelset data (m; docs/RELIABILITY.md "Values and solvers"):
@@ -268,7 +273,11 @@ struct TrackWheelsetParameters {
 //   back [0.01, 0.2]: within a wheel profile (at most 0.4 m wide, Profile; a wheel's tread is
 //   about 135 mm, the taping line 70 mm from the back);
 // - nominal rolling radius [0.04, 1.5]: from a 1:10 scale roller-rig wheel to a steam locomotive's
-//   driving wheel (about 1.15 m); 0.46 for a new UIC freight or passenger wheel.
+//   driving wheel (about 1.15 m); 0.46 for a new UIC freight or passenger wheel;
+// - rail cant |cant| <= 0.1 rad (1:10, twice the steepest in use): the rail inclinations in use are
+//   0 (vertical), 1:40, 1:30 and 1:20 (0.05 rad). The message of a value in [10, 100] reads it as a
+//   ratio's denominator (40: 1:40 is atan(1/40) = 0.0249948 rad), of one up to 5.73 as degrees;
+//   the ratio itself (0.025 for 1:40) lies within 5e-6 rad of the angle and is accepted.
 // A value above a range that would lie in it in millimetres is said to be (a value of 46 for
 // nominal_rolling_radius_m ran as a 46 m wheel).
 inline constexpr double kMinimumTrackGauge_m = 0.38, kMaximumTrackGauge_m = 2.2;
@@ -278,11 +287,23 @@ inline constexpr double kMinimumGaugeMinusFlangeBack_m = 0.02, kMaximumGaugeMinu
 inline constexpr double kMaximumFlangeBackPosition_m = 0.2;
 inline constexpr double kMinimumTapingLineFromFlangeBack_m = 0.01, kMaximumTapingLineFromFlangeBack_m = 0.2;
 inline constexpr double kMinimumNominalRollingRadius_m = 0.04, kMaximumNominalRollingRadius_m = 1.5;
+inline constexpr double kMaximumRailCant_rad = 0.1;
 
 // Throws Error (invalid_input) unless every field lies in its range above; the message names the
 // field with `prefix` before it, e.g. "rc_track_parameters." or "" (the set-up file's keys are
 // the field names): "nominal_rolling_radius_m = 46 m must lie in [0.04, 1.5] m (…)".
 void validate(const TrackWheelsetParameters& parameters, std::string_view prefix = "track parameters: ");
+// The rail cant's part of validate, for an input of another name (a command-line option): throws
+// Error (invalid_input) "<name> = 40 rad must lie in [-0.1, 0.1] rad (…); … 1:40 is atan(1/40) = …".
+void validate_rail_cant(double cant_rad, std::string_view name);
+
+// The rail profile inclined by cant_rad towards the track centre (docs/GEOMETRY.md §1): every point
+// turned about the profile's origin so that the rail's upward axis leans to the gauge side (-y),
+//   y' = y cos c + z sin c,   z' = -y sin c + z cos c   (y to the field side, z down),
+// which turns the head's crown to face the track centre and moves its highest point towards the
+// field side (by about R_crown sin c: 7.5 mm for the R300 crown at 1:40). cant_rad = 0 returns
+// the profile unchanged. Throws Error (invalid_input) unless |cant_rad| <= kMaximumRailCant_rad.
+Profile canted_rail_profile(Profile rail, double cant_rad);
 
 // The geometric contact point of one lateral displacement.
 struct WheelRailContactPoint {

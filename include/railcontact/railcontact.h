@@ -386,6 +386,9 @@ typedef struct rc_track_parameters {
   double nominal_rolling_radius_m;       /* wheel radius r0 at nominal_radius_at; 0.46 (ranges: geometry.hpp) */
   int nominal_radius_at;                 /* rc_nominal_radius_datum: where the wheel's radius is r0;
                                             default RC_RADIUS_AT_PROFILE_ORIGIN */
+  double rail_cant_rad;                  /* rail inclination towards the track centre, applied to the rail
+                                            profile (rad, |x| <= 0.1); default 0: the profile as given
+                                            (the shipped UIC60 is inclined 1:40); 1:40 is 0.0249948 */
 } rc_track_parameters;
 
 RC_API rc_status rc_track_parameters_default(rc_track_parameters* track);

@@ -397,7 +397,8 @@ WHEELSET_STATE_COLUMNS = ("y", "z", "roll", "yaw", "speed", "lateral_velocity", 
 _STATE_DEFAULTS = (0.0, 0.0, 0.0, 0.0, 20.0, 0.0, 0.0, 0.0, 0.0, float("nan"), 0.0)
 _TRACK_KEYWORDS = {"gauge": "track_gauge_m", "measuring_depth": "gauge_measuring_depth_m",
                    "flange_back_distance": "flange_back_distance_m", "flange_back_y": "flange_back_y_m",
-                   "taping_line_distance": "taping_line_from_flange_back_m", "nominal_radius": "nominal_rolling_radius_m"}
+                   "taping_line_distance": "taping_line_from_flange_back_m", "nominal_radius": "nominal_rolling_radius_m",
+                   "rail_cant": "rail_cant_rad"}
 
 
 #: the library's names of the state's fields (rc_wheelset_state), for its messages
@@ -517,7 +518,9 @@ class Wheelset:
     sides); or right_wheel=, left_wheel=, right_rail=, left_rail=. With profiles, the track's
     dimensions (m): gauge [1.435], measuring_depth [0.014], flange_back_distance [1.360],
     flange_back_y [-0.070], taping_line_distance [0.070] (flange back -> taping line),
-    nominal_radius [0.46].
+    nominal_radius [0.46]; rail_cant [0 rad] (the rail's inclination towards the track centre,
+    applied to the rail profile, |rail_cant| <= 0.1; 0: the profile as given; 1:40 is
+    atan(1/40) = 0.0249948).
     Options (SI units): mu [0.3]; youngs_modulus [2.1e11 Pa]; poisson_ratio [0.3]; element_size
     [0.2e-3 m]; solvers [("nh-fastsim",)] run on every patch, the first makes the totals;
     loads [(98100, 98100) N, right and left]: by load, each wheel's height is solved to carry its
@@ -543,11 +546,11 @@ class Wheelset:
                       "track_gauge_m": "gauge", "gauge_measuring_depth_m": "measuring_depth",
                       "flange_back_distance_m": "flange_back_distance", "flange_back_y_m": "flange_back_y",
                       "taping_line_from_flange_back_m": "taping_line_distance",
-                      "nominal_rolling_radius_m": "nominal_radius"}
+                      "nominal_rolling_radius_m": "nominal_radius", "rail_cant_rad": "rail_cant"}
 
     def __init__(self, wheel=None, rail=None, *, right_wheel=None, left_wheel=None, right_rail=None,
                  left_rail=None, gauge=None, measuring_depth=None, flange_back_distance=None, flange_back_y=None,
-                 taping_line_distance=None, nominal_radius=None, mu: float = 0.3, youngs_modulus: float = 2.1e11,
+                 taping_line_distance=None, nominal_radius=None, rail_cant=None, mu: float = 0.3, youngs_modulus: float = 2.1e11,
                  poisson_ratio: float = 0.3, element_size: float = 0.2e-3, solvers=("nh-fastsim",),
                  loads=(98100.0, 98100.0), balance_roll: bool = False, tangential_in_balance: bool = True,
                  allow_wheel_lift: bool = False, warm_start: bool = True,
@@ -585,7 +588,7 @@ class Wheelset:
             options["right_load_N"], options["left_load_N"] = float(pair[0]), float(pair[-1])
         given = {"gauge": gauge, "measuring_depth": measuring_depth, "flange_back_distance": flange_back_distance,
                  "flange_back_y": flange_back_y, "taping_line_distance": taping_line_distance,
-                 "nominal_radius": nominal_radius}
+                 "nominal_radius": nominal_radius, "rail_cant": rail_cant}
         dimensions = {_TRACK_KEYWORDS[key]: _check.number(key, value) for key, value in given.items()
                       if value is not None}
         if nominal_radius_at is not None:

@@ -592,6 +592,7 @@ rc_track_parameters track_parameters(const py::dict& d) {
     else if (key == "taping_line_from_flange_back_m") t.taping_line_from_flange_back_m = value;
     else if (key == "nominal_rolling_radius_m") t.nominal_rolling_radius_m = value;
     else if (key == "nominal_radius_at") t.nominal_radius_at = static_cast<int>(value);
+    else if (key == "rail_cant_rad") t.rail_cant_rad = value;
     else raise(RC_INVALID_INPUT, "unknown track parameter '" + key + "'");
   }
   return t;
@@ -648,6 +649,7 @@ class WheelsetHandle {
     d["taping_line_from_flange_back_m"] = t.taping_line_from_flange_back_m;
     d["nominal_rolling_radius_m"] = t.nominal_rolling_radius_m;
     d["nominal_radius_at"] = t.nominal_radius_at == RC_RADIUS_AT_TAPING_LINE ? "taping-line" : "profile-origin";
+    d["rail_cant_rad"] = t.rail_cant_rad;
     d["nominal_axle_height_m"] = height;
     return d;
   }

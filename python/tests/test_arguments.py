@@ -198,6 +198,7 @@ CALLS = {
                              "gauge": number(-1.0, True), "measuring_depth": number(-1.0, True),
                              "flange_back_distance": number(-1.0, True), "flange_back_y": number(10.0, True),
                              "taping_line_distance": number(-1.0, True), "nominal_radius": number(-1.0, True),
+                             "rail_cant": number(40.0, True),
                              "mu": number(-0.1), "youngs_modulus": number(-1.0), "poisson_ratio": number(0.7),
                              "element_size": number(-1e-3), "solvers": choice(),
                              "loads": array([[98.1e3, 98.1e3]], [NAN, 98.1e3], [-1.0, 98.1e3], optional=True),

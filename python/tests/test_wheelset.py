@@ -207,6 +207,29 @@ def test_balance_solver_reference_weighting_and_radius_datum():
         railcontact.Wheelset(nominal_radius_at="taping-line")
 
 
+def test_rail_cant_inclines_the_rail_profile():
+    """rail_cant (rad) cants the rail profile as the set-up key track.rail_cant_rad does: on the upright
+    UIC60 canted 1:40 the crown faces the track centre, the contact lies further to the field side
+    and its angle is smaller than on the vertical rail; track["rail_cant_rad"] tells the cant, and a
+    ratio's denominator is refused."""
+    profiles = os.path.join(os.path.dirname(__file__), "..", "..", "data", "profiles")
+    wheel = os.path.join(profiles, "MBench_S1002_v3.prw")
+    upright = os.path.join(profiles, "UIC60_upright.prr")
+    cant = math.atan(1.0 / 40.0)
+    canted = railcontact.Wheelset(wheel, upright, rail_cant=cant, element_size=COARSE, warm_start=False)
+    vertical = railcontact.Wheelset(wheel, upright, element_size=COARSE, warm_start=False)
+    assert canted.track["rail_cant_rad"] == cant
+    assert vertical.track["rail_cant_rad"] == 0.0
+    a = canted.evaluate(y=-2e-3).right.patches[0]
+    b = vertical.evaluate(y=-2e-3).right.patches[0]
+    assert a.contact_angle_rad < b.contact_angle_rad - 5e-3  # the crown faces the centre: contact further out
+    with pytest.raises(railcontact.InvalidInputError,
+                       match=r"rail_cant: rc_track_parameters.rail_cant_rad = 40 rad must lie in \[-0.1, 0.1\] rad"):
+        railcontact.Wheelset(wheel, upright, rail_cant=40)
+    with pytest.raises(railcontact.InvalidInputError, match="rail_cant: track dimensions need profile files"):
+        railcontact.Wheelset(rail_cant=cant)
+
+
 def test_exceptions(wheelset):
     with pytest.raises(railcontact.InvalidInputError, match="y = nan"):
         wheelset.evaluate(y=float("nan"))

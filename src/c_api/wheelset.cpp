@@ -168,12 +168,14 @@ rc::TrackWheelsetParameters track_of(const rc_track_parameters* t) {
   require_finite(t->flange_back_y_m, s, "flange_back_y_m", " m");
   require_finite(t->taping_line_from_flange_back_m, s, "taping_line_from_flange_back_m", " m");
   require_finite(t->nominal_rolling_radius_m, s, "nominal_rolling_radius_m", " m");
+  require_finite(t->rail_cant_rad, s, "rail_cant_rad", " rad");
   p.track_gauge_m = t->track_gauge_m;
   p.gauge_measuring_depth_m = t->gauge_measuring_depth_m;
   p.flange_back_distance_m = t->flange_back_distance_m;
   p.flange_back_y_m = t->flange_back_y_m;
   p.taping_line_from_flange_back_m = t->taping_line_from_flange_back_m;
   p.nominal_rolling_radius_m = t->nominal_rolling_radius_m;
+  p.rail_cant_rad = t->rail_cant_rad;
   require(t->nominal_radius_at == RC_RADIUS_AT_PROFILE_ORIGIN || t->nominal_radius_at == RC_RADIUS_AT_TAPING_LINE, [&] {
     return fmt::format("rc_track_parameters.nominal_radius_at = {} is not an rc_nominal_radius_datum (0 profile "
                        "origin, 1 taping line)",
@@ -384,6 +386,7 @@ rc_status rc_track_parameters_default(rc_track_parameters* t) {
   t->taping_line_from_flange_back_m = p.taping_line_from_flange_back_m;
   t->nominal_rolling_radius_m = p.nominal_rolling_radius_m;
   t->nominal_radius_at = datum_of(p.nominal_radius_at);
+  t->rail_cant_rad = p.rail_cant_rad;
   return RC_OK;
 }
 
@@ -479,6 +482,7 @@ rc_status rc_wheelset_get_track(const rc_wheelset* w, rc_track_parameters* track
       track->taping_line_from_flange_back_m = p.taping_line_from_flange_back_m;
       track->nominal_rolling_radius_m = p.nominal_rolling_radius_m;
       track->nominal_radius_at = datum_of(p.nominal_radius_at);
+      track->rail_cant_rad = p.rail_cant_rad;
     }
     if (nominal_axle_height_m != nullptr) *nominal_axle_height_m = t.nominal_axle_height_m();
   });

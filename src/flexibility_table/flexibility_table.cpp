@@ -171,12 +171,12 @@ void FlexibilityTable::check_profiles(const WheelRailPair& pair) const {
   const bool same = a.track_gauge_m == b.track_gauge_m && a.gauge_measuring_depth_m == b.gauge_measuring_depth_m &&
                     a.flange_back_distance_m == b.flange_back_distance_m && a.flange_back_y_m == b.flange_back_y_m &&
                     a.taping_line_from_flange_back_m == b.taping_line_from_flange_back_m &&
-                    a.nominal_rolling_radius_m == b.nominal_rolling_radius_m;
+                    a.nominal_rolling_radius_m == b.nominal_rolling_radius_m && a.rail_cant_rad == b.rail_cant_rad;
   require(same, [&] {
     return fmt::format(
         "{} was built for other track and wheelset parameters (gauge {} m, flange back distance {} m, "
-        "nominal rolling radius {} m)",
-        name(), a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m);
+        "nominal rolling radius {} m, rail cant {} rad)",
+        name(), a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m, a.rail_cant_rad);
   });
 }
 

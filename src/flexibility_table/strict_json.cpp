@@ -134,6 +134,7 @@ json fingerprint_json(const FileFingerprint& fingerprint) {
 TrackWheelsetParameters read_track_parameters(StrictJsonReader& parent, const std::string& key) {
   const nlohmann::json& object = parent.get(key);
   const bool has_datum = object.is_object() && object.contains("nominal_radius_at");
+  const bool has_cant = object.is_object() && object.contains("rail_cant_rad");
   StrictJsonReader t = parent.child(key);
   TrackWheelsetParameters track;
   track.track_gauge_m = t.number("track_gauge_m");
@@ -151,18 +152,24 @@ TrackWheelsetParameters read_track_parameters(StrictJsonReader& parent, const st
       t.fail(e.what());
     }
   }
+  // A file without the rail cant was built on the rail profile as given (cant 0).
+  if (has_cant) track.rail_cant_rad = t.number("rail_cant_rad");
   t.finish();
   return track;
 }
 
 json track_parameters_json(const TrackWheelsetParameters& t) {
-  return {{"track_gauge_m", t.track_gauge_m},
-          {"gauge_measuring_depth_m", t.gauge_measuring_depth_m},
-          {"flange_back_distance_m", t.flange_back_distance_m},
-          {"flange_back_y_m", t.flange_back_y_m},
-          {"taping_line_from_flange_back_m", t.taping_line_from_flange_back_m},
-          {"nominal_rolling_radius_m", t.nominal_rolling_radius_m},
-          {"nominal_radius_at", nominal_radius_datum_name(t.nominal_radius_at)}};
+  json j = {{"track_gauge_m", t.track_gauge_m},
+            {"gauge_measuring_depth_m", t.gauge_measuring_depth_m},
+            {"flange_back_distance_m", t.flange_back_distance_m},
+            {"flange_back_y_m", t.flange_back_y_m},
+            {"taping_line_from_flange_back_m", t.taping_line_from_flange_back_m},
+            {"nominal_rolling_radius_m", t.nominal_rolling_radius_m},
+            {"nominal_radius_at", nominal_radius_datum_name(t.nominal_radius_at)}};
+  // Written only when non-zero: a table on an uncanted rail stays as it was and readable by
+  // builds that do not know the key; one on a canted rail is refused by them (an unknown key).
+  if (t.rail_cant_rad != 0.0) j["rail_cant_rad"] = t.rail_cant_rad;
+  return j;
 }
 
 }  // namespace railcontact::detail

@@ -196,15 +196,19 @@ void WheelsetTable::check_track(const WheelsetTrack& track) const {
   if (a.track_gauge_m != b.track_gauge_m || a.gauge_measuring_depth_m != b.gauge_measuring_depth_m ||
       a.flange_back_distance_m != b.flange_back_distance_m || a.flange_back_y_m != b.flange_back_y_m ||
       a.taping_line_from_flange_back_m != b.taping_line_from_flange_back_m ||
-      a.nominal_rolling_radius_m != b.nominal_rolling_radius_m || a.nominal_radius_at != b.nominal_radius_at)
+      a.nominal_rolling_radius_m != b.nominal_rolling_radius_m || a.nominal_radius_at != b.nominal_radius_at ||
+      a.rail_cant_rad != b.rail_cant_rad)
     throw Error(fmt::format("{} was built for other track parameters (gauge {} m, flange-back distance {} m, nominal "
-                            "rolling radius {} m at the {}){}",
+                            "rolling radius {} m at the {}, rail cant {} rad){}",
                             name, a.track_gauge_m, a.flange_back_distance_m, a.nominal_rolling_radius_m,
                             a.nominal_radius_at == NominalRadiusDatum::taping_line ? "taping line" : "profile origin",
+                            a.rail_cant_rad,
                             a.nominal_radius_at != b.nominal_radius_at
                                 ? fmt::format(": this track measures r0 at the {}; rebuild the table",
                                               b.nominal_radius_at == NominalRadiusDatum::taping_line ? "taping line"
                                                                                                      : "profile origin")
+                            : a.rail_cant_rad != b.rail_cant_rad
+                                ? fmt::format(": this track's rail cant is {} rad; rebuild the table", b.rail_cant_rad)
                                 : std::string()));
 }
 

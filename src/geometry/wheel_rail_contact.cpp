@@ -71,6 +71,26 @@ NominalRadiusDatum parse_nominal_radius_datum(const std::string& name) {
                           name));
 }
 
+void validate_rail_cant(double cant_rad, std::string_view name) {
+  if (std::isfinite(cant_rad) && std::abs(cant_rad) <= kMaximumRailCant_rad) return;
+  // A rail inclination is quoted as a ratio 1:n: a value n in [10, 100] is such a denominator, a
+  // value up to 0.1 rad in degrees (5.73) an angle in degrees.
+  const double magnitude = std::abs(cant_rad);
+  constexpr double kDegree_rad = 0.017453292519943295;
+  std::string hint;
+  if (std::isfinite(magnitude) && magnitude >= 10.0 && magnitude <= 100.0) {
+    hint = fmt::format("; the value is an angle in radians: an inclination 1:{0:g} is atan(1/{0:g}) = {1:.6g} rad",
+                       magnitude, std::copysign(std::atan(1.0 / magnitude), cant_rad));
+  } else if (std::isfinite(magnitude) && magnitude * kDegree_rad <= kMaximumRailCant_rad) {
+    hint = fmt::format("; the value is in radians: {:g} degrees would be {:.6g} rad", cant_rad, cant_rad * kDegree_rad);
+  } else {
+    hint = "; 1:40 is atan(1/40) = 0.0249948 rad";
+  }
+  throw Error(fmt::format("{} = {:g} rad must lie in [{:g}, {:g}] rad (the rail inclinations in use are 0, 1:40, 1:30 "
+                          "and 1:20; positive leans the rail's top towards the track centre){}",
+                          name, cant_rad, -kMaximumRailCant_rad, kMaximumRailCant_rad, hint));
+}
+
 void validate(const TrackWheelsetParameters& p, std::string_view prefix) {
   const auto check = [&](double value, const char* field, double low, double high, const char* reason) {
     if (std::isfinite(value) && value >= low && value <= high) return;
@@ -91,6 +111,7 @@ void validate(const TrackWheelsetParameters& p, std::string_view prefix) {
         kMaximumTapingLineFromFlangeBack_m, "on the wheel's tread; 0.070 on a UIC wheel");
   check(p.nominal_rolling_radius_m, "nominal_rolling_radius_m", kMinimumNominalRollingRadius_m,
         kMaximumNominalRollingRadius_m, "from a scale roller-rig wheel to a locomotive's driving wheel; 0.46 for a UIC wheel");
+  validate_rail_cant(p.rail_cant_rad, fmt::format("{}rail_cant_rad", prefix));
   const double play = p.track_gauge_m - p.flange_back_distance_m;
   require(play >= kMinimumGaugeMinusFlangeBack_m && play <= kMaximumGaugeMinusFlangeBack_m, [&] {
     return fmt::format("{}track_gauge_m - flange_back_distance_m = {:g} - {:g} = {:g} m must lie in [{:g}, {:g}] m (two "
@@ -100,10 +121,32 @@ void validate(const TrackWheelsetParameters& p, std::string_view prefix) {
   });
 }
 
+Profile canted_rail_profile(Profile rail, double cant_rad) {
+  validate_rail_cant(cant_rad, "rail cant");
+  if (cant_rad == 0.0) return rail;
+  const double c = std::cos(cant_rad), s = std::sin(cant_rad);
+  for (std::size_t i = 0; i < rail.y_m.size() && i < rail.z_m.size(); ++i) {
+    const double y = rail.y_m[i], z = rail.z_m[i];
+    rail.y_m[i] = c * y + s * z;
+    rail.z_m[i] = -s * y + c * z;
+  }
+  return rail;
+}
+
+namespace {
+
+// The rail profile as the pair uses it: the parameters checked first (a bad cant is named as the
+// parameter, not as the profile), then canted.
+Profile rail_on_track(const Profile& rail, const TrackWheelsetParameters& parameters) {
+  validate(parameters);
+  return canted_rail_profile(rail, parameters.rail_cant_rad);
+}
+
+}  // namespace
+
 WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const TrackWheelsetParameters& parameters,
                              const SmoothingOptions& smoothing)
-    : wheel_(wheel, smoothing), rail_(rail, smoothing), parameters_(parameters) {
-  validate(parameters_);
+    : wheel_(wheel, smoothing), rail_(rail_on_track(rail, parameters), smoothing), parameters_(parameters) {
   require(wheel.kind != ProfileKind::rail,
           [&] { return fmt::format("wheel profile {} is a rail profile", wheel.source); });
   require(rail.kind != ProfileKind::wheel,

@@ -91,7 +91,7 @@ WheelRailSetup wheel_rail::parse_wheel_rail_setup(std::string_view content, cons
   const std::string track_where = where + ": track";
   refuse_unknown_keys(*track,
                       {"track_gauge_m", "gauge_measuring_depth_m", "flange_back_distance_m", "flange_back_y_m",
-                       "taping_line_from_flange_back_m", "nominal_rolling_radius_m", "nominal_radius_at"},
+                       "taping_line_from_flange_back_m", "nominal_rolling_radius_m", "nominal_radius_at", "rail_cant_rad"},
                       track_where);
   TrackWheelsetParameters& t = setup.track;
   t.track_gauge_m = number(*track, "track_gauge_m", track_where);
@@ -110,6 +110,8 @@ WheelRailSetup wheel_rail::parse_wheel_rail_setup(std::string_view content, cons
       throw Error(fmt::format("{}: {}", track_where, e.what()));
     }
   }
+  // Optional: the rail's inclination applied to the rail profile (default 0: the profile as given).
+  if (track->contains("rail_cant_rad")) t.rail_cant_rad = number(*track, "rail_cant_rad", track_where);
   try {
     validate(t, "");
   } catch (const Error& e) {

@@ -33,8 +33,11 @@ RC_STATIC_ASSERT(sizeof(rc_flextable_info) == 6 * 8 + 4 * 4, "rc_flextable_info"
 RC_STATIC_ASSERT(RC_SLIP_RADIAL == 0 && RC_SLIP_FLEXIBILITY_WEIGHTED == 1, "slip direction values");
 RC_STATIC_ASSERT(RC_WHEEL_LEFT == 1 && RC_WHEELSET_BY_POSITION == 1 && RC_ROTATION_GIVEN == 1,
                  "wheelset enumeration values");
-RC_STATIC_ASSERT(sizeof(rc_track_parameters) == 6 * 8 + 4 + 4, "rc_track_parameters: 6 doubles, 1 int, 4 bytes padding");
-RC_STATIC_ASSERT(offsetof(rc_track_parameters, nominal_radius_at) == 48, "rc_track_parameters.nominal_radius_at");
+RC_STATIC_ASSERT(sizeof(rc_track_parameters) == 6 * 8 + 4 + 4 + 8,
+                 "rc_track_parameters: 6 doubles, 1 int, 4 bytes padding, 1 double");
+RC_STATIC_ASSERT(offsetof(rc_track_parameters, nominal_radius_at) == 48 &&
+                     offsetof(rc_track_parameters, rail_cant_rad) == 56,
+                 "rc_track_parameters.nominal_radius_at, rail_cant_rad");
 RC_STATIC_ASSERT(RC_RADIUS_AT_TAPING_LINE == 1 && RC_WEIGHTING_DEPTH == 1, "datum and weighting values");
 RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 13 * 4 + 4,
                  "rc_wheelset_options: 6 doubles, 13 ints, 4 bytes padding");
