@@ -187,6 +187,37 @@ TEST(RollingSolvers, AllFourAgreeOnTheSigns) {
   }
 }
 
+// A patch one element long (three elements across: a patch that has just appeared on a flange
+// flank) has no element behind in its own mesh; its λ comes from a mesh two elements long. The
+// exact and regularised solvers give the forces of the same elements embedded in a mesh three
+// elements long with empty rows around them (another mesh, the same elements: within 1e-9 of μ F3).
+TEST(ExactRolling, APatchOneElementLongEqualsItInALongerMesh) {
+  Mesh row;
+  row.n1 = 1;
+  row.n2 = 3;
+  row.dx1_m = row.dx2_m = 0.2e-3;
+  row.x1_first_m = 0.0;
+  row.x2_first_m = -0.2e-3;
+  const std::vector<double> pressure{4e8, 8e8, 4e8};
+  Mesh longer = row;
+  longer.n1 = 3;
+  longer.x1_first_m = -0.2e-3;
+  std::vector<double> embedded(longer.size(), 0.0);
+  for (int i2 = 0; i2 < 3; ++i2) embedded[longer.index(1, i2)] = pressure[static_cast<std::size_t>(i2)];
+  const ContactPatch single(row, pressure, kSteel), wide(longer, embedded, kSteel);
+  const Creepage creepage{3e-4, 0.0, 0.04};
+  const double F3 = single.normal_force_N();
+  const RollingSolution a = solve_rolling_exact(single, creepage, kMu);
+  const RollingSolution b = solve_rolling_exact(wide, creepage, kMu);
+  EXPECT_TRUE(std::isfinite(a.forces.F1_N));
+  EXPECT_GT(std::abs(a.forces.F1_N), 0.01 * kMu * F3);
+  EXPECT_NEAR(a.forces.F1_N, b.forces.F1_N, 1e-9 * kMu * F3);
+  EXPECT_NEAR(a.forces.F2_N, b.forces.F2_N, 1e-9 * kMu * F3);
+  const RollingSolution c = solve_rolling_regularised(single, creepage, kMu);
+  const RollingSolution d = solve_rolling_regularised(wide, creepage, kMu);
+  EXPECT_NEAR(c.forces.F1_N, d.forces.F1_N, 1e-9 * kMu * F3);
+}
+
 TEST(ExactRolling, RejectsBadInputAndReportsNonConvergence) {
   const ContactPatch p = patch(6e-3, 4e-3, 300);
   EXPECT_THROW(solve_rolling_exact(p, {1e-3, 0, 0}, 0.0), Error);

@@ -76,6 +76,14 @@ nlohmann::json patch_json(const WheelsetPatch& p) {
       {"creepage", {{"xi", p.creepage.xi}, {"eta", p.creepage.eta}, {"phi_per_m", p.creepage.phi}}},
       {"pressure_centre_from_reference_m", {p.pressure_centre_x1_m, p.pressure_centre_x2_m}},
   };
+  // The rail normal angle's range over the overlap and its largest difference from the contact
+  // angle (absent for a patch from a wheelset table, which does not keep them).
+  const double variation = contact_angle_variation_rad(p.region);
+  if (std::isfinite(variation)) {
+    j["contact_angle_range_rad"] = {p.region.contact_angle_min_rad, p.region.contact_angle_max_rad};
+    j["contact_angle_variation_rad"] = variation;
+    j["large_angle_variation"] = variation > kLargeContactAngleVariation_rad;
+  }
   for (const PatchSolverResult& s : p.solvers) {
     j[solver_name(s.solver)] = {{"F1_N", s.forces.F1_N},
                                 {"F2_N", s.forces.F2_N},
@@ -443,6 +451,11 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
                  p.max_pressure_Pa * 1e-6);
       fmt::print("    creepages xi = {:.4e}, eta = {:.4e}, phi = {:.4f} 1/m\n", p.creepage.xi, p.creepage.eta,
                  p.creepage.phi);
+      const double variation = contact_angle_variation_rad(p.region);
+      if (std::isfinite(variation) && variation > kLargeContactAngleVariation_rad)
+        fmt::print("    note: the rail's normal angle varies over the patch from {:.3f} to {:.3f} rad, up to {:.3f} rad "
+                   "from its tangent plane: a planar patch is a rough model here (docs/WHEELSET.md §4)\n",
+                   p.region.contact_angle_min_rad, p.region.contact_angle_max_rad, variation);
       for (const PatchSolverResult& s : p.solvers)
         fmt::print("    {:<18} F1 = {:.0f} N, F2 = {:.0f} N, M3 = {:.2f} N m\n", solver_name(s.solver),
                    s.forces.F1_N, s.forces.F2_N, s.forces.M3_Nm);

@@ -93,6 +93,7 @@ struct SweepSummary {
   double worst_dF2_percent = 0.0, worst_dF2_y_m = 0.0;
   double worst_step_N = 0.0, worst_step_y_m = 0.0;  // the largest step of a wheel force between two y
   int jumps = 0;                                     // steps standing out from their neighbours (see below)
+  double largest_angle_variation_rad = 0.0;          // over the patches (contact_angle_variation_rad)
   double tan_gamma_e = kNaN;
 };
 
@@ -139,7 +140,7 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   fmt::print(rows,
              "setup,yaw_mrad,y_mm,side,patch,patches,contact_angle_rad,rail_profile_y_mm,normal_force_N,xi,eta,"
              "phi_per_m,exact_F1_N,exact_F2_N,nh_fastsim_F1_N,nh_fastsim_F2_N,dF1_percent_mu_F3,dF2_percent_mu_F3,"
-             "wheel_Fx_N,wheel_Fy_N,wheel_Fz_N\n");
+             "wheel_Fx_N,wheel_Fy_N,wheel_Fz_N,contact_angle_variation_rad\n");
   std::vector<SweepSummary> summaries;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t sweeps = files.size() * o.yaws_rad.size();
@@ -190,11 +191,13 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
             if (std::abs(d1) > std::abs(s.worst_dF1_percent)) s.worst_dF1_percent = d1, s.worst_dF1_y_m = s.last_y_m;
             if (std::abs(d2) > std::abs(s.worst_dF2_percent)) s.worst_dF2_percent = d2, s.worst_dF2_y_m = s.last_y_m;
             fmt::print(rows, "{},{:.3f},{:.4f},{},{},{},{:.8f},{:.6f},{:.3f},{:.8e},{:.8e},{:.8e},{:.3f},{:.3f},{:.3f},{:.3f},"
-                             "{:.4f},{:.4f},{:.3f},{:.3f},{:.3f}\n",
+                             "{:.4f},{:.4f},{:.3f},{:.3f},{:.3f},{:.5f}\n",
                        name, yaw * 1e3, s.last_y_m / kMm, side_name(w.side), p, w.patches.size(),
                        patch.region.contact_angle_rad, patch.region.rail_profile_y_m / kMm, patch.normal_force_N,
                        patch.creepage.xi, patch.creepage.eta, patch.creepage.phi, exact.F1_N, exact.F2_N, fast.F1_N,
-                       fast.F2_N, d1, d2, w.force_track_N[0], w.force_track_N[1], w.force_track_N[2]);
+                       fast.F2_N, d1, d2, w.force_track_N[0], w.force_track_N[1], w.force_track_N[2],
+                       contact_angle_variation_rad(patch.region));
+            s.largest_angle_variation_rad = std::max(s.largest_angle_variation_rad, contact_angle_variation_rad(patch.region));
           }
         }
         const WheelResult& right = r.wheels[0];
@@ -215,12 +218,12 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
 
   std::ofstream pairs = open_file(out.path("pairs.csv"));
   fmt::print(pairs, "setup,yaw_mrad,tan_gamma_e_3mm,states,last_y_mm,most_patches,worst_dF1_percent,worst_dF1_y_mm,"
-                    "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,stop\n");
+                    "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,largest_angle_variation_rad,stop\n");
   for (const SweepSummary& s : summaries)
-    fmt::print(pairs, "{},{:.3f},{:.5f},{},{:.4f},{},{:.3f},{:.4f},{:.3f},{:.4f},{:.1f},{:.4f},{},\"{}\"\n", s.setup,
+    fmt::print(pairs, "{},{:.3f},{:.5f},{},{:.4f},{},{:.3f},{:.4f},{:.3f},{:.4f},{:.1f},{:.4f},{},{:.4f},\"{}\"\n", s.setup,
                s.yaw_rad * 1e3, s.tan_gamma_e, s.states, s.last_y_m / kMm, s.most_patches, s.worst_dF1_percent,
                s.worst_dF1_y_m / kMm, s.worst_dF2_percent, s.worst_dF2_y_m / kMm, s.worst_step_N,
-               s.worst_step_y_m / kMm, s.jumps, s.stop);
+               s.worst_step_y_m / kMm, s.jumps, s.largest_angle_variation_rad, s.stop);
   pairs.close();
   if (pairs.fail()) throw write_error(out.path("pairs.csv"), errno);
 
@@ -231,18 +234,21 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
              "towards the right wheel's flange in steps of {:g} mm until the flange climbs, {:g} mm elements, the exact "
              "solver and nH-FastSim on every patch. nH-FastSim's largest miss per component as a share of μ F3 (target "
              "{:g} %); the largest step of the right wheel's force between two positions, and the jumps: steps above 1 % "
-             "of the load and three times both neighbouring steps with the number of patches unchanged.\n\n",
-             o.y_step_m / kMm, o.element_size_m / kMm, kTarget_percent);
+             "of the load and three times both neighbouring steps with the number of patches unchanged; the largest "
+             "difference between the rail's normal angle over a patch's overlap and its contact angle (a planar patch is "
+             "flagged above {:g} rad, docs/WHEELSET.md §4).\n\n",
+             o.y_step_m / kMm, o.element_size_m / kMm, kTarget_percent, kLargeContactAngleVariation_rad);
   fmt::print(md, "| set-up | yaw (mrad) | tan γe (3 mm) | states | to y (mm) | patches | F1 miss (at y mm) | F2 miss (at y mm) "
-                 "| largest step (kN, at y mm) | jumps | within target |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
+                 "| largest step (kN, at y mm) | jumps | largest angle variation (rad) | within target |\n"
+                 "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const SweepSummary& s : summaries) {
     const bool ok = std::abs(s.worst_dF1_percent) <= kTarget_percent && std::abs(s.worst_dF2_percent) <= kTarget_percent &&
                     s.jumps == 0;
-    fmt::print(md, "| {} | {:+.0f} | {} | {} | {:.2f} | {} | {} ({:.2f}) | {} ({:.2f}) | {:.1f} ({:.2f}) | {} | {} |\n",
+    fmt::print(md, "| {} | {:+.0f} | {} | {} | {:.2f} | {} | {} ({:.2f}) | {} ({:.2f}) | {:.1f} ({:.2f}) | {} | {:.3f} | {} |\n",
                s.setup, s.yaw_rad * 1e3, std::isfinite(s.tan_gamma_e) ? fmt::format("{:.4f}", s.tan_gamma_e) : "–",
                s.states, s.last_y_m / kMm, s.most_patches, percent(s.worst_dF1_percent), s.worst_dF1_y_m / kMm,
                percent(s.worst_dF2_percent), s.worst_dF2_y_m / kMm, s.worst_step_N / 1e3, s.worst_step_y_m / kMm, s.jumps,
-               ok ? "yes" : "**no**");
+               s.largest_angle_variation_rad, ok ? "yes" : "**no**");
   }
   for (const SweepSummary& s : summaries)
     if (!s.stop.empty()) fmt::print(md, "\n- {} at yaw {:+.0f} mrad stopped before the flange-climb limit: {}\n", s.setup,

@@ -18,6 +18,8 @@
 //   X3 the rail's normal into the wheel at the reference point, leaning towards the track centre
 //   by the contact angle γ: X3 = (0, ±sin γ, cos γ) (+ right wheel, − left wheel);
 //   X2 = X3 × X1 = (0, cos γ, ∓sin γ) points to the LEFT (+y) on both wheels.
+#include <algorithm>
+#include <limits>
 #include <array>
 #include <cstddef>
 #include <string>
@@ -103,6 +105,13 @@ struct InterpenetrationRegion {
   double rail_profile_y_m = 0.0;
   double wheel_profile_y_m = 0.0;   // weighted average position on the wheel profile
   double contact_angle_rad = 0.0;   // weighted average rail normal angle
+  // The smallest and largest rail normal angle over the part of the overlap at least half as deep
+  // as its deepest point (for a Hertzian contact: the contact area's width): a patch on a curved part of the
+  // profile (flange root, flange) spans several; a planar patch in one tangent plane at
+  // contact_angle_rad ignores the spread (docs/WHEELSET.md §4 "Angle variation"). NaN where not
+  // known (a patch from a wheelset table).
+  double contact_angle_min_rad = std::numeric_limits<double>::quiet_NaN();
+  double contact_angle_max_rad = std::numeric_limits<double>::quiet_NaN();
   double rolling_radius_m = 0.0;    // weighted average wheel radius
   // The contact frame at the reference point (track frame, see the top of this header).
   Vector3 x1_axis{1.0, 0.0, 0.0};
@@ -119,6 +128,18 @@ struct InterpenetrationRegion {
   // Locus samples of the region [first_sample, last_sample] in WheelContactSearch::locus.
   std::size_t first_sample = 0, last_sample = 0;
 };
+
+// The largest difference between the rail normal angle over a region's overlap and its contact
+// angle (rad): how far the planar patch's tangent plane is from the surface at its edges (NaN where
+// the range is not known).
+inline double contact_angle_variation_rad(const InterpenetrationRegion& r) {
+  return std::max(r.contact_angle_max_rad - r.contact_angle_rad, r.contact_angle_rad - r.contact_angle_min_rad);
+}
+// Above this angle variation (0.1 rad, 5.7°) a planar patch is flagged (JSON, text output, study
+// profiles): on S1002/UIC60 at 5 mm towards the flange (a variation of about 7°) the planar lateral
+// force is 9 % of μFz from a conformal solution (issue #31's measurement); Kalker's CONTACT warns
+// from 13.9°, where the undeformed distance errs by 3 %.
+inline constexpr double kLargeContactAngleVariation_rad = 0.1;
 
 // The contact search of one wheel at one position.
 struct WheelContactSearch {

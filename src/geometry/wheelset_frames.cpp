@@ -90,6 +90,8 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
   r.max_interpenetration_m = 0.0;
   r.rail_profile_y_min_m = std::numeric_limits<double>::infinity();
   r.rail_profile_y_max_m = -std::numeric_limits<double>::infinity();
+  r.contact_angle_min_rad = std::numeric_limits<double>::infinity();
+  r.contact_angle_max_rad = -std::numeric_limits<double>::infinity();
   for (std::size_t k = first; k <= last; ++k) {
     const ContactLocusSample& s = locus[k];
     r.rail_profile_y_min_m = std::min(r.rail_profile_y_min_m, s.rail_profile_y_m);
@@ -111,6 +113,16 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
     r.max_interpenetration_m = std::max(r.max_interpenetration_m, -s.vertical_gap_m * std::cos(s.contact_angle_rad));
   }
   require(sum_w > 0.0, "contact search: an interpenetration region without overlap");
+  // The rail normal angle's range over the part of the overlap at least half as deep as its
+  // deepest point: for a Hertzian contact that part is as wide as the contact area (the rigid
+  // overlap is √2 wider), so the range is the contact's, not the overlap's.
+  double deepest = 0.0;
+  for (std::size_t k = first; k <= last; ++k) deepest = std::max(deepest, -locus[k].vertical_gap_m);
+  for (std::size_t k = first; k <= last; ++k) {
+    if (!(-locus[k].vertical_gap_m >= 0.5 * deepest)) continue;
+    r.contact_angle_min_rad = std::min(r.contact_angle_min_rad, locus[k].contact_angle_rad);
+    r.contact_angle_max_rad = std::max(r.contact_angle_max_rad, locus[k].contact_angle_rad);
+  }
   r.interpenetration_area_m2 = sum_depth;
   r.rail_profile_y_m = sum_y / sum_w;
   r.wheel_profile_y_m = sum_yw / sum_w;

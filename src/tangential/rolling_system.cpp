@@ -13,9 +13,20 @@ RollingSystem::RollingSystem(const ContactPatch& patch, double alpha)
       alpha_(alpha),
       R_(make_steady_rolling_operator(patch.mesh(), patch.material(), alpha)),
       ahead_(count_, 0) {
-  const int behind = patch.mesh().n1 > 1 ? -1 : 0;
-  lambda1_ = 0.5 * (R_.kernel(0, 0, behind, 0) - R_.kernel(0, 0, 0, 0));
-  lambda2_ = 0.5 * (R_.kernel(1, 1, behind, 0) - R_.kernel(1, 1, 0, 0));
+  // λ = (R's coefficient of the element behind − its own) / 2 depends on the element size and the
+  // material only. A patch one element long (a patch that has just appeared on a flank) has no
+  // element behind in its own mesh: the coefficients come from a mesh two elements long.
+  if (patch.mesh().n1 > 1) {
+    lambda1_ = 0.5 * (R_.kernel(0, 0, -1, 0) - R_.kernel(0, 0, 0, 0));
+    lambda2_ = 0.5 * (R_.kernel(1, 1, -1, 0) - R_.kernel(1, 1, 0, 0));
+  } else {
+    Mesh two = patch.mesh();
+    two.n1 = 2;
+    two.n2 = 1;
+    const InfluenceOperator R2 = make_steady_rolling_operator(two, patch.material(), alpha);
+    lambda1_ = 0.5 * (R2.kernel(0, 0, -1, 0) - R2.kernel(0, 0, 0, 0));
+    lambda2_ = 0.5 * (R2.kernel(1, 1, -1, 0) - R2.kernel(1, 1, 0, 0));
+  }
   const auto& idx = patch.elements().indices();
   const auto n1 = static_cast<std::size_t>(patch.mesh().n1);
   for (std::size_t e = 0; e + 1 < count_; ++e)
