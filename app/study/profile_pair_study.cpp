@@ -50,10 +50,11 @@ bool flange_climbs(const Error& e) {
   return std::string_view(e.what()).find("the flange is climbing") != std::string_view::npos;
 }
 
-// The rigid contact geometry: where the right wheel's flange climbs (towards −y, at most 10 mm) and
-// the equivalent conicity at 3 mm (NaN when the flange climbs before it).
+// The rigid contact geometry: where the right wheel's flange climbs (towards −y, at most 15 mm) and
+// the equivalent conicity at 3 mm (NaN when the flange climbs before it). A wide gauge puts flange
+// contact beyond 10 mm: the search goes to 15 mm.
 struct PairGeometry {
-  double climb_y_m = -10e-3;  // the last y (≤ 0) before the flange climbs
+  double climb_y_m = -15e-3;  // the last y (≤ 0) before the flange climbs
   double tan_gamma_e = kNaN;
 };
 
@@ -61,7 +62,7 @@ PairGeometry pair_geometry(const WheelsetTrack& track, double step_m) {
   PairGeometry g;
   const auto reach = [&](double direction) {
     double last = 0.0;
-    for (int k = 1; k * step_m <= 10e-3 + 1e-12; ++k) {
+    for (int k = 1; k * step_m <= 15e-3 + 1e-12; ++k) {
       try {
         (void)rigid_contact_geometry(track, direction * k * step_m);
       } catch (const Error& e) {
