@@ -174,6 +174,10 @@ TEST(ProfileCuration, MeasuredWheelGivesAWheelset) {
   EXPECT_EQ(wheel.curation.zigzags_repaired, 0);
   EXPECT_EQ(wheel.curation.hidden_points, 168u);
   EXPECT_NEAR(wheel.curation.largest_overhang_m, 1.139 * kMm, 0.001 * kMm);
+  // Car7216 folds back at its flange tip too (0.6 mm; the direction turns by 162 degrees there).
+  const Profile other = read_profile(kProfiles / "Car7216_0001r.whl", ProfileReadOptions{.role = ProfileKind::wheel});
+  EXPECT_EQ(other.curation.hidden_points, 109u);
+  EXPECT_NEAR(other.curation.largest_overhang_m, 0.597 * kMm, 0.001 * kMm);
   const WheelRailSetup setup = read_wheel_rail_setup(std::filesystem::path(RAILCONTACT_DATA_DIR) / "wheel_rail/car7358_uic60.json");
   WheelsetOptions options;
   options.element_size_m = 0.5e-3;

@@ -223,5 +223,17 @@ TEST(WheelsetCli, NamesTheBalanceSolverGivesEveryTotalTheRigidAxleAndFreeRolling
   EXPECT_NEAR(depth["wheels"][0]["patches"][0]["rail_profile_y_m"].get<double>(), -10.09e-3, 0.03e-3);
 }
 
+// A rotation given on the command line replaces the case file's, whichever it is: the measured-wheel
+// example runs in free rolling; with --extra-creepage 0 it rolls purely at r0 (Ω = V / r0 to
+// rounding), as a wheelset table needs.
+TEST(WheelsetCli, ARotationOnTheCommandLineReplacesTheCaseFiles) {
+  const std::string example = std::string(RAILCONTACT_SOURCE_DIR) + "/examples/wheelset_measured_wheel.toml";
+  const nlohmann::json free = wheelset_json(example);
+  EXPECT_TRUE(free["state"]["free_rolling"].get<bool>());
+  const nlohmann::json pure = wheelset_json(example + " --extra-creepage 0");
+  EXPECT_FALSE(pure["state"]["free_rolling"].get<bool>());
+  EXPECT_NEAR(pure["state"]["wheel_angular_velocity_rad_per_s"].get<double>(), 20.0 / 0.46, 1e-12 * 20.0 / 0.46);
+}
+
 }  // namespace
 }  // namespace railcontact

@@ -108,7 +108,6 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
   if (given("--yaw-rad")) p.yaw_rad = a.yaw_rad;
   if (given("--roll-rad")) p.roll_rad = a.roll_rad;
   if (given("--speed-m-per-s")) v.forward_speed_m_per_s = a.speed_m_per_s;
-  if (given("--extra-creepage")) v.extra_longitudinal_creepage = a.extra_creepage;
   if (given("--lateral-velocity-m-per-s")) v.lateral_velocity_m_per_s = a.lateral_velocity_m_per_s;
   if (given("--yaw-rate-rad-per-s")) v.yaw_rate_rad_per_s = a.yaw_rate_rad_per_s;
   // The wheels' rotation: one of pure rolling (with --extra-creepage), a given angular velocity, free rolling.
@@ -116,11 +115,13 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
                         (a.free_rolling ? 1 : 0);
   require(rotations <= 1, "--extra-creepage, --wheel-angular-velocity-rad-per-s and --free-rolling each set the wheels' "
                           "rotation: give one of them");
-  if (given("--wheel-angular-velocity-rad-per-s") || a.free_rolling) {
+  // One given on the command line replaces the case file's rotation, whichever of the three it is.
+  if (rotations == 1) {
     v.wheel_angular_velocity_rad_per_s = std::numeric_limits<double>::quiet_NaN();
     v.extra_longitudinal_creepage = 0.0;
     v.free_rolling = false;
   }
+  if (given("--extra-creepage")) v.extra_longitudinal_creepage = a.extra_creepage;
   if (given("--wheel-angular-velocity-rad-per-s")) v.wheel_angular_velocity_rad_per_s = a.wheel_angular_velocity_rad_per_s;
   if (a.free_rolling) v.free_rolling = true;
   // The velocities' ranges (wheelset.hpp), an option given named as given:
