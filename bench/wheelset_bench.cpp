@@ -111,7 +111,7 @@ void BM_WheelsetByLoad(benchmark::State& state) {
   report(state, r);
 }
 
-void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction) {
+void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction, bool tangential_in_balance = false) {
   const double y0 = static_cast<double>(state.range(0)) * 1e-6;
   std::vector<double> ys;
   for (int k = -5; k <= 5; ++k) ys.push_back(y0 + k * 0.1e-3);
@@ -125,7 +125,7 @@ void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction) 
   long step = 0;
   for (auto _ : state) {
     s.position.lateral_displacement_m = y0 + static_cast<double>(step++ % 1000 - 500) * 1e-6;
-    r = table.evaluate(s, loads, 0.3);
+    r = table.evaluate(s, loads, 0.3, tangential_in_balance);
     benchmark::DoNotOptimize(r.force_track_N);
   }
   report(state, r);
@@ -134,6 +134,11 @@ void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction) 
 // The wheelset's default (the flexibility-weighted slip direction), and Eq 8's radial one.
 void BM_WheelsetTable(benchmark::State& state) { wheelset_table_step(state, SlipDirection::flexibility_weighted); }
 void BM_WheelsetTableRadial(benchmark::State& state) { wheelset_table_step(state, SlipDirection::radial); }
+// With the tangential forces in the vertical balance, as the command line, the C API and Python
+// look the table up (a secant on the table's load: two or three lookups).
+void BM_WheelsetTableBalanced(benchmark::State& state) {
+  wheelset_table_step(state, SlipDirection::flexibility_weighted, true);
+}
 
 BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6300)->Arg(-6400)->Arg(-6500)->Arg(-6600)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
@@ -142,6 +147,7 @@ BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecon
 BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetTable)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableRadial)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WheelsetTableBalanced)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

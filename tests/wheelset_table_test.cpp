@@ -186,6 +186,31 @@ TEST(WheelsetTable, BetweenNodesItStaysWithinOneAndAHalfPercentOfMuFzOfTheWheels
   }
 }
 
+// With the tangential forces in the vertical balance (Wheelset's default, the command line's), each
+// wheel is looked up at the table load that makes its normal and tangential forces carry its load:
+// near the flange root (y = -5.9 mm, between nodes 0.2 mm apart; the tangential forces' vertical
+// components are 2.6 kN there) Fz meets the load within 1e-6 and Fx, Fy are within 2 % of μFz of
+// the wheelset on the fly with the same balance; with the frictionless balance Fz was 2.7 % of the
+// load off.
+TEST(WheelsetTable, TheTangentialForcesJoinTheVerticalBalanceAsOnTheFly) {
+  const WheelsetTable t = build_wheelset_table(track(), {{-6.2e-3, -6.0e-3, -5.8e-3, -5.6e-3}, {0.0}, {80e3, 100e3, 120e3}},
+                                               coarse_table_options());
+  WheelsetOptions o = coarse_table_options().wheelset;
+  o.friction_coefficient = kMu;
+  Wheelset wheelset(track(), o);  // tangential forces in the balance (the default)
+  const WheelsetState state = moving_state(-5.9e-3);
+  const WheelsetResult expected = wheelset.evaluate(state);
+  const WheelsetResult got = t.evaluate(state, WheelLoads{98.1e3, 98.1e3, false}, kMu, true);
+  const WheelsetResult frictionless = t.evaluate(state, WheelLoads{98.1e3, 98.1e3, false}, kMu);
+  for (int w = 0; w < 2; ++w) {
+    const double scale = kMu * 98.1e3;
+    EXPECT_NEAR(got.wheels[w].force_track_N[2], 98.1e3, 1e-6 * 98.1e3) << w;
+    for (int i = 0; i < 2; ++i)
+      EXPECT_NEAR(got.wheels[w].force_track_N[i], expected.wheels[w].force_track_N[i], 0.02 * scale) << w << " " << i;
+  }
+  EXPECT_GT(std::abs(frictionless.wheels[0].force_track_N[2] - 98.1e3), 0.01 * 98.1e3);
+}
+
 // The table's nodes are mirror images (the left wheel is solved as the mirrored right wheel), so
 // lookups at (y, ψ, loads) and (−y, −ψ, loads swapped) are mirror images to rounding.
 TEST(WheelsetTable, TheLeftWheelIsTheMirroredRightWheel) {
@@ -585,7 +610,7 @@ TEST(WheelsetTableCli, SweepFromTheTableGivesItsPointEvaluations) {
     state.position.lateral_displacement_m = values.front() * 1e-3;
     state.velocity.forward_speed_m_per_s = 30.0;
     state.velocity.lateral_velocity_m_per_s = 0.02;
-    const WheelsetResult r = table.evaluate(state, WheelLoads{100e3, 100e3, false}, 0.3);
+    const WheelsetResult r = table.evaluate(state, WheelLoads{100e3, 100e3, false}, 0.3, true);  // as the command line balances
     const int side = line.find(",right,") != std::string::npos ? 0 : 1;
     for (int i = 0; i < 3; ++i)  // the last three columns: the wheel's force, printed to 1e-3 N
       EXPECT_NEAR(values[values.size() - 3 + i], r.wheels[side].force_track_N[i], 1e-3) << line;
@@ -638,7 +663,7 @@ TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
   state.position.lateral_displacement_m = 0.2e-3;
   state.position.yaw_rad = 1.5e-3;
   state.velocity.forward_speed_m_per_s = 30.0;
-  const WheelsetResult r = table.evaluate(state, WheelLoads{97e3, 97e3, false}, 0.3);
+  const WheelsetResult r = table.evaluate(state, WheelLoads{97e3, 97e3, false}, 0.3, true);  // as the command line balances
   EXPECT_EQ(j["wheelset_table"], file);
   for (int w = 0; w < 2; ++w)
     for (int i = 0; i < 3; ++i) EXPECT_EQ(j["wheels"][w]["force_track_N"][i].get<double>(), r.wheels[w].force_track_N[i]);

@@ -329,7 +329,8 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     const study::WheelsetSweepResult done =
         table ? study::run_wheelset_sweep(
                     [&](const WheelsetState& s) {
-                      return table->evaluate(s, *options.loads, options.friction_coefficient);
+                      return table->evaluate(s, *options.loads, options.friction_coefficient,
+                                             options.tangential_forces_in_vertical_balance);
                     },
                     {TangentialSolver::nh_fastsim}, state, sweep, out, std::cerr)
               : study::run_wheelset_sweep(wheelset, state, sweep, out, std::cerr);
@@ -351,7 +352,9 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
       table ? table->metadata().flexibility_coarsening : options.nh_fastsim.flexibility_coarsening;
   const SlipDirection slip_direction = table ? table->bound().slip_direction : options.nh_fastsim.bound.slip_direction;
   const WheelsetResult r =
-      table ? table->evaluate(state, *options.loads, options.friction_coefficient) : wheelset.evaluate(state);
+      table ? table->evaluate(state, *options.loads, options.friction_coefficient,
+                              options.tangential_forces_in_vertical_balance)
+            : wheelset.evaluate(state);
 
   // The settings in which the table differs from the run's request, named by --table-override.
   nlohmann::json overrides = table ? nlohmann::json::array() : nlohmann::json(nullptr);

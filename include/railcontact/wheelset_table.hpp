@@ -241,10 +241,18 @@ class WheelsetTable {
   // state with a roll other than zero is refused. Throws Error (invalid_input) for a bad state,
   // load or mu, for y or a load outside the table's grid, and when a node needed is a gap.
   // Thread-safe (const).
+  // The nodes carry their loads on the normal forces alone (a frictionless balance). With
+  // tangential_forces_in_vertical_balance (WheelsetOptions' default, which the command line, the C
+  // API and Python pass on) each wheel is looked up at the table load at which its normal and
+  // tangential forces together carry its load, as Wheelset::evaluate balances it: a secant on the
+  // table's load, to 1e-6 of the load (docs/WHEELSET_TABLE.md §2 "The vertical balance").
   [[nodiscard]] WheelsetResult evaluate(const WheelsetState& state, const WheelLoads& loads,
-                                        double friction_coefficient) const;
+                                        double friction_coefficient,
+                                        bool tangential_forces_in_vertical_balance = false) const;
 
  private:
+  [[nodiscard]] WheelsetResult evaluate_at_table_loads(const WheelsetState& state, const WheelLoads& loads,
+                                                       double friction_coefficient) const;
   WheelsetTableGrid grid_;
   std::vector<WheelsetTableNode> nodes_;
   double nominal_rolling_radius_m_ = 0.0;

@@ -701,7 +701,7 @@ rc_status rc_wheelset_evaluate_table(rc_wheelset* w, const rc_wheelset_state* st
             "RC_WHEELSET_BY_LOAD");
     w->last.reset();
     w->last = table.evaluate(s, rc::WheelLoads{w->options.right_load_N, w->options.left_load_N, false},
-                             w->options.friction_coefficient);
+                             w->options.friction_coefficient, w->options.tangential_in_balance != 0);
     if (result != nullptr) *result = result_of(*w->last);
   });
 }

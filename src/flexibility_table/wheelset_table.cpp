@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "railcontact/error.hpp"
@@ -278,7 +279,39 @@ std::vector<WheelsetTableMismatch> WheelsetTable::mismatches(const WheelsetOptio
 }
 
 WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLoads& loads,
-                                       double friction_coefficient) const {
+                                       double friction_coefficient, bool tangential_forces_in_vertical_balance) const {
+  WheelsetResult r = evaluate_at_table_loads(state, loads, friction_coefficient);
+  if (!tangential_forces_in_vertical_balance) return r;
+  // Within one cell of the load grid a wheel's vertical force is linear in the table load (the
+  // nodes' forces, tangential ones included, are interpolated linearly): the first step assumes it
+  // proportional, L' = L Fz_wanted / Fz, the next ones are secants through the last two lookups,
+  // which meet the load to 1e-6 (Wheelset's load tolerance) in one or two steps. The wheels are
+  // independent; the table load stays within the grid.
+  const std::array<double, 2> wanted{loads.right_N, loads.left_N};
+  std::array<double, 2> table_load = wanted, previous_load{}, previous_Fz{};
+  const double lowest = grid_.wheel_load_N.front(), highest = grid_.wheel_load_N.back();
+  for (int iteration = 0; iteration < 4; ++iteration) {
+    bool met = true;
+    for (std::size_t w = 0; w < 2; ++w) {
+      const double Fz = r.wheels[w].force_track_N[2];
+      if (std::abs(Fz - wanted[w]) <= 1e-6 * wanted[w] || !(Fz > 0.0)) continue;
+      met = false;
+      double next = table_load[w] * wanted[w] / Fz;
+      if (iteration > 0 && Fz != previous_Fz[w])
+        next = table_load[w] + (wanted[w] - Fz) * (table_load[w] - previous_load[w]) / (Fz - previous_Fz[w]);
+      previous_load[w] = table_load[w];
+      previous_Fz[w] = Fz;
+      table_load[w] = std::clamp(next, lowest, highest);
+    }
+    if (met) break;
+    r = evaluate_at_table_loads(state, WheelLoads{table_load[0], table_load[1], loads.balance_roll},
+                                friction_coefficient);
+  }
+  return r;
+}
+
+WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state, const WheelLoads& loads,
+                                                      double friction_coefficient) const {
   if (nodes_.empty()) throw Error("wheelset table: the table is empty");
   // The nodes have zero roll; a roll would turn the contact points and frames the table does not
   // have (its kinematic creepages alone moved Fx from -4482 N to 14 N at 10 mrad, where the wheelset
