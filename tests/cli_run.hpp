@@ -8,8 +8,11 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace railcontact::test {
 
@@ -89,6 +92,19 @@ class ScratchDirectory {
  private:
   std::filesystem::path path_;
 };
+
+// The rows of a CSV file the tool wrote, split at commas (no quoting).
+inline std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
+  std::ifstream file(path);
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(file, line);) {
+    std::vector<std::string> fields;
+    std::stringstream stream(line);
+    for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
+    rows.push_back(fields);
+  }
+  return rows;
+}
 
 inline int count_lines(const std::string& text) {
   int lines = 0;

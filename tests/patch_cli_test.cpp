@@ -21,17 +21,7 @@ using railcontact::test::run_cli;
 
 using railcontact::test::ScratchDirectory;  // removed with its files at the end of each test
 
-std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(file, line);) {
-    std::vector<std::string> fields;
-    std::stringstream stream(line);
-    for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
-    rows.push_back(fields);
-  }
-  return rows;
-}
+using railcontact::test::read_csv;
 
 using railcontact::test::expect_one_error_line;
 

@@ -19,17 +19,7 @@ using railcontact::test::CommandResult;
 using railcontact::test::run_cli;
 using railcontact::test::ScratchDirectory;
 
-std::vector<std::vector<std::string>> read_csv(const std::filesystem::path& path) {
-  std::ifstream file(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(file, line);) {
-    std::vector<std::string> fields;
-    std::stringstream stream(line);
-    for (std::string field; std::getline(stream, field, ',');) fields.push_back(field);
-    rows.push_back(fields);
-  }
-  return rows;
-}
+using railcontact::test::read_csv;
 
 TEST(ProfilePairStudy, SweepsEachSetUpToItsFlangeClimb) {
   const ScratchDirectory dir("profile_pair_study");

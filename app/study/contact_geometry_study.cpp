@@ -62,6 +62,10 @@ void validate(const ContactGeometryStudy& s) {
   });
 }
 
+bool is_flange_climb(const Error& e) {
+  return std::string_view(e.what()).find("the flange is climbing") != std::string_view::npos;
+}
+
 ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, const ContactGeometryStudy& study,
                                                  OutputDirectory& out, std::ostream& log) {
   validate(study);
@@ -76,8 +80,7 @@ ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, con
     try {
       result.sweep.push_back(rigid_contact_geometry(track, y));
     } catch (const Error& e) {
-      // check_flange's message (src/geometry/contact_geometry.cpp): the flange climbs at this y.
-      const bool climbs = std::string_view(e.what()).find("the flange is climbing") != std::string_view::npos;
+      const bool climbs = is_flange_climb(e);
       if (study.stop_at_flange_climb && climbs && y < 0.0 && result.sweep.empty()) continue;  // not yet in range
       if (study.stop_at_flange_climb && climbs && y > 0.0) break;                             // out of range
       throw Error(e.kind(), fmt::format("--y-from-m {:g} m .. --y-to-m {:g} m: at y = {:g} m: {}", study.y_from_m,

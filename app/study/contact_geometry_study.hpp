@@ -9,6 +9,8 @@
 #include "railcontact/contact_geometry.hpp"
 #include "study/output_directory.hpp"
 
+#include "railcontact/error.hpp"
+
 namespace railcontact::study {
 
 struct ContactGeometryStudy {
@@ -21,6 +23,10 @@ struct ContactGeometryStudy {
   // (a position beyond flange climb is an error).
   bool stop_at_flange_climb = false;
 };
+
+// The rigid contact geometry's refusal of a position beyond flange contact (check_flange in
+// src/geometry/contact_geometry.cpp): where a default y range ends.
+bool is_flange_climb(const Error& e);
 
 struct ContactGeometryResult {
   std::vector<RigidContactGeometry> sweep;

@@ -12,13 +12,13 @@
 #include <fstream>
 #include <limits>
 #include <string>
-#include <string_view>
 
 #include "railcontact/contact_geometry.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/geometry.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
+#include "study/contact_geometry_study.hpp"
 #include "study/figures.hpp"
 #include "study/output_directory.hpp"
 
@@ -46,10 +46,6 @@ WheelsetTrack track_of(const WheelRailSetup& setup) {
                        read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), setup.track);
 }
 
-bool flange_climbs(const Error& e) {
-  return std::string_view(e.what()).find("the flange is climbing") != std::string_view::npos;
-}
-
 // The rigid contact geometry: where the right wheel's flange climbs (towards −y, at most 15 mm) and
 // the equivalent conicity at 3 mm (NaN when the flange climbs before it). A wide gauge puts flange
 // contact beyond 10 mm: the search goes to 15 mm.
@@ -66,7 +62,7 @@ PairGeometry pair_geometry(const WheelsetTrack& track, double step_m) {
       try {
         (void)rigid_contact_geometry(track, direction * k * step_m);
       } catch (const Error& e) {
-        if (!flange_climbs(e)) throw;
+        if (!is_flange_climb(e)) throw;
         break;
       }
       last = direction * k * step_m;

@@ -104,9 +104,7 @@ void check_spacing(const Profile& p, const std::string& name) {
 // No reversal of direction (more than 150 degrees) at a point.
 void check_turns(const Profile& p, const std::string& name) {
   for (std::size_t i = 1; i + 1 < p.size(); ++i) {
-    const double ay = p.y_m[i] - p.y_m[i - 1], az = p.z_m[i] - p.z_m[i - 1];
-    const double by = p.y_m[i + 1] - p.y_m[i], bz = p.z_m[i + 1] - p.z_m[i];
-    const double cosine = (ay * by + az * bz) / (std::hypot(ay, az) * std::hypot(by, bz));
+    const double cosine = turn_cosine(p, i);
     require(cosine >= ProfileLimits::min_turn_cosine, [&] {
       return fmt::format(
           "profile {}: the points turn back at point {} ({}; the direction turns by {:.0f} degrees, at most {:.0f}): "
@@ -178,6 +176,24 @@ void check_single_valued(const Profile& p, const std::string& name) {
 }
 
 }  // namespace
+
+double turn_cosine(const Profile& p, std::size_t i) {
+  const double ay = p.y_m[i] - p.y_m[i - 1], az = p.z_m[i] - p.z_m[i - 1];
+  const double by = p.y_m[i + 1] - p.y_m[i], bz = p.z_m[i + 1] - p.z_m[i];
+  const double norms = std::hypot(ay, az) * std::hypot(by, bz);
+  return norms > 0.0 ? (ay * by + az * bz) / norms : 1.0;
+}
+
+double largest_lateral_retreat_m(const Profile& p) {
+  const double direction = p.y_m.back() >= p.y_m.front() ? 1.0 : -1.0;
+  std::size_t furthest = 0;
+  double retreat = 0.0;
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    if (direction * (p.y_m[i] - p.y_m[furthest]) > 0.0) furthest = i;
+    retreat = std::max(retreat, direction * (p.y_m[furthest] - p.y_m[i]));
+  }
+  return retreat;
+}
 
 void check_profile(const Profile& profile, std::string_view unit_hint, ProfileCheckScope scope) {
   const std::string name = name_of(profile);

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/profile_text.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/geometry.hpp"
 
@@ -29,21 +30,13 @@ namespace {
 
 constexpr double kMm = 1e-3;
 
-// cos of the turn at point i (between segments i-1..i and i..i+1).
-double turn_cosine(const Profile& p, std::size_t i) {
-  const double ay = p.y_m[i] - p.y_m[i - 1], az = p.z_m[i] - p.z_m[i - 1];
-  const double by = p.y_m[i + 1] - p.y_m[i], bz = p.z_m[i + 1] - p.z_m[i];
-  const double norms = std::hypot(ay, az) * std::hypot(by, bz);
-  return norms > 0.0 ? (ay * by + az * bz) / norms : 1.0;
-}
-
 // Replaces each zig-zag pair (points i and i+1 both turning back by more than the threshold) by
 // the pair's mean; returns the number of pairs replaced.
 int repair_zigzags(Profile& p) {
   int repaired = 0;
   std::size_t i = 1;
   while (p.size() >= 4 && i + 2 < p.size()) {
-    if (turn_cosine(p, i) < ProfileLimits::min_turn_cosine && turn_cosine(p, i + 1) < ProfileLimits::min_turn_cosine) {
+    if (geometry::turn_cosine(p, i) < ProfileLimits::min_turn_cosine && geometry::turn_cosine(p, i + 1) < ProfileLimits::min_turn_cosine) {
       p.y_m[i] = 0.5 * (p.y_m[i] + p.y_m[i + 1]);
       p.z_m[i] = 0.5 * (p.z_m[i] + p.z_m[i + 1]);
       p.y_m.erase(p.y_m.begin() + static_cast<std::ptrdiff_t>(i) + 1);
@@ -55,18 +48,6 @@ int repair_zigzags(Profile& p) {
     ++i;
   }
   return repaired;
-}
-
-// The largest lateral retreat of the points (as check_single_valued measures it).
-double largest_retreat(const Profile& p) {
-  const double direction = p.y_m.back() >= p.y_m.front() ? 1.0 : -1.0;
-  std::size_t furthest = 0;
-  double retreat = 0.0;
-  for (std::size_t i = 1; i < p.size(); ++i) {
-    if (direction * (p.y_m[i] - p.y_m[furthest]) > 0.0) furthest = i;
-    retreat = std::max(retreat, direction * (p.y_m[furthest] - p.y_m[i]));
-  }
-  return retreat;
 }
 
 struct Segment {
@@ -188,7 +169,7 @@ Profile curated(Profile profile, ProfileKind role, const ProfileCurationOptions&
   if (options.repair_zigzags) report.zigzags_repaired += repair_zigzags(profile);
   const ProfileKind kind = role != ProfileKind::unknown ? role : profile.kind;
   if (!options.hide_undercuts || kind == ProfileKind::unknown || profile.size() < 4) return profile;
-  report.largest_overhang_m = largest_retreat(profile);
+  report.largest_overhang_m = geometry::largest_lateral_retreat_m(profile);
   if (report.largest_overhang_m <= ProfileLimits::max_lateral_retreat_m) return profile;
   // The wheel is seen by its rail from +z (below it, z pointing down), the rail by its wheel from −z.
   const double sign = kind == ProfileKind::wheel ? 1.0 : -1.0;

@@ -58,6 +58,11 @@ std::string quoted(std::string_view text);
 // crossings), or that and the shape the contact search needs (no turn back, no undercut), which the
 // curation (curated) may repair in between.
 enum class ProfileCheckScope { points, all };
+// The cosine of the turn of the point list at interior point i (1 where a segment is empty).
+double turn_cosine(const Profile& profile, std::size_t i);
+// The largest lateral retreat of the points: max over j < i of (y_j − y_i), direction-adjusted
+// (the first point to the last); positive where the profile is undercut.
+double largest_lateral_retreat_m(const Profile& profile);
 void check_profile(const Profile& profile, std::string_view unit_hint, ProfileCheckScope scope = ProfileCheckScope::all);
 // "the numbers are read as millimetres" (1e-3), "... as metres" (1), "... in units of X m".
 std::string length_unit_hint(double length_unit_m);
