@@ -122,7 +122,7 @@ TEST(JsonVersion, EveryJsonOutputOfTheToolCarriesTheLibraryVersion) {
     const CommandResult b = run_cli("wheelset-table build --out " + table + " --y-m=0:0.0005:0.0005 --load-N 100000 --element-size-m 0.001");
     ASSERT_EQ(b.exit_code, 0) << b.err;
     expect_version(parse_file(table), "wheelset-table build --out FILE");
-    run_json("wheelset", "--table " + table + " --y-m 0.0002 --load-N 100000 --json");
+    run_json("wheelset", "--table " + table + " --y-m 0.0002 --load-N 100000 --frictionless-balance --json");
   }
   run_json("geometry", "--y-from-m=-0.002 --y-to-m 0.002 --y-step-m 0.0005 --amplitude-m 0.001 --json --out " + (dir / "geometry").string());
   // sweep writes DIR/sweep.json; a shard's journal holds it and merge writes it again.

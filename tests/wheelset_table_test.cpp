@@ -500,28 +500,28 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   std::ofstream(v2) << old_format.dump();
   const auto evaluate = [](const std::string& file, const std::string& extra) {
     const CommandResult r = run_cli("wheelset --table " + file +
-                                    " --y-m -0.0053 --load-N 100000 --json --table-override recipe contact-definition" + extra);
+                                    " --y-m -0.0053 --load-N 100000 --frictionless-balance --json --table-override recipe contact-definition" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out);
   };
   const nlohmann::json weighted = evaluate(v3, ""), radial = evaluate(v2, "");
   // A table of an older nH-FastSim recipe (format 3: not recorded) is refused unless the override
   // names it; then it is used with a note, and the JSON records the override.
-  const CommandResult refused = run_cli("wheelset --table " + v3 + " --y-m -0.0053 --load-N 100000 --json");
+  const CommandResult refused = run_cli("wheelset --table " + v3 + " --y-m -0.0053 --load-N 100000 --frictionless-balance --json");
   EXPECT_EQ(refused.exit_code, 2);
   EXPECT_NE(refused.err.find("recipe 3 (this railcontact's) differs from the table's 1 or 2, not recorded"),
             std::string::npos)
       << refused.err;
   EXPECT_EQ(weighted["wheelset_table_overrides"][0]["setting"], "recipe");
   const CommandResult noted = run_cli("wheelset --table " + v3 +
-                                      " --y-m -0.0053 --load-N 100000 --json --table-override recipe contact-definition");
+                                      " --y-m -0.0053 --load-N 100000 --frictionless-balance --json --table-override recipe contact-definition");
   EXPECT_NE(noted.err.find("note: " + v3 + ": the table was built with an older nH-FastSim recipe"), std::string::npos)
       << noted.err;
   EXPECT_EQ(weighted["nh_fastsim_slip_direction"], "flexibility-weighted");
   EXPECT_EQ(radial["nh_fastsim_slip_direction"], "radial");
   EXPECT_EQ(evaluate(v3, " --slip-direction flexibility-weighted")["wheels"], weighted["wheels"]);
   EXPECT_NE(weighted["wheels"][0]["force_track_N"], radial["wheels"][0]["force_track_N"]);
-  EXPECT_EQ(run_cli("wheelset --table " + v3 + " --y-m -0.0053 --load-N 100000 --slip-direction radial").exit_code, 2);
+  EXPECT_EQ(run_cli("wheelset --table " + v3 + " --y-m -0.0053 --load-N 100000 --frictionless-balance --slip-direction radial").exit_code, 2);
 }
 
 // A small table built by the command (0.5 mm elements, y = -0.5, 0, 0.5 mm, 90 and 110 kN).
@@ -635,7 +635,7 @@ TEST(WheelsetTableCli, ATableRecordsItsReferenceWeighting) {
                                       "--reference-weighting depth --out " + file);
   ASSERT_EQ(build.exit_code, 0) << build.err;
   EXPECT_EQ(load_wheelset_table(file).metadata().reference_weighting, ReferenceWeighting::depth);
-  const std::string state = " --y-m 0 --load-N 98100 --element-size-m 0.0005 --json";
+  const std::string state = " --y-m 0 --load-N 98100 --element-size-m 0.0005 --frictionless-balance --json";
   const CommandResult same = run_cli("wheelset --table " + file + state + " --reference-weighting depth");
   EXPECT_EQ(same.exit_code, 0) << same.err;
   const CommandResult other = run_cli("wheelset --table " + file + state);
@@ -668,6 +668,32 @@ TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
   for (int w = 0; w < 2; ++w)
     for (int i = 0; i < 3; ++i) EXPECT_EQ(j["wheels"][w]["force_track_N"][i].get<double>(), r.wheels[w].force_track_N[i]);
   std::filesystem::remove_all(dir);
+}
+
+
+// Near flange climb with yaw the tangential forces pull the wheel down by a fifth of its load: the
+// balance needs a table load beyond a narrow load grid and is refused with the loads named (it
+// stopped at the grid's edge, 9 % of the load short, without a word); a wide grid meets the load.
+TEST(WheelsetTable, ABalanceThatNeedsALoadOutsideTheGridIsRefused) {
+  const WheelsetState state = moving_state(-6.6e-3, 0.01);
+  const WheelsetTable narrow =
+      build_wheelset_table(track(), {{-6.6e-3, -6.5e-3}, {0.0, 0.01}, {88.29e3, 107.91e3}}, coarse_table_options());
+  const WheelsetResult frictionless = narrow.evaluate(state, WheelLoads{98.1e3, 98.1e3, false}, kMu);
+  ASSERT_LT(frictionless.wheels[0].force_track_N[2], 0.85 * 98.1e3);  // the state is what the test is about
+  try {
+    (void)narrow.evaluate(state, WheelLoads{98.1e3, 98.1e3, false}, kMu, true);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("the right wheel's load 98.1 kN, with its tangential forces in the vertical "
+                                         "balance, needs a table load beyond the table's loads [88.29, 107.91] kN"),
+              std::string::npos)
+        << e.what();
+  }
+  const WheelsetTable wide =
+      build_wheelset_table(track(), {{-6.6e-3, -6.5e-3}, {0.0, 0.01}, {80e3, 140e3}}, coarse_table_options());
+  const WheelsetResult met = wide.evaluate(state, WheelLoads{98.1e3, 98.1e3, false}, kMu, true);
+  for (int w = 0; w < 2; ++w) EXPECT_NEAR(met.wheels[w].force_track_N[2], 98.1e3, 1e-6 * 98.1e3) << w;
 }
 
 }  // namespace

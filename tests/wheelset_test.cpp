@@ -214,6 +214,33 @@ TEST(Wheelset, APatchThatAppearsStartsFromZeroForce) {
   }
 }
 
+// A second region appearing beside the first (S1002/UIC60, y = −4.5 mm: a flange-root overlap
+// 10.8 mm towards the gauge face from the tread's) starts from zero force. Its potential contact area
+// grows until its own overlap is inside; it once grew over the tread's overlap as well (1 mm
+// elements), found the tread's contact again in its tangent plane and doubled the wheel's normal
+// force, 73 kN to 145 kN between two heights 0.2 µm apart. Each region now owns its stretch of the
+// rail profile, midway to its neighbour (InterpenetrationRegion::rail_profile_y_*_bound_m).
+TEST(Wheelset, ARegionThatAppearsBesideAnotherDoesNotCarryItsContact) {
+  WheelsetOptions o;
+  o.element_size_m = 1e-3;
+  o.loads.reset();
+  o.allow_wheel_lift = true;
+  Wheelset wheelset(track(), o);
+  WheelsetState s;
+  s.position.lateral_displacement_m = -4.5e-3;
+  std::vector<std::size_t> patches;
+  std::vector<double> force;
+  for (const double z : {283.1e-6, 282.9e-6}) {
+    s.position.vertical_displacement_m = z;
+    const WheelsetResult r = wheelset.evaluate(s);
+    patches.push_back(r.wheels[0].patches.size());
+    force.push_back(r.wheels[0].force_track_N[2]);
+  }
+  ASSERT_EQ(patches[0], 1u);  // the state is what the test is about: the second region appears
+  ASSERT_EQ(patches[1], 2u);
+  EXPECT_NEAR(force[1], force[0], 0.02 * force[0]);  // about 0.3 kN more, 0.2 µm lower
+}
+
 // At y = −5.25 mm the right wheel's patch is one interpenetration region holding two lobes (the
 // tread and the flange root, docs/WHEELSET.md §8). nH-FastSim solves each lobe with its own
 // flexibilities: within 3 % of μF3 of the exact solver (measured −0.61 % in F1, +0.72 % in F2 at

@@ -154,10 +154,16 @@ void add_profile_pair_study(CLI::App* study, Action& action) {
   cmd->add_option("--element-size-m", options->element_size_m, "element size (m)")->capture_default_str();
   cmd->add_option("--y-step-m", options->y_step_m, "step of the lateral displacement (m, > 0)")->capture_default_str();
   cmd->add_option("--yaw-rad", *yaws, "yaw angles (rad; default 0, 0.01, -0.01)");
+  cmd->add_flag("!--no-table", options->table, "skip the wheelset table against the wheelset on the fly");
+  auto threads = std::make_shared<std::string>();
+  cmd->add_option("--threads", *threads,
+                  "threads for the wheelset tables' nodes (a whole number >= 1; default: all cores); the files do not "
+                  "depend on it");
   cmd->add_flag("!--no-figures", options->figures, "skip the figures");
-  cmd->callback([options, out, setups, yaws, &action] {
-    action = [options, out, setups, yaws] {
+  cmd->callback([options, out, setups, yaws, threads, &action] {
+    action = [options, out, setups, yaws, threads] {
       options->output_directory = *out;
+      options->threads = threads_of(*threads);
       for (const std::string& s : *setups) options->setups.emplace_back(s);
       if (!yaws->empty()) options->yaws_rad = *yaws;
       study::run_profile_pair_study(*options, std::cerr);

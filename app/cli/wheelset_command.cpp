@@ -46,6 +46,7 @@ struct WheelsetArguments {
   double wheel_angular_velocity_rad_per_s = 0.0;
   bool free_rolling = false;
   bool rigid_axle = false;
+  bool frictionless_balance = false;
   std::string balance_solver;       // --balance-solver (default: the first --solver)
   std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
   std::string table;    // a wheelset table to evaluate from (docs/WHEELSET_TABLE.md)
@@ -189,6 +190,11 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
     } catch (const Error& e) {
       throw Error(fmt::format("--reference-weighting: {}", e.what()));
     }
+  }
+  if (a.frictionless_balance) {
+    require(c.options.loads.has_value(), "--frictionless-balance is a balance of the wheels' loads: it needs the "
+                                         "wheelset by load, not the case's vertical position");
+    c.options.tangential_forces_in_vertical_balance = false;
   }
   if (a.rigid_axle) {
     require(c.options.loads.has_value(), "--rigid-axle balances the wheels' loads: it needs the wheelset by load, not "
@@ -397,7 +403,10 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
           {"wheel_angular_velocity_rad_per_s", omega},
           {"free_rolling", state.velocity.free_rolling},
           {"free_rolling_iterations", r.free_rolling_iterations}}},
-        {"load_balance", {{"axle", axle}, {"solver", options.loads ? nlohmann::json(solver_name(balance)) : nlohmann::json(nullptr)}}},
+        {"load_balance",
+         {{"axle", axle},
+          {"solver", options.loads ? nlohmann::json(solver_name(balance)) : nlohmann::json(nullptr)},
+          {"tangential_forces_in_vertical_balance", options.loads && options.tangential_forces_in_vertical_balance}}},
         {"case", c.source},
         {"friction_coefficient", options.friction_coefficient},
         {"nh_fastsim_slip_direction", slip_direction_name(slip_direction)},
@@ -504,6 +513,9 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_flag("--rigid-axle", args->rigid_axle,
                 "by load: meet both wheels' loads with one rigid axle's height and roll (the roll found is in the JSON's "
                 "state); default: each wheel's height on its own");
+  sub->add_flag("--frictionless-balance", args->frictionless_balance,
+                "by load: the normal forces alone carry the wheel loads (the tangential forces' vertical components left "
+                "out, as a wheelset table's nodes are built); default: the whole contact force carries them");
   sub->add_option("--reference-weighting", args->reference_weighting,
                   "how a patch's reference point and contact angle average its overlap: squared-gap (default, as "
                   "Kalker's CONTACT) or depth (docs/WHEELSET.md §4)");

@@ -32,6 +32,7 @@ struct BuildArguments {
   double element_size_m = 0.2e-3;
   std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
   std::string threads;
+  int runtime_elements = kWheelsetTableRuntimeElements;
 };
 
 // FROM:TO:STEP (in the option's SI unit), TO reached within 1e-9 of a step; FROM = TO gives one
@@ -83,6 +84,12 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
       throw Error(fmt::format("--reference-weighting: {}", e.what()));
     }
   }
+  require(a.runtime_elements >= 20 && a.runtime_elements <= 100000, [&] {
+    return fmt::format("--runtime-elements {} must lie in [20, 100000] (elements of the coarse patch FastSim runs on at "
+                       "lookup)",
+                       a.runtime_elements);
+  });
+  options.runtime_elements = a.runtime_elements;
   const WheelsetTrack track = wheelset_track(c);
   const std::filesystem::path out(a.out);
   if (rank0) check_table_writable(out, "wheelset table");  // before the work
@@ -167,6 +174,10 @@ void add_wheelset_table_command(CLI::App& app, Action& action) {
   build->add_option("--threads", args->threads,
                     "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any "
                     "number");
+  build->add_option("--runtime-elements", args->runtime_elements,
+                    "elements of the coarse copy of each patch FastSim runs on at lookup: the lookup's cost against "
+                    "FastSim's discretisation error (docs/WHEELSET_TABLE.md §3)")
+      ->capture_default_str();
   build->callback([args, build, &action] { action = [args, build] { return run_build(*args, *build); }; });
 }
 

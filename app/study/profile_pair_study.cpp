@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "railcontact/contact_geometry.hpp"
@@ -18,8 +19,10 @@
 #include "railcontact/geometry.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_table.hpp"
 #include "study/contact_geometry_study.hpp"
 #include "study/figures.hpp"
+#include "study/mpi_cases.hpp"
 #include "study/output_directory.hpp"
 
 namespace railcontact::study {
@@ -30,6 +33,13 @@ constexpr double kMm = 1e-3;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kConicityAmplitude_m = 3e-3;  // EN 15302's usual amplitude
 constexpr double kTarget_percent = 3.0;        // nH-FastSim against the exact solver, % of μ F3
+constexpr double kTableTarget_percent = 2.0;   // the wheelset table against on the fly, % of μ Fz
+constexpr double kWheelLoad_N = WheelLoads{}.right_N;  // the sweeps' load per wheel
+// The table's nodes are at quarter steps of the sweep (its states midway between two nodes) over
+// this last stretch before the flange climbs, where the flange's force rises steeply with y
+// (docs/WHEELSET_TABLE.md §3), and at half steps elsewhere.
+constexpr double kTableFineStretch_m = 2e-3;
+constexpr std::array<double, 3> kTableLoads{0.75, 1.0, 1.25};  // the table's loads, per sweep load
 
 // The set-up files: those given, or every shipped one, by name.
 std::vector<std::filesystem::path> setup_files(const ProfilePairStudyOptions& o) {
@@ -92,7 +102,53 @@ struct SweepSummary {
   int jumps = 0;                                     // steps standing out from their neighbours (see below)
   double largest_angle_variation_rad = 0.0;          // over the patches (contact_angle_variation_rad)
   double tan_gamma_e = kNaN;
+  // The wheelset table against nH-FastSim on the fly: the largest difference per track-frame
+  // component over both wheels and every state (% of μ Fz), and the states it could not look up.
+  std::array<double, 3> worst_table_percent{0.0, 0.0, 0.0};
+  std::array<double, 3> worst_table_y_m{0.0, 0.0, 0.0};
+  int table_states = 0, table_refused = 0;
+  std::string table_refusal;  // the first refusal's message
 };
+
+// The table's lateral grid for a sweep of states y_k = −k h, k = 0 … steps: nodes midway between
+// two states (a state is then where linear interpolation errs most), at quarter steps over the
+// last kTableFineStretch_m; the outermost node is the last state itself, which the rigid geometry
+// has shown to lie before the flange climbs.
+std::vector<double> table_y_grid(int steps, double h) {
+  std::vector<double> y;
+  const double fine_from = -steps * h + kTableFineStretch_m;
+  for (int k = 0; k <= steps; ++k) {
+    const double state = -k * h, half = state < fine_from ? 0.25 * h : 0.5 * h;
+    y.push_back(state + half);
+    y.push_back(k == steps ? state : state - half);
+  }
+  std::sort(y.begin(), y.end());
+  y.erase(std::unique(y.begin(), y.end(), [&](double a, double b) { return std::abs(a - b) < 1e-3 * h; }), y.end());
+  return y;
+}
+
+// The set-up's wheelset table over the sweeps' positions and yaws, at the sweeps' load and a quarter
+// either side of it: the vertical balance with the tangential forces looks up off the load, by up to
+// a fifth of it in flange contact at yaw (WheelsetTable.ABalanceThatNeedsALoadOutsideTheGridIsRefused).
+WheelsetTable build_table(const WheelsetTrack& track, const WheelsetOptions& wheelset, int steps,
+                          const ProfilePairStudyOptions& o, std::ostream& log) {
+  std::vector<double> yaws = o.yaws_rad;
+  std::sort(yaws.begin(), yaws.end());
+  yaws.erase(std::unique(yaws.begin(), yaws.end()), yaws.end());
+  const WheelsetTableGrid grid{table_y_grid(steps, o.y_step_m), yaws, {kTableLoads[0] * kWheelLoad_N, kTableLoads[1] * kWheelLoad_N, kTableLoads[2] * kWheelLoad_N}};
+  WheelsetTableOptions options;
+  options.wheelset = wheelset;
+  options.runner = table_node_runner(o.threads);
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t reported = 0;
+  return build_wheelset_table(track, grid, options, [&](const WheelsetTableProgress& p) {
+    if (p.nodes_done * 10 / p.nodes_total == reported && p.nodes_done != p.nodes_total) return;
+    reported = p.nodes_done * 10 / p.nodes_total;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fmt::print(log, "  table: {}/{} nodes, {:.0f} s left\n", p.nodes_done, p.nodes_total,
+               elapsed / static_cast<double>(p.nodes_done) * static_cast<double>(p.nodes_total - p.nodes_done));
+  });
+}
 
 // A jump: a step of a wheel's force larger than 1 % of its load and three times both neighbouring
 // steps, with the number of patches unchanged (a patch that appears starts from zero force and
@@ -106,6 +162,35 @@ void count_jumps(const std::vector<std::array<double, 3>>& force, const std::vec
     if (step[k] > s.worst_step_N) s.worst_step_N = step[k], s.worst_step_y_m = y[k];
     const double before = k >= 2 ? step[k - 1] : 0.0, after = k + 1 < step.size() ? step[k + 1] : 0.0;
     if (patches[k] == patches[k - 1] && step[k] > 0.01 * load_N && step[k] > 3.0 * std::max(before, after)) ++s.jumps;
+  }
+}
+
+// The table looked up at the sweep's state against nH-FastSim on the fly (the second solver), per
+// wheel and track-frame component, as % of μ Fz; a lookup the table refuses (a node it needs is a
+// gap) is counted and its first message kept.
+void compare_with_table(const WheelsetTable& table, const WheelsetState& state, const WheelsetResult& on_the_fly,
+                        double mu, const std::string& name, std::ostream& rows, SweepSummary& s) {
+  WheelsetResult looked_up;
+  try {
+    looked_up = table.evaluate(state, WheelLoads{kWheelLoad_N, kWheelLoad_N}, mu, true);
+  } catch (const Error& e) {
+    if (s.table_refused++ == 0) s.table_refusal = e.what();
+    return;
+  }
+  ++s.table_states;
+  for (std::size_t side = 0; side < 2; ++side) {
+    const Vector3& fly = on_the_fly.wheels[side].solver_force_track_N[1];
+    const Vector3& tab = looked_up.wheels[side].force_track_N;
+    std::array<double, 3> d{};
+    for (int i = 0; i < 3; ++i) {
+      d[i] = (tab[i] - fly[i]) * 100.0 / (mu * kWheelLoad_N);
+      if (std::abs(d[i]) > std::abs(s.worst_table_percent[i]))
+        s.worst_table_percent[i] = d[i], s.worst_table_y_m[i] = state.position.lateral_displacement_m;
+    }
+    fmt::print(rows, "{},{:.3f},{:.4f},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.4f},{:.4f}\n", name,
+               state.position.yaw_rad * 1e3, state.position.lateral_displacement_m / kMm,
+               side_name(on_the_fly.wheels[side].side), on_the_fly.wheels[side].patches.size(), fly[0], fly[1], fly[2],
+               tab[0], tab[1], tab[2], d[0], d[1], d[2]);
   }
 }
 
@@ -138,6 +223,12 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
              "setup,yaw_mrad,y_mm,side,patch,patches,contact_angle_rad,rail_profile_y_mm,normal_force_N,xi,eta,"
              "phi_per_m,exact_F1_N,exact_F2_N,nh_fastsim_F1_N,nh_fastsim_F2_N,dF1_percent_mu_F3,dF2_percent_mu_F3,"
              "wheel_Fx_N,wheel_Fy_N,wheel_Fz_N,contact_angle_variation_rad\n");
+  std::ofstream table_rows;
+  if (o.table) {
+    table_rows = open_file(out.path("table_check.csv"));
+    fmt::print(table_rows, "setup,yaw_mrad,y_mm,side,patches,on_the_fly_Fx_N,on_the_fly_Fy_N,on_the_fly_Fz_N,table_Fx_N,"
+                           "table_Fy_N,table_Fz_N,dFx_percent_mu_Fz,dFy_percent_mu_Fz,dFz_percent_mu_Fz\n");
+  }
   std::vector<SweepSummary> summaries;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t sweeps = files.size() * o.yaws_rad.size();
@@ -149,10 +240,16 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
     const std::string name = file.stem().string();
     fmt::print(log, "{}: the flange climbs beyond y = {:.2f} mm; tan γe(3 mm) = {:.4f}\n", name,
                geometry.climb_y_m / kMm, geometry.tan_gamma_e);
+    // The wheelset: the exact solver and nH-FastSim on every patch, balanced with nH-FastSim's
+    // forces (the wheelset a user of nH-FastSim gets, which the table is compared with).
+    WheelsetOptions options;
+    options.element_size_m = o.element_size_m;
+    options.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
+    options.balance_solver = TangentialSolver::nh_fastsim;
+    const int steps = static_cast<int>(std::floor(-geometry.climb_y_m / o.y_step_m + 1e-9));
+    std::optional<WheelsetTable> table;
+    if (o.table) table = build_table(track, options, steps, o, log);
     for (const double yaw : o.yaws_rad) {
-      WheelsetOptions options;
-      options.element_size_m = o.element_size_m;
-      options.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
       Wheelset wheelset(track, options);
       SweepSummary s;
       s.setup = name;
@@ -162,7 +259,6 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
       std::vector<std::array<double, 3>> right_force;
       std::vector<std::size_t> right_patches;
       std::vector<double> ys;
-      const int steps = static_cast<int>(std::floor(-geometry.climb_y_m / o.y_step_m + 1e-9));
       for (int k = 0; k <= steps; ++k) {
         WheelsetState state;
         state.position.lateral_displacement_m = -k * o.y_step_m;
@@ -197,12 +293,13 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
             s.largest_angle_variation_rad = std::max(s.largest_angle_variation_rad, contact_angle_variation_rad(patch.region));
           }
         }
+        if (table) compare_with_table(*table, state, r, mu, name, table_rows, s);
         const WheelResult& right = r.wheels[0];
         right_force.push_back({right.force_track_N[0], right.force_track_N[1], right.force_track_N[2]});
         right_patches.push_back(right.patches.size());
         ys.push_back(s.last_y_m);
       }
-      count_jumps(right_force, right_patches, ys, options.loads ? options.loads->right_N : 98100.0, s);
+      count_jumps(right_force, right_patches, ys, kWheelLoad_N, s);
       summaries.push_back(s);
       ++done;
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -212,15 +309,25 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   }
   rows.close();
   if (rows.fail()) throw write_error(out.path("profile_pairs.csv"), errno);
+  if (o.table) {
+    table_rows.close();
+    if (table_rows.fail()) throw write_error(out.path("table_check.csv"), errno);
+  }
 
   std::ofstream pairs = open_file(out.path("pairs.csv"));
   fmt::print(pairs, "setup,yaw_mrad,tan_gamma_e_3mm,states,last_y_mm,most_patches,worst_dF1_percent,worst_dF1_y_mm,"
-                    "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,largest_angle_variation_rad,stop\n");
+                    "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,largest_angle_variation_rad,stop,"
+                    "table_states,table_refused,table_dFx_percent,table_dFx_y_mm,table_dFy_percent,table_dFy_y_mm,"
+                    "table_dFz_percent,table_dFz_y_mm\n");
   for (const SweepSummary& s : summaries)
-    fmt::print(pairs, "{},{:.3f},{:.5f},{},{:.4f},{},{:.3f},{:.4f},{:.3f},{:.4f},{:.1f},{:.4f},{},{:.4f},\"{}\"\n", s.setup,
-               s.yaw_rad * 1e3, s.tan_gamma_e, s.states, s.last_y_m / kMm, s.most_patches, s.worst_dF1_percent,
+    fmt::print(pairs,
+               "{},{:.3f},{:.5f},{},{:.4f},{},{:.3f},{:.4f},{:.3f},{:.4f},{:.1f},{:.4f},{},{:.4f},\"{}\",{},{},{:.3f},{:.4f},"
+               "{:.3f},{:.4f},{:.3f},{:.4f}\n",
+               s.setup, s.yaw_rad * 1e3, s.tan_gamma_e, s.states, s.last_y_m / kMm, s.most_patches, s.worst_dF1_percent,
                s.worst_dF1_y_m / kMm, s.worst_dF2_percent, s.worst_dF2_y_m / kMm, s.worst_step_N,
-               s.worst_step_y_m / kMm, s.jumps, s.largest_angle_variation_rad, s.stop);
+               s.worst_step_y_m / kMm, s.jumps, s.largest_angle_variation_rad, s.stop, s.table_states, s.table_refused,
+               s.worst_table_percent[0], s.worst_table_y_m[0] / kMm, s.worst_table_percent[1],
+               s.worst_table_y_m[1] / kMm, s.worst_table_percent[2], s.worst_table_y_m[2] / kMm);
   pairs.close();
   if (pairs.fail()) throw write_error(out.path("pairs.csv"), errno);
 
@@ -250,6 +357,32 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   for (const SweepSummary& s : summaries)
     if (!s.stop.empty()) fmt::print(md, "\n- {} at yaw {:+.0f} mrad stopped before the flange-climb limit: {}\n", s.setup,
                                     s.yaw_rad * 1e3, s.stop);
+  if (o.table) {
+    fmt::print(md,
+               "\n## The wheelset table against the wheelset on the fly\n\n"
+               "Per set-up a wheelset table (docs/WHEELSET_TABLE.md) over the sweeps' yaws, its lateral nodes midway "
+               "between the sweep's positions ({:g} mm apart, {:g} mm over the last {:g} mm before the flange climbs; the "
+               "last position itself a node), wheel loads of {:g}, {:g} and {:g} kN; looked up at every state with the "
+               "tangential forces in the vertical balance, against nH-FastSim on the fly. The largest difference of a "
+               "wheel's force per track-frame component, over both wheels, as a share of μ Fz (target {:g} %).\n\n",
+               o.y_step_m / kMm, 0.5 * o.y_step_m / kMm, kTableFineStretch_m / kMm, kTableLoads[0] * kWheelLoad_N / 1e3,
+               kTableLoads[1] * kWheelLoad_N / 1e3, kTableLoads[2] * kWheelLoad_N / 1e3, kTableTarget_percent);
+    fmt::print(md, "| set-up | yaw (mrad) | states | Fx (at y mm) | Fy (at y mm) | Fz (at y mm) | within target |\n"
+                   "|---|---|---|---|---|---|---|\n");
+    for (const SweepSummary& s : summaries) {
+      bool ok = s.table_refused == 0;
+      for (const double d : s.worst_table_percent) ok = ok && std::abs(d) <= kTableTarget_percent;
+      fmt::print(md, "| {} | {:+.0f} | {}{} | {} ({:.2f}) | {} ({:.2f}) | {} ({:.2f}) | {} |\n", s.setup, s.yaw_rad * 1e3,
+                 s.table_states, s.table_refused ? fmt::format(" ({} refused)", s.table_refused) : "",
+                 percent(s.worst_table_percent[0]), s.worst_table_y_m[0] / kMm, percent(s.worst_table_percent[1]),
+                 s.worst_table_y_m[1] / kMm, percent(s.worst_table_percent[2]), s.worst_table_y_m[2] / kMm,
+                 ok ? "yes" : "**no**");
+    }
+    for (const SweepSummary& s : summaries)
+      if (s.table_refused)
+        fmt::print(md, "\n- {} at yaw {:+.0f} mrad: the table refused {} states, the first: {}\n", s.setup,
+                   s.yaw_rad * 1e3, s.table_refused, s.table_refusal);
+  }
   md.close();
   if (md.fail()) throw write_error(out.path("summary.md"), errno);
   if (o.figures) draw_figures("plot_profile_pairs.py", out.staging(), log);

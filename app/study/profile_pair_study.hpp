@@ -3,7 +3,9 @@
 // checked end to end — the rigid contact geometry and its equivalent conicity, then the wheelset
 // by load from y = 0 towards the right wheel's flange until the flange climbs, at each yaw, with
 // the exact solver and nH-FastSim on every patch: the patches found, nH-FastSim against the exact
-// solver, and the steps of the wheel forces, reference point and contact angle along y.
+// solver, and the steps of the wheel forces, reference point and contact angle along y; and a
+// wheelset table of the set-up, built with its nodes midway between the sweep's positions, against
+// nH-FastSim on the fly at every state.
 #include <filesystem>
 #include <ostream>
 #include <vector>
@@ -18,11 +20,14 @@ struct ProfilePairStudyOptions {
   double element_size_m = 0.2e-3;  // the accuracy targets' mesh
   double y_step_m = 0.1e-3;
   std::vector<double> yaws_rad{0.0, 0.01, -0.01};
+  // Build a wheelset table per set-up and compare it with the sweep's on-the-fly states.
+  bool table = true;
+  int threads = 1;  // the table builds' threads
   bool figures = true;
 };
 
-// Writes profile_pairs.csv (one row per patch), pairs.csv (one row per set-up and yaw), summary.md
-// and the figure; progress with the time left on `log`. Throws Error for a set-up that cannot be
+// Writes profile_pairs.csv (one row per patch), pairs.csv (one row per set-up and yaw),
+// table_check.csv (one row per state and wheel, with `table`), summary.md and the figure; progress with the time left on `log`. Throws Error for a set-up that cannot be
 // read or whose centred wheelset has no contact.
 void run_profile_pair_study(const ProfilePairStudyOptions& options, std::ostream& log);
 

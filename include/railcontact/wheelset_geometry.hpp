@@ -120,6 +120,11 @@ struct InterpenetrationRegion {
   // Extent and depth of the overlap: lateral range on the rail profile, largest normal
   // interpenetration, and its integral over the rail profile (m²: the depth weighting's total).
   double rail_profile_y_min_m = 0.0, rail_profile_y_max_m = 0.0;
+  // The stretch of the rail profile the region owns: midway to the overlaps of the wheel's
+  // neighbouring regions (unbounded without a neighbour). Its potential contact area counts overlap
+  // only on normal lines that meet the rail there, so a patch never carries its neighbour's contact.
+  double rail_profile_y_lower_bound_m = -std::numeric_limits<double>::infinity();
+  double rail_profile_y_upper_bound_m = std::numeric_limits<double>::infinity();
   double max_interpenetration_m = 0.0;
   double interpenetration_area_m2 = 0.0;
   // Bounding box of the overlap in the tangent plane (x1, x2 from the reference point), an

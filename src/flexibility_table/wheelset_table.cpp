@@ -285,20 +285,37 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
   // Within one cell of the load grid a wheel's vertical force is linear in the table load (the
   // nodes' forces, tangential ones included, are interpolated linearly): the first step assumes it
   // proportional, L' = L Fz_wanted / Fz, the next ones are secants through the last two lookups,
-  // which meet the load to 1e-6 (Wheelset's load tolerance) in one or two steps. The wheels are
-  // independent; the table load stays within the grid.
+  // which meet the load to 1e-6 (Wheelset's load tolerance) in one or two steps per cell crossed.
+  // The wheels are independent. A table load the balance needs outside the grid is refused: the
+  // lookup at the grid's edge would carry another load.
   const std::array<double, 2> wanted{loads.right_N, loads.left_N};
   std::array<double, 2> table_load = wanted, previous_load{}, previous_Fz{};
   const double lowest = grid_.wheel_load_N.front(), highest = grid_.wheel_load_N.back();
-  for (int iteration = 0; iteration < 4; ++iteration) {
+  constexpr int kIterations = 8;
+  for (int iteration = 0; iteration <= kIterations; ++iteration) {
     bool met = true;
     for (std::size_t w = 0; w < 2; ++w) {
       const double Fz = r.wheels[w].force_track_N[2];
-      if (std::abs(Fz - wanted[w]) <= 1e-6 * wanted[w] || !(Fz > 0.0)) continue;
+      if (std::abs(Fz - wanted[w]) <= 1e-6 * wanted[w]) continue;
       met = false;
+      const char* side = side_name(w == 0 ? WheelSide::right : WheelSide::left);
+      if (iteration == kIterations || !(Fz > 0.0))
+        throw Error(ErrorKind::not_converged,
+                    fmt::format("wheelset table: the {} wheel's vertical force with its tangential forces, {:.6g} kN, does "
+                                "not meet its load {:.6g} kN after {} lookups (table load {:.6g} kN)",
+                                side, Fz / 1e3, wanted[w] / 1e3, iteration + 1, table_load[w] / 1e3));
       double next = table_load[w] * wanted[w] / Fz;
       if (iteration > 0 && Fz != previous_Fz[w])
         next = table_load[w] + (wanted[w] - Fz) * (table_load[w] - previous_load[w]) / (Fz - previous_Fz[w]);
+      const bool at_edge = table_load[w] == (next < lowest ? lowest : highest);
+      if ((next < lowest || next > highest) && at_edge)
+        throw Error(fmt::format(
+            "wheelset table: the {} wheel's load {:.6g} kN, with its tangential forces in the vertical balance, needs a "
+            "table load beyond the table's loads [{:.6g}, {:.6g}] kN (at {:.6g} kN its vertical force is {:.6g} kN): "
+            "build the table with a {}, or look up with the frictionless balance (tangential forces left out; "
+            "--frictionless-balance on the command line)",
+            side, wanted[w] / 1e3, lowest / 1e3, highest / 1e3, table_load[w] / 1e3, Fz / 1e3,
+            lowest == highest ? "load grid around the load (it has one load)" : "wider load grid"));
       previous_load[w] = table_load[w];
       previous_Fz[w] = Fz;
       table_load[w] = std::clamp(next, lowest, highest);

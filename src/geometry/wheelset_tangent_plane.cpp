@@ -75,6 +75,21 @@ std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition&
 
 namespace {
 
+// Overlap on normal lines that meet the rail outside the region's own stretch of the rail profile
+// belongs to a neighbouring region: those strips are made a gap (1 m, far beyond any approach).
+void keep_own_overlap(const geometry::WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
+                      std::vector<double>& h) {
+  if (std::isinf(region.rail_profile_y_lower_bound_m) && std::isinf(region.rail_profile_y_upper_bound_m)) return;
+  constexpr double kNotOwned_m = 1.0;
+  Guesses g = guesses(w, region, mesh.x2(0));
+  for (int i2 = 0; i2 < mesh.n2; ++i2) {
+    (void)w.rail_normal_m(region, mesh.x2(i2), g.rail_parameter);
+    const double rail_y = w.rail().at(g.rail_parameter).y_m;
+    if (rail_y >= region.rail_profile_y_lower_bound_m && rail_y <= region.rail_profile_y_upper_bound_m) continue;
+    for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, i2)] = kNotOwned_m;
+  }
+}
+
 // n rounded up to a multiple of the largest power of two g with 16 g <= n (1 below 32 elements): at
 // most a sixteenth more.
 int round_up_to_granule(int n) {
@@ -133,6 +148,7 @@ TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& p
     });
     validate(mesh);
     std::vector<double> h = undeformed_distance_m(position, region, mesh);
+    keep_own_overlap(geometry::WheelOnRail(*this, region.side, position), region, mesh, h);
     bool low1 = false, high1 = false, low2 = false, high2 = false;
     for (int i2 = 0; i2 < mesh.n2; ++i2) {
       for (int i1 = 0; i1 < mesh.n1; ++i1) {

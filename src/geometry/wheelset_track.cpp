@@ -268,6 +268,11 @@ WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetP
             [](const InterpenetrationRegion& a, const InterpenetrationRegion& b) {
               return a.rail_profile_y_m < b.rail_profile_y_m;
             });
+  for (std::size_t k = 1; k < search.regions.size(); ++k) {
+    const double midway = 0.5 * (search.regions[k - 1].rail_profile_y_max_m + search.regions[k].rail_profile_y_min_m);
+    search.regions[k - 1].rail_profile_y_upper_bound_m = midway;
+    search.regions[k].rail_profile_y_lower_bound_m = midway;
+  }
   return search;
 }
 
