@@ -36,8 +36,10 @@ FLANK_DEPTH_MM = 30.0
 STEP_MM = 0.1
 
 
-def half_profile(rail):
-    """The field-side half (y >= 0) as a list of (y, z) from the top on the axis outwards."""
+def head_pieces(rail):
+    """The field-side half (y >= 0) from the top on the axis outwards, as (arcs, flank): the arcs
+    R300, R80, R13 as (centre y, centre z, radius, angle from, angle to), and the flank as (start y,
+    start z, unit direction (dy, dz), length down to FLANK_DEPTH_MM)."""
     r300_width, r80_width = RAILS[rail]
     pieces = []  # (kind, data): arcs as (centre y, centre z, radius, angle from, angle to)
     # Angles are measured from the downward z axis towards +y: a point of a circle of radius R
@@ -55,7 +57,17 @@ def half_profile(rail):
     zc13 = zc80 - (SHOULDER_RADIUS_MM - CORNER_RADIUS_MM) * math.cos(t2)
     t3 = math.pi / 2.0 - math.atan(FLANK_SLOPE)
     pieces.append((yc13, zc13, CORNER_RADIUS_MM, t2, t3))
+    # The flank: a straight line from the R13 end, leaning out 1:20 while going down.
+    y0 = yc13 + CORNER_RADIUS_MM * math.sin(t3)
+    z0 = zc13 - CORNER_RADIUS_MM * math.cos(t3)
+    direction = (math.sin(math.atan(FLANK_SLOPE)), math.cos(math.atan(FLANK_SLOPE)))
+    flank_length = (FLANK_DEPTH_MM - z0) / direction[1]
+    return pieces, (y0, z0, direction, flank_length)
 
+
+def half_profile(rail):
+    """The field-side half (y >= 0) as a list of (y, z) from the top on the axis outwards."""
+    pieces, (y0, z0, direction, flank_length) = head_pieces(rail)
     points = []
     carried = 0.0  # arc length already walked past the last sample
     for yc, zc, radius, ta, tb in pieces:
@@ -66,11 +78,6 @@ def half_profile(rail):
             points.append((yc + radius * math.sin(t), zc - radius * math.cos(t)))
             s += STEP_MM
         carried = s - length
-    # The flank: a straight line from the R13 end, leaning out 1:20 while going down.
-    y0 = yc13 + CORNER_RADIUS_MM * math.sin(t3)
-    z0 = zc13 - CORNER_RADIUS_MM * math.cos(t3)
-    direction = (math.sin(math.atan(FLANK_SLOPE)), math.cos(math.atan(FLANK_SLOPE)))
-    flank_length = (FLANK_DEPTH_MM - z0) / direction[1]
     s = carried
     while s <= flank_length + 1e-9:
         points.append((y0 + s * direction[0], z0 + s * direction[1]))
@@ -92,13 +99,18 @@ def write_prr(path, rail, points):
         out.write(f"! scripts/make_rail_profile.py {rail}: R300 over {r300_width} mm, R80 to {r80_width} mm,\n")
         out.write("! R13 to the 1:20 flank, arcs joined tangentially, a point every 0.1 mm of arc length.\n")
         out.write("! Origin on the rail's axis at the top of the crown, y to the field side, z down (mm).\n")
-        out.write("header.begin\n  version = 1\n  type    = 0   ! 0 = rail profile\nheader.end\n")
-        out.write("spline.begin\n")
-        out.write(f"  comment     = '{rail} upright, generated from the EN 13674-1 head radii'\n")
-        out.write("  units.len.f = 1000.\n  units.ang.f = 1.\n  point.begin\n")
-        for y, z in points:
-            out.write(f"    {y:12.6f} {z:12.6f}\n")
-        out.write("  point.end\nspline.end\n")
+        write_prr_body(out, f"{rail} upright, generated from the EN 13674-1 head radii", points)
+
+
+def write_prr_body(out, comment, points):
+    """The SIMPACK rail profile after the leading comment lines: header, spline, points in mm."""
+    out.write("header.begin\n  version = 1\n  type    = 0   ! 0 = rail profile\nheader.end\n")
+    out.write("spline.begin\n")
+    out.write(f"  comment     = '{comment}'\n")
+    out.write("  units.len.f = 1000.\n  units.ang.f = 1.\n  point.begin\n")
+    for y, z in points:
+        out.write(f"    {y:12.6f} {z:12.6f}\n")
+    out.write("  point.end\nspline.end\n")
 
 
 def main(argv):
