@@ -75,6 +75,33 @@ TEST(WheelsetReferenceStates, ExactSolverMeetsKalkersContactInThreePublishedStat
   }
 }
 
+// The conformal surface against CONTACT's conformal mode (its curved reference surface, a frame
+// per lateral grid column, the rigid slip per element) in two flange-root and flange states of
+// issue #31: the left wheel at its y_ws = −5.0 and −6.5 mm (ours +5.0 and +6.5 mm), the same case
+// as above. CONTACT's FY(TR), on the rail in its frame (y to the right), is the lateral force on
+// the wheel in ours: −11776 N and −48633 N (its planar mode: −9126 N and −53192 N). Target: 1 % of
+// μ Fz; measured −11712 N and −48903 N (0.22 % and 0.92 %).
+TEST(WheelsetReferenceStates, ConformalSurfaceMeetsKalkersContactsConformalMode) {
+  WheelsetOptions options;
+  options.element_size_m = 0.2e-3;
+  options.friction_coefficient = 0.3;
+  options.solvers = {TangentialSolver::exact};
+  options.loads = WheelLoads{98.1e3, 98.1e3};
+  options.contact_surface = ContactSurface::conformal;
+  Wheelset wheelset(track(), options);
+  const struct {
+    double y_ws_m, fy_tr_N;
+  } states[] = {{-5.0e-3, -11776.0}, {-6.5e-3, -48633.0}};
+  for (const auto& ref : states) {
+    SCOPED_TRACE(ref.y_ws_m);
+    WheelsetState state;
+    state.position.lateral_displacement_m = -ref.y_ws_m;
+    state.velocity.forward_speed_m_per_s = 20.0;
+    const WheelsetResult result = wheelset.evaluate(state);
+    EXPECT_NEAR(result.wheels[1].force_track_N[1], ref.fy_tr_N, 0.01 * 0.3 * 98.1e3);
+  }
+}
+
 }  // namespace
 }  // namespace railcontact
 

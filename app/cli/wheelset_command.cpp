@@ -49,6 +49,7 @@ struct WheelsetArguments {
   bool frictionless_balance = false;
   std::string balance_solver;       // --balance-solver (default: the first --solver)
   std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
+  std::string contact_surface;      // --contact-surface (planar, conformal)
   std::string table;    // a wheelset table to evaluate from (docs/WHEELSET_TABLE.md)
   std::vector<std::string> table_overrides;  // --table-override: settings the table's values replace
   std::string out = "railcontact-out/wheelset";
@@ -76,7 +77,16 @@ nlohmann::json patch_json(const WheelsetPatch& p) {
       {"normal_force_N", p.normal_force_N},
       {"creepage", {{"xi", p.creepage.xi}, {"eta", p.creepage.eta}, {"phi_per_m", p.creepage.phi}}},
       {"pressure_centre_from_reference_m", {p.pressure_centre_x1_m, p.pressure_centre_x2_m}},
+      {"contact_surface", contact_surface_name(p.surface)},
+      {"pressure_force_track_N", vector_json(p.pressure_force_track_N)},
   };
+  // A conformal patch: the turn of its strips in contact from the contact frame (rad).
+  if (!p.strips.empty()) {
+    const auto [lowest, highest] = std::minmax_element(
+        p.strips.begin(), p.strips.end(),
+        [](const ConformalStrip& a, const ConformalStrip& b) { return a.angle_rad < b.angle_rad; });
+    j["strip_angle_range_rad"] = {lowest->angle_rad, highest->angle_rad};
+  }
   // The rail normal angle's range over the overlap and its largest difference from the contact
   // angle (absent for a patch from a wheelset table, which does not keep them).
   const double variation = contact_angle_variation_rad(p.region);
@@ -189,6 +199,13 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
       c.options.search.weighting = parse_reference_weighting(a.reference_weighting);
     } catch (const Error& e) {
       throw Error(fmt::format("--reference-weighting: {}", e.what()));
+    }
+  }
+  if (given("--contact-surface")) {
+    try {
+      c.options.contact_surface = parse_contact_surface(a.contact_surface);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--contact-surface: {}", e.what()));
     }
   }
   if (a.frictionless_balance) {
@@ -513,6 +530,10 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_flag("--rigid-axle", args->rigid_axle,
                 "by load: meet both wheels' loads with one rigid axle's height and roll (the roll found is in the JSON's "
                 "state); default: each wheel's height on its own");
+  sub->add_option("--contact-surface", args->contact_surface,
+                  "each patch's contact surface: planar (default: the tangent plane at its reference point) or "
+                  "conformal (curved with the profiles across the rolling direction; exact solvers only; "
+                  "docs/WHEELSET.md §4)");
   sub->add_flag("--frictionless-balance", args->frictionless_balance,
                 "by load: the normal forces alone carry the wheel loads (the tangential forces' vertical components left "
                 "out, as a wheelset table's nodes are built); default: the whole contact force carries them");

@@ -71,6 +71,13 @@ struct Creepage {
   double phi = 0.0;   // spin creepage (1/m)
 };
 
+// The creepages of each strip of a patch (mesh column i2: the elements at one x2), for a conformal
+// patch whose strips lie in frames of their own (docs/WHEELSET.md §4 "Conformal contact"): the
+// rigid slip of an element of strip i2 at x1 (from the patch's origin) is (xi, eta + phi x1) of
+// creepages[i2]. One creepage (xi, eta, phi) for the whole patch is the special case
+// (xi − phi x2(i2), eta, phi).
+using StripCreepages = std::vector<Creepage>;
+
 // The range of the creepages of one contact. |xi|, |eta| <= 0.5: a wheel sliding at half the
 // rolling speed (a locked or spinning wheel is 1); the traction saturates at mu p3 from about
 // 3 mu F3 / (G c^2 C11), a few 1e-3 for wheel-rail patches, so 0.5 is a hundred times past the

@@ -388,6 +388,13 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
 RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creepage& creepage, double mu,
                                           const RollingOptions& options = {});
 
+// Strip creepages (StripCreepages, railcontact/contact_patch.hpp): one Creepage per mesh column;
+// throws Error (invalid_input) for another count or a non-finite creepage.
+RollingSolution solve_rolling_exact(const ContactPatch& patch, const StripCreepages& creepages, double mu,
+                                    const RollingOptions& options = {});
+RollingSolution solve_rolling_regularised(const ContactPatch& patch, const StripCreepages& creepages, double mu,
+                                          const RollingOptions& options = {});
+
 }  // namespace railcontact
 
 // Kalker's creepage coefficients computed numerically: K2 (Eq 18) on an elliptical patch on a

@@ -162,6 +162,17 @@ const char* solver_name(TangentialSolver solver);
 // Throws Error (invalid_input) naming the allowed names.
 TangentialSolver parse_tangential_solver(const std::string& name);
 
+// The contact surface of each patch (docs/WHEELSET.md §4 "Conformal contact"): planar, the patch
+// in the tangent plane at its reference point with one contact angle (Kalker's CONTACT's planar
+// approach), or conformal, curved with the profiles across the rolling direction, each strip of
+// the patch in its own frame (CONTACT's conformal approach). The conformal surface is solved by the
+// exact solvers (exact, exact-regularised).
+enum class ContactSurface { planar, conformal };
+// "planar", "conformal"
+const char* contact_surface_name(ContactSurface surface);
+// Throws Error (invalid_input) naming the allowed names.
+ContactSurface parse_contact_surface(const std::string& name);
+
 // The normal problem of each wheel: by position (the state's vertical displacement and roll give
 // the overlap) or by load (each wheel's vertical force is met by solving its height: the state's
 // vertical displacement is ignored; with balance_roll the wheelset's height and roll are solved
@@ -195,6 +206,7 @@ struct WheelsetOptions {
   // iterations per patch instead of 16 (docs/WHEELSET.md §8).
   NormalOptions normal{.tolerance = 1e-8};
   ContactSearchOptions search{};
+  ContactSurface contact_surface = ContactSurface::planar;
   // By load (default, 98.1 kN per wheel) or, when empty, by position.
   std::optional<WheelLoads> loads = WheelLoads{};
   // The vertical force balance includes the tangential forces' vertical components (the total
@@ -212,7 +224,10 @@ void validate(const WheelsetOptions& options);
 // One solver's result on a patch.
 struct PatchSolverResult {
   TangentialSolver solver = TangentialSolver::nh_fastsim;
-  TangentialForces forces;  // on the wheel, contact frame; M3 about the centre of pressure
+  // On the wheel, contact frame; M3 about the centre of pressure. On a conformal patch F1, F2 are
+  // the tractions and pressures of every strip turned into the contact frame and summed (Kalker's
+  // CONTACT's "bar" forces), M3 that of the strips' own tractions.
+  TangentialForces forces;
   Vector3 force_track_N{};  // F1 X1 + F2 X2 + F3 X3 on the wheel, track frame
   // The flexibilities L1-L3 FastSim ran with (m/Pa): nh_fastsim's from K2 of the patch (or the
   // equivalent ellipse's for a patch too small for K2), fastsim's of the equivalent ellipse
@@ -233,7 +248,13 @@ struct WheelsetPatch {
   double approach_m = 0.0;
   double rolling_radius_m = 0.0;       // distance of Q from the axle: the radius ξ uses
   double rolling_speed_m_per_s = 0.0;  // V_ref = (V + Ω rolling_radius_m)/2, the creepages' divisor
-  double normal_force_N = 0.0;     // F3
+  double normal_force_N = 0.0;     // F3: the pressure's integral (on a conformal patch over the curved surface)
+  ContactSurface surface = ContactSurface::planar;
+  // The pressure's resultant on the wheel, track frame: F3 X3 on a planar patch; on a conformal one
+  // the sum over its strips of their pressure along their own normals.
+  Vector3 pressure_force_track_N{};
+  // A conformal patch's strips in contact, across the rolling direction (empty on a planar patch).
+  std::vector<ConformalStrip> strips;
   double area_m2 = 0.0;
   double max_pressure_Pa = 0.0;
   std::size_t elements_in_contact = 0;

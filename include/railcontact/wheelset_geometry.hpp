@@ -157,11 +157,37 @@ struct WheelContactSearch {
   std::size_t min_gap_sample = 0;
 };
 
+// One strip (a line of elements along x1, one mesh column i2) of a conformal contact surface
+// (docs/WHEELSET.md §4 "Conformal contact"). The surface is curved across the rolling direction:
+// its lateral coordinate is the rail profile's arc length from the reference point (the mesh's x2),
+// and each strip has its own frame, turned about X1 from the region's (X2, X3) by angle_rad:
+//   t = cos(angle) X2 + sin(angle) X3,   n = cos(angle) X3 − sin(angle) X2.
+struct ConformalStrip {
+  // The strip's point midway between rail and wheel along X2 from the reference point (m): where
+  // the strip lies in the tangent plane.
+  double x2_m = 0.0;
+  // The turn of the mean of the rail's and the wheel's normal there from X3 (rad).
+  double angle_rad = 0.0;
+  // The strip's rail surface point (at the reference point's x) and the undeformed wheel surface's
+  // point on the rail's normal line through it.
+  Vector3 rail_point_track_m{}, wheel_point_track_m{};
+  // false where the strip cannot touch: beyond the rail profile, outside the region's own stretch
+  // of it, or where the two surfaces' normals differ by more than kConformalTurnAway_rad (its h is
+  // then a gap of 1 m).
+  bool possible_contact = true;
+};
+// Rail and wheel normals further apart than this (52°, the surfaces turning away from each other)
+// cannot be in contact: such strips are left out of a conformal surface.
+inline constexpr double kConformalTurnAway_rad = 0.9;
+
 // A mesh in a patch's tangent plane and the undeformed distance on it.
 struct TangentPlaneArea {
   Mesh mesh;
   std::vector<double> h_m;  // mesh.index() order; negative where the undeformed bodies overlap
   int growth_steps = 0;
+  // Conformal: one per mesh column (mesh.n2), the mesh's x2 the developed lateral coordinate (rail
+  // arc length) and h measured along each strip's normal. Empty: planar, the mesh in the tangent plane.
+  std::vector<ConformalStrip> strips;
 };
 
 // Both wheel–rail pairs of a wheelset on the track. Immutable after construction, thread-safe.
@@ -223,6 +249,15 @@ class WheelsetTrack {
   // of border_elements, grown until the overlap stays off the border; the mesh is aligned with the
   // reference point (element centres at integer multiples of the size from it).
   [[nodiscard]] TangentPlaneArea potential_contact_area(const WheelsetPosition& position,
+                                                        const InterpenetrationRegion& region, double element_size_m,
+                                                        int border_elements = 2) const;
+  // The potential contact area on the region's conformal surface (docs/WHEELSET.md §4 "Conformal
+  // contact"): a mesh of square elements in (x1, s), s the rail profile's arc length from the
+  // reference point, one ConformalStrip per column; h is the distance along X3 at the strip's
+  // tangent-plane point times the cosine of its angle (the normal distance of locally parallel
+  // surfaces). Grown as potential_contact_area. Throws Error naming the position and the angles
+  // when the developed surface folds over in the tangent plane (two strips' points out of order).
+  [[nodiscard]] TangentPlaneArea conformal_contact_area(const WheelsetPosition& position,
                                                         const InterpenetrationRegion& region, double element_size_m,
                                                         int border_elements = 2) const;
   // The same with elements of dx1 x dx2 (element centres at integer multiples of each from the

@@ -240,4 +240,33 @@ double WheelOnRail::wheel_normal_m(const InterpenetrationRegion& region, double 
   return t;
 }
 
+WheelOnRail::SurfacePair WheelOnRail::surface_pair(const InterpenetrationRegion& region, double rail_parameter,
+                                                   double& wheel_parameter) const {
+  SurfacePair pair;
+  const ProfileCurvePoint q = rail_->at(rail_parameter);
+  pair.rail_point = {region.reference_point_track_m[0], sign_ * (rail_offset_m_ + q.y_m), -q.z_m};
+  // The rail's tangent in the track frame is (0, σ y', −z'); its normal out of the rail (up on the
+  // crown) is (0, σ z', y').
+  const double rail_norm = std::hypot(q.dy_ds, q.dz_ds);
+  pair.rail_normal = {0.0, sign_ * q.dz_ds / rail_norm, q.dy_ds / rail_norm};
+  // The wheel on the rail's normal line: the line of a region at the rail point with X3 that normal.
+  InterpenetrationRegion line = region;
+  line.reference_point_track_m = pair.rail_point;
+  line.x3_axis = pair.rail_normal;
+  double t = 0.0;
+  (void)wheel_normal_m(line, 0.0, 0.0, t, wheel_parameter);
+  pair.wheel_point = add(pair.rail_point, pair.rail_normal, t);
+  // The surface of revolution's tangent along the profile is σ y' a + z' e_ρ (a the axle, e_ρ the
+  // radial direction); its normal into the wheel is σ z' a − y' e_ρ.
+  const ProfileCurvePoint p = wheel_->at(wheel_parameter);
+  const Vector3 d = add(pair.wheel_point, centre_, -1.0);
+  const Vector3 radial = add(d, axle_, -dot(d, axle_));
+  const double rho = std::sqrt(dot(radial, radial));
+  const Vector3 inward = add(Vector3{sign_ * p.dz_ds * axle_[0], sign_ * p.dz_ds * axle_[1], sign_ * p.dz_ds * axle_[2]},
+                             radial, -p.dy_ds / rho);
+  const double wheel_norm = std::sqrt(dot(inward, inward));
+  pair.wheel_normal = {inward[0] / wheel_norm, inward[1] / wheel_norm, inward[2] / wheel_norm};
+  return pair;
+}
+
 }  // namespace railcontact::geometry

@@ -49,6 +49,17 @@ class WheelOnRail {
   double wheel_normal_m(const InterpenetrationRegion& region, double x1_m, double x2_m, double& t_m,
                         double& wheel_parameter) const;
 
+  // The rail and wheel surfaces across one strip of a conformal surface (docs/WHEELSET.md §4
+  // "Conformal contact"): the rail point at rail profile parameter u (the reference point's x),
+  // the wheel point on the rail's normal line through it, and both surfaces' unit normals oriented
+  // as a region's X3 (from the rail into the wheel). wheel_parameter: guess in, root out. Throws
+  // Error when the line misses the wheel.
+  struct SurfacePair {
+    Vector3 rail_point{}, rail_normal{}, wheel_point{}, wheel_normal{};
+  };
+  [[nodiscard]] SurfacePair surface_pair(const InterpenetrationRegion& region, double rail_parameter,
+                                         double& wheel_parameter) const;
+
   [[nodiscard]] const SmoothProfile& wheel() const { return *wheel_; }
   [[nodiscard]] const SmoothProfile& rail() const { return *rail_; }
   [[nodiscard]] double sign() const { return sign_; }
@@ -65,5 +76,11 @@ class WheelOnRail {
   Vector3 down_{};    // unit vector perpendicular to the axle, as close to −z as possible
   Vector3 ahead_{};   // axle × down: perpendicular to both, close to −x
 };
+
+// The undeformed distance along a region's X3 on the strips of a mesh (docs/WHEELSET.md §4):
+// strip i2 at tangent-plane coordinate strip_x2_m[i2], each element at x1 = mesh.x1(i1); strips
+// whose x2 is NaN are left as they are in h (mesh.index() order, sized by the caller).
+void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
+                                   const std::vector<double>& strip_x2_m, std::vector<double>& h);
 
 }  // namespace railcontact::geometry

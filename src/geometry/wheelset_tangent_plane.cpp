@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "geometry/wheelset_frames.hpp"
 #include "railcontact/error.hpp"
@@ -45,18 +46,29 @@ std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition&
                                                          const Mesh& mesh) const {
   validate(position);
   validate(mesh);
-  const geometry::WheelOnRail w(*this, region.side, position);
+  std::vector<double> strip_x2(static_cast<std::size_t>(mesh.n2));
+  for (int i2 = 0; i2 < mesh.n2; ++i2) strip_x2[static_cast<std::size_t>(i2)] = mesh.x2(i2);
   std::vector<double> h(mesh.size());
+  geometry::undeformed_distance_on_strips(geometry::WheelOnRail(*this, region.side, position), region, mesh, strip_x2, h);
+  return h;
+}
+
+namespace geometry {
+
+void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
+                                   const std::vector<double>& strip_x2_m, std::vector<double>& h) {
   // Strip by strip; the rail (straight along x) is met at the same t for every x1 of a strip, and
   // each wheel root starts from its neighbour's. The middle of the strip first, then outwards.
-  Guesses g = guesses(w, region, mesh.x2(0));
+  std::optional<Guesses> g;
   for (int i2 = 0; i2 < mesh.n2; ++i2) {
-    const double x2 = mesh.x2(i2);
-    const double rail = w.rail_normal_m(region, x2, g.rail_parameter);
+    const double x2 = strip_x2_m[static_cast<std::size_t>(i2)];
+    if (std::isnan(x2)) continue;
+    if (!g) g = guesses(w, region, x2);
+    const double rail = w.rail_normal_m(region, x2, g->rail_parameter);
     const int middle = std::clamp(static_cast<int>(std::lround(-mesh.x1_first_m / mesh.dx1_m)), 0, mesh.n1 - 1);
-    double t_middle = rail, u_middle = g.wheel_parameter;
+    double t_middle = rail, u_middle = g->wheel_parameter;
     w.wheel_normal_m(region, mesh.x1(middle), x2, t_middle, u_middle);
-    g.wheel_parameter = u_middle;
+    g->wheel_parameter = u_middle;
     for (int direction : {+1, -1}) {
       // Start each root from the line through the two previous ones (second-order accurate).
       double t = t_middle, u = u_middle, t_before = t_middle, u_before = u_middle;
@@ -70,8 +82,9 @@ std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition&
       }
     }
   }
-  return h;
 }
+
+}  // namespace geometry
 
 namespace {
 

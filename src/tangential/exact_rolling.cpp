@@ -75,14 +75,9 @@ double newton_step_krylov_tolerance(double residual, const RollingOptions& optio
   return std::max(options.krylov_tolerance, std::min(residual, kLoosestKrylovTolerance));
 }
 
-}  // namespace
-
-RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& creepage, double mu,
-                                    const RollingOptions& options) {
-  validate_rolling_input(patch, creepage, mu, options);
-  RollingSystem system(patch, options.collocation_offset);
+// The solver on a system with its rigid slip w (from one creepage or from strip creepages).
+RollingSolution solve(RollingSystem& system, const std::vector<double>& w, double mu, const RollingOptions& options) {
   const std::size_t n = system.count();
-  const std::vector<double> w = system.rigid_slip(creepage);
   const std::vector<double> bound = system.traction_bound(mu);
   const double max_bound = *std::max_element(bound.begin(), bound.end());
   // c scales slip to traction: c R ~ -I locally.
@@ -170,6 +165,22 @@ RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& c
   fill_rolling_solution(system, st.p, st.s, st.slip, solution);
   require_finite_rolling_result("exact", solution);
   return solution;
+}
+
+}  // namespace
+
+RollingSolution solve_rolling_exact(const ContactPatch& patch, const Creepage& creepage, double mu,
+                                    const RollingOptions& options) {
+  validate_rolling_input(patch, creepage, mu, options);
+  RollingSystem system(patch, options.collocation_offset);
+  return solve(system, system.rigid_slip(creepage), mu, options);
+}
+
+RollingSolution solve_rolling_exact(const ContactPatch& patch, const StripCreepages& creepages, double mu,
+                                    const RollingOptions& options) {
+  validate_rolling_input(patch, creepages, mu, options);
+  RollingSystem system(patch, options.collocation_offset);
+  return solve(system, system.rigid_slip(creepages), mu, options);
 }
 
 }  // namespace railcontact

@@ -55,14 +55,9 @@ void evaluate(RollingSystem& system, const std::vector<double>& w, const std::ve
   }
 }
 
-}  // namespace
-
-RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creepage& creepage, double mu,
-                                          const RollingOptions& options) {
-  validate_rolling_input(patch, creepage, mu, options);
-  RollingSystem system(patch, options.collocation_offset);
+// The solver on a system with its rigid slip w (from one creepage or from strip creepages).
+RollingSolution solve(RollingSystem& system, const std::vector<double>& w, double mu, const RollingOptions& options) {
   const std::size_t n = system.count();
-  const std::vector<double> w = system.rigid_slip(creepage);
   const std::vector<double> bound = system.traction_bound(mu);
   double w_max = 0.0;
   for (std::size_t e = 0; e < n; ++e) w_max = std::max(w_max, std::hypot(w[e], w[n + e]));
@@ -136,6 +131,22 @@ RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creep
   fill_rolling_solution(system, st.p, st.s, slip, solution);
   require_finite_rolling_result("regularised", solution);
   return solution;
+}
+
+}  // namespace
+
+RollingSolution solve_rolling_regularised(const ContactPatch& patch, const Creepage& creepage, double mu,
+                                          const RollingOptions& options) {
+  validate_rolling_input(patch, creepage, mu, options);
+  RollingSystem system(patch, options.collocation_offset);
+  return solve(system, system.rigid_slip(creepage), mu, options);
+}
+
+RollingSolution solve_rolling_regularised(const ContactPatch& patch, const StripCreepages& creepages, double mu,
+                                          const RollingOptions& options) {
+  validate_rolling_input(patch, creepages, mu, options);
+  RollingSystem system(patch, options.collocation_offset);
+  return solve(system, system.rigid_slip(creepages), mu, options);
 }
 
 }  // namespace railcontact

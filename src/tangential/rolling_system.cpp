@@ -45,6 +45,19 @@ std::vector<double> RollingSystem::rigid_slip(const Creepage& c) const {
   return w;
 }
 
+std::vector<double> RollingSystem::rigid_slip(const StripCreepages& creepages) const {
+  std::vector<double> w(2 * count_);
+  const double shift = 0.5 * alpha_ * patch_.mesh().dx1_m;
+  const auto& idx = patch_.elements().indices();
+  const auto n1 = static_cast<std::size_t>(patch_.mesh().n1);
+  for (std::size_t e = 0; e < count_; ++e) {
+    const Creepage& c = creepages[idx[e] / n1];
+    w[e] = c.xi;
+    w[count_ + e] = c.eta + c.phi * (patch_.x1(e) + shift);
+  }
+  return w;
+}
+
 std::vector<double> RollingSystem::traction_bound(double mu) const {
   std::vector<double> bound(count_);
   for (std::size_t e = 0; e < count_; ++e) bound[e] = mu * patch_.pressure_Pa()[e];
@@ -166,6 +179,16 @@ void validate_rolling_input(const ContactPatch& patch, const Creepage& c, double
                        c.eta, c.phi);
   });
   validate(o);
+}
+
+void validate_rolling_input(const ContactPatch& patch, const StripCreepages& creepages, double mu,
+                            const RollingOptions& o) {
+  require(creepages.size() == static_cast<std::size_t>(patch.mesh().n2), [&] {
+    return fmt::format("rolling solver: {} strip creepages for a patch of {} strips (mesh columns)", creepages.size(),
+                       patch.mesh().n2);
+  });
+  for (const Creepage& c : creepages) validate_rolling_input(patch, c, mu, o);
+  if (creepages.empty()) validate_rolling_input(patch, Creepage{}, mu, o);
 }
 
 void require_finite_rolling_result(const char* solver, const RollingSolution& s) {

@@ -28,6 +28,8 @@ class RollingSystem {
 
   // Rigid slip w = (xi - phi x2, eta + phi x1) at the collocation points, [w1; w2].
   [[nodiscard]] std::vector<double> rigid_slip(const Creepage& creepage) const;
+  // The same from each strip's creepages (StripCreepages, one per mesh column).
+  [[nodiscard]] std::vector<double> rigid_slip(const StripCreepages& creepages) const;
   // Traction bound g = mu p3 per element.
   [[nodiscard]] std::vector<double> traction_bound(double mu) const;
   // y = R x (FFT), vectors [c1 on elements; c2 on elements].
@@ -78,6 +80,8 @@ namespace railcontact {
 
 // Throws railcontact::Error on non-physical input (mu, creepage, options).
 void validate_rolling_input(const ContactPatch& patch, const Creepage& creepage, double mu,
+                            const RollingOptions& options);
+void validate_rolling_input(const ContactPatch& patch, const StripCreepages& creepages, double mu,
                             const RollingOptions& options);
 
 // The larger of a and b, NaN if either is NaN (std::max(a, NaN) returns a: a residual taken with

@@ -16,6 +16,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/wheelset.hpp"
+#include "wheel_rail/conformal_patch.hpp"
 #include "wheel_rail/contact_window.hpp"
 #include "wheel_rail/cropped_patch.hpp"
 #include "wheel_rail/wheel_height.hpp"
@@ -71,6 +72,12 @@ struct NormalPatch {
   NormalSolution normal;               // on area.mesh
   std::size_t solved_mesh_elements = 0;  // of the mesh solved on: a contact window or area.mesh
 };
+
+// The pressure's resultant on the wheel, track frame (WheelsetPatch::pressure_force_track_N).
+Vector3 pressure_force_track_N(const NormalPatch& p) {
+  if (!p.area.strips.empty()) return detail::conformal_pressure_force_track_N(p.region, p.area, p.normal.pressure_Pa);
+  return combine(p.region, 0.0, 0.0, p.normal.normal_force_N);
+}
 
 }  // namespace
 
@@ -215,7 +222,9 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     });
     NormalPatch p;
     p.region = region;
-    p.area = track.potential_contact_area(position, region, options.element_size_m);
+    p.area = options.contact_surface == ContactSurface::conformal
+                 ? track.conformal_contact_area(position, region, options.element_size_m)
+                 : track.potential_contact_area(position, region, options.element_size_m);
     const std::vector<double> initial = warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh);
     // h is measured at this position (negative where the bodies overlap): the approach is zero.
     // In a time step, first on the previous contact's window; else (or if the check fails) on the
@@ -336,6 +345,30 @@ WheelsetMotion wheelset_motion(const WheelsetState& state, double nominal_radius
 
 namespace {
 
+// A conformal patch's tangential solutions (docs/WHEELSET.md §4 "Conformal contact"): its strips'
+// creepages in their own frames, each solver on the developed patch.
+void solve_conformal(const NormalPatch& n, const WheelsetMotion& motion, const Vector3& centre,
+                     const WheelsetOptions& options, WheelsetPatch& patch) {
+  patch.surface = ContactSurface::conformal;
+  const Mesh& mesh = n.area.mesh;
+  for (int i2 = 0; i2 < mesh.n2; ++i2)
+    for (int i1 = 0; i1 < mesh.n1; ++i1)
+      if (n.normal.pressure_Pa[mesh.index(i1, i2)] > 0.0) {
+        patch.strips.push_back(n.area.strips[static_cast<std::size_t>(i2)]);
+        break;
+      }
+  const StripCreepages creepages =
+      detail::conformal_strip_creepages(motion, centre, n.region, n.area, patch.rolling_speed_m_per_s);
+  for (TangentialSolver s : options.solvers) {
+    detail::ConformalSolve solved =
+        detail::solve_conformal_patch(s, n.region, n.area, n.normal.pressure_Pa, creepages, options);
+    patch.pressure_centre_x1_m = solved.pressure_centre_x1_m;
+    patch.pressure_centre_x2_m = solved.pressure_centre_x2_m;
+    patch.solvers.push_back(std::move(solved.result));
+    if (options.keep_tractions) patch.patch = std::move(solved.patch);
+  }
+}
+
 // The patches of a wheel with their creepages and tangential solutions.
 WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const WheelsetState& state,
                          std::vector<NormalPatch>& normal, const WheelsetOptions& options) {
@@ -365,6 +398,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     patch.rolling_speed_m_per_s = rolling_speed_m_per_s(motion, frame);
     patch.rolling_radius_m = distance_from_axle_m(frame.point_from_wheelset_centre_m, motion);
     patch.normal_force_N = n.normal.normal_force_N;
+    patch.pressure_force_track_N = pressure_force_track_N(n);
     patch.elements_in_contact = n.normal.elements_in_contact;
     patch.normal_iterations = n.normal.iterations;
     patch.normal_mesh_elements = n.solved_mesh_elements;
@@ -383,6 +417,11 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
         r.solver = s;
         patch.solvers.push_back(r);
       }
+      wheel.patches.push_back(std::move(patch));
+      continue;
+    }
+    if (!n.area.strips.empty()) {
+      solve_conformal(n, motion, centre, options, patch);
       wheel.patches.push_back(std::move(patch));
       continue;
     }
@@ -451,16 +490,15 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
 
 double normal_vertical_force(const std::vector<NormalPatch>& patches) {
   double f = 0.0;
-  for (const NormalPatch& p : patches) f += p.normal.normal_force_N * p.region.x3_axis[2];
+  for (const NormalPatch& p : patches) f += pressure_force_track_N(p)[2];
   return f;
 }
 
+// The vertical part of the contact force beyond the pressure's (on a conformal patch the strips'
+// tractions turned into the track frame).
 double tangential_vertical_force(const WheelResult& wheel, std::size_t solver) {
   double f = 0.0;
-  for (const WheelsetPatch& p : wheel.patches) {
-    const TangentialForces& t = p.solvers[solver].forces;
-    f += t.F1_N * p.region.x1_axis[2] + t.F2_N * p.region.x2_axis[2];
-  }
+  for (const WheelsetPatch& p : wheel.patches) f += p.solvers[solver].force_track_N[2] - p.pressure_force_track_N[2];
   return f;
 }
 
@@ -527,6 +565,16 @@ TangentialSolver parse_tangential_solver(const std::string& name) {
   throw Error(fmt::format("unknown solver '{}' (solvers: nh-fastsim, fastsim, exact, exact-regularised)", name));
 }
 
+const char* contact_surface_name(ContactSurface surface) {
+  return surface == ContactSurface::conformal ? "conformal" : "planar";
+}
+
+ContactSurface parse_contact_surface(const std::string& name) {
+  for (ContactSurface s : {ContactSurface::planar, ContactSurface::conformal})
+    if (name == contact_surface_name(s)) return s;
+  throw Error(fmt::format("unknown contact surface '{}' (contact surfaces: planar, conformal)", name));
+}
+
 void validate(const WheelsetOptions& o) {
   validate(o.material);
   require(std::isfinite(o.friction_coefficient) && o.friction_coefficient > 0.0 && o.friction_coefficient <= 2.0,
@@ -544,6 +592,14 @@ void validate(const WheelsetOptions& o) {
       return fmt::format("wheelset: the balance solver {} is not among the solvers run ({}): name one of them",
                          solver_name(*o.balance_solver), run);
     });
+  }
+  if (o.contact_surface == ContactSurface::conformal) {
+    for (TangentialSolver s : o.solvers)
+      require(s == TangentialSolver::exact || s == TangentialSolver::exact_regularised, [&] {
+        return fmt::format("wheelset: the solver {} does not solve a conformal contact surface (its strips in frames "
+                           "of their own); the exact solvers do: exact, exact-regularised",
+                           solver_name(s));
+      });
   }
   validate(o.rolling);
   validate(o.search);

@@ -1,0 +1,118 @@
+// The conformal contact surface (docs/WHEELSET.md §4 "Conformal contact"): the exact solvers with
+// creepages per strip against one creepage per patch, the conformal wheelset's mirror symmetry,
+// its agreement with the planar surface where the contact angle hardly varies, and its refusals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "carter.hpp"
+#include "cli_run.hpp"
+#include "railcontact/contact_patch.hpp"
+#include "railcontact/error.hpp"
+#include "railcontact/kalker.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/wheelset.hpp"
+
+namespace railcontact {
+namespace {
+
+const Material kSteel{2.1e11, 0.3};
+constexpr double kMu = 0.3, kLoad = 98100.0;
+
+const WheelsetTrack& track() {
+  static const WheelsetTrack t = default_wheelset_track();
+  return t;
+}
+
+// One creepage (ξ, η, φ) is the strip creepages (ξ − φ x2, η, φ): both rigid slips are the same
+// numbers up to rounding, so the solutions agree to the solvers' tolerance (1e-9 of μ max p3).
+TEST(ConformalContact, StripCreepagesOfAPlanarPatchAreItsOneCreepage) {
+  const ContactPatch p = hertzian_patch(
+      elliptical_contact_with_count(6e-3, 4e-3, 1200, EllipseMeshLayout::rolling_resolved), 6e-3, 4e-3, kLoad, kSteel);
+  const Creepage c{-1.2e-3, 0.8e-3, 0.6};
+  StripCreepages strips(static_cast<std::size_t>(p.mesh().n2));
+  for (int i2 = 0; i2 < p.mesh().n2; ++i2) strips[static_cast<std::size_t>(i2)] = {c.xi - c.phi * p.mesh().x2(i2), c.eta, c.phi};
+  for (const bool regularised : {false, true}) {
+    const RollingSolution one = regularised ? solve_rolling_regularised(p, c, kMu) : solve_rolling_exact(p, c, kMu);
+    const RollingSolution per_strip =
+        regularised ? solve_rolling_regularised(p, strips, kMu) : solve_rolling_exact(p, strips, kMu);
+    const double scale = kMu * kLoad;
+    EXPECT_NEAR(per_strip.forces.F1_N, one.forces.F1_N, 1e-8 * scale);
+    EXPECT_NEAR(per_strip.forces.F2_N, one.forces.F2_N, 1e-8 * scale);
+    EXPECT_NEAR(per_strip.forces.M3_Nm, one.forces.M3_Nm, 1e-8 * scale * 6e-3);
+  }
+  // The count of strips and their values are checked.
+  EXPECT_THROW((void)solve_rolling_exact(p, StripCreepages(3), kMu), Error);
+  strips[2].eta = std::nan("");
+  EXPECT_THROW((void)solve_rolling_exact(p, strips, kMu), Error);
+}
+
+WheelsetOptions conformal_options() {
+  WheelsetOptions o;
+  o.element_size_m = 0.2e-3;
+  o.solvers = {TangentialSolver::exact};
+  o.contact_surface = ContactSurface::conformal;
+  return o;
+}
+
+WheelsetState rolling_at(double y_m, double yaw_rad = 0.0) {
+  WheelsetState s;
+  s.position.lateral_displacement_m = y_m;
+  s.position.yaw_rad = yaw_rad;
+  s.velocity.forward_speed_m_per_s = 20.0;
+  return s;
+}
+
+// The left wheel at (y, ψ) is the mirrored right wheel at (−y, −ψ), in flange contact too.
+TEST(ConformalContact, TheLeftWheelIsTheMirroredRightWheel) {
+  Wheelset wheelset(track(), conformal_options());
+  const WheelsetResult a = wheelset.evaluate(rolling_at(6.5e-3, 2e-3));
+  const WheelsetResult b = wheelset.evaluate(rolling_at(-6.5e-3, -2e-3));
+  for (int w = 0; w < 2; ++w) {
+    const Vector3& f = a.wheels[w].force_track_N;
+    const Vector3& g = b.wheels[1 - w].force_track_N;
+    EXPECT_NEAR(f[0], g[0], 1e-6 * f[2]) << w;
+    EXPECT_NEAR(f[1], -g[1], 1e-6 * f[2]) << w;
+    EXPECT_NEAR(f[2], g[2], 1e-6 * f[2]) << w;
+  }
+  ASSERT_EQ(a.wheels[1].patches.size(), 1u);
+  EXPECT_EQ(a.wheels[1].patches[0].surface, ContactSurface::conformal);
+}
+
+// On the tread (y = 0: the strips in contact turn by less than 0.05 rad from the contact frame)
+// the curved surface changes the lateral and vertical forces little: within 1 % of μ Fz of the
+// planar surface. (F1 moves by 1.7 kN: the strips' rolling radii follow the curved surface, see
+// conformal_patch.hpp.) At the flange (y = 6.5 mm, strips from −0.20 to +0.26 rad) it changes the
+// lateral force by 16 % of μ Fz.
+TEST(ConformalContact, OnTheTreadItIsNearlyThePlanarSurface) {
+  WheelsetOptions planar = conformal_options();
+  planar.contact_surface = ContactSurface::planar;
+  Wheelset curved(track(), conformal_options()), flat(track(), planar);
+  const double scale = kMu * 98.1e3;
+  const WheelsetResult c0 = curved.evaluate(rolling_at(0.0)), p0 = flat.evaluate(rolling_at(0.0));
+  for (int w = 0; w < 2; ++w)
+    for (int i = 1; i < 3; ++i)
+      EXPECT_NEAR(c0.wheels[w].force_track_N[i], p0.wheels[w].force_track_N[i], 0.01 * scale) << w << " " << i;
+  const WheelsetResult c1 = curved.evaluate(rolling_at(6.5e-3)), p1 = flat.evaluate(rolling_at(6.5e-3));
+  EXPECT_GT(c1.wheels[1].force_track_N[1] - p1.wheels[1].force_track_N[1], 0.1 * scale);
+}
+
+TEST(ConformalContact, OnlyTheExactSolversSolveIt) {
+  WheelsetOptions o = conformal_options();
+  o.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
+  try {
+    (void)Wheelset(track(), o);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("the solver nh-fastsim does not solve a conformal contact surface"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(parse_contact_surface("conformal"), ContactSurface::conformal);
+  EXPECT_THROW((void)parse_contact_surface("curved"), Error);
+}
+
+}  // namespace
+}  // namespace railcontact
