@@ -110,6 +110,13 @@ void read_rest(Section friction, Section material, Section mesh, Section solvers
       throw Error(fmt::format("{}: [mesh] reference_weighting: {}", mesh.location("reference_weighting"), e.what()));
     }
   }
+  if (const std::optional<std::string> surface = mesh.optional_string("contact_surface")) {
+    try {
+      c.options.contact_surface = parse_contact_surface(*surface);
+    } catch (const Error& e) {
+      throw Error(fmt::format("{}: [mesh] contact_surface: {}", mesh.location("contact_surface"), e.what()));
+    }
+  }
   mesh.finish();
   if (const toml::node* run = solvers.node("run")) {
     const toml::array* list = run->as_array();

@@ -1,8 +1,11 @@
 // `railcontact study …`: accuracy studies that reproduce the paper's tables and figures.
+#include <fmt/core.h>
+
 #include <iostream>
 #include <string>
 
 #include "cli/commands.hpp"
+#include "railcontact/error.hpp"
 #include "study/bound_study.hpp"
 #include "study/coefficient_study.hpp"
 #include "study/hertz_study.hpp"
@@ -155,14 +158,25 @@ void add_profile_pair_study(CLI::App* study, Action& action) {
   cmd->add_option("--y-step-m", options->y_step_m, "step of the lateral displacement (m, > 0)")->capture_default_str();
   cmd->add_option("--yaw-rad", *yaws, "yaw angles (rad; default 0, 0.01, -0.01)");
   cmd->add_flag("!--no-table", options->table, "skip the wheelset table against the wheelset on the fly");
+  auto surface = std::make_shared<std::string>();
+  cmd->add_option("--contact-surface", *surface,
+                  "the sweeps' contact surface: planar (default) or conformal (docs/WHEELSET.md §4); the tables are "
+                  "planar");
   auto threads = std::make_shared<std::string>();
   cmd->add_option("--threads", *threads,
                   "threads for the wheelset tables' nodes (a whole number >= 1; default: all cores); the files do not "
                   "depend on it");
   cmd->add_flag("!--no-figures", options->figures, "skip the figures");
-  cmd->callback([options, out, setups, yaws, threads, &action] {
-    action = [options, out, setups, yaws, threads] {
+  cmd->callback([options, out, setups, yaws, threads, surface, &action] {
+    action = [options, out, setups, yaws, threads, surface] {
       options->output_directory = *out;
+      if (!surface->empty()) {
+        try {
+          options->contact_surface = parse_contact_surface(*surface);
+        } catch (const Error& e) {
+          throw Error(fmt::format("--contact-surface: {}", e.what()));
+        }
+      }
       options->threads = threads_of(*threads);
       for (const std::string& s : *setups) options->setups.emplace_back(s);
       if (!yaws->empty()) options->yaws_rad = *yaws;

@@ -246,9 +246,14 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
     options.element_size_m = o.element_size_m;
     options.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
     options.balance_solver = TangentialSolver::nh_fastsim;
+    options.contact_surface = o.contact_surface;
     const int steps = static_cast<int>(std::floor(-geometry.climb_y_m / o.y_step_m + 1e-9));
     std::optional<WheelsetTable> table;
-    if (o.table) table = build_table(track, options, steps, o, log);
+    if (o.table) {
+      WheelsetOptions planar = options;
+      planar.contact_surface = ContactSurface::planar;
+      table = build_table(track, planar, steps, o, log);
+    }
     for (const double yaw : o.yaws_rad) {
       Wheelset wheelset(track, options);
       SweepSummary s;
@@ -335,13 +340,14 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   fmt::print(md, "# Profile pairs end to end\n\n");
   fmt::print(md,
              "Each wheel–rail set-up: the wheelset by load (98.1 kN per wheel, μ = 0.3, 20 m/s, pure rolling) from y = 0 "
-             "towards the right wheel's flange in steps of {:g} mm until the flange climbs, {:g} mm elements, the exact "
-             "solver and nH-FastSim on every patch. nH-FastSim's largest miss per component as a share of μ F3 (target "
+             "towards the right wheel's flange in steps of {:g} mm until the flange climbs, {:g} mm elements, {} contact "
+             "surfaces, the exact solver and nH-FastSim on every patch. nH-FastSim's largest miss per component as a share of μ F3 (target "
              "{:g} %); the largest step of the right wheel's force between two positions, and the jumps: steps above 1 % "
              "of the load and three times both neighbouring steps with the number of patches unchanged; the largest "
              "difference between the rail's normal angle over a patch's overlap and its contact angle (a planar patch is "
              "flagged above {:g} rad, docs/WHEELSET.md §4).\n\n",
-             o.y_step_m / kMm, o.element_size_m / kMm, kTarget_percent, kLargeContactAngleVariation_rad);
+             o.y_step_m / kMm, o.element_size_m / kMm, contact_surface_name(o.contact_surface), kTarget_percent,
+             kLargeContactAngleVariation_rad);
   fmt::print(md, "| set-up | yaw (mrad) | tan γe (3 mm) | states | to y (mm) | patches | F1 miss (at y mm) | F2 miss (at y mm) "
                  "| largest step (kN, at y mm) | jumps | largest angle variation (rad) | within target |\n"
                  "|---|---|---|---|---|---|---|---|---|---|---|---|\n");

@@ -182,6 +182,14 @@ class FastSim {
   // for a caller that needs the adhesion fraction but not the fields. Same checks as forces().
   [[nodiscard]] FastSimResult forces_and_adhesion(const Creepage& creepage, const Flexibility& flexibility,
                                                   double mu) const;
+  // Forces, tractions, slip flags from the creepages of each strip (StripCreepages: one per mesh
+  // column; a conformal patch, docs/METHOD.md "nH-FastSim on a conformal patch"). Each strip
+  // marches dp1 = (ξ0/L1 + (ξ_i2 − ξ0)/L3) step and dp2 = (η_i2/L2) step + (φ_i2/L3) step (x1 −
+  // step/2), ξ0 the strips' ξ at x2 = 0 (linear between the two strips around it): the variation of
+  // ξ across the strips marches with the spin's flexibility, as −φ x2 does in Eq 2, so the strips
+  // (ξ − φ x2, η, φ) give solve(ξ, η, φ)'s numbers. Throws Error (invalid_input) for another count
+  // or a non-finite creepage, and as solve().
+  [[nodiscard]] FastSimResult solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const;
 
   [[nodiscard]] std::size_t element_count() const;
   [[nodiscard]] TractionBound bound() const;
@@ -288,6 +296,8 @@ class NhFastSim {
   [[nodiscard]] TangentialForces forces(const Creepage& creepage, double mu) const;
   // Forces, tractions and slip flags per contact element (patch order).
   [[nodiscard]] FastSimResult solve(const Creepage& creepage, double mu) const;
+  // The same from the creepages of each strip (FastSim::solve(StripCreepages, ...)).
+  [[nodiscard]] FastSimResult solve(const StripCreepages& creepages, double mu) const;
   // Forces and the adhesion fraction only (FastSim::forces_and_adhesion).
   [[nodiscard]] FastSimResult forces_and_adhesion(const Creepage& creepage, double mu) const;
 

@@ -115,11 +115,21 @@ TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& p
     }
     // h along X3 at each strip's tangent-plane point, times the cosine of its angle (the normal
     // distance between locally parallel surfaces); strips that cannot touch get a wide gap.
-    std::vector<double> strip_x2(strips.size());
-    for (std::size_t j = 0; j < strips.size(); ++j)
-      strip_x2[j] = strips[j].possible_contact ? strips[j].x2_m : std::numeric_limits<double>::quiet_NaN();
+    // Strip by strip: a strip whose line along X3 misses the rail profile (far round a flange, at
+    // a large angle from the tangent plane) cannot touch either.
     std::vector<double> h(mesh.size(), kNotInContact_m);
-    geometry::undeformed_distance_on_strips(w, region, mesh, strip_x2, h);
+    std::vector<double> strip_x2(strips.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t j = 0; j < strips.size(); ++j) {
+      if (!strips[j].possible_contact) continue;
+      strip_x2[j] = strips[j].x2_m;
+      try {
+        geometry::undeformed_distance_on_strips(w, region, mesh, strip_x2, h);
+      } catch (const Error&) {
+        strips[j].possible_contact = false;
+        for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, static_cast<int>(j))] = kNotInContact_m;
+      }
+      strip_x2[j] = std::numeric_limits<double>::quiet_NaN();
+    }
     for (int i2 = 0; i2 < mesh.n2; ++i2) {
       const ConformalStrip& strip = strips[static_cast<std::size_t>(i2)];
       if (!strip.possible_contact) continue;

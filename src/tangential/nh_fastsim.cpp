@@ -108,6 +108,10 @@ FastSimResult NhFastSim::solve(const Creepage& creepage, double mu) const {
   return fastsim_.solve(creepage, flexibilities_.flexibility, mu);
 }
 
+FastSimResult NhFastSim::solve(const StripCreepages& creepages, double mu) const {
+  return fastsim_.solve(creepages, flexibilities_.flexibility, mu);
+}
+
 FastSimResult NhFastSim::forces_and_adhesion(const Creepage& creepage, double mu) const {
   return fastsim_.forces_and_adhesion(creepage, flexibilities_.flexibility, mu);
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The tangential problem of a conformal patch (docs/WHEELSET.md §4 "Conformal contact"): each
-// strip's creepages from the wheelset's motion in the strip's own frame, the exact solvers on the
-// developed patch, and the pressures and tractions of every strip summed in the contact frame and
+// strip's creepages from the wheelset's motion in the strip's own frame, the tangential solvers on
+// the developed patch, and the pressures and tractions of every strip summed in the contact frame and
 // the track frame.
 #include <vector>
 
@@ -31,8 +31,9 @@ StripCreepages conformal_strip_creepages(const WheelsetMotion& motion, const Vec
                                          const InterpenetrationRegion& region, const TangentPlaneArea& area,
                                          double patch_rolling_speed_m_per_s);
 
-// One exact solver on a conformal patch: pressure_Pa on area.mesh, creepages per column of it. A
-// left wheel's patch is solved mirrored, as a planar one. The result's forces as PatchSolverResult
+// One solver on a conformal patch: pressure_Pa on area.mesh, creepages per column of it; the
+// exact solvers and FastSim (nH-FastSim with K2's flexibilities on the developed patch) march the
+// strips' own creepages. A left wheel's patch is solved mirrored, as a planar one. The result's forces as PatchSolverResult
 // describes them; force_track_N the whole contact force (pressure and tractions) in the track frame.
 struct ConformalSolve {
   PatchSolverResult result;

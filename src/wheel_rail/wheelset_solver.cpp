@@ -593,14 +593,6 @@ void validate(const WheelsetOptions& o) {
                          solver_name(*o.balance_solver), run);
     });
   }
-  if (o.contact_surface == ContactSurface::conformal) {
-    for (TangentialSolver s : o.solvers)
-      require(s == TangentialSolver::exact || s == TangentialSolver::exact_regularised, [&] {
-        return fmt::format("wheelset: the solver {} does not solve a conformal contact surface (its strips in frames "
-                           "of their own); the exact solvers do: exact, exact-regularised",
-                           solver_name(s));
-      });
-  }
   validate(o.rolling);
   validate(o.search);
   if (o.loads) {
