@@ -16,6 +16,7 @@
 #include "railcontact/kalker.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_table.hpp"
 
 namespace railcontact {
 namespace {
@@ -126,6 +127,19 @@ TEST(ConformalContact, NhFastSimIsWithinThreePercentOfTheExactSolverOnIt) {
   }
   EXPECT_EQ(parse_contact_surface("conformal"), ContactSurface::conformal);
   EXPECT_THROW((void)parse_contact_surface("curved"), Error);
+}
+
+// A wheelset table holds planar patches: a conformal build is refused, not built planar.
+TEST(ConformalContact, AWheelsetTableOfConformalPatchesIsRefused) {
+  WheelsetTableOptions o;
+  o.wheelset.contact_surface = ContactSurface::conformal;
+  try {
+    (void)build_wheelset_table(track(), {{0.0}, {0.0}, {98.1e3}}, o);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("a conformal contact surface is solved on the fly only"), std::string::npos)
+        << e.what();
+  }
 }
 
 // The case file's [mesh] contact_surface and the command line's --contact-surface choose the

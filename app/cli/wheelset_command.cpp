@@ -274,6 +274,11 @@ TableUse table_use(const WheelsetArguments& a, const CLI::App& sub, const Wheels
   require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
   require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
           "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
+  require(options.contact_surface == ContactSurface::planar, [&] {
+    return fmt::format("--contact-surface conformal cannot be evaluated from --table {}: its nodes hold planar "
+                       "patches; leave out --table to solve the conformal surface",
+                       a.table);
+  });
   require(!c.state.velocity.free_rolling, [&] {
     return fmt::format("--free-rolling cannot be evaluated from --table {}: free rolling is solved on the fly; give "
                        "--wheel-angular-velocity-rad-per-s or --extra-creepage with --table, or leave out --table",

@@ -349,7 +349,6 @@ namespace {
 // creepages in their own frames, each solver on the developed patch.
 void solve_conformal(const NormalPatch& n, const WheelsetMotion& motion, const Vector3& centre,
                      const WheelsetOptions& options, WheelsetPatch& patch) {
-  patch.surface = ContactSurface::conformal;
   const Mesh& mesh = n.area.mesh;
   for (int i2 = 0; i2 < mesh.n2; ++i2)
     for (int i1 = 0; i1 < mesh.n1; ++i1)
@@ -399,6 +398,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     patch.rolling_radius_m = distance_from_axle_m(frame.point_from_wheelset_centre_m, motion);
     patch.normal_force_N = n.normal.normal_force_N;
     patch.pressure_force_track_N = pressure_force_track_N(n);
+    patch.surface = n.area.strips.empty() ? ContactSurface::planar : ContactSurface::conformal;
     patch.elements_in_contact = n.normal.elements_in_contact;
     patch.normal_iterations = n.normal.iterations;
     patch.normal_mesh_elements = n.solved_mesh_elements;
