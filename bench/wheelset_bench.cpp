@@ -6,6 +6,7 @@
 //   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance)
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
 //   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
+//   BM_WheelsetStepConformal   the time step on conformal contact surfaces (docs/WHEELSET.md §4)
 //   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp; ...Radial:
 //                              with Eq 8's slip direction instead of the default): y within
 //                              ±0.5 mm of the argument in 1 µm steps, 98.1 kN per wheel, 2 mrad of
@@ -71,9 +72,12 @@ void report(benchmark::State& state, const WheelsetResult& r) {
   state.counters["normal_iterations"] = patches > 0 ? static_cast<double>(iterations) / patches : 0.0;
 }
 
-void time_step(benchmark::State& state, TangentialSolver solver, int coarsening = 0) {
+void time_step(benchmark::State& state, TangentialSolver solver, int coarsening = 0,
+               ContactSurface surface = ContactSurface::planar) {
   WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
-  Wheelset wheelset(track(), by_position(solver, coarsening));
+  WheelsetOptions options = by_position(solver, coarsening);
+  options.contact_surface = surface;
+  Wheelset wheelset(track(), options);
   WheelsetResult r = wheelset.evaluate(s);
   for (auto _ : state) {
     s.position.lateral_displacement_m += 1e-6;
@@ -86,6 +90,10 @@ void time_step(benchmark::State& state, TangentialSolver solver, int coarsening 
 void BM_WheelsetTimeStep(benchmark::State& state) { time_step(state, TangentialSolver::nh_fastsim); }
 void BM_WheelsetStepExact(benchmark::State& state) { time_step(state, TangentialSolver::exact); }
 void BM_WheelsetStepFullK2(benchmark::State& state) { time_step(state, TangentialSolver::nh_fastsim, 1); }
+// The same steps on conformal contact surfaces (docs/WHEELSET.md §4 "Conformal contact").
+void BM_WheelsetStepConformal(benchmark::State& state) {
+  time_step(state, TangentialSolver::nh_fastsim, 0, ContactSurface::conformal);
+}
 
 void BM_WheelsetCold(benchmark::State& state) {
   const WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
@@ -145,6 +153,7 @@ BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStepConformal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetTable)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableRadial)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableBalanced)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);

@@ -172,7 +172,7 @@ TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& p
         high2 = high2 || i2 >= mesh.n2 - border_elements;
       }
     }
-    if (!(low1 || high1 || low2 || high2)) return TangentPlaneArea{mesh, std::move(h), step};
+    if (!(low1 || high1 || low2 || high2)) return TangentPlaneArea{mesh, std::move(h), step, {}};
     require(step < kMaximumGrowthSteps, [&] {
       return fmt::format(
           "potential contact area of the {} wheel: the overlap still reaches the border of a {} x {} mesh after {} "
