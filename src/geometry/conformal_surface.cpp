@@ -74,6 +74,10 @@ TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& p
   int lo2 = static_cast<int>(std::floor(region.x2_min_m / d)) - border_elements;
   int hi2 = static_cast<int>(std::ceil(region.x2_max_m / d)) + border_elements;
   for (int step = 0;; ++step) {
+    // Whole granules, as the planar area (the extra elements to +x1 and to the gauge side).
+    if (const int extra = geometry::round_up_to_granule(hi1 - lo1 + 1) - (hi1 - lo1 + 1); extra > 0) hi1 += extra;
+    if (const int extra = geometry::round_up_to_granule(hi2 - lo2 + 1) - (hi2 - lo2 + 1); extra > 0)
+      (region.side == WheelSide::right ? hi2 : lo2) += region.side == WheelSide::right ? extra : -extra;
     Mesh mesh;
     mesh.n1 = hi1 - lo1 + 1;
     mesh.n2 = hi2 - lo2 + 1;

@@ -77,6 +77,12 @@ class WheelOnRail {
   Vector3 ahead_{};   // axle × down: perpendicular to both, close to −x
 };
 
+// A potential area's size in elements along one axis: n rounded up to a multiple of the largest
+// power of two g with 16 g <= n (1 below 32 elements), at most a sixteenth more. From one time step
+// to the next the overlap's extent moves by an element or two, and a size that stays the same
+// keeps the normal solver's plan (kernels, FFT plans) of the previous step.
+int round_up_to_granule(int n);
+
 // The undeformed distance along a region's X3 on the strips of a mesh (docs/WHEELSET.md §4):
 // strip i2 at tangent-plane coordinate strip_x2_m[i2], each element at x1 = mesh.x1(i1); strips
 // whose x2 is NaN are left as they are in h (mesh.index() order, sized by the caller).

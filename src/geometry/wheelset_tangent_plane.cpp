@@ -55,6 +55,12 @@ std::vector<double> WheelsetTrack::undeformed_distance_m(const WheelsetPosition&
 
 namespace geometry {
 
+int round_up_to_granule(int n) {
+  int granule = 1;
+  while (granule * 16 <= n) granule *= 2;
+  return (n + granule - 1) / granule * granule;
+}
+
 void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
                                    const std::vector<double>& strip_x2_m, std::vector<double>& h) {
   // Strip by strip; the rail (straight along x) is met at the same t for every x1 of a strip, and
@@ -103,14 +109,6 @@ void keep_own_overlap(const geometry::WheelOnRail& w, const InterpenetrationRegi
   }
 }
 
-// n rounded up to a multiple of the largest power of two g with 16 g <= n (1 below 32 elements): at
-// most a sixteenth more.
-int round_up_to_granule(int n) {
-  int granule = 1;
-  while (granule * 16 <= n) granule *= 2;
-  return (n + granule - 1) / granule * granule;
-}
-
 }  // namespace
 
 TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& position,
@@ -141,8 +139,8 @@ TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& p
     // keeps the normal solver's plan (kernels, FFT plans) of the previous step. The extra elements go
     // to +x1 and to the gauge side (+x2 on the right wheel, −x2 on the left one, whose X2 points the
     // other way across its rail), so the left wheel stays the mirrored right wheel.
-    if (const int extra = round_up_to_granule(hi1 - lo1 + 1) - (hi1 - lo1 + 1); extra > 0) hi1 += extra;
-    if (const int extra = round_up_to_granule(hi2 - lo2 + 1) - (hi2 - lo2 + 1); extra > 0)
+    if (const int extra = geometry::round_up_to_granule(hi1 - lo1 + 1) - (hi1 - lo1 + 1); extra > 0) hi1 += extra;
+    if (const int extra = geometry::round_up_to_granule(hi2 - lo2 + 1) - (hi2 - lo2 + 1); extra > 0)
       (region.side == WheelSide::right ? hi2 : lo2) += region.side == WheelSide::right ? extra : -extra;
     Mesh mesh;
     mesh.n1 = hi1 - lo1 + 1;
