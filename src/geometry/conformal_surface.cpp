@@ -15,7 +15,6 @@ namespace railcontact {
 
 namespace {
 
-constexpr int kMaximumGrowthSteps = 8;
 constexpr double kNotInContact_m = 1.0;  // the gap given to strips that cannot touch
 
 // The strip at developed lateral coordinate s (rail arc length from the reference point, along X2).
@@ -69,33 +68,13 @@ TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& p
           "conformal contact area: the border must be 1 to 100 elements wide");
   const geometry::WheelOnRail w(*this, region.side, position);
   // The tangent plane's bounding box of the overlap to start from: s ≥ |x2| on a curved surface.
-  int lo1 = static_cast<int>(std::floor(region.x1_min_m / d)) - border_elements;
-  int hi1 = static_cast<int>(std::ceil(region.x1_max_m / d)) + border_elements;
-  int lo2 = static_cast<int>(std::floor(region.x2_min_m / d)) - border_elements;
-  int hi2 = static_cast<int>(std::ceil(region.x2_max_m / d)) + border_elements;
-  for (int step = 0;; ++step) {
-    // Whole granules, as the planar area (the extra elements to +x1 and to the gauge side).
-    if (const int extra = geometry::round_up_to_granule(hi1 - lo1 + 1) - (hi1 - lo1 + 1); extra > 0) hi1 += extra;
-    if (const int extra = geometry::round_up_to_granule(hi2 - lo2 + 1) - (hi2 - lo2 + 1); extra > 0)
-      (region.side == WheelSide::right ? hi2 : lo2) += region.side == WheelSide::right ? extra : -extra;
-    Mesh mesh;
-    mesh.n1 = hi1 - lo1 + 1;
-    mesh.n2 = hi2 - lo2 + 1;
-    mesh.dx1_m = d;
-    mesh.dx2_m = d;
-    mesh.x1_first_m = lo1 * d;
-    mesh.x2_first_m = lo2 * d;
-    const double elements = static_cast<double>(mesh.n1) * static_cast<double>(mesh.n2);
-    require(elements <= kMaximumPotentialAreaElements, [&] {
-      return fmt::format("{} {} x {} = {:.3g} elements of {:.3g} mm on the conformal surface of the {} wheel; at most "
-                         "{:.3g} elements are allowed: use larger elements",
-                         kPotentialAreaTooLarge, mesh.n1, mesh.n2, elements, d * 1e3, side_name(region.side),
-                         kMaximumPotentialAreaElements);
-    });
-    validate(mesh);
+  const geometry::GrowingArea growing{region, d, d, border_elements, "conformal contact area",
+                                      "on the conformal surface"};
+  return geometry::grown_area(growing, [&](const Mesh& mesh, TangentPlaneArea& area) {
     // The strips, from the reference point outwards (each wheel root starts from its neighbour's).
-    std::vector<ConformalStrip> strips(static_cast<std::size_t>(mesh.n2));
-    const int centre = std::clamp(-lo2, 0, mesh.n2 - 1);
+    std::vector<ConformalStrip>& strips = area.strips;
+    strips.assign(static_cast<std::size_t>(mesh.n2), ConformalStrip{});
+    const int centre = std::clamp(static_cast<int>(std::lround(-mesh.x2_first_m / d)), 0, mesh.n2 - 1);
     const double wheel_at_reference = w.wheel().parameter_at(region.wheel_profile_y_m);
     for (int direction : {+1, -1}) {
       double wheel_parameter = wheel_at_reference;
@@ -118,50 +97,25 @@ TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& p
       previous_angle = strip.angle_rad;
     }
     // h along X3 at each strip's tangent-plane point, times the cosine of its angle (the normal
-    // distance between locally parallel surfaces); strips that cannot touch get a wide gap.
-    // Strip by strip: a strip whose line along X3 misses the rail profile (far round a flange, at
-    // a large angle from the tangent plane) cannot touch either.
-    std::vector<double> h(mesh.size(), kNotInContact_m);
+    // distance between locally parallel surfaces); strips that cannot touch get a wide gap. Strip by
+    // strip: a strip whose line along X3 misses the rail profile (far round a flange, at a large
+    // angle from the tangent plane) cannot touch either.
+    std::vector<double>& h = area.h_m;
+    h.assign(mesh.size(), kNotInContact_m);
     std::vector<double> strip_x2(strips.size(), std::numeric_limits<double>::quiet_NaN());
     for (std::size_t j = 0; j < strips.size(); ++j) {
       if (!strips[j].possible_contact) continue;
       strip_x2[j] = strips[j].x2_m;
       try {
         geometry::undeformed_distance_on_strips(w, region, mesh, strip_x2, h);
+        for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, static_cast<int>(j))] *= std::cos(strips[j].angle_rad);
       } catch (const Error&) {
         strips[j].possible_contact = false;
         for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, static_cast<int>(j))] = kNotInContact_m;
       }
       strip_x2[j] = std::numeric_limits<double>::quiet_NaN();
     }
-    for (int i2 = 0; i2 < mesh.n2; ++i2) {
-      const ConformalStrip& strip = strips[static_cast<std::size_t>(i2)];
-      if (!strip.possible_contact) continue;
-      for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, i2)] *= std::cos(strip.angle_rad);
-    }
-    bool low1 = false, high1 = false, low2 = false, high2 = false;
-    for (int i2 = 0; i2 < mesh.n2; ++i2) {
-      for (int i1 = 0; i1 < mesh.n1; ++i1) {
-        if (!(h[mesh.index(i1, i2)] < 0.0)) continue;
-        low1 = low1 || i1 < border_elements;
-        high1 = high1 || i1 >= mesh.n1 - border_elements;
-        low2 = low2 || i2 < border_elements;
-        high2 = high2 || i2 >= mesh.n2 - border_elements;
-      }
-    }
-    if (!(low1 || high1 || low2 || high2)) return TangentPlaneArea{mesh, std::move(h), step, std::move(strips)};
-    require(step < kMaximumGrowthSteps, [&] {
-      return fmt::format(
-          "conformal contact area of the {} wheel: the overlap still reaches the border of a {} x {} mesh after {} "
-          "enlargements",
-          side_name(region.side), mesh.n1, mesh.n2, step);
-    });
-    const int grow1 = std::max(border_elements, mesh.n1 / 4), grow2 = std::max(border_elements, mesh.n2 / 4);
-    if (low1) lo1 -= grow1;
-    if (high1) hi1 += grow1;
-    if (low2) lo2 -= grow2;
-    if (high2) hi2 += grow2;
-  }
+  });
 }
 
 }  // namespace railcontact

@@ -9,6 +9,7 @@
 //                                      wheelset centre, radius r = r0 + z_w − z_w(taping line),
 //                                      W0 = flange-back distance / 2 − y_w(flange back).
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "railcontact/wheelset_geometry.hpp"
@@ -82,6 +83,23 @@ class WheelOnRail {
 // to the next the overlap's extent moves by an element or two, and a size that stays the same
 // keeps the normal solver's plan (kernels, FFT plans) of the previous step.
 int round_up_to_granule(int n);
+
+// A potential contact area grown around a region's overlap (docs/WHEELSET.md §4): a mesh of
+// dx1 x dx2 elements (centres at integer multiples from the reference point) over the region's
+// bounding box and a border of border_elements, in whole granules, filled by `fill` (h_m, and the
+// strips of a conformal area), grown by a quarter on each side the overlap (h < 0) reaches the
+// border, at most 8 times. `what` and `where` name it in messages ("potential contact area", "in
+// the tangent plane").
+struct GrowingArea {
+  const InterpenetrationRegion& region;
+  double dx1_m, dx2_m;
+  int border_elements;
+  const char* what;
+  const char* where;
+};
+using AreaFiller = std::function<void(const Mesh& mesh, TangentPlaneArea& area)>;
+TangentPlaneArea grown_area(const GrowingArea& growing, const AreaFiller& fill);
+inline constexpr int kMaximumGrowthSteps = 8;
 
 // The undeformed distance along a region's X3 on the strips of a mesh (docs/WHEELSET.md §4):
 // strip i2 at tangent-plane coordinate strip_x2_m[i2], each element at x1 = mesh.x1(i1); strips

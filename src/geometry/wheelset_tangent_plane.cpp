@@ -14,7 +14,6 @@ namespace railcontact {
 
 namespace {
 
-constexpr int kMaximumGrowthSteps = 8;
 
 // Starting guesses for the rail and wheel parameters on the normal line through x2: the reference
 // point's parameters moved by x2 along the profiles (X2 runs towards −y_p on the right side and
@@ -128,61 +127,75 @@ TangentPlaneArea WheelsetTrack::potential_contact_area(const WheelsetPosition& p
   }
   require(border_elements >= 1 && border_elements <= 100,
           "potential contact area: the border must be 1 to 100 elements wide");
+  const geometry::WheelOnRail w(*this, region.side, position);
+  const geometry::GrowingArea growing{region, dx1_m, dx2_m, border_elements, "potential contact area",
+                                      "in the tangent plane"};
+  return geometry::grown_area(growing, [&](const Mesh& mesh, TangentPlaneArea& area) {
+    area.h_m = undeformed_distance_m(position, region, mesh);
+    keep_own_overlap(w, region, mesh, area.h_m);
+  });
+}
+
+namespace geometry {
+
+TangentPlaneArea grown_area(const GrowingArea& g, const AreaFiller& fill) {
+  const InterpenetrationRegion& region = g.region;
+  const int border = g.border_elements;
   // Element centres at integer multiples of the sizes from the reference point.
-  int lo1 = static_cast<int>(std::floor(region.x1_min_m / dx1_m)) - border_elements;
-  int hi1 = static_cast<int>(std::ceil(region.x1_max_m / dx1_m)) + border_elements;
-  int lo2 = static_cast<int>(std::floor(region.x2_min_m / dx2_m)) - border_elements;
-  int hi2 = static_cast<int>(std::ceil(region.x2_max_m / dx2_m)) + border_elements;
+  int lo1 = static_cast<int>(std::floor(region.x1_min_m / g.dx1_m)) - border;
+  int hi1 = static_cast<int>(std::ceil(region.x1_max_m / g.dx1_m)) + border;
+  int lo2 = static_cast<int>(std::floor(region.x2_min_m / g.dx2_m)) - border;
+  int hi2 = static_cast<int>(std::ceil(region.x2_max_m / g.dx2_m)) + border;
   for (int step = 0;; ++step) {
-    // The mesh's size in whole granules (a power of two, at most a sixteenth of it): from one time step
-    // to the next the overlap's extent moves by an element or two, and a size that stays the same
-    // keeps the normal solver's plan (kernels, FFT plans) of the previous step. The extra elements go
-    // to +x1 and to the gauge side (+x2 on the right wheel, −x2 on the left one, whose X2 points the
-    // other way across its rail), so the left wheel stays the mirrored right wheel.
-    if (const int extra = geometry::round_up_to_granule(hi1 - lo1 + 1) - (hi1 - lo1 + 1); extra > 0) hi1 += extra;
-    if (const int extra = geometry::round_up_to_granule(hi2 - lo2 + 1) - (hi2 - lo2 + 1); extra > 0)
+    // The mesh's size in whole granules (round_up_to_granule). The extra elements go to +x1 and to
+    // the gauge side (+x2 on the right wheel, −x2 on the left one, whose X2 points the other way
+    // across its rail), so the left wheel stays the mirrored right wheel.
+    if (const int extra = round_up_to_granule(hi1 - lo1 + 1) - (hi1 - lo1 + 1); extra > 0) hi1 += extra;
+    if (const int extra = round_up_to_granule(hi2 - lo2 + 1) - (hi2 - lo2 + 1); extra > 0)
       (region.side == WheelSide::right ? hi2 : lo2) += region.side == WheelSide::right ? extra : -extra;
     Mesh mesh;
     mesh.n1 = hi1 - lo1 + 1;
     mesh.n2 = hi2 - lo2 + 1;
-    mesh.dx1_m = dx1_m;
-    mesh.dx2_m = dx2_m;
-    mesh.x1_first_m = lo1 * dx1_m;
-    mesh.x2_first_m = lo2 * dx2_m;
+    mesh.dx1_m = g.dx1_m;
+    mesh.dx2_m = g.dx2_m;
+    mesh.x1_first_m = lo1 * g.dx1_m;
+    mesh.x2_first_m = lo2 * g.dx2_m;
     // Counted in double before anything is allocated (docs/RELIABILITY.md "Resource limits").
-    const double elements = static_cast<double>(hi1 - lo1 + 1) * static_cast<double>(hi2 - lo2 + 1);
+    const double elements = static_cast<double>(mesh.n1) * static_cast<double>(mesh.n2);
     require(elements <= kMaximumPotentialAreaElements, [&] {
-      return fmt::format("{} {} x {} = {:.3g} elements of {:.3g} x {:.3g} mm in the tangent plane of the {} wheel; at most "
-                         "{:.3g} elements are allowed: use larger elements",
-                         kPotentialAreaTooLarge, hi1 - lo1 + 1, hi2 - lo2 + 1, elements, dx1_m * 1e3, dx2_m * 1e3,
+      return fmt::format("{} {} x {} = {:.3g} elements of {:.3g} x {:.3g} mm {} of the {} wheel; at most {:.3g} elements "
+                         "are allowed: use larger elements",
+                         kPotentialAreaTooLarge, mesh.n1, mesh.n2, elements, g.dx1_m * 1e3, g.dx2_m * 1e3, g.where,
                          side_name(region.side), kMaximumPotentialAreaElements);
     });
     validate(mesh);
-    std::vector<double> h = undeformed_distance_m(position, region, mesh);
-    keep_own_overlap(geometry::WheelOnRail(*this, region.side, position), region, mesh, h);
+    TangentPlaneArea area;
+    area.mesh = mesh;
+    area.growth_steps = step;
+    fill(mesh, area);
     bool low1 = false, high1 = false, low2 = false, high2 = false;
     for (int i2 = 0; i2 < mesh.n2; ++i2) {
       for (int i1 = 0; i1 < mesh.n1; ++i1) {
-        if (!(h[mesh.index(i1, i2)] < 0.0)) continue;
-        low1 = low1 || i1 < border_elements;
-        high1 = high1 || i1 >= mesh.n1 - border_elements;
-        low2 = low2 || i2 < border_elements;
-        high2 = high2 || i2 >= mesh.n2 - border_elements;
+        if (!(area.h_m[mesh.index(i1, i2)] < 0.0)) continue;
+        low1 = low1 || i1 < border;
+        high1 = high1 || i1 >= mesh.n1 - border;
+        low2 = low2 || i2 < border;
+        high2 = high2 || i2 >= mesh.n2 - border;
       }
     }
-    if (!(low1 || high1 || low2 || high2)) return TangentPlaneArea{mesh, std::move(h), step, {}};
+    if (!(low1 || high1 || low2 || high2)) return area;
     require(step < kMaximumGrowthSteps, [&] {
-      return fmt::format(
-          "potential contact area of the {} wheel: the overlap still reaches the border of a {} x {} mesh after {} "
-          "enlargements",
-          side_name(region.side), mesh.n1, mesh.n2, step);
+      return fmt::format("{} of the {} wheel: the overlap still reaches the border of a {} x {} mesh after {} enlargements",
+                         g.what, side_name(region.side), mesh.n1, mesh.n2, step);
     });
-    const int grow1 = std::max(border_elements, mesh.n1 / 4), grow2 = std::max(border_elements, mesh.n2 / 4);
+    const int grow1 = std::max(border, mesh.n1 / 4), grow2 = std::max(border, mesh.n2 / 4);
     if (low1) lo1 -= grow1;
     if (high1) hi1 += grow1;
     if (low2) lo2 -= grow2;
     if (high2) hi2 += grow2;
   }
 }
+
+}  // namespace geometry
 
 }  // namespace railcontact
