@@ -318,6 +318,28 @@ Eigen::Matrix3d marched_adhesion_force_matrix(const detail::FastSimLayout& layou
   return layout.element_area_m2 * DB;
 }
 
+// A record for a march over n elements, with the padding slots' sink at the end.
+MarchRecord empty_record(std::size_t n) {
+  return {std::vector<double>(n + 1), std::vector<double>(n + 1), std::vector<std::uint8_t>(n + 1), 0};
+}
+
+// A recorded march's result: its forces (checked finite; the tractions sum to them, so they are
+// finite with them), the tractions and slip flags without the padding sink, the adhesion fraction.
+FastSimResult recorded_result(const TangentialForces& forces, MarchRecord record) {
+  require_finite_forces(forces);
+  const std::size_t n = record.p1_Pa.size() - 1;
+  record.p1_Pa.pop_back();  // drop the padding sink
+  record.p2_Pa.pop_back();
+  record.slip.pop_back();
+  FastSimResult result;
+  result.forces = forces;
+  result.p1_Pa = std::move(record.p1_Pa);
+  result.p2_Pa = std::move(record.p2_Pa);
+  result.slip = std::move(record.slip);
+  result.adhesion_fraction = static_cast<double>(n - record.slipping) / static_cast<double>(n);
+  return result;
+}
+
 }  // namespace
 
 const char* slip_direction_name(SlipDirection direction) {
@@ -424,19 +446,9 @@ FastSimResult FastSim::forces_and_adhesion(const Creepage& creepage, const Flexi
 FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
   const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
   require_marchable(k, layout_->reach_m, creepage, flexibility);
-  const std::size_t n = layout_->element_count;
-  MarchRecord record{std::vector<double>(n + 1), std::vector<double>(n + 1), std::vector<std::uint8_t>(n + 1), 0};
-  FastSimResult result;
-  result.forces = march_for<true>(*layout_, creepage, k, mu, &record);
-  require_finite_forces(result.forces);  // the tractions sum to the forces: finite with them
-  record.p1_Pa.pop_back();  // drop the padding sink
-  record.p2_Pa.pop_back();
-  record.slip.pop_back();
-  result.p1_Pa = std::move(record.p1_Pa);
-  result.p2_Pa = std::move(record.p2_Pa);
-  result.slip = std::move(record.slip);
-  result.adhesion_fraction = static_cast<double>(n - record.slipping) / static_cast<double>(n);
-  return result;
+  MarchRecord record = empty_record(layout_->element_count);
+  const TangentialForces forces = march_for<true>(*layout_, creepage, k, mu, &record);
+  return recorded_result(forces, std::move(record));
 }
 
 FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const {
@@ -477,21 +489,11 @@ FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility&
     lanes.c2[l] = c.eta / flexibility.L2;
     lanes.c3[l] = c.phi / flexibility.L3;
   }
-  const std::size_t n = layout.element_count;
-  MarchRecord record{std::vector<double>(n + 1), std::vector<double>(n + 1), std::vector<std::uint8_t>(n + 1), 0};
-  FastSimResult result;
+  MarchRecord record = empty_record(layout.element_count);
   const bool weighted = layout.bound.slip_direction == SlipDirection::flexibility_weighted && k.rho1 != k.rho2;
-  result.forces = weighted ? march<true, true, true, true, true>(layout, k, mu, &record, &lanes)
-                           : march<true, false, true, true, true>(layout, k, mu, &record, &lanes);
-  require_finite_forces(result.forces);
-  record.p1_Pa.pop_back();  // drop the padding sink
-  record.p2_Pa.pop_back();
-  record.slip.pop_back();
-  result.p1_Pa = std::move(record.p1_Pa);
-  result.p2_Pa = std::move(record.p2_Pa);
-  result.slip = std::move(record.slip);
-  result.adhesion_fraction = static_cast<double>(n - record.slipping) / static_cast<double>(n);
-  return result;
+  const TangentialForces forces = weighted ? march<true, true, true, true, true>(layout, k, mu, &record, &lanes)
+                                           : march<true, false, true, true, true>(layout, k, mu, &record, &lanes);
+  return recorded_result(forces, std::move(record));
 }
 
 FastSimResult fastsim(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility, double mu) {
