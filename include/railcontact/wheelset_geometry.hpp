@@ -168,9 +168,9 @@ struct ConformalStrip {
   double x2_m = 0.0;
   // The turn of the mean of the rail's and the wheel's normal there from X3 (rad).
   double angle_rad = 0.0;
-  // The strip's rail surface point (at the reference point's x) and the undeformed wheel surface's
-  // point on the rail's normal line through it.
-  Vector3 rail_point_track_m{}, wheel_point_track_m{};
+  // The undeformed wheel surface's point on the rail's normal line through the strip's rail point
+  // (at the reference point's x): where the strip's creepages are taken.
+  Vector3 wheel_point_track_m{};
   // false where the strip cannot touch: beyond the rail profile, outside the region's own stretch
   // of it, or where the two surfaces' normals differ by more than kConformalTurnAway_rad (its h is
   // then a gap of 1 m).

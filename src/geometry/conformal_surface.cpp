@@ -36,7 +36,6 @@ ConformalStrip strip_at(const geometry::WheelOnRail& w, const InterpenetrationRe
     strip.possible_contact = false;
     return strip;
   }
-  strip.rail_point_track_m = pair.rail_point;
   strip.wheel_point_track_m = pair.wheel_point;
   const auto dot = [](const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
   // The mean normal (the bisector of the two unit normals) and its turn from X3 about X1.

@@ -50,14 +50,7 @@ StripTractions strip_tractions(TangentialSolver solver, const ContactPatch& cont
     case TangentialSolver::nh_fastsim: {
       // As on a planar patch: K2's flexibilities on the developed patch, or the equivalent
       // ellipse's for a patch too small for K2 (docs/WHEELSET.md §5).
-      std::optional<NhFastSim> nh;
-      if (contact.elements().count() >= kMinimumElementsForK2) {
-        try {
-          nh.emplace(contact, options.nh_fastsim);
-        } catch (const Error&) {
-          if (contact.elements().count() >= kFallbackElementsForK2) throw;
-        }
-      }
+      const std::optional<NhFastSim> nh = nh_fastsim_unless_too_small(contact, options.nh_fastsim);
       t.flexibility = nh ? nh->flexibility() : fastsim_flexibility(semi_axes_m[0], semi_axes_m[1], contact.material());
       FastSimResult f = nh ? nh->solve(creepages, mu)
                            : FastSim(contact, options.nh_fastsim.bound).solve(creepages, t.flexibility, mu);

@@ -1,6 +1,8 @@
 // A contact patch cut out of a potential-contact-area mesh (see the header).
 #include "wheel_rail/cropped_patch.hpp"
 
+#include "railcontact/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -181,6 +183,17 @@ std::vector<ContactRegion> split_at_necks(const Mesh& mesh, const std::vector<do
   std::stable_sort(out.begin(), out.end(),
                    [](const ContactRegion& a, const ContactRegion& b) { return a.normal_force_N > b.normal_force_N; });
   return out;
+}
+
+std::optional<NhFastSim> nh_fastsim_unless_too_small(const ContactPatch& patch, const NhFastSimOptions& options) {
+  std::optional<NhFastSim> nh;
+  if (patch.elements().count() < kMinimumElementsForK2) return nh;
+  try {
+    nh.emplace(patch, options);
+  } catch (const Error&) {
+    if (patch.elements().count() >= kFallbackElementsForK2) throw;
+  }
+  return nh;
 }
 
 }  // namespace railcontact::detail

@@ -3,10 +3,12 @@
 // contact, so that the tangential solvers' FFTs cover the patch only (docs/WHEEL_RAIL.md §2).
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/normal.hpp"
+#include "railcontact/tangential.hpp"
 
 namespace railcontact::detail {
 
@@ -70,5 +72,9 @@ std::array<double, 2> equivalent_semi_axes(const Mesh& mesh, const std::vector<s
 // (docs/WHEELSET.md §5). Shared by the wheelset and NhFastSimPerLobe.
 inline constexpr std::size_t kMinimumElementsForK2 = 20;
 inline constexpr std::size_t kFallbackElementsForK2 = 200;
+
+// nH-FastSim prepared on a patch by that rule: empty for a patch too small for K2, which then takes
+// the equivalent ellipse's flexibilities. Throws what NhFastSim throws on a larger patch.
+std::optional<NhFastSim> nh_fastsim_unless_too_small(const ContactPatch& patch, const NhFastSimOptions& options);
 
 }  // namespace railcontact::detail

@@ -16,7 +16,7 @@
 namespace railcontact {
 
 using detail::equivalent_semi_axes;
-using detail::kFallbackElementsForK2;
+using detail::nh_fastsim_unless_too_small;
 using detail::kMinimumElementsForK2;
 
 struct NhFastSimPerLobe::Lobe {
@@ -29,13 +29,7 @@ struct NhFastSimPerLobe::Lobe {
 
   Lobe(ContactPatch p, const NhFastSimOptions& options, const Mesh& source, const std::vector<std::size_t>& elements)
       : part(std::move(p)) {
-    if (part.elements().count() >= kMinimumElementsForK2) {
-      try {
-        nh.emplace(part, options);
-      } catch (const Error&) {
-        if (part.elements().count() >= kFallbackElementsForK2) throw;
-      }
-    }
+    nh = nh_fastsim_unless_too_small(part, options);
     if (!nh) {
       const std::array<double, 2> ab = equivalent_semi_axes(source, elements);
       fallback_flexibility = fastsim_flexibility(ab[0], ab[1], part.material());

@@ -41,7 +41,6 @@ constexpr double kCoarseTangentialBalanceTolerance = 1e-3;
 constexpr int kStrictBalancePasses = 6;
 constexpr double kBracketTolerance = 1e-5;
 using detail::equivalent_semi_axes;
-using detail::kFallbackElementsForK2;
 using detail::kMinimumElementsForK2;
 
 // The distance of a point (from the wheelset centre) from the axle.
@@ -258,14 +257,7 @@ PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& 
       // A patch that has just appeared may have too few elements for K2 (its spin coupling
       // vanishes on a single strip): FastSim with the equivalent ellipse's flexibilities (Eq 9) and
       // nH-FastSim's traction bound then gives its small forces (docs/WHEELSET.md §5).
-      std::optional<NhFastSim> nh;
-      if (patch.elements().count() >= kMinimumElementsForK2) {
-        try {
-          nh.emplace(patch, options.nh_fastsim);
-        } catch (const Error&) {
-          if (patch.elements().count() >= kFallbackElementsForK2) throw;
-        }
-      }
+      const std::optional<NhFastSim> nh = detail::nh_fastsim_unless_too_small(patch, options.nh_fastsim);
       r.flexibility = nh ? nh->flexibility() : fastsim_flexibility(a_m, b_m, patch.material());
       FastSimResult f = nh ? nh->solve(creepage, mu) : FastSim(patch, options.nh_fastsim.bound).solve(creepage, r.flexibility, mu);
       r.forces = f.forces;
