@@ -785,6 +785,44 @@ TEST(CApiWheelset, FreeRollingIsTheCppWheelsets) {
 // weighting the contact angle of the two-lobe patch at y = −5.5 mm by several mrad, a taping line
 // 1 mm from the profile origin moves ξ by about z_w(taping line) / r0), and out-of-range values
 // named.
+// rc_wheelset_options.contact_surface is the C++ wheelset's contact_surface: the conformal and the
+// automatic surface give the C++ forces, each patch its spread, conformal weight and pressure
+// resultant; a value outside rc_contact_surface is refused, naming it.
+TEST(CApiWheelset, TheContactSurfaceIsTheCppWheelsets) {
+  const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); };
+  rc_wheelset_options o;
+  rc_wheelset_options_default(&o);
+  EXPECT_EQ(o.contact_surface, RC_SURFACE_PLANAR);
+  const rc_wheelset_state flange = c_state(-6.5e-3);
+  for (const int surface : {RC_SURFACE_CONFORMAL, RC_SURFACE_AUTO}) {
+    CWheelset c(true, 0);
+    ASSERT_EQ(rc_wheelset_get_options(c.h, &o), RC_OK);
+    o.contact_surface = surface;
+    ASSERT_EQ(rc_wheelset_set_options(c.h, &o), RC_OK) << c.error();
+    rc_wheelset_result a;
+    ASSERT_EQ(rc_wheelset_evaluate(c.h, &flange, &a), RC_OK) << c.error();
+    WheelsetOptions options = coarse(true);
+    options.contact_surface = surface == RC_SURFACE_AUTO ? ContactSurface::automatic : ContactSurface::conformal;
+    Wheelset cpp(track(), options);
+    const WheelsetResult e = cpp.evaluate(cpp_state(flange));
+    for (int i = 0; i < 3; ++i) EXPECT_TRUE(near(a.force_track_N[i], e.force_track_N[i])) << surface << " " << i;
+    const std::vector<rc_wheelset_patch> patches = c.patches(RC_WHEEL_RIGHT);
+    ASSERT_EQ(patches.size(), e.wheels[0].patches.size());
+    const WheelsetPatch& q = e.wheels[0].patches[0];
+    EXPECT_EQ(patches[0].conformal_weight, q.conformal_weight);
+    EXPECT_EQ(patches[0].contact_angle_spread_rad, q.region.contact_angle_spread_rad);
+    for (int i = 0; i < 3; ++i) EXPECT_TRUE(near(patches[0].pressure_force_track_N[i], q.pressure_force_track_N[i]));
+    EXPECT_GT(patches[0].contact_angle_spread_rad, 0.01);
+    EXPECT_EQ(patches[0].conformal_weight, 1.0);  // the flange patch is conformal under auto as well
+  }
+  CWheelset bad(true, 0);
+  ASSERT_EQ(rc_wheelset_get_options(bad.h, &o), RC_OK);
+  o.contact_surface = 3;
+  EXPECT_EQ(rc_wheelset_set_options(bad.h, &o), RC_INVALID_INPUT);
+  EXPECT_NE(bad.error().find("rc_wheelset_options.contact_surface = 3 is not an rc_contact_surface"), std::string::npos)
+      << bad.error();
+}
+
 TEST(CApiWheelset, BalanceSolverWeightingAndRadiusDatumAreTheCppWheelsets) {
   const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-12 * std::max(1.0, std::abs(b)); };
   rc_wheelset_options o;

@@ -137,9 +137,106 @@ TEST(ConformalContact, AWheelsetTableOfConformalPatchesIsRefused) {
     (void)build_wheelset_table(track(), {{0.0}, {0.0}, {98.1e3}}, o);
     ADD_FAILURE() << "no error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("a conformal contact surface is solved on the fly only"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("the conformal contact surface is solved on the fly only"), std::string::npos)
         << e.what();
   }
+}
+
+// ContactSurface::automatic, patch by patch (by position, so that both surfaces are solved at one
+// overlap of 0.08 mm): at y = −0.5 mm the left wheel's tread patch (spread / cos γ 0.017) is the
+// planar patch, the right wheel's (0.025, in the band 0.02–0.03) the blend (1 − w) planar + w conformal of both
+// surfaces' results, and at −6.5 mm the right wheel's flange patch (0.18) the conformal one.
+TEST(ConformalContact, TheAutomaticSurfaceIsPlanarConformalOrTheirBlend) {
+  WheelsetOptions o;
+  o.element_size_m = 0.3e-3;
+  o.loads.reset();
+  const auto solved = [&](ContactSurface surface, double y_m) {
+    WheelsetOptions with = o;
+    with.contact_surface = surface;
+    Wheelset wheelset(track(), with);
+    WheelsetState s = rolling_at(y_m);
+    s.position.vertical_displacement_m = -0.08e-3;
+    return wheelset.evaluate(s);
+  };
+  const double scale = kMu * kLoad;
+  const WheelsetResult planar = solved(ContactSurface::planar, -0.5e-3),
+                       conformal = solved(ContactSurface::conformal, -0.5e-3),
+                       automatic = solved(ContactSurface::automatic, -0.5e-3);
+  const WheelsetPatch& tread = automatic.wheels[1].patches.at(0);
+  EXPECT_EQ(tread.conformal_weight, 0.0);
+  EXPECT_EQ(tread.surface, ContactSurface::planar);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(automatic.wheels[1].force_track_N[i], planar.wheels[1].force_track_N[i], 1e-9 * scale) << i;
+  const WheelsetPatch& blended = automatic.wheels[0].patches.at(0);
+  const double w = blended.conformal_weight;
+  EXPECT_GT(w, 0.05);
+  EXPECT_LT(w, 0.95);
+  EXPECT_EQ(blended.surface, ContactSurface::conformal);
+  const WheelsetPatch &p = planar.wheels[0].patches.at(0), &c = conformal.wheels[0].patches.at(0);
+  EXPECT_NEAR(blended.normal_force_N, (1 - w) * p.normal_force_N + w * c.normal_force_N, 1e-6 * kLoad);
+  EXPECT_NEAR(blended.creepage.xi, (1 - w) * p.creepage.xi + w * c.creepage.xi, 1e-12);
+  for (int i = 0; i < 3; ++i) {
+    const double expected = (1 - w) * p.solvers[0].force_track_N[i] + w * c.solvers[0].force_track_N[i];
+    EXPECT_NEAR(blended.solvers[0].force_track_N[i], expected, 1e-6 * scale) << i;
+  }
+  // The blend matters: the two surfaces differ here by more than the tolerance above.
+  EXPECT_GT(std::abs(c.solvers[0].force_track_N[0] - p.solvers[0].force_track_N[0]), 1e-3 * scale);
+  const WheelsetResult flange = solved(ContactSurface::automatic, -6.5e-3),
+                       flange_conformal = solved(ContactSurface::conformal, -6.5e-3);
+  EXPECT_EQ(flange.wheels[0].patches.at(0).conformal_weight, 1.0);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_NEAR(flange.wheels[0].force_track_N[i], flange_conformal.wheels[0].force_track_N[i], 1e-9 * scale) << i;
+}
+
+// The automatic surface's weight: 0 up to planar_up_to, 1 from conformal_from, ½ midway, and 1 for
+// a region whose spread is not known; a band that is not one is refused.
+TEST(ConformalContact, TheAutomaticSurfacesWeightRisesSmoothlyOverItsBand) {
+  const ContactSurfaceSwitch band{0.02, 0.03};
+  InterpenetrationRegion r;
+  r.contact_angle_rad = 0.0;
+  const auto weight = [&](double spread) {
+    r.contact_angle_spread_rad = spread;
+    return conformal_surface_weight(ContactSurface::automatic, band, r);
+  };
+  EXPECT_EQ(weight(0.01), 0.0);
+  EXPECT_EQ(weight(0.02), 0.0);
+  EXPECT_NEAR(weight(0.025), 0.5, 1e-12);
+  EXPECT_EQ(weight(0.03), 1.0);
+  EXPECT_EQ(weight(std::nan("")), 1.0);
+  EXPECT_LT(weight(0.02 + 1e-6) / 1e-6, 0.1);  // flat at the band's ends (C¹; a ramp's slope is 100)
+  EXPECT_LT((1.0 - weight(0.03 - 1e-6)) / 1e-6, 0.1);
+  r.contact_angle_rad = 1.2;  // a steep flange: the same spread weighs 1 / cos γ = 2.8 times more
+  EXPECT_EQ(weight(0.012), 1.0);
+  EXPECT_EQ(conformal_surface_weight(ContactSurface::planar, band, r), 0.0);
+  EXPECT_EQ(conformal_surface_weight(ContactSurface::conformal, band, r), 1.0);
+  EXPECT_THROW(validate(ContactSurfaceSwitch{0.03, 0.02}), Error);
+  EXPECT_THROW(validate(ContactSurfaceSwitch{-0.01, 0.02}), Error);
+  EXPECT_EQ(parse_contact_surface("auto"), ContactSurface::automatic);
+}
+
+// The spread is continuous in y where the half-depth range jumps (S1002/UIC60 at 4.7 mm towards
+// the flange: the flange root's overlap crosses half the deepest overlap and the range widens from
+// 0.07 to 0.15 rad between two positions 5 µm apart), so the automatic choice is continuous too.
+TEST(ConformalContact, TheSpreadIsContinuousWhereTheHalfDepthRangeJumps) {
+  double largest_range_step = 0.0, largest_spread_step = 0.0;
+  double previous_range = std::nan(""), previous_spread = std::nan("");
+  for (int k = 0; k <= 80; ++k) {
+    WheelsetPosition position;
+    position.lateral_displacement_m = -4.6e-3 - k * 5e-6;
+    position.vertical_displacement_m = track().touching_vertical_displacement_m(WheelSide::right, position) - 0.08e-3;
+    const WheelContactSearch search = track().contact_search(WheelSide::right, position);
+    ASSERT_EQ(search.regions.size(), 1u) << position.lateral_displacement_m;
+    const InterpenetrationRegion& r = search.regions[0];
+    const double range = contact_angle_variation_rad(r), spread = r.contact_angle_spread_rad;
+    if (k > 0) {
+      largest_range_step = std::max(largest_range_step, std::abs(range - previous_range));
+      largest_spread_step = std::max(largest_spread_step, std::abs(spread - previous_spread));
+    }
+    previous_range = range;
+    previous_spread = spread;
+  }
+  EXPECT_GT(largest_range_step, 0.04);
+  EXPECT_LT(largest_spread_step, 1e-3);
 }
 
 // The case file's [mesh] contact_surface and the command line's --contact-surface choose the
@@ -156,9 +253,14 @@ TEST(ConformalContact, TheCaseFileAndTheCommandLineChooseIt) {
   EXPECT_EQ(patch["contact_surface"], "conformal");
   EXPECT_LT(patch["strip_angle_range_rad"][0].get<double>(), -0.1);
   EXPECT_GT(patch["strip_angle_range_rad"][1].get<double>(), 0.1);
+  EXPECT_EQ(patch["conformal_weight"], 1.0);
   const test::CommandResult planar = test::run_cli("wheelset " + file + " --contact-surface planar --json");
   ASSERT_EQ(planar.exit_code, 0) << planar.err;
   EXPECT_EQ(nlohmann::json::parse(planar.out)["wheels"][1]["patches"][0]["contact_surface"], "planar");
+  const test::CommandResult automatic = test::run_cli("wheelset " + file + " --contact-surface auto --json");
+  ASSERT_EQ(automatic.exit_code, 0) << automatic.err;
+  EXPECT_EQ(nlohmann::json::parse(automatic.out)["wheels"][1]["patches"][0]["conformal_weight"], 1.0);
+  EXPECT_EQ(nlohmann::json::parse(automatic.out)["wheels"][0]["patches"][0]["conformal_weight"], 0.0);
   std::ofstream(file) << "[mesh]\ncontact_surface = \"curved\"\n";
   const test::CommandResult bad = test::run_cli("wheelset " + file);
   EXPECT_EQ(bad.exit_code, 2);

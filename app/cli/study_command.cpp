@@ -8,6 +8,7 @@
 #include "railcontact/error.hpp"
 #include "study/bound_study.hpp"
 #include "study/coefficient_study.hpp"
+#include "study/contact_surface_study.hpp"
 #include "study/hertz_study.hpp"
 #include "study/case_pool.hpp"
 #include "study/mpi_cases.hpp"
@@ -160,7 +161,7 @@ void add_profile_pair_study(CLI::App* study, Action& action) {
   cmd->add_flag("!--no-table", options->table, "skip the wheelset table against the wheelset on the fly");
   auto surface = std::make_shared<std::string>();
   cmd->add_option("--contact-surface", *surface,
-                  "the sweeps' contact surface: planar (default) or conformal (docs/WHEELSET.md §4); the tables are "
+                  "the sweeps' contact surface: planar (default), conformal or auto (docs/WHEELSET.md §4); the tables are "
                   "planar");
   auto threads = std::make_shared<std::string>();
   cmd->add_option("--threads", *threads,
@@ -186,6 +187,35 @@ void add_profile_pair_study(CLI::App* study, Action& action) {
   });
 }
 
+// `study surfaces`: the planar against the conformal contact surface, and the automatic one
+// (docs/WHEELSET.md §4 "Choosing the surface").
+void add_contact_surface_study(CLI::App* study, Action& action) {
+  auto options = std::make_shared<study::ContactSurfaceStudyOptions>();
+  auto out = std::make_shared<std::string>();
+  auto setups = std::make_shared<std::vector<std::string>>();
+  auto yaws = std::make_shared<std::vector<double>>();
+  CLI::App* cmd = study->add_subcommand(
+      "surfaces", "the planar against the conformal contact surface per patch along each set-up's sweep to flange "
+                  "climb, and the automatic surface's blend swept in fine steps");
+  cmd->add_option("--out", *out, "output directory")->required();
+  cmd->add_option("setups", *setups, "wheel-rail set-up files (default: every shipped set-up in data/wheel_rail)");
+  cmd->add_option("--element-size-m", options->element_size_m, "element size (m)")->capture_default_str();
+  cmd->add_option("--y-step-m", options->y_step_m, "step of the lateral displacement (m, > 0)")->capture_default_str();
+  cmd->add_option("--fine-y-step-m", options->fine_y_step_m, "step of the window where the automatic surface blends (m)")
+      ->capture_default_str();
+  cmd->add_option("--yaw-rad", *yaws, "yaw angles (rad; default 0, -0.01)");
+  cmd->add_flag("!--no-figures", options->figures, "skip the figures");
+  cmd->callback([options, out, setups, yaws, &action] {
+    action = [options, out, setups, yaws] {
+      options->output_directory = *out;
+      for (const std::string& s : *setups) options->setups.emplace_back(s);
+      if (!yaws->empty()) options->yaws_rad = *yaws;
+      study::run_contact_surface_study(*options, std::cerr);
+      return 0;
+    };
+  });
+}
+
 }  // namespace
 
 void add_study_command(CLI::App& app, Action& action) {
@@ -197,6 +227,7 @@ void add_study_command(CLI::App& app, Action& action) {
   add_patch_study(study, action);
   add_paper_study(study, action);
   add_profile_pair_study(study, action);
+  add_contact_surface_study(study, action);
 }
 
 }  // namespace railcontact::cli

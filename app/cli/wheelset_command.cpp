@@ -78,6 +78,7 @@ nlohmann::json patch_json(const WheelsetPatch& p) {
       {"creepage", {{"xi", p.creepage.xi}, {"eta", p.creepage.eta}, {"phi_per_m", p.creepage.phi}}},
       {"pressure_centre_from_reference_m", {p.pressure_centre_x1_m, p.pressure_centre_x2_m}},
       {"contact_surface", contact_surface_name(p.surface)},
+      {"conformal_weight", p.conformal_weight},
       {"pressure_force_track_N", vector_json(p.pressure_force_track_N)},
   };
   // A conformal patch: the turn of its strips in contact from the contact frame (rad).
@@ -94,6 +95,7 @@ nlohmann::json patch_json(const WheelsetPatch& p) {
     j["contact_angle_range_rad"] = {p.region.contact_angle_min_rad, p.region.contact_angle_max_rad};
     j["contact_angle_variation_rad"] = variation;
     j["large_angle_variation"] = variation > kLargeContactAngleVariation_rad;
+    j["contact_angle_spread_rad"] = p.region.contact_angle_spread_rad;
   }
   for (const PatchSolverResult& s : p.solvers) {
     j[solver_name(s.solver)] = {{"F1_N", s.forces.F1_N},
@@ -188,10 +190,10 @@ WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
     }
     const auto& run = c.options.solvers;
     require(std::find(run.begin(), run.end(), *c.options.balance_solver) != run.end(), [&] {
-      std::string names;
-      for (TangentialSolver s : run) names += fmt::format("{}{}", names.empty() ? "" : ", ", solver_name(s));
+      std::string listed;
+      for (TangentialSolver s : run) listed += fmt::format("{}{}", listed.empty() ? "" : ", ", solver_name(s));
       return fmt::format("--balance-solver {} is not among the solvers run ({}): add --solver {} or name one of them",
-                         a.balance_solver, names, a.balance_solver);
+                         a.balance_solver, listed, a.balance_solver);
     });
   }
   if (given("--reference-weighting")) {
@@ -275,9 +277,9 @@ TableUse table_use(const WheelsetArguments& a, const CLI::App& sub, const Wheels
   require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
           "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
   require(options.contact_surface == ContactSurface::planar, [&] {
-    return fmt::format("--contact-surface conformal cannot be evaluated from --table {}: its nodes hold planar "
+    return fmt::format("--contact-surface {} cannot be evaluated from --table {}: its nodes hold planar "
                        "patches; leave out --table to solve the conformal surface",
-                       a.table);
+                       contact_surface_name(options.contact_surface), a.table);
   });
   require(!c.state.velocity.free_rolling, [&] {
     return fmt::format("--free-rolling cannot be evaluated from --table {}: free rolling is solved on the fly; give "
@@ -486,6 +488,10 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
                  p.max_pressure_Pa * 1e-6);
       fmt::print("    creepages xi = {:.4e}, eta = {:.4e}, phi = {:.4f} 1/m\n", p.creepage.xi, p.creepage.eta,
                  p.creepage.phi);
+      if (p.conformal_weight > 0.0 && p.conformal_weight < 1.0)
+        fmt::print("    contact surface: planar and conformal blended, conformal weight {:.3f}\n", p.conformal_weight);
+      else if (p.surface == ContactSurface::conformal)
+        fmt::print("    contact surface: conformal\n");
       const double variation = contact_angle_variation_rad(p.region);
       if (std::isfinite(variation) && variation > kLargeContactAngleVariation_rad)
         fmt::print("    note: the rail's normal angle varies over the patch from {:.3f} to {:.3f} rad, up to {:.3f} rad "
@@ -536,8 +542,9 @@ void add_wheelset_command(CLI::App& app, Action& action) {
                 "by load: meet both wheels' loads with one rigid axle's height and roll (the roll found is in the JSON's "
                 "state); default: each wheel's height on its own");
   sub->add_option("--contact-surface", args->contact_surface,
-                  "each patch's contact surface: planar (default: the tangent plane at its reference point) or "
-                  "conformal (curved with the profiles across the rolling direction; exact solvers only; "
+                  "each patch's contact surface: planar (default: the tangent plane at its reference point), "
+                  "conformal (curved with the profiles across the rolling direction) or auto (planar where the "
+                  "contact angle hardly varies over the patch, conformal where it does, blended between; "
                   "docs/WHEELSET.md §4)");
   sub->add_flag("--frictionless-balance", args->frictionless_balance,
                 "by load: the normal forces alone carry the wheel loads (the tangential forces' vertical components left "

@@ -104,6 +104,12 @@ Error write_error(const std::filesystem::path& path, int error) {
                                           error != 0 ? std::strerror(error) : "the write failed"));
 }
 
+std::ofstream open_output_file(const std::filesystem::path& path) {
+  std::ofstream f(path);
+  if (!f) throw write_error(path, errno);
+  return f;
+}
+
 OutputDirectory::OutputDirectory(std::filesystem::path directory, std::ostream* log) : directory_(std::move(directory)) {
   if (directory_.empty()) directory_ = ".";
   std::error_code ec;

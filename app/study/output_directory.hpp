@@ -14,6 +14,7 @@
 //   the outputs of the last complete run. A run stopped by SIGINT or SIGTERM says so on stderr and
 //   leaves its staging directory; the next run in DIR removes it and reports it (stale_note()).
 #include <filesystem>
+#include <fstream>
 #include <ostream>
 #include <string>
 
@@ -29,6 +30,9 @@ std::filesystem::path named_for_user(const std::filesystem::path& path);
 // REASON strerror(error), the errno of the failed call ("No space left on device"); error 0 (a
 // stream that failed without one) gives "the write failed".
 Error write_error(const std::filesystem::path& path, int error);
+
+// A file opened for writing, or Error(io) (write_error) when it cannot be.
+std::ofstream open_output_file(const std::filesystem::path& path);
 
 class OutputDirectory {
  public:

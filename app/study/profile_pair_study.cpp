@@ -24,6 +24,7 @@
 #include "study/figures.hpp"
 #include "study/mpi_cases.hpp"
 #include "study/output_directory.hpp"
+#include "study/wheel_rail_setups.hpp"
 
 namespace railcontact::study {
 
@@ -40,21 +41,6 @@ constexpr double kWheelLoad_N = WheelLoads{}.right_N;  // the sweeps' load per w
 // (docs/WHEELSET_TABLE.md §3), and at half steps elsewhere.
 constexpr double kTableFineStretch_m = 2e-3;
 constexpr std::array<double, 3> kTableLoads{0.75, 1.0, 1.25};  // the table's loads, per sweep load
-
-// The set-up files: those given, or every shipped one, by name.
-std::vector<std::filesystem::path> setup_files(const ProfilePairStudyOptions& o) {
-  if (!o.setups.empty()) return o.setups;
-  std::vector<std::filesystem::path> files;
-  for (const auto& entry : std::filesystem::directory_iterator(default_wheel_rail_setup_path().parent_path()))
-    if (entry.path().extension() == ".json") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-WheelsetTrack track_of(const WheelRailSetup& setup) {
-  return WheelsetTrack(read_profile(setup.wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}),
-                       read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail}), setup.track);
-}
 
 // The rigid contact geometry: where the right wheel's flange climbs (towards −y, at most 15 mm) and
 // the equivalent conicity at 3 mm (NaN when the flange climbs before it). A wide gauge puts flange
@@ -194,38 +180,24 @@ void compare_with_table(const WheelsetTable& table, const WheelsetState& state, 
   }
 }
 
-std::ofstream open_file(const std::filesystem::path& path) {
-  std::ofstream f(path);
-  if (!f) throw write_error(path, errno);
-  return f;
-}
-
 std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:+.2f} %", v) : "–"; }
 
 }  // namespace
 
 void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log) {
-  require(std::isfinite(o.element_size_m) && o.element_size_m >= 0.05e-3 && o.element_size_m <= 2e-3, [&] {
-    return fmt::format("--element-size-m {:g} m must lie in [5e-05, 0.002] m", o.element_size_m);
-  });
-  require(std::isfinite(o.y_step_m) && o.y_step_m >= 0.01e-3 && o.y_step_m <= 1e-3,
-          [&] { return fmt::format("--y-step-m {:g} m must lie in [1e-05, 0.001] m", o.y_step_m); });
-  require(!o.yaws_rad.empty() && o.yaws_rad.size() <= 10, "--yaw-rad: 1 to 10 yaw angles");
-  for (const double yaw : o.yaws_rad)
-    require(std::isfinite(yaw) && std::abs(yaw) <= 0.05,
-            [&] { return fmt::format("--yaw-rad {:g} rad must lie in [-0.05, 0.05] rad", yaw); });
-  const std::vector<std::filesystem::path> files = setup_files(o);
+  validate_sweep(o.element_size_m, o.y_step_m, 1e-3, o.yaws_rad);
+  const std::vector<std::filesystem::path> files = wheel_rail_setup_files(o.setups);
   require(!files.empty(), "study profiles: no wheel-rail set-up files");
 
   OutputDirectory out(o.output_directory, &log);
-  std::ofstream rows = open_file(out.path("profile_pairs.csv"));
+  std::ofstream rows = open_output_file(out.path("profile_pairs.csv"));
   fmt::print(rows,
              "setup,yaw_mrad,y_mm,side,patch,patches,contact_angle_rad,rail_profile_y_mm,normal_force_N,xi,eta,"
              "phi_per_m,exact_F1_N,exact_F2_N,nh_fastsim_F1_N,nh_fastsim_F2_N,dF1_percent_mu_F3,dF2_percent_mu_F3,"
              "wheel_Fx_N,wheel_Fy_N,wheel_Fz_N,contact_angle_variation_rad\n");
   std::ofstream table_rows;
   if (o.table) {
-    table_rows = open_file(out.path("table_check.csv"));
+    table_rows = open_output_file(out.path("table_check.csv"));
     fmt::print(table_rows, "setup,yaw_mrad,y_mm,side,patches,on_the_fly_Fx_N,on_the_fly_Fy_N,on_the_fly_Fz_N,table_Fx_N,"
                            "table_Fy_N,table_Fz_N,dFx_percent_mu_Fz,dFy_percent_mu_Fz,dFz_percent_mu_Fz\n");
   }
@@ -235,7 +207,7 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   std::size_t done = 0;
   for (const std::filesystem::path& file : files) {
     const WheelRailSetup setup = read_wheel_rail_setup(file);
-    const WheelsetTrack track = track_of(setup);
+    const WheelsetTrack track = wheelset_track_of(setup);
     const PairGeometry geometry = pair_geometry(track, 0.1e-3);  // EN 15302 resolution, whatever the sweep step
     const std::string name = file.stem().string();
     fmt::print(log, "{}: the flange climbs beyond y = {:.2f} mm; tan γe(3 mm) = {:.4f}\n", name,
@@ -319,7 +291,7 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
     if (table_rows.fail()) throw write_error(out.path("table_check.csv"), errno);
   }
 
-  std::ofstream pairs = open_file(out.path("pairs.csv"));
+  std::ofstream pairs = open_output_file(out.path("pairs.csv"));
   fmt::print(pairs, "setup,yaw_mrad,tan_gamma_e_3mm,states,last_y_mm,most_patches,worst_dF1_percent,worst_dF1_y_mm,"
                     "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,largest_angle_variation_rad,stop,"
                     "table_states,table_refused,table_dFx_percent,table_dFx_y_mm,table_dFy_percent,table_dFy_y_mm,"
@@ -336,7 +308,7 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   pairs.close();
   if (pairs.fail()) throw write_error(out.path("pairs.csv"), errno);
 
-  std::ofstream md = open_file(out.path("summary.md"));
+  std::ofstream md = open_output_file(out.path("summary.md"));
   fmt::print(md, "# Profile pairs end to end\n\n");
   fmt::print(md,
              "Each wheel–rail set-up: the wheelset by load (98.1 kN per wheel, μ = 0.3, 20 m/s, pure rolling) from y = 0 "

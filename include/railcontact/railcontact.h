@@ -408,6 +408,14 @@ typedef enum rc_reference_weighting {
                                    flange) */
 } rc_reference_weighting;
 
+/* The contact surface of each wheelset patch (docs/WHEELSET.md §4 "Conformal contact"). */
+typedef enum rc_contact_surface {
+  RC_SURFACE_PLANAR = 0,    /* the tangent plane at the patch's reference point (default) */
+  RC_SURFACE_CONFORMAL = 1, /* curved with the profiles across the rolling direction */
+  RC_SURFACE_AUTO = 2       /* planar where the contact angle hardly varies over the patch,
+                               conformal where it does, both blended between (smooth in y) */
+} rc_contact_surface;
+
 /* The options of a wheelset (defaults from rc_wheelset_options_default). */
 typedef struct rc_wheelset_options {
   double youngs_modulus_Pa;    /* E of wheels and rails (Pa); default 2.1e11 */
@@ -440,6 +448,8 @@ typedef struct rc_wheelset_options {
                                   -1 (default): the first of solvers */
   int reference_weighting;     /* rc_reference_weighting of each patch's reference point and
                                   contact angle; default RC_WEIGHTING_SQUARED_GAP */
+  int contact_surface;         /* rc_contact_surface; default RC_SURFACE_PLANAR (a wheelset
+                                  table: planar only) */
 } rc_wheelset_options;
 
 RC_API rc_status rc_wheelset_options_default(rc_wheelset_options* options);
@@ -496,6 +506,12 @@ typedef struct rc_wheelset_patch {
                                         F1, F2 (N), M3 about the centre of pressure (N m), contact
                                         frame, and the adhesion fraction */
   double force_track_N[4][3];        /* F1 X1 + F2 X2 + F3 X3 per solver, track frame (N) */
+  double pressure_force_track_N[3];  /* the pressure's resultant on the wheel, track frame (N):
+                                        F3 X3 on a planar patch, the strips' pressures along their
+                                        own normals on a conformal one */
+  double contact_angle_spread_rad;   /* the rail normal angle's weighted standard deviation over
+                                        the overlap (rad; RC_SURFACE_AUTO's measure with gamma) */
+  double conformal_weight;           /* 0 planar, 1 conformal, between: both blended */
   int side;                          /* rc_wheel_side */
   int elements_in_contact;
   int normal_iterations;             /* of the final normal solve */

@@ -112,6 +112,9 @@ struct InterpenetrationRegion {
   // known (a patch from a wheelset table).
   double contact_angle_min_rad = std::numeric_limits<double>::quiet_NaN();
   double contact_angle_max_rad = std::numeric_limits<double>::quiet_NaN();
+  // The rail normal angle's standard deviation over the overlap with the reference point's weights
+  // (rad): continuous in the position, as the reference is (ContactSurface::automatic's measure).
+  double contact_angle_spread_rad = std::numeric_limits<double>::quiet_NaN();
   double rolling_radius_m = 0.0;    // weighted average wheel radius
   // The contact frame at the reference point (track frame, see the top of this header).
   Vector3 x1_axis{1.0, 0.0, 0.0};

@@ -36,12 +36,14 @@ METHODS = {"nh-fastsim": 0, "fastsim": 1, "exact": 2, "exact-regularised": 3}
 SLIP_DIRECTIONS = {"radial": 0, "flexibility-weighted": 1}
 #: how a wheelset patch's reference point and contact angle are averaged (rc_reference_weighting).
 REFERENCE_WEIGHTINGS = {"squared-gap": 0, "depth": 1}
+#: each wheelset patch's contact surface (rc_contact_surface, docs/WHEELSET.md §4).
+CONTACT_SURFACES = {"planar": 0, "conformal": 1, "auto": 2}
 #: where the wheel's radius is the nominal radius (rc_nominal_radius_datum).
 NOMINAL_RADIUS_DATUMS = {"profile-origin": 0, "taping-line": 1}
 _GEOMETRIES = {"ellipse": 0, "hertz": 1}
 
 __all__ = ["Solver", "Result", "NormalResult", "Tractions", "FlexibilityTable", "FlexibilityTableValues",
-           "creep_forces", "METHODS", "SLIP_DIRECTIONS", "REFERENCE_WEIGHTINGS", "NOMINAL_RADIUS_DATUMS", "Wheelset", "WheelsetResult", "WheelResult", "WheelsetPatch", "SolverForces",
+           "creep_forces", "METHODS", "SLIP_DIRECTIONS", "REFERENCE_WEIGHTINGS", "CONTACT_SURFACES", "NOMINAL_RADIUS_DATUMS", "Wheelset", "WheelsetResult", "WheelResult", "WheelsetPatch", "SolverForces",
            "WHEELSET_STATE_COLUMNS", "abi_version", "RailcontactError", "InvalidInputError", "NoContactError",
            "SeveralPatchesError", "NotConvergedError", "RailcontactIOError", "InternalError", "CancelledError"]
 
@@ -458,6 +460,9 @@ class WheelsetPatch:
     pressure_centre_x2_m: float        #: ... along X2 (m)
     elements_in_contact: int
     normal_iterations: int             #: of the final normal solve
+    pressure_force_track_N: np.ndarray  #: the pressure's resultant on the wheel, track frame (N), (3,)
+    contact_angle_spread_rad: float    #: the rail normal angle's weighted standard deviation (rad)
+    conformal_weight: float            #: 0 planar, 1 conformal, between: both surfaces blended
     F1_N: float                        #: the first solver's F1, contact frame (N)
     F2_N: float                        #: the first solver's F2 (N)
     M3_Nm: float                       #: the first solver's M3 about the centre of pressure (N m)
@@ -532,7 +537,10 @@ class Wheelset:
     balance_solver [None: the first of solvers] (the solver whose forces the load balance and free
     rolling use, one of solvers); reference_weighting ["squared-gap"] (each patch's reference point
     and contact angle as Kalker's CONTACT weights them; "depth": by the overlap depth, smoother onto
-    the flange); nominal_radius_at ["profile-origin"] (where the wheel's radius is nominal_radius;
+    the flange); contact_surface ["planar"] (each patch in the tangent plane at its reference point;
+    "conformal": curved with the profiles across the rolling direction; "auto": planar where the
+    contact angle hardly varies over a patch, conformal where it does, blended between);
+    nominal_radius_at ["profile-origin"] (where the wheel's radius is nominal_radius;
     "taping-line"; with profiles only).
     A Wheelset may be shared between threads (one call at a time); evaluations release the GIL.
     """
@@ -555,7 +563,8 @@ class Wheelset:
                  loads=(98100.0, 98100.0), balance_roll: bool = False, tangential_in_balance: bool = True,
                  allow_wheel_lift: bool = False, warm_start: bool = True,
                  slip_direction: str = "flexibility-weighted", balance_solver=None,
-                 reference_weighting: str = "squared-gap", nominal_radius_at=None):
+                 reference_weighting: str = "squared-gap", contact_surface: str = "planar",
+                 nominal_radius_at=None):
         if isinstance(solvers, str):
             solvers = (solvers,)
         if not isinstance(solvers, (tuple, list)) or not solvers:
@@ -575,6 +584,8 @@ class Wheelset:
                    "reference_weighting": REFERENCE_WEIGHTINGS[_check.choice("reference_weighting",
                                                                              reference_weighting,
                                                                              REFERENCE_WEIGHTINGS)],
+                   "contact_surface": CONTACT_SURFACES[_check.choice("contact_surface", contact_surface,
+                                                                     CONTACT_SURFACES)],
                    "balance_solver": -1}
         if balance_solver is not None:
             named = _check.choice("balance_solver", balance_solver, METHODS)

@@ -524,6 +524,9 @@ py::dict wheelset_patch_dict(const rc_wheelset_patch& p) {
   d["pressure_centre_x2_m"] = p.pressure_centre_x2_m;
   d["elements_in_contact"] = p.elements_in_contact;
   d["normal_iterations"] = p.normal_iterations;
+  d["pressure_force_track_N"] = vector3(p.pressure_force_track_N);
+  d["contact_angle_spread_rad"] = p.contact_angle_spread_rad;
+  d["conformal_weight"] = p.conformal_weight;
   py::list solvers;
   for (int k = 0; k < p.solver_count; ++k)
     solvers.append(py::make_tuple(p.forces[k].F1_N, p.forces[k].F2_N, p.forces[k].M3_Nm, p.forces[k].adhesion_fraction,
@@ -602,7 +605,7 @@ rc_track_parameters track_parameters(const py::dict& d) {
   X(youngs_modulus_Pa) X(poisson_ratio) X(friction_coefficient) X(element_size_m) X(right_load_N) X(left_load_N)
 #define RC_WHEELSET_INTS(X) \
   X(normal_mode) X(balance_roll) X(tangential_in_balance) X(allow_wheel_lift) X(warm_start) X(slip_direction) \
-      X(balance_solver) X(reference_weighting)
+      X(balance_solver) X(reference_weighting) X(contact_surface)
 
 bool assign_option(rc_wheelset_options& o, const std::string& key, double value) {
 #define RC_DOUBLE(name) if (key == #name) { o.name = value; return true; }

@@ -205,6 +205,7 @@ CALLS = {
                              "balance_roll": flag(), "tangential_in_balance": flag(), "allow_wheel_lift": flag(),
                              "warm_start": flag(), "slip_direction": choice(),
                              "balance_solver": choice(optional=True), "reference_weighting": choice(),
+                             "contact_surface": choice(),
                              "nominal_radius_at": choice(optional=True)}),
     "Wheelset.evaluate": dict(get=wheelset_call("evaluate"), base={},
                               params={"y": number(), "z": number(), "roll": number(), "yaw": number(),

@@ -168,6 +168,29 @@ def test_slip_direction_on_the_flange():
         railcontact.Wheelset(element_size=COARSE, slip_direction="sideways")
 
 
+def test_contact_surface():
+    """contact_surface="conformal" and "auto" solve the flange patch at y = -6.5 mm on the curved
+    surface (conformal weight 1, its pressure resultant off the contact normal, a lateral force
+    that differs from the planar one by more than 10 % of mu Fz); on the tread at y = 0 "auto"
+    keeps the left wheel's planar patch within the switch's band or below it; a wrong name is
+    refused, naming the option."""
+    planar = railcontact.Wheelset(element_size=COARSE, warm_start=False)
+    conformal = railcontact.Wheelset(element_size=COARSE, warm_start=False, contact_surface="conformal")
+    automatic = railcontact.Wheelset(element_size=COARSE, warm_start=False, contact_surface="auto")
+    assert automatic.options["contact_surface"] == railcontact.CONTACT_SURFACES["auto"]
+    p, c, a = (w.evaluate(y=-6.5e-3).right for w in (planar, conformal, automatic))
+    assert p.patches[0].conformal_weight == 0.0
+    assert c.patches[0].conformal_weight == 1.0 and a.patches[0].conformal_weight == 1.0
+    assert a.patches[0].contact_angle_spread_rad > 0.01
+    assert np.allclose(a.force_track_N, c.force_track_N, rtol=1e-9, atol=1e-6)
+    assert abs(c.force_track_N[1] - p.force_track_N[1]) > 0.1 * 0.3 * 98100.0
+    n = c.patches[0].pressure_force_track_N
+    assert abs(np.dot(n, c.patches[0].x3_axis) / np.linalg.norm(n) - 1.0) > 1e-5
+    assert automatic.evaluate(y=-3e-3).left.patches[0].conformal_weight == 0.0
+    with pytest.raises(railcontact.InvalidInputError, match="contact_surface = 'curved' is not one of planar"):
+        railcontact.Wheelset(element_size=COARSE, contact_surface="curved")
+
+
 def test_balance_solver_reference_weighting_and_radius_datum():
     """balance_solver moves the wheel heights (the exact solver's vertical force components carry
     the load); reference_weighting="depth" moves the contact angle of the two-lobe patch at

@@ -98,6 +98,16 @@ rc::WheelsetOptions options_of(const rc_wheelset_options& o) {
   });
   options.search.weighting = o.reference_weighting == RC_WEIGHTING_DEPTH ? rc::ReferenceWeighting::depth
                                                                           : rc::ReferenceWeighting::squared_gap;
+  require(o.contact_surface == RC_SURFACE_PLANAR || o.contact_surface == RC_SURFACE_CONFORMAL ||
+              o.contact_surface == RC_SURFACE_AUTO,
+          [&] {
+            return fmt::format("rc_wheelset_options.contact_surface = {} is not an rc_contact_surface (0 planar, "
+                               "1 conformal, 2 auto)",
+                               o.contact_surface);
+          });
+  options.contact_surface = o.contact_surface == RC_SURFACE_CONFORMAL ? rc::ContactSurface::conformal
+                            : o.contact_surface == RC_SURFACE_AUTO    ? rc::ContactSurface::automatic
+                                                                      : rc::ContactSurface::planar;
   if (o.normal_mode == RC_WHEELSET_BY_LOAD)
     options.loads = rc::WheelLoads{o.right_load_N, o.left_load_N, o.balance_roll != 0};
   else
@@ -213,6 +223,9 @@ rc_wheelset_patch patch_of(const rc::WheelsetPatch& p) {
     c.forces[k] = rc_forces{s.forces.F1_N, s.forces.F2_N, s.forces.M3_Nm, s.adhesion_fraction};
     copy3(s.force_track_N, c.force_track_N[k]);
   }
+  copy3(p.pressure_force_track_N, c.pressure_force_track_N);
+  c.contact_angle_spread_rad = p.region.contact_angle_spread_rad;
+  c.conformal_weight = p.conformal_weight;
   c.side = p.side == rc::WheelSide::right ? RC_WHEEL_RIGHT : RC_WHEEL_LEFT;
   c.elements_in_contact = static_cast<int>(p.elements_in_contact);
   c.normal_iterations = p.normal_iterations;
@@ -413,6 +426,7 @@ rc_status rc_wheelset_options_default(rc_wheelset_options* o) {
   o->balance_solver = -1;
   o->reference_weighting =
       d.search.weighting == rc::ReferenceWeighting::depth ? RC_WEIGHTING_DEPTH : RC_WEIGHTING_SQUARED_GAP;
+  o->contact_surface = RC_SURFACE_PLANAR;
   return RC_OK;
 }
 

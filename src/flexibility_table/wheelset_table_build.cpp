@@ -109,8 +109,10 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   if (!(options.runtime_elements >= 20 && options.runtime_elements <= 100000))
     throw Error(fmt::format("wheelset table: runtime_elements = {} must lie in [20, 100000]", options.runtime_elements));
   if (options.wheelset.contact_surface != ContactSurface::planar)
-    throw Error("wheelset table: its nodes hold planar patches (the lookups march one creepage per patch); a "
-                "conformal contact surface is solved on the fly only (docs/WHEELSET.md §4 \"Conformal contact\")");
+    throw Error(fmt::format("wheelset table: its nodes hold planar patches (the lookups march one creepage per patch); "
+                            "the {} contact surface is solved on the fly only (docs/WHEELSET.md §4 \"Conformal "
+                            "contact\")",
+                            contact_surface_name(options.wheelset.contact_surface)));
   WheelsetOptions wheelset_options = options.wheelset;
   wheelset_options.solvers = {TangentialSolver::nh_fastsim};
   wheelset_options.keep_tractions = true;

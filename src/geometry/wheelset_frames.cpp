@@ -86,6 +86,15 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
   //                 = |Δy| (16/15) e² sqrt(2 r e).
   // Both fall to zero continuously at the region's ends, so the averages move continuously with
   // the position.
+  const auto sample_width = [&](std::size_t k) {
+    return 0.5 * std::abs(locus[std::min(k + 1, locus.size() - 1)].rail_profile_y_m -
+                          locus[k > 0 ? k - 1 : 0].rail_profile_y_m);
+  };
+  const auto sample_weight = [&](std::size_t k) {
+    const double e = -locus[k].vertical_gap_m, width = sample_width(k);
+    return weighting == ReferenceWeighting::depth ? e * width
+                                                  : width * (16.0 / 15.0) * e * e * std::sqrt(2.0 * nominal_radius_m_ * e);
+  };
   double sum_w = 0.0, sum_y = 0.0, sum_yw = 0.0, sum_angle = 0.0, sum_radius = 0.0, sum_x = 0.0, sum_depth = 0.0;
   r.max_interpenetration_m = 0.0;
   r.rail_profile_y_min_m = std::numeric_limits<double>::infinity();
@@ -97,13 +106,9 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
     r.rail_profile_y_min_m = std::min(r.rail_profile_y_min_m, s.rail_profile_y_m);
     r.rail_profile_y_max_m = std::max(r.rail_profile_y_max_m, s.rail_profile_y_m);
     if (!(s.vertical_gap_m < 0.0)) continue;
-    const double width =
-        0.5 * std::abs(locus[std::min(k + 1, locus.size() - 1)].rail_profile_y_m - locus[k > 0 ? k - 1 : 0].rail_profile_y_m);
     const double e = -s.vertical_gap_m;
-    const double w = weighting == ReferenceWeighting::depth
-                         ? e * width
-                         : width * (16.0 / 15.0) * e * e * std::sqrt(2.0 * nominal_radius_m_ * e);
-    sum_depth += e * width;
+    const double w = sample_weight(k);
+    sum_depth += e * sample_width(k);
     sum_w += w;
     sum_y += w * s.rail_profile_y_m;
     sum_yw += w * s.wheel_profile_y_m;
@@ -127,6 +132,16 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
   r.rail_profile_y_m = sum_y / sum_w;
   r.wheel_profile_y_m = sum_yw / sum_w;
   r.contact_angle_rad = sum_angle / sum_w;
+  // The angle's spread about it, with the same weights: it grows continuously as a second hump of
+  // the overlap deepens (the half-depth range above jumps when one crosses half the depth).
+  double sum_square = 0.0;
+  for (std::size_t k = first; k <= last; ++k) {
+    const ContactLocusSample& s = locus[k];
+    if (!(s.vertical_gap_m < 0.0)) continue;
+    const double d = s.contact_angle_rad - r.contact_angle_rad;
+    sum_square += sample_weight(k) * d * d;
+  }
+  r.contact_angle_spread_rad = std::sqrt(sum_square / sum_w);
   r.rolling_radius_m = sum_radius / sum_w;
   const double x_reference = sum_x / sum_w;
   const ProfileCurvePoint o = rail_->at(rail_->parameter_at(r.rail_profile_y_m));

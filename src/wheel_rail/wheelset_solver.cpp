@@ -64,18 +64,35 @@ std::size_t balance_index(const WheelsetOptions& options) {
   return static_cast<std::size_t>(it - options.solvers.begin());
 }
 
-// One patch's normal problem at a position.
-struct NormalPatch {
-  InterpenetrationRegion region;
-  TangentPlaneArea area;
-  NormalSolution normal;               // on area.mesh
+// A patch's normal problem on one contact surface at a position.
+struct SurfaceSolution {
+  TangentPlaneArea area;                 // planar, or conformal (with its strips)
+  NormalSolution normal;                 // on area.mesh
   std::size_t solved_mesh_elements = 0;  // of the mesh solved on: a contact window or area.mesh
 };
 
+// One patch's normal problem: on the surface the options choose, and, where the automatic surface
+// blends the two (0 < conformal_weight < 1), also on the planar one.
+struct NormalPatch : SurfaceSolution {
+  InterpenetrationRegion region;
+  double conformal_weight = 0.0;  // conformal_surface_weight; this is the conformal surface when > 0
+  std::optional<SurfaceSolution> planar;  // the planar surface to blend with
+};
+
 // The pressure's resultant on the wheel, track frame (WheelsetPatch::pressure_force_track_N).
+Vector3 pressure_force_track_N(const InterpenetrationRegion& region, const SurfaceSolution& p) {
+  if (!p.area.strips.empty()) return detail::conformal_pressure_force_track_N(region, p.area, p.normal.pressure_Pa);
+  return combine(region, 0.0, 0.0, p.normal.normal_force_N);
+}
+
+// The same for a patch, blended where it is.
 Vector3 pressure_force_track_N(const NormalPatch& p) {
-  if (!p.area.strips.empty()) return detail::conformal_pressure_force_track_N(p.region, p.area, p.normal.pressure_Pa);
-  return combine(p.region, 0.0, 0.0, p.normal.normal_force_N);
+  Vector3 f = pressure_force_track_N(p.region, p);
+  if (p.planar) {
+    const Vector3 g = pressure_force_track_N(p.region, *p.planar);
+    for (std::size_t i = 0; i < 3; ++i) f[i] = p.conformal_weight * f[i] + (1.0 - p.conformal_weight) * g[i];
+  }
+  return f;
 }
 
 }  // namespace
@@ -203,6 +220,28 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
   return WindowedSolution{std::move(s), mesh.size()};
 }
 
+// The normal problem of a region on one contact surface's area. h is measured at this position
+// (negative where the bodies overlap): the approach is zero. In a time step (warm_start) first on
+// the previous contact's window; else (or if the check fails) on the whole potential area.
+SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const InterpenetrationRegion& region,
+                              const WheelsetOptions& options, detail::WheelsetWarmStart& warm, bool warm_start) {
+  SurfaceSolution p;
+  p.area = std::move(area);
+  const std::vector<double> initial =
+      warm_start ? warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh) : std::vector<double>{};
+  std::optional<WindowedSolution> windowed = solve_in_contact_window(p.area, initial, options, warm);
+  p.normal = windowed ? std::move(windowed->normal)
+                      : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, initial);
+  p.solved_mesh_elements = windowed ? windowed->window_elements : p.area.mesh.size();
+  if (!p.normal.converged) {
+    throw Error(ErrorKind::not_converged,
+                fmt::format("wheelset: the normal problem of the {} wheel's patch at y_p = {:.2f} mm did not "
+                            "converge in {} iterations (residual {:.2g})",
+                            side_name(side), region.rail_profile_y_m / kMm, p.normal.iterations, p.normal.residual));
+  }
+  return p;
+}
+
 std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
                                       const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
   const WheelContactSearch search = track.contact_search(side, position, options.search);
@@ -221,24 +260,15 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     });
     NormalPatch p;
     p.region = region;
-    p.area = options.contact_surface == ContactSurface::conformal
-                 ? track.conformal_contact_area(position, region, options.element_size_m)
-                 : track.potential_contact_area(position, region, options.element_size_m);
-    const std::vector<double> initial = warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh);
-    // h is measured at this position (negative where the bodies overlap): the approach is zero.
-    // In a time step, first on the previous contact's window; else (or if the check fails) on the
-    // whole potential area.
-    std::optional<WindowedSolution> windowed = solve_in_contact_window(p.area, initial, options, warm);
-    p.normal = windowed ? std::move(windowed->normal)
-                        : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, initial);
-    p.solved_mesh_elements = windowed ? windowed->window_elements : p.area.mesh.size();
-    if (!p.normal.converged) {
-      throw Error(ErrorKind::not_converged,
-                  fmt::format("wheelset: the normal problem of the {} wheel's patch at y_p = {:.2f} mm did not "
-                              "converge in {} iterations (residual {:.2g})",
-                              side_name(side), region.rail_profile_y_m / kMm, p.normal.iterations,
-                              p.normal.residual));
-    }
+    p.conformal_weight = conformal_surface_weight(options.contact_surface, options.contact_surface_switch, region);
+    const bool conformal = p.conformal_weight > 0.0;
+    static_cast<SurfaceSolution&>(p) = solve_surface(
+        conformal ? track.conformal_contact_area(position, region, options.element_size_m)
+                  : track.potential_contact_area(position, region, options.element_size_m),
+        side, region, options, warm, true);
+    if (conformal && p.conformal_weight < 1.0)
+      p.planar = solve_surface(track.potential_contact_area(position, region, options.element_size_m), side, region,
+                               options, warm, false);
     patches.push_back(std::move(p));
   }
   warm.remember(side, patches);
@@ -339,8 +369,8 @@ namespace {
 
 // A conformal patch's tangential solutions (docs/WHEELSET.md §4 "Conformal contact"): its strips'
 // creepages in their own frames, each solver on the developed patch.
-void solve_conformal(const NormalPatch& n, const WheelsetMotion& motion, const Vector3& centre,
-                     const WheelsetOptions& options, WheelsetPatch& patch) {
+void solve_conformal(const InterpenetrationRegion& region, const SurfaceSolution& n, const WheelsetMotion& motion,
+                     const Vector3& centre, const WheelsetOptions& options, WheelsetPatch& patch) {
   const Mesh& mesh = n.area.mesh;
   for (int i2 = 0; i2 < mesh.n2; ++i2)
     for (int i1 = 0; i1 < mesh.n1; ++i1)
@@ -349,15 +379,151 @@ void solve_conformal(const NormalPatch& n, const WheelsetMotion& motion, const V
         break;
       }
   const StripCreepages creepages =
-      detail::conformal_strip_creepages(motion, centre, n.region, n.area, patch.rolling_speed_m_per_s);
+      detail::conformal_strip_creepages(motion, centre, region, n.area, patch.rolling_speed_m_per_s);
   for (TangentialSolver s : options.solvers) {
     detail::ConformalSolve solved =
-        detail::solve_conformal_patch(s, n.region, n.area, n.normal.pressure_Pa, creepages, options);
+        detail::solve_conformal_patch(s, region, n.area, n.normal.pressure_Pa, creepages, options);
     patch.pressure_centre_x1_m = solved.pressure_centre_x1_m;
     patch.pressure_centre_x2_m = solved.pressure_centre_x2_m;
     patch.solvers.push_back(std::move(solved.result));
     if (options.keep_tractions) patch.patch = std::move(solved.patch);
   }
+}
+
+// One patch on one contact surface with its creepages and tangential solutions.
+WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const Vector3& centre,
+                           const InterpenetrationRegion& region, const SurfaceSolution& n,
+                           const WheelsetOptions& options) {
+  WheelsetPatch patch;
+  patch.side = side;
+  patch.region = region;
+  // The creepage point Q on the undeformed wheel surface: the reference point P moved into the
+  // rail along the normal by the approach, the largest rigid overlap of the patch (as Kalker's
+  // CONTACT takes it; docs/WHEEL_RAIL.md §12).
+  patch.approach_m = std::max(0.0, -*std::min_element(n.area.h_m.begin(), n.area.h_m.end()));
+  for (std::size_t i = 0; i < 3; ++i)
+    patch.creepage_point_track_m[i] = region.reference_point_track_m[i] - patch.approach_m * region.x3_axis[i];
+  ContactFrame frame;
+  for (std::size_t i = 0; i < 3; ++i) frame.point_from_wheelset_centre_m[i] = patch.creepage_point_track_m[i] - centre[i];
+  frame.x1 = region.x1_axis;
+  frame.x2 = region.x2_axis;
+  frame.x3 = region.x3_axis;
+  patch.creepage = kinematic_creepage(motion, frame);
+  check_kinematic_creepage(patch.creepage, motion, frame, side);
+  patch.rolling_speed_m_per_s = rolling_speed_m_per_s(motion, frame);
+  patch.rolling_radius_m = distance_from_axle_m(frame.point_from_wheelset_centre_m, motion);
+  patch.normal_force_N = n.normal.normal_force_N;
+  patch.pressure_force_track_N = pressure_force_track_N(region, n);
+  patch.surface = n.area.strips.empty() ? ContactSurface::planar : ContactSurface::conformal;
+  patch.elements_in_contact = n.normal.elements_in_contact;
+  patch.normal_iterations = n.normal.iterations;
+  patch.normal_mesh_elements = n.solved_mesh_elements;
+  const Mesh& mesh = n.area.mesh;
+  patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
+  std::vector<std::size_t> elements;
+  for (std::size_t k = 0; k < mesh.size(); ++k) {
+    const double p = n.normal.pressure_Pa[k];
+    if (p > 0.0) elements.push_back(k);
+    patch.max_pressure_Pa = std::max(patch.max_pressure_Pa, p);
+  }
+  if (elements.empty()) {
+    // A patch that has just appeared: overlap, but no element in contact yet. Zero forces.
+    for (TangentialSolver s : options.solvers) {
+      PatchSolverResult r;
+      r.solver = s;
+      patch.solvers.push_back(r);
+    }
+    return patch;
+  }
+  if (!n.area.strips.empty()) {
+    solve_conformal(region, n, motion, centre, options, patch);
+    return patch;
+  }
+  // The left wheel's patches are solved as the mirror image of a right wheel's (x2 -> −x2, so
+  // η, φ, F2, M3 change sign): both wheels then see the same discretisation, and the left wheel
+  // is the mirrored right wheel to rounding (nH-FastSim's coarse blocks and FastSim's strips are
+  // laid out from one side of the patch).
+  const bool mirror = side == WheelSide::left;
+  const double s2 = mirror ? -1.0 : 1.0;
+  Mesh solve_mesh = mesh;
+  std::vector<double> solve_pressure = n.normal.pressure_Pa;
+  std::vector<std::size_t> solve_elements = elements;
+  if (mirror) {
+    solve_mesh.x2_first_m = -mesh.x2(mesh.n2 - 1);
+    for (int i2 = 0; i2 < mesh.n2; ++i2)
+      for (int i1 = 0; i1 < mesh.n1; ++i1)
+        solve_pressure[solve_mesh.index(i1, mesh.n2 - 1 - i2)] = n.normal.pressure_Pa[mesh.index(i1, i2)];
+    solve_elements.clear();
+    for (std::size_t k = 0; k < solve_mesh.size(); ++k)
+      if (solve_pressure[k] > 0.0) solve_elements.push_back(k);
+  }
+  ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
+  // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
+  // corner, which jumps by an element as elements enter): the forces then change continuously.
+  if (std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) != options.solvers.end() &&
+      contact.elements().count() >= kMinimumElementsForK2) {
+    // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
+    const int factor = options.nh_fastsim.flexibility_coarsening;
+    const CoarseBlocks blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(contact);
+    if (blocks != CoarseBlocks{1, 1})
+      contact = detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, blocks);
+  }
+  // The patch's origin moved to the centre of pressure (x1c, x2c from the reference point):
+  // the rigid slip (ξ − φ x2, η + φ x1) gives the creepages there.
+  patch.pressure_centre_x1_m = -contact.x1_shift_m();
+  patch.pressure_centre_x2_m = -s2 * contact.x2_shift_m();
+  const Creepage c{patch.creepage.xi, s2 * patch.creepage.eta, s2 * patch.creepage.phi};  // in the solve frame
+  const double x2c = s2 * patch.pressure_centre_x2_m;
+  const Creepage at_centre{c.xi - c.phi * x2c, c.eta + c.phi * patch.pressure_centre_x1_m, c.phi};
+  // Semi-axes of the equivalent ellipse for classical FastSim: the extents' ratio, the area kept.
+  const std::array<double, 2> ab = equivalent_semi_axes(mesh, elements);
+  // nH-FastSim on a patch of several connected lobes: each lobe with its own flexibilities
+  // (NhFastSimPerLobe, docs/WHEELSET.md §8), coarsened as the caller asked (0: automatically).
+  const bool lobed = NhFastSimPerLobe::has_several_lobes(contact);
+  for (TangentialSolver s : options.solvers) {
+    PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobed
+                              ? solve_nh_fastsim_per_lobe(contact, at_centre, options)
+                              : solve_tangential(s, contact, at_centre, options, ab[0], ab[1]);
+    r.forces.F2_N *= s2;
+    r.forces.M3_Nm *= s2;
+    for (double& p2 : r.p2_Pa) p2 *= s2;
+    r.force_track_N = combine(region, r.forces.F1_N, r.forces.F2_N, patch.normal_force_N);
+    patch.solvers.push_back(std::move(r));
+  }
+  if (options.keep_tractions) patch.patch = std::move(contact);
+  return patch;
+}
+
+// A patch's numbers blended between its planar (weight 1 − w) and conformal (w) solutions
+// (ContactSurface::automatic); counts, strips and tractions are the conformal patch's.
+WheelsetPatch blended(const WheelsetPatch& planar, WheelsetPatch conformal, double w) {
+  const auto mix = [w](double a, double b) { return (1.0 - w) * a + w * b; };
+  const auto mix3 = [&](const Vector3& a, Vector3& b) {
+    for (std::size_t i = 0; i < 3; ++i) b[i] = mix(a[i], b[i]);
+  };
+  WheelsetPatch& p = conformal;
+  p.creepage = {mix(planar.creepage.xi, p.creepage.xi), mix(planar.creepage.eta, p.creepage.eta),
+                mix(planar.creepage.phi, p.creepage.phi)};
+  mix3(planar.creepage_point_track_m, p.creepage_point_track_m);
+  p.approach_m = mix(planar.approach_m, p.approach_m);
+  p.rolling_radius_m = mix(planar.rolling_radius_m, p.rolling_radius_m);
+  p.rolling_speed_m_per_s = mix(planar.rolling_speed_m_per_s, p.rolling_speed_m_per_s);
+  p.normal_force_N = mix(planar.normal_force_N, p.normal_force_N);
+  mix3(planar.pressure_force_track_N, p.pressure_force_track_N);
+  p.area_m2 = mix(planar.area_m2, p.area_m2);
+  p.max_pressure_Pa = mix(planar.max_pressure_Pa, p.max_pressure_Pa);
+  p.pressure_centre_x1_m = mix(planar.pressure_centre_x1_m, p.pressure_centre_x1_m);
+  p.pressure_centre_x2_m = mix(planar.pressure_centre_x2_m, p.pressure_centre_x2_m);
+  for (std::size_t s = 0; s < p.solvers.size(); ++s) {
+    const PatchSolverResult& a = planar.solvers[s];
+    PatchSolverResult& b = p.solvers[s];
+    b.forces = {mix(a.forces.F1_N, b.forces.F1_N), mix(a.forces.F2_N, b.forces.F2_N), mix(a.forces.M3_Nm, b.forces.M3_Nm)};
+    mix3(a.force_track_N, b.force_track_N);
+    b.flexibility = {mix(a.flexibility.L1, b.flexibility.L1), mix(a.flexibility.L2, b.flexibility.L2),
+                     mix(a.flexibility.L3, b.flexibility.L3)};
+    b.adhesion_fraction = mix(a.adhesion_fraction, b.adhesion_fraction);
+  }
+  return conformal;
 }
 
 // The patches of a wheel with their creepages and tangential solutions.
@@ -369,106 +535,12 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
   const WheelsetMotion motion = wheelset_motion(state, track.parameters().nominal_rolling_radius_m);
   const Vector3 centre{0.0, state.position.lateral_displacement_m,
                        track.nominal_axle_height_m() + state.position.vertical_displacement_m};
-  for (NormalPatch& n : normal) {
-    WheelsetPatch patch;
-    patch.side = side;
-    patch.region = n.region;
-    // The creepage point Q on the undeformed wheel surface: the reference point P moved into the
-    // rail along the normal by the approach, the largest rigid overlap of the patch (as Kalker's
-    // CONTACT takes it; docs/WHEEL_RAIL.md §12).
-    patch.approach_m = std::max(0.0, -*std::min_element(n.area.h_m.begin(), n.area.h_m.end()));
-    for (std::size_t i = 0; i < 3; ++i)
-      patch.creepage_point_track_m[i] = n.region.reference_point_track_m[i] - patch.approach_m * n.region.x3_axis[i];
-    ContactFrame frame;
-    for (std::size_t i = 0; i < 3; ++i) frame.point_from_wheelset_centre_m[i] = patch.creepage_point_track_m[i] - centre[i];
-    frame.x1 = n.region.x1_axis;
-    frame.x2 = n.region.x2_axis;
-    frame.x3 = n.region.x3_axis;
-    patch.creepage = kinematic_creepage(motion, frame);
-    check_kinematic_creepage(patch.creepage, motion, frame, side);
-    patch.rolling_speed_m_per_s = rolling_speed_m_per_s(motion, frame);
-    patch.rolling_radius_m = distance_from_axle_m(frame.point_from_wheelset_centre_m, motion);
-    patch.normal_force_N = n.normal.normal_force_N;
-    patch.pressure_force_track_N = pressure_force_track_N(n);
-    patch.surface = n.area.strips.empty() ? ContactSurface::planar : ContactSurface::conformal;
-    patch.elements_in_contact = n.normal.elements_in_contact;
-    patch.normal_iterations = n.normal.iterations;
-    patch.normal_mesh_elements = n.solved_mesh_elements;
-    const Mesh& mesh = n.area.mesh;
-    patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
-    std::vector<std::size_t> elements;
-    for (std::size_t k = 0; k < mesh.size(); ++k) {
-      const double p = n.normal.pressure_Pa[k];
-      if (p > 0.0) elements.push_back(k);
-      patch.max_pressure_Pa = std::max(patch.max_pressure_Pa, p);
-    }
-    if (elements.empty()) {
-      // A patch that has just appeared: overlap, but no element in contact yet. Zero forces.
-      for (TangentialSolver s : options.solvers) {
-        PatchSolverResult r;
-        r.solver = s;
-        patch.solvers.push_back(r);
-      }
-      wheel.patches.push_back(std::move(patch));
-      continue;
-    }
-    if (!n.area.strips.empty()) {
-      solve_conformal(n, motion, centre, options, patch);
-      wheel.patches.push_back(std::move(patch));
-      continue;
-    }
-    // The left wheel's patches are solved as the mirror image of a right wheel's (x2 -> −x2, so
-    // η, φ, F2, M3 change sign): both wheels then see the same discretisation, and the left wheel
-    // is the mirrored right wheel to rounding (nH-FastSim's coarse blocks and FastSim's strips are
-    // laid out from one side of the patch).
-    const bool mirror = side == WheelSide::left;
-    const double s2 = mirror ? -1.0 : 1.0;
-    Mesh solve_mesh = mesh;
-    std::vector<double> solve_pressure = n.normal.pressure_Pa;
-    std::vector<std::size_t> solve_elements = elements;
-    if (mirror) {
-      solve_mesh.x2_first_m = -mesh.x2(mesh.n2 - 1);
-      for (int i2 = 0; i2 < mesh.n2; ++i2)
-        for (int i1 = 0; i1 < mesh.n1; ++i1)
-          solve_pressure[solve_mesh.index(i1, mesh.n2 - 1 - i2)] = n.normal.pressure_Pa[mesh.index(i1, i2)];
-      solve_elements.clear();
-      for (std::size_t k = 0; k < solve_mesh.size(); ++k)
-        if (solve_pressure[k] > 0.0) solve_elements.push_back(k);
-    }
-    ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
-    // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
-    // corner, which jumps by an element as elements enter): the forces then change continuously.
-    if (std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) != options.solvers.end() &&
-        contact.elements().count() >= kMinimumElementsForK2) {
-      // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
-      const int factor = options.nh_fastsim.flexibility_coarsening;
-      const CoarseBlocks blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(contact);
-      if (blocks != CoarseBlocks{1, 1})
-        contact = detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, blocks);
-    }
-    // The patch's origin moved to the centre of pressure (x1c, x2c from the reference point):
-    // the rigid slip (ξ − φ x2, η + φ x1) gives the creepages there.
-    patch.pressure_centre_x1_m = -contact.x1_shift_m();
-    patch.pressure_centre_x2_m = -s2 * contact.x2_shift_m();
-    const Creepage c{patch.creepage.xi, s2 * patch.creepage.eta, s2 * patch.creepage.phi};  // in the solve frame
-    const double x2c = s2 * patch.pressure_centre_x2_m;
-    const Creepage at_centre{c.xi - c.phi * x2c, c.eta + c.phi * patch.pressure_centre_x1_m, c.phi};
-    // Semi-axes of the equivalent ellipse for classical FastSim: the extents' ratio, the area kept.
-    const std::array<double, 2> ab = equivalent_semi_axes(mesh, elements);
-    // nH-FastSim on a patch of several connected lobes: each lobe with its own flexibilities
-    // (NhFastSimPerLobe, docs/WHEELSET.md §8), coarsened as the caller asked (0: automatically).
-    const bool lobed = NhFastSimPerLobe::has_several_lobes(contact);
-    for (TangentialSolver s : options.solvers) {
-      PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobed
-                                ? solve_nh_fastsim_per_lobe(contact, at_centre, options)
-                                : solve_tangential(s, contact, at_centre, options, ab[0], ab[1]);
-      r.forces.F2_N *= s2;
-      r.forces.M3_Nm *= s2;
-      for (double& p2 : r.p2_Pa) p2 *= s2;
-      r.force_track_N = combine(n.region, r.forces.F1_N, r.forces.F2_N, patch.normal_force_N);
-      patch.solvers.push_back(std::move(r));
-    }
-    if (options.keep_tractions) patch.patch = std::move(contact);
+  for (const NormalPatch& n : normal) {
+    WheelsetPatch patch = finish_patch(side, motion, centre, n.region, n, options);
+    if (n.planar)
+      patch = blended(finish_patch(side, motion, centre, n.region, *n.planar, options), std::move(patch),
+                      n.conformal_weight);
+    patch.conformal_weight = n.conformal_weight;
     wheel.patches.push_back(std::move(patch));
   }
   wheel.solver_force_track_N.assign(options.solvers.size(), Vector3{});
@@ -558,13 +630,38 @@ TangentialSolver parse_tangential_solver(const std::string& name) {
 }
 
 const char* contact_surface_name(ContactSurface surface) {
-  return surface == ContactSurface::conformal ? "conformal" : "planar";
+  switch (surface) {
+    case ContactSurface::planar: return "planar";
+    case ContactSurface::conformal: return "conformal";
+    case ContactSurface::automatic: return "auto";
+  }
+  return "?";
 }
 
 ContactSurface parse_contact_surface(const std::string& name) {
-  for (ContactSurface s : {ContactSurface::planar, ContactSurface::conformal})
+  for (ContactSurface s : {ContactSurface::planar, ContactSurface::conformal, ContactSurface::automatic})
     if (name == contact_surface_name(s)) return s;
-  throw Error(fmt::format("unknown contact surface '{}' (contact surfaces: planar, conformal)", name));
+  throw Error(fmt::format("unknown contact surface '{}' (contact surfaces: planar, conformal, auto)", name));
+}
+
+void validate(const ContactSurfaceSwitch& s) {
+  require(std::isfinite(s.planar_up_to) && std::isfinite(s.conformal_from) && s.planar_up_to >= 0.0 &&
+              s.planar_up_to < s.conformal_from && s.conformal_from <= 10.0,
+          [&] {
+            return fmt::format("wheelset: the automatic contact surface's switch (planar up to {:g}, conformal from "
+                               "{:g}; contact angle variation / cos γ, rad) needs 0 <= planar_up_to < conformal_from "
+                               "<= 10",
+                               s.planar_up_to, s.conformal_from);
+          });
+}
+
+double conformal_surface_weight(ContactSurface surface, const ContactSurfaceSwitch& s,
+                                const InterpenetrationRegion& region) {
+  if (surface != ContactSurface::automatic) return surface == ContactSurface::conformal ? 1.0 : 0.0;
+  const double measure = region.contact_angle_spread_rad / std::cos(region.contact_angle_rad);
+  if (!std::isfinite(measure)) return 1.0;
+  const double t = std::clamp((measure - s.planar_up_to) / (s.conformal_from - s.planar_up_to), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);  // smoothstep: C¹ at both ends
 }
 
 void validate(const WheelsetOptions& o) {
@@ -587,6 +684,7 @@ void validate(const WheelsetOptions& o) {
   }
   validate(o.rolling);
   validate(o.search);
+  validate(o.contact_surface_switch);
   if (o.loads) {
     validate_normal_force(o.loads->right_N, "wheelset: the right wheel's vertical load");
     validate_normal_force(o.loads->left_N, "wheelset: the left wheel's vertical load");

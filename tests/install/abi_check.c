@@ -1,6 +1,6 @@
 /* ABI check of railcontact/railcontact.h (ctest c_api.abi_c, c_api.abi_cxx): compiled with
    gcc -std=c11 -Wall -Wextra -pedantic -Werror and as C++ with g++. The layouts below are the ABI
-   of RC_ABI_VERSION 3: a change that breaks one of them must raise RAILCONTACT_ABI_VERSION in
+   of RC_ABI_VERSION 4: a change that breaks one of them must raise RAILCONTACT_ABI_VERSION in
    CMakeLists.txt (and these numbers). x86-64 / AArch64 (LP64) layouts. */
 #include <stddef.h>
 
@@ -12,7 +12,7 @@
 #define RC_STATIC_ASSERT _Static_assert
 #endif
 
-RC_STATIC_ASSERT(RC_ABI_VERSION == 3, "the layouts below are those of ABI version 3");
+RC_STATIC_ASSERT(RC_ABI_VERSION == 4, "the layouts below are those of ABI version 4");
 RC_STATIC_ASSERT(sizeof(rc_status) == sizeof(int), "enumerations are int-sized");
 RC_STATIC_ASSERT(sizeof(rc_method) == sizeof(int), "enumerations are int-sized");
 RC_STATIC_ASSERT(RC_OK == 0 && RC_INVALID_INPUT == 1 && RC_INTERNAL == 6 && RC_CANCELLED == 9, "status values");
@@ -39,8 +39,9 @@ RC_STATIC_ASSERT(offsetof(rc_track_parameters, nominal_radius_at) == 48 &&
                      offsetof(rc_track_parameters, rail_cant_rad) == 56,
                  "rc_track_parameters.nominal_radius_at, rail_cant_rad");
 RC_STATIC_ASSERT(RC_RADIUS_AT_TAPING_LINE == 1 && RC_WEIGHTING_DEPTH == 1, "datum and weighting values");
-RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 13 * 4 + 4,
-                 "rc_wheelset_options: 6 doubles, 13 ints, 4 bytes padding");
+RC_STATIC_ASSERT(RC_SURFACE_PLANAR == 0 && RC_SURFACE_CONFORMAL == 1 && RC_SURFACE_AUTO == 2, "contact surface values");
+RC_STATIC_ASSERT(sizeof(rc_wheelset_options) == 6 * 8 + 14 * 4, "rc_wheelset_options: 6 doubles, 14 ints");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_options, contact_surface) == 100, "rc_wheelset_options.contact_surface");
 RC_STATIC_ASSERT(offsetof(rc_wheelset_options, balance_solver) == 92 &&
                      offsetof(rc_wheelset_options, reference_weighting) == 96,
                  "rc_wheelset_options.balance_solver, reference_weighting");
@@ -49,8 +50,9 @@ RC_STATIC_ASSERT(offsetof(rc_wheelset_options, normal_mode) == 48 &&
                  "rc_wheelset_options fields");
 RC_STATIC_ASSERT(sizeof(rc_wheelset_state) == 11 * 8 + 2 * 4, "rc_wheelset_state: 11 doubles, 2 ints");
 RC_STATIC_ASSERT(offsetof(rc_wheelset_state, rotation) == 88, "rc_wheelset_state.rotation");
-RC_STATIC_ASSERT(sizeof(rc_wheelset_patch) == 48 * 8 + 4 * 4, "rc_wheelset_patch: 48 doubles, 4 ints");
-RC_STATIC_ASSERT(offsetof(rc_wheelset_patch, forces) == 20 * 8 && offsetof(rc_wheelset_patch, side) == 384,
+RC_STATIC_ASSERT(sizeof(rc_wheelset_patch) == 53 * 8 + 4 * 4, "rc_wheelset_patch: 53 doubles, 4 ints");
+RC_STATIC_ASSERT(offsetof(rc_wheelset_patch, forces) == 20 * 8 && offsetof(rc_wheelset_patch, pressure_force_track_N) == 384 &&
+                     offsetof(rc_wheelset_patch, conformal_weight) == 416 && offsetof(rc_wheelset_patch, side) == 424,
                  "rc_wheelset_patch fields");
 RC_STATIC_ASSERT(sizeof(rc_wheelset_result) == 13 * 8 + 4 * 4, "rc_wheelset_result: 13 doubles, 4 ints");
 RC_STATIC_ASSERT(offsetof(rc_wheelset_result, patch_count) == 104, "rc_wheelset_result.patch_count");
