@@ -1,12 +1,13 @@
 // Wheelset evaluation timing (docs/WHEELSET.md §8): S1002 on UIC60 1:40, both wheels, 0.2 mm
 // elements, 98.1 kN per wheel, V = 20 m/s.
 //   BM_WheelsetTimeStep        by position, a time step: the wheelset moves 1 µm laterally per
-//                              evaluation (warm start: plans and pressures of the previous step)
+//                              evaluation, back and forth over 50 µm (warm start: plans and pressures of the previous step)
 //   BM_WheelsetCold            by position, a fresh Wheelset per evaluation (plans built, no warm start)
 //   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance)
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
 //   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
 //   BM_WheelsetStepConformal   the time step on conformal contact surfaces (docs/WHEELSET.md §4)
+//   BM_WheelsetStage...        the time step's stages one by one (see stage_inputs below)
 //   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp; ...Radial:
 //                              with Eq 8's slip direction instead of the default): y within
 //                              ±0.5 mm of the argument in 1 µm steps, 98.1 kN per wheel, 2 mrad of
@@ -21,6 +22,8 @@
 
 #include <vector>
 
+#include "railcontact/normal.hpp"
+#include "railcontact/tangential.hpp"
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_table.hpp"
 
@@ -72,15 +75,24 @@ void report(benchmark::State& state, const WheelsetResult& r) {
   state.counters["normal_iterations"] = patches > 0 ? static_cast<double>(iterations) / patches : 0.0;
 }
 
+// The time step's lateral displacement: 1 µm per step, back and forth over 50 µm (a drift of a
+// whole run would carry a flange state off its contact).
+double stepped_y_m(double y0_m, long step) {
+  const long k = step % 100;
+  return y0_m + 1e-6 * static_cast<double>(k < 50 ? k : 100 - k);
+}
+
 void time_step(benchmark::State& state, TangentialSolver solver, int coarsening = 0,
                ContactSurface surface = ContactSurface::planar) {
   WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
+  const double y0 = s.position.lateral_displacement_m;
   WheelsetOptions options = by_position(solver, coarsening);
   options.contact_surface = surface;
   Wheelset wheelset(track(), options);
   WheelsetResult r = wheelset.evaluate(s);
+  long step = 0;
   for (auto _ : state) {
-    s.position.lateral_displacement_m += 1e-6;
+    s.position.lateral_displacement_m = stepped_y_m(y0, ++step);
     r = wheelset.evaluate(s);
     benchmark::DoNotOptimize(r.force_track_N);
   }
@@ -119,6 +131,81 @@ void BM_WheelsetByLoad(benchmark::State& state) {
   report(state, r);
 }
 
+// The time step's stages one by one (both wheels, the state of BM_WheelsetTimeStep), through the
+// public API: the contact search; the potential contact areas with their undeformed distance;
+// the normal problems on the whole areas, each started from the previous step's pressure (the
+// wheelset first tries the window of the previous contact, docs/WHEELSET.md §8, so its normal stage
+// is cheaper than this one); nH-FastSim on the patches (its K2 and flexibilities, then the march).
+struct StageInputs {
+  WheelsetPosition position, previous;
+  std::vector<InterpenetrationRegion> regions;
+  std::vector<TangentPlaneArea> areas;
+  std::vector<std::vector<double>> previous_pressure_Pa, pressure_Pa;
+};
+StageInputs stage_inputs(double y_um) {
+  StageInputs in;
+  in.position = loaded_state(y_um * 1e-6).position;
+  in.previous = in.position;
+  in.previous.lateral_displacement_m -= 1e-6;
+  const WheelsetOptions o;
+  for (const WheelSide side : {WheelSide::right, WheelSide::left})
+    for (const InterpenetrationRegion& r : track().contact_search(side, in.position).regions) {
+      in.regions.push_back(r);
+      in.areas.push_back(track().potential_contact_area(in.position, r, o.element_size_m));
+      const TangentPlaneArea& a = in.areas.back();
+      NormalContactSolver solver(a.mesh, o.material, o.normal);
+      // The previous step's pressure on this mesh: the overlap 1 µm earlier, on the same elements.
+      const std::vector<double> h_before = track().undeformed_distance_m(in.previous, r, a.mesh);
+      in.previous_pressure_Pa.push_back(solver.solve_at_approach(h_before, 0.0).pressure_Pa);
+      in.pressure_Pa.push_back(solver.solve_at_approach(a.h_m, 0.0).pressure_Pa);
+    }
+  return in;
+}
+
+void BM_WheelsetStageSearch(benchmark::State& state) {
+  const StageInputs in = stage_inputs(static_cast<double>(state.range(0)));
+  for (auto _ : state)
+    for (const WheelSide side : {WheelSide::right, WheelSide::left})
+      benchmark::DoNotOptimize(track().contact_search(side, in.position));
+}
+
+void BM_WheelsetStageArea(benchmark::State& state) {
+  const StageInputs in = stage_inputs(static_cast<double>(state.range(0)));
+  const WheelsetOptions o;
+  for (auto _ : state)
+    for (const InterpenetrationRegion& r : in.regions)
+      benchmark::DoNotOptimize(track().potential_contact_area(in.position, r, o.element_size_m));
+}
+
+void BM_WheelsetStageNormal(benchmark::State& state) {
+  const StageInputs in = stage_inputs(static_cast<double>(state.range(0)));
+  const WheelsetOptions o;
+  std::vector<NormalContactSolver> solvers;
+  for (const TangentPlaneArea& a : in.areas) solvers.emplace_back(a.mesh, o.material, o.normal);
+  int iterations = 0;
+  for (auto _ : state) {
+    iterations = 0;
+    for (std::size_t k = 0; k < solvers.size(); ++k) {
+      const NormalSolution n = solvers[k].solve_at_approach(in.areas[k].h_m, 0.0, in.previous_pressure_Pa[k]);
+      iterations += n.iterations;
+      benchmark::DoNotOptimize(n.normal_force_N);
+    }
+  }
+  state.counters["normal_iterations"] = static_cast<double>(iterations) / static_cast<double>(solvers.size());
+}
+
+void BM_WheelsetStageTangential(benchmark::State& state) {
+  const StageInputs in = stage_inputs(static_cast<double>(state.range(0)));
+  const WheelsetOptions o;
+  const Creepage creepage{0.5e-3, 0.3e-3, 0.1};
+  for (auto _ : state)
+    for (std::size_t k = 0; k < in.areas.size(); ++k) {
+      const ContactPatch patch(in.areas[k].mesh, in.pressure_Pa[k], o.material);
+      const NhFastSim nh(patch, o.nh_fastsim);
+      benchmark::DoNotOptimize(nh.solve(creepage, o.friction_coefficient).forces);
+    }
+}
+
 void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction, bool tangential_in_balance = false) {
   const double y0 = static_cast<double>(state.range(0)) * 1e-6;
   std::vector<double> ys;
@@ -149,6 +236,10 @@ void BM_WheelsetTableBalanced(benchmark::State& state) {
 }
 
 BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6300)->Arg(-6400)->Arg(-6500)->Arg(-6600)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStageSearch)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStageArea)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStageNormal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStageTangential)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);

@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
   state.position.vertical_displacement_m = 0.5 * (right + left);
   state.position.roll_rad = (left - right) / (2.0 * track.wheel_profile_origin_y_m(WheelSide::left));
   std::printf("y = %g mm\n", y0 * 1e3);
-  for (const double tolerance : {1e-10, 1e-9, 1e-8, 1e-7}) {
+  for (const double tolerance : {1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5, 1e-4}) {
     WheelsetOptions options;
     options.loads.reset();
     options.normal.tolerance = tolerance;
