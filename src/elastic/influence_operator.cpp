@@ -135,6 +135,20 @@ void InfluenceOperator::apply_on_grid(std::span<const double> in, std::span<doub
   convolution_.apply(in, out);
 }
 
+void InfluenceOperator::add_element_product(std::size_t element, double value, std::span<double> out) const {
+  const int n1 = mesh_.n1, n2 = mesh_.n2;
+  const int j1 = static_cast<int>(element % static_cast<std::size_t>(n1));
+  const int j2 = static_cast<int>(element / static_cast<std::size_t>(n1));
+  const std::size_t row_length = static_cast<std::size_t>(2 * n1 - 1);
+  for (int i2 = 0; i2 < n2; ++i2) {
+    // The kernel's row m2 = i2 − j2, from m1 = −j1 (at i1 = 0) on.
+    const double* row = table_->data() + static_cast<std::size_t>(i2 - j2 + n2 - 1) * row_length +
+                        static_cast<std::size_t>(n1 - 1 - j1);
+    double* u = out.data() + static_cast<std::size_t>(i2) * static_cast<std::size_t>(n1);
+    for (int i1 = 0; i1 < n1; ++i1) u[i1] += value * row[i1];
+  }
+}
+
 void InfluenceOperator::apply(const std::vector<std::size_t>& elements, std::span<const double> x,
                               std::span<double> y) {
   apply(elements, x, y, false);

@@ -36,6 +36,11 @@ class InfluenceOperator {
   // Full-grid product: in and out hold components x mesh.size() values (zero where no traction).
   void apply_on_grid(std::span<const double> in, std::span<double> out);
 
+  // out += K(· − element) value on the whole grid, for a single-component operator: the product of
+  // a traction on one element, by the kernel table directly (mesh.size() multiply-adds; cheaper
+  // than apply_on_grid for a few elements).
+  void add_element_product(std::size_t element, double value, std::span<double> out) const;
+
   // Restricted product on the elements with the given mesh indices (FFT path).
   void apply(const std::vector<std::size_t>& elements, std::span<const double> x, std::span<double> y);
 

@@ -142,31 +142,44 @@ ConstrainedCgReport ConstrainedConjugateGradient::iterate(InfluenceOperator& A, 
     // Pressure update, projection on p >= 0 (PK step 6) and overlap entering the set (step 7).
     // Elements outside Ic enter only when their penetration exceeds half the tolerance, so that
     // rounding noise cannot keep the set changing.
+    // The elements whose new pressure differs from the step p − τ t (clamped to zero, or entered)
+    // are kept with the difference: when they are few, A p follows from the recursion's
+    // u − τ q plus their products by the kernel table, instead of a product on the whole grid.
     const double entry_threshold = -0.5 * tolerance * u_max;
     bool changed = false;
+    moved_.clear();
     double p_sum = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       if (in_contact_[i] != 0) {
         double pi = p[i] - tau * t_[i];
         if (pi <= 0.0) {
+          moved_.push_back({i, -pi});
           pi = 0.0;
           changed = true;
         }
         p[i] = pi;
       } else if (r_[i] < entry_threshold) {
         p[i] = -entry_step * r_[i];
+        moved_.push_back({i, p[i]});
         changed = true;
       }
       p_sum += p[i];
     }
+    bool recursive = !changed || moved_.size() <= kLargestElementUpdate;
+    const auto follow = [&](double scale) {
+      for (std::size_t i = 0; i < n; ++i) u_[i] -= tau * q_[i];
+      for (const auto& [element, difference] : moved_) A.add_element_product(element, difference, u_);
+      if (scale != 1.0)
+        for (std::size_t i = 0; i < n; ++i) u_[i] *= scale;
+      u_fresh = false;
+    };
     if (!load_given) {
       // Approach given: no load constraint to restore (an empty set is a valid state).
-      if (changed) {
+      if (recursive) {
+        follow(1.0);
+      } else {
         A.apply_on_grid(p, u_);
         u_fresh = true;
-      } else {
-        for (std::size_t i = 0; i < n; ++i) u_[i] -= tau * q_[i];
-        u_fresh = false;
       }
       set_stable = !changed;
       continue;
@@ -179,17 +192,17 @@ ConstrainedCgReport ConstrainedConjugateGradient::iterate(InfluenceOperator& A, 
       p[deepest] = pressure_sum;
       p_sum = pressure_sum;
       changed = true;
+      recursive = false;
     }
     // Load (PK step 8): sum p = P.
     const double scale = pressure_sum / p_sum;
     for (std::size_t i = 0; i < n; ++i) p[i] *= scale;
 
-    if (changed) {
+    if (recursive) {
+      follow(scale);
+    } else {
       A.apply_on_grid(p, u_);
       u_fresh = true;
-    } else {
-      for (std::size_t i = 0; i < n; ++i) u_[i] = scale * (u_[i] - tau * q_[i]);
-      u_fresh = false;
     }
     set_stable = !changed;
   }

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
@@ -60,6 +61,11 @@ class ConstrainedConjugateGradient {
   std::vector<double> t_;  // search direction (0 outside Ic)
   std::vector<double> q_;  // A t
   std::vector<std::uint8_t> in_contact_;
+  // Elements whose pressure left the step's p − τ t in the last update, with the difference.
+  std::vector<std::pair<std::size_t, double>> moved_;
+  // Up to this many such elements A p is updated element by element (each mesh.size()
+  // multiply-adds) rather than by a product on the whole grid.
+  static constexpr std::size_t kLargestElementUpdate = 16;
 };
 
 }  // namespace railcontact::detail
