@@ -434,10 +434,12 @@ typedef struct rc_wheelset_options {
   int allow_wheel_lift;        /* 1: a wheel without contact has no patches and zero forces;
                                   0 (default): RC_NO_CONTACT */
   int warm_start;              /* 1 (default): an evaluation starts from the previous one's
-                                  pressures and reuses its plans (docs/WHEELSET.md §8; faster for a
-                                  time step, the numbers depend on the previous state to the normal
-                                  solver's tolerance); 0: every evaluation from a cold start (its
-                                  numbers depend on the state only, as in the batch) */
+                                  pressures, heights and balance and reuses its plans
+                                  (docs/WHEELSET.md §8; faster for a time step, the numbers depend
+                                  on the previous state to the solvers' tolerances: 1e-6 of F3,
+                                  by load with the tangential forces in the balance 1e-5 of the
+                                  load); 0: every evaluation from a cold start (its numbers depend
+                                  on the state only, as in the batch) */
   int slip_direction;          /* nh-fastsim: rc_slip_direction; default
                                   RC_SLIP_FLEXIBILITY_WEIGHTED (the wheelset's, for its flange) */
   int solver_count;            /* 1 .. 4: the tangential solvers run on every patch */

@@ -139,9 +139,10 @@ def test_one_wheelset_on_several_threads_equals_one_thread():
 
 
 def test_one_wheelset_with_warm_start_on_several_threads():
-    """With warm_start each evaluation starts from the previous one's pressures, whichever thread
-    made it: the forces agree with the one-thread ones to the normal solver's tolerance
-    (rel 1e-6 of the load: a different start converges to the same solution)."""
+    """With warm_start each evaluation starts from the previous one's pressures, heights and
+    vertical balance, whichever thread made it: the forces agree with the one-thread ones to the
+    vertical balance's tolerance (1e-5 of the load: a different start converges to the same
+    solution)."""
     wheelset = railcontact.Wheelset(element_size=COARSE)
     ys = [k * 1e-3 for k in range(-3, 4)]
     cold = railcontact.Wheelset(element_size=COARSE, warm_start=False)
@@ -152,7 +153,7 @@ def test_one_wheelset_with_warm_start_on_several_threads():
 
     for out in hammer(work):
         for y, force in out:
-            np.testing.assert_allclose(force, serial[y], rtol=0, atol=1e-6 * 98.1e3 * 2)
+            np.testing.assert_allclose(force, serial[y], rtol=0, atol=1e-5 * 98.1e3 * 2)
 
 
 def test_a_wheelset_batch_and_evaluations_share_one_wheelset():

@@ -116,6 +116,23 @@ struct WheelsetWarmStart {
   std::vector<Plan> plans;
   std::array<std::vector<Previous>, 2> previous;  // right, left
   std::uint64_t clock = 0;
+  // By load: each wheel's last overlap below its first touch, its contact stiffness dF/dδ and the
+  // tangential forces' vertical part its last balance settled on, the first guesses of the next
+  // evaluation's height iteration and balance when that evaluation is a time step away
+  // (near_last_position; docs/WHEELSET.md §8). Zero stiffness: none.
+  std::array<double, 2> overlap_m{0.0, 0.0};
+  std::array<double, 2> stiffness_N_per_m{0.0, 0.0};
+  std::array<double, 2> tangential_vertical_N{0.0, 0.0};
+  std::optional<WheelsetPosition> last_position;
+
+  // A time step away from the last evaluation by load: within 0.1 mm laterally and 1 mrad of roll
+  // and yaw. A jump starts the heights and the balance afresh, so that its numbers do not depend on
+  // where it jumped from.
+  [[nodiscard]] bool near_last_position(const WheelsetPosition& p) const {
+    return last_position && std::abs(p.lateral_displacement_m - last_position->lateral_displacement_m) <= 0.1e-3 &&
+           std::abs(p.roll_rad - last_position->roll_rad) <= 1e-3 &&
+           std::abs(p.yaw_rad - last_position->yaw_rad) <= 1e-3;
+  }
 
   NormalContactSolver& plan(const Mesh& mesh, const WheelsetOptions& options) {
     ++clock;
@@ -575,12 +592,15 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
   const double touching = track.touching_vertical_displacement_m(side, position);
   double delta = overlap_m;
   detail::HeightIteration height;
+  double& stiffness = warm.stiffness_N_per_m[side == WheelSide::right ? 0 : 1];
+  height.seed_stiffness_N_per_m = stiffness;
   for (iterations = 1; iterations <= kMaximumLoadIterations; ++iterations) {
     position.vertical_displacement_m = touching - delta;
     patches = solve_normal(track, side, position, options, warm);
     const double force = normal_vertical_force(patches);
     if (std::abs(force - target_N) <= options.load_tolerance * target_N) {
       overlap_m = delta;
+      if (height.stiffness_N_per_m > 0.0) stiffness = height.stiffness_N_per_m;
       return position.vertical_displacement_m;
     }
     const double next = height.next_overlap_m(delta, force, target_N, iterations);
@@ -841,13 +861,17 @@ WheelsetResult Wheelset::evaluate_rolling(const WheelsetState& input) {
     // vertical force of its patches equals its load; optionally with the tangential forces'
     // vertical components, from the previous pass.
     const std::array<double, 2> loads{options_.loads->right_N, options_.loads->left_N};
+    const bool stepped = warm_->near_last_position(input.position);
+    if (!stepped) warm_->stiffness_N_per_m = {0.0, 0.0};
     std::array<double, 2> tangential_vertical{0.0, 0.0};
+    if (stepped && options_.tangential_forces_in_vertical_balance) tangential_vertical = warm_->tangential_vertical_N;
     std::array<double, 2> previous_tangential{0.0, 0.0}, previous_residual{0.0, 0.0};
     double previous_roll = 0.0, previous_mismatch = 0.0;
     std::array<double, 2> bracket_lo{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
     std::array<double, 2> bracket_hi{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
     std::array<double, 2> heights{0.0, 0.0};
     std::array<double, 2> overlap{0.08e-3, 0.08e-3};
+    if (stepped) overlap = warm_->overlap_m;
     WheelsetState state = input;
     for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
       for (std::size_t k = 0; k < 2; ++k) {
@@ -914,6 +938,9 @@ WheelsetResult Wheelset::evaluate_rolling(const WheelsetState& input) {
       }
     }
     result.state = state;
+    warm_->overlap_m = overlap;
+    warm_->tangential_vertical_N = tangential_vertical;
+    warm_->last_position = input.position;
   }
 
   for (std::size_t k = 0; k < 2; ++k) {
