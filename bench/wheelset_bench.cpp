@@ -3,7 +3,8 @@
 //   BM_WheelsetTimeStep        by position, a time step: the wheelset moves 1 µm laterally per
 //                              evaluation, back and forth over 50 µm (warm start: plans and pressures of the previous step)
 //   BM_WheelsetCold            by position, a fresh Wheelset per evaluation (plans built, no warm start)
-//   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance)
+//   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance),
+//                              the time step's lateral steps
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
 //   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
 //   BM_WheelsetStepConformal   the time step on conformal contact surfaces (docs/WHEELSET.md §4)
@@ -121,10 +122,13 @@ void BM_WheelsetCold(benchmark::State& state) {
 
 void BM_WheelsetByLoad(benchmark::State& state) {
   WheelsetState s;
-  s.position.lateral_displacement_m = static_cast<double>(state.range(0)) * 1e-6;
+  const double y0 = static_cast<double>(state.range(0)) * 1e-6;
+  s.position.lateral_displacement_m = y0;
   Wheelset wheelset(track(), WheelsetOptions{});
-  WheelsetResult r;
+  WheelsetResult r = wheelset.evaluate(s);
+  long step = 0;
   for (auto _ : state) {
+    s.position.lateral_displacement_m = stepped_y_m(y0, ++step);
     r = wheelset.evaluate(s);
     benchmark::DoNotOptimize(r.force_track_N);
   }
