@@ -46,8 +46,8 @@ TEST(CaseFile, ReadsEveryKey) {
   EXPECT_DOUBLE_EQ(c.creepage.raw.phi, 0.2);
   EXPECT_EQ(c.target_elements, 1500);
   ASSERT_EQ(c.solvers.size(), 2u);
-  EXPECT_EQ(c.solvers[0], SolverKind::exact);
-  EXPECT_EQ(c.solvers[1], SolverKind::nh_fastsim);
+  EXPECT_EQ(c.solvers[0], TangentialSolver::exact);
+  EXPECT_EQ(c.solvers[1], TangentialSolver::nh_fastsim);
   EXPECT_EQ(c.bound_skew, TractionBound{}.skew);  // defaults
   EXPECT_EQ(c.flexibility_coarsening, 0);         // automatic
 }

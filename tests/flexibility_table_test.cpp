@@ -362,7 +362,7 @@ TEST(FlexibilityTableFastSim, CaseRunTakesFlexibilitiesFromTheTable) {
   c.wheel_rail.y_m = 0.25e-3;
   c.wheel_rail.reference = ContactReference::first_touch;  // the table's
   c.target_elements = kElements;
-  c.solvers = {SolverKind::nh_fastsim, SolverKind::fastsim};
+  c.solvers = {TangentialSolver::nh_fastsim, TangentialSolver::fastsim};
   const CaseResult on_the_fly_result = run_case(c);
   CaseRunOptions options;
   options.flexibility_table = std::make_shared<const FlexibilityTable>(jump_table());
@@ -383,14 +383,14 @@ TEST(FlexibilityTableFastSim, CaseRunTakesFlexibilitiesFromTheTable) {
   const CaseResult tabled = run_case(c, options);
   EXPECT_FALSE(tabled.creepage_matrix.has_value());  // no K2
   ASSERT_TRUE(tabled.flexibility_table_values.has_value());
-  const SolverRun* nh = tabled.find(SolverKind::nh_fastsim);
+  const SolverRun* nh = tabled.find(TangentialSolver::nh_fastsim);
   ASSERT_NE(nh, nullptr);
   EXPECT_EQ(nh->flexibility_source, "table");
-  EXPECT_EQ(on_the_fly_result.find(SolverKind::nh_fastsim)->flexibility_source, "K2 of the patch coarsened by 2");
-  EXPECT_EQ(tabled.find(SolverKind::fastsim)->flexibility_source, "Eq 9");
+  EXPECT_EQ(on_the_fly_result.find(TangentialSolver::nh_fastsim)->flexibility_source, "K2 of the patch coarsened by 2");
+  EXPECT_EQ(tabled.find(TangentialSolver::fastsim)->flexibility_source, "Eq 9");
   EXPECT_EQ(nh->flexibility->L1, tabled.flexibility_table_values->flexibility.L1);
   const TangentialForces& a = nh->forces;
-  const TangentialForces& b = on_the_fly_result.find(SolverKind::nh_fastsim)->forces;
+  const TangentialForces& b = on_the_fly_result.find(TangentialSolver::nh_fastsim)->forces;
   EXPECT_NEAR(std::hypot(a.F1_N - b.F1_N, a.F2_N - b.F2_N), 0.0, 0.01 * std::hypot(b.F1_N, b.F2_N));
 
   Case ellipse;

@@ -173,10 +173,10 @@ TEST(NhFastSimPerLobe, MergedWheelRailPatchWithinThreePercentOfExact) {
     c.creepage.xi_normalised.reset();
     c.creepage.eta_normalised.reset();
     c.creepage.phi_from_conicity = true;
-    c.solvers = {SolverKind::exact, SolverKind::nh_fastsim};
+    c.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
     const CaseResult r = run_case(c);
-    const SolverRun& exact = *r.find(SolverKind::exact);
-    const SolverRun& nh = *r.find(SolverKind::nh_fastsim);
+    const SolverRun& exact = *r.find(TangentialSolver::exact);
+    const SolverRun& nh = *r.find(TangentialSolver::nh_fastsim);
     EXPECT_NE(nh.flexibility_source.find("lobes"), std::string::npos) << nh.flexibility_source;
     const double scale = c.mu * r.patch.normal_force_N();
     EXPECT_NEAR(nh.forces.F1_N, exact.forces.F1_N, 0.03 * scale);

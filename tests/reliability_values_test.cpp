@@ -267,14 +267,14 @@ TEST(CaseReport, SpinMomentChangeOnlyAgainstAMomentAboveTheNoise) {
   c.normal_force_N = 98100.0;
   c.target_elements = 400;
   c.creepage.raw = {1e-3, 0.0, 0.0};
-  c.solvers = {SolverKind::exact, SolverKind::fastsim};
+  c.solvers = {TangentialSolver::exact, TangentialSolver::fastsim};
   const auto report = [](const CaseResult& r) {
     std::ostringstream out;
     print_case_report(r, out);
     return out.str();
   };
   const CaseResult no_spin = run_case(c);
-  const double M3 = no_spin.find(SolverKind::exact)->forces.M3_Nm;
+  const double M3 = no_spin.find(TangentialSolver::exact)->forces.M3_Nm;
   ASSERT_LT(std::fabs(M3), 1e-6 * 0.3 * 98100.0 * std::sqrt(6e-3 * 4e-3));
   const std::string text = report(no_spin);
   const std::size_t line = text.find("\nfastsim");

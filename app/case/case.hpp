@@ -14,9 +14,6 @@
 
 namespace railcontact {
 
-enum class SolverKind { nh_fastsim, fastsim, exact, exact_regularised };
-std::string_view solver_name(SolverKind kind);
-
 enum class GeometryKind { ellipse, wheel_rail };
 
 struct EllipseGeometry {
@@ -49,8 +46,8 @@ struct Case {
   double mu = 0.3;
   CreepageInput creepage;
   int target_elements = 2800;
-  std::vector<SolverKind> solvers{SolverKind::nh_fastsim, SolverKind::fastsim, SolverKind::exact,
-                                  SolverKind::exact_regularised};
+  std::vector<TangentialSolver> solvers{TangentialSolver::nh_fastsim, TangentialSolver::fastsim, TangentialSolver::exact,
+                                  TangentialSolver::exact_regularised};
   RollingOptions rolling;
   // nH-FastSim flexibilities (and the normalisation's f11, f22) from K2 of the patch coarsened
   // in square blocks of this factor (1: the patch itself; 2: about 4x cheaper, docs/VALIDATION.md

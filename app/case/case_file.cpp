@@ -13,16 +13,6 @@
 
 namespace railcontact {
 
-std::string_view solver_name(SolverKind kind) {
-  switch (kind) {
-    case SolverKind::nh_fastsim: return "nh-fastsim";
-    case SolverKind::fastsim: return "fastsim";
-    case SolverKind::exact: return "exact";
-    case SolverKind::exact_regularised: return "exact-regularised";
-  }
-  return "?";
-}
-
 namespace {
 
 // Case files are small; anything larger is not one (docs/CASE_FILES.md).
@@ -182,14 +172,13 @@ void read_solver_list(Section& solvers, Case& c) {
   for (const toml::node& item : *list) {
     const auto* name = item.as_string();
     const std::string solver = name != nullptr ? name->get() : std::string("?");
-    SolverKind kind;
-    if (solver == "nh-fastsim") kind = SolverKind::nh_fastsim;
-    else if (solver == "fastsim") kind = SolverKind::fastsim;
-    else if (solver == "exact") kind = SolverKind::exact;
-    else if (solver == "exact-regularised") kind = SolverKind::exact_regularised;
-    else
+    TangentialSolver kind;
+    try {
+      kind = parse_tangential_solver(solver);
+    } catch (const Error&) {
       throw Error(fmt::format("{}: [solvers] unknown solver '{}' (nh-fastsim, fastsim, exact, exact-regularised)",
                               solvers.location_of(item), printable_excerpt(solver)));
+    }
     if (std::find(c.solvers.begin(), c.solvers.end(), kind) != c.solvers.end())
       throw Error(fmt::format("{}: [solvers] run names '{}' twice; name each solver once", solvers.location_of(item),
                               solver));

@@ -64,7 +64,7 @@ nlohmann::json patch_json(const CaseResult& r) {
 
 std::string case_result_json(const CaseResult& r) {
   nlohmann::json results = nlohmann::json::object();
-  const SolverRun* exact = r.find(SolverKind::exact);
+  const SolverRun* exact = r.find(TangentialSolver::exact);
   for (const SolverRun& run : r.runs) {
     nlohmann::json j = {{"F1", run.forces.F1_N},
                         {"F2", run.forces.F2_N},
@@ -78,11 +78,11 @@ std::string case_result_json(const CaseResult& r) {
       j["flexibility_time_s"] = run.flexibility_time_s;
       j["flexibility_source"] = run.flexibility_source;
     }
-    if (run.kind == SolverKind::nh_fastsim) {
+    if (run.kind == TangentialSolver::nh_fastsim) {
       j["traction_bound_skew"] = r.input.bound_skew;
       j["slip_direction"] = slip_direction_name(r.input.slip_direction);
     }
-    if (run.kind == SolverKind::exact || run.kind == SolverKind::exact_regularised) j["krylov_iterations"] = run.krylov_iterations;
+    if (run.kind == TangentialSolver::exact || run.kind == TangentialSolver::exact_regularised) j["krylov_iterations"] = run.krylov_iterations;
     if (exact != nullptr && magnitude(exact->forces) > 0)
       j["rel_error_F"] = std::fabs(magnitude(run.forces) - magnitude(exact->forces)) / magnitude(exact->forces);
     results[std::string(solver_name(run.kind))] = j;
@@ -122,7 +122,7 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
              1e3 * s.dx1_m, 1e3 * s.dx2_m);
   fmt::print(out, "Creepage: xi = {:.6g}, eta = {:.6g}, phi = {:.6g} 1/m; mu = {}\n\n", r.creepage.xi, r.creepage.eta,
              r.creepage.phi, r.input.mu);
-  const SolverRun* exact = r.find(SolverKind::exact);
+  const SolverRun* exact = r.find(TangentialSolver::exact);
   fmt::print(out, "{:<18} {:>11} {:>11} {:>10} {:>8} {:>9} {:>10}", "solver", "F1 (N)", "F2 (N)", "M3 (N m)", "|F|/muF3",
              "adhesion", "time (ms)");
   if (exact) fmt::print(out, "   {:>8} {:>8} {:>8} {:>8}", "dF1/|F|", "dF2/|F|", "dM3/M3", "d|F|/|F|");
@@ -131,7 +131,7 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
     fmt::print(out, "{:<18} {:>11.1f} {:>11.1f} {:>10.3f} {:>8.4f} {:>8.1f}% {:>10.2f}", solver_name(run.kind),
                run.forces.F1_N, run.forces.F2_N, run.forces.M3_Nm,
                magnitude(run.forces) / (r.input.mu * s.normal_force_N), 100 * run.adhesion_fraction, 1e3 * run.time_s);
-    if (exact && run.kind != SolverKind::exact) {
+    if (exact && run.kind != TangentialSolver::exact) {
       const double F = std::max(magnitude(exact->forces), 1e-300);
       const double M = exact->forces.M3_Nm;
       // dM3/M3 only when M3 is above the noise floor; "(M3 ≈ 0)" (8 columns wide) otherwise.
@@ -147,15 +147,15 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
     if (!run.flexibility) continue;
     fmt::print(out, "\n{} flexibilities: L1 = {:.4e}, L2 = {:.4e}, L3 = {:.4e} m/Pa", solver_name(run.kind),
                run.flexibility->L1, run.flexibility->L2, run.flexibility->L3);
-    if (run.kind == SolverKind::nh_fastsim && run.flexibility_source == "table")
+    if (run.kind == TangentialSolver::nh_fastsim && run.flexibility_source == "table")
       fmt::print(out, " (from the flexibility table {}, interpolated at y = {:.3f} mm, Fz = {:g} N for this patch's area)",
                  r.flexibility_table_file.empty() ? "(in memory)" : r.flexibility_table_file, 1e3 * r.flexibility_table_values->y_m, r.flexibility_table_values->vertical_load_N);
-    else if (run.kind == SolverKind::nh_fastsim)
+    else if (run.kind == TangentialSolver::nh_fastsim)
       fmt::print(out, " (from {} in {:.1f} ms, {} GMRES iterations)", run.flexibility_source, 1e3 * run.flexibility_time_s,
                  run.iterations);
     else
       fmt::print(out, " (Eq 9, Kalker's coefficients)");
-    if (run.kind == SolverKind::nh_fastsim && r.input.slip_direction != SlipDirection::radial)
+    if (run.kind == TangentialSolver::nh_fastsim && r.input.slip_direction != SlipDirection::radial)
       fmt::print(out, "; slip direction {} (docs/FASTSIM.md)", slip_direction_name(r.input.slip_direction));
   }
   fmt::print(out, "\n");
@@ -169,7 +169,7 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
                  r.flexibility_table_target_elements, r.summary.elements_in_contact);
   }
   for (const SolverRun& run : r.runs)
-    if (run.kind == SolverKind::exact || run.kind == SolverKind::exact_regularised)
+    if (run.kind == TangentialSolver::exact || run.kind == TangentialSolver::exact_regularised)
       fmt::print(out, "{}: {} Newton iterations, {} GMRES iterations, converged\n", solver_name(run.kind),
                  run.iterations, run.krylov_iterations);
 }

@@ -214,7 +214,7 @@ struct NhFastSimSetUp {
 NhFastSimSetUp set_up_nh_fastsim(const Case& input, CaseResult& result, std::ostream* progress) {
   const std::optional<FlexibilityTableValues>& tabled = result.flexibility_table_values;
   const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
-  const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), SolverKind::nh_fastsim) != input.solvers.end();
+  const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), TangentialSolver::nh_fastsim) != input.solvers.end();
   NhFastSimOptions nh_options;
   nh_options.bound = TractionBound{input.bound_skew, input.slip_direction};
   nh_options.flexibility_coarsening = input.flexibility_coarsening;
@@ -291,8 +291,8 @@ SolverRun run_fastsim(const ContactPatch& patch, const PatchSummary& summary, co
 }
 
 // The exact solver (Coulomb's law) or the regularised one (Eq A1).
-SolverRun run_exact(SolverKind kind, const ContactPatch& patch, const Creepage& creepage, const Case& input) {
-  const RollingSolution r = kind == SolverKind::exact ? solve_rolling_exact(patch, creepage, input.mu, input.rolling)
+SolverRun run_exact(TangentialSolver kind, const ContactPatch& patch, const Creepage& creepage, const Case& input) {
+  const RollingSolution r = kind == TangentialSolver::exact ? solve_rolling_exact(patch, creepage, input.mu, input.rolling)
                                                       : solve_rolling_regularised(patch, creepage, input.mu, input.rolling);
   SolverRun run;
   run.forces = r.forces;
@@ -306,25 +306,25 @@ SolverRun run_exact(SolverKind kind, const ContactPatch& patch, const Creepage& 
 }
 
 // One requested solver on the result's patch and creepages, timed (nh-fastsim: with its set-up).
-SolverRun run_solver(SolverKind kind, const Case& input, const CaseResult& result, const NhFastSimSetUp& nh,
+SolverRun run_solver(TangentialSolver kind, const Case& input, const CaseResult& result, const NhFastSimSetUp& nh,
                      std::ostream* progress) {
   if (progress) fmt::print(*progress, "  {} ...\n", solver_name(kind));
   const auto start = Clock::now();
   SolverRun run;
   switch (kind) {
-    case SolverKind::nh_fastsim:
+    case TangentialSolver::nh_fastsim:
       run = run_nh_fastsim(nh, result.flexibility_table_values.has_value(), result.creepage, input.mu);
       break;
-    case SolverKind::fastsim:
+    case TangentialSolver::fastsim:
       run = run_fastsim(result.patch, result.summary, result.creepage, input.mu);
       break;
-    case SolverKind::exact:
-    case SolverKind::exact_regularised:
+    case TangentialSolver::exact:
+    case TangentialSolver::exact_regularised:
       run = run_exact(kind, result.patch, result.creepage, input);
       break;
   }
   run.kind = kind;
-  run.time_s = seconds_since(start) + (kind == SolverKind::nh_fastsim ? nh.time_s : 0.0);
+  run.time_s = seconds_since(start) + (kind == TangentialSolver::nh_fastsim ? nh.time_s : 0.0);
   return run;
 }
 
@@ -336,7 +336,7 @@ void validate_case(const Case& input) {
   validate(input.rolling);
 }
 
-const SolverRun* CaseResult::find(SolverKind kind) const {
+const SolverRun* CaseResult::find(TangentialSolver kind) const {
   for (const SolverRun& run : runs)
     if (run.kind == kind) return &run;
   return nullptr;
@@ -355,7 +355,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
   solve_patch(input, table, result, progress);
   const NhFastSimSetUp nh = set_up_nh_fastsim(input, result, progress);
   resolve_creepage(input, nh.nh, result);
-  for (SolverKind kind : input.solvers) result.runs.push_back(run_solver(kind, input, result, nh, progress));
+  for (TangentialSolver kind : input.solvers) result.runs.push_back(run_solver(kind, input, result, nh, progress));
   return result;
 }
 

@@ -15,7 +15,7 @@
 namespace railcontact {
 
 struct SolverRun {
-  SolverKind kind = SolverKind::exact;
+  TangentialSolver kind = TangentialSolver::exact;
   TangentialForces forces;
   double time_s = 0.0;                 // the whole solver, flexibilities included
   double flexibility_time_s = 0.0;     // part of time_s spent on the flexibilities (nh-fastsim: K2)
@@ -55,7 +55,7 @@ struct CaseResult {
   std::optional<FlexibilityTableValues> flexibility_table_values;
   std::string flexibility_table_file;  // FlexibilityTable::source(): empty for a table not read from a file
   int flexibility_table_target_elements = 0;
-  [[nodiscard]] const SolverRun* find(SolverKind kind) const;
+  [[nodiscard]] const SolverRun* find(TangentialSolver kind) const;
 };
 
 struct CaseRunOptions {

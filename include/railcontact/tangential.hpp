@@ -27,6 +27,16 @@
 
 namespace railcontact {
 
+// The tangential models of a patch, one name each for the command line, case files, the wheelset,
+// the C API (rc_method) and Python (METHODS): nH-FastSim (NhFastSim), classic FastSim with the
+// equivalent ellipse's flexibilities (FastSim, Eq 9), and the exact solver with its regularised
+// variant (solve_rolling_exact, solve_rolling_regularised).
+enum class TangentialSolver { nh_fastsim, fastsim, exact, exact_regularised };
+// "nh-fastsim", "fastsim", "exact", "exact-regularised"
+const char* solver_name(TangentialSolver solver);
+// Throws Error (invalid_input) naming the allowed names.
+TangentialSolver parse_tangential_solver(const std::string& name);
+
 enum class LinearSolver {
   krylov,  // GMRES on the FFT operator, preconditioned by strip marching (fast path)
   dense,   // dense LU (reference path; O(N^3))

@@ -156,11 +156,6 @@ struct WheelsetState {
   WheelsetVelocity velocity;
 };
 
-enum class TangentialSolver { nh_fastsim, fastsim, exact, exact_regularised };
-// "nh-fastsim", "fastsim", "exact", "exact-regularised"
-const char* solver_name(TangentialSolver solver);
-// Throws Error (invalid_input) naming the allowed names.
-TangentialSolver parse_tangential_solver(const std::string& name);
 
 // The contact surface of each patch (docs/WHEELSET.md §4 "Conformal contact"): planar, the patch
 // in the tangent plane at its reference point with one contact angle (Kalker's CONTACT's planar

@@ -632,23 +632,6 @@ void require_finite(const WheelsetResult& r) {
 
 }  // namespace
 
-const char* solver_name(TangentialSolver solver) {
-  switch (solver) {
-    case TangentialSolver::nh_fastsim: return "nh-fastsim";
-    case TangentialSolver::fastsim: return "fastsim";
-    case TangentialSolver::exact: return "exact";
-    case TangentialSolver::exact_regularised: return "exact-regularised";
-  }
-  return "?";
-}
-
-TangentialSolver parse_tangential_solver(const std::string& name) {
-  for (TangentialSolver s : {TangentialSolver::nh_fastsim, TangentialSolver::fastsim, TangentialSolver::exact,
-                             TangentialSolver::exact_regularised})
-    if (name == solver_name(s)) return s;
-  throw Error(fmt::format("unknown solver '{}' (solvers: nh-fastsim, fastsim, exact, exact-regularised)", name));
-}
-
 const char* contact_surface_name(ContactSurface surface) {
   switch (surface) {
     case ContactSurface::planar: return "planar";
