@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Runs one figure script of scripts/ for railcontact (app/study/figures.cpp):
+"""Runs one figure script of scripts/ for railcontact (app/output/figures.cpp):
 
     figure_runner.py SCRIPT DIRECTORY
 

@@ -22,14 +22,14 @@
 
 #include "cli_run.hpp"
 #include "railcontact/error.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using railcontact::Error;
 using railcontact::ErrorKind;
-using railcontact::study::OutputDirectory;
+using railcontact::output::OutputDirectory;
 using railcontact::test::CommandResult;
 using railcontact::test::run_cli;
 using railcontact::test::ScratchDirectory;

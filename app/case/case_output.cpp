@@ -11,8 +11,8 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/version.h"
-#include "study/figures.hpp"
-#include "study/output_directory.hpp"
+#include "output/figures.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact {
 namespace {
@@ -175,20 +175,20 @@ void print_case_report(const CaseResult& r, std::ostream& out) {
 }
 
 void write_case_outputs(const CaseResult& r, const std::filesystem::path& directory, std::ostream& log) {
-  study::OutputDirectory output(directory, &log);
+  output::OutputDirectory output(directory, &log);
   write_case_outputs(r, output, log);
 }
 
-void write_case_outputs(const CaseResult& r, study::OutputDirectory& output, std::ostream& log) {
+void write_case_outputs(const CaseResult& r, output::OutputDirectory& output, std::ostream& log) {
   const std::filesystem::path& dir = output.staging();
   auto open = [&](const std::string& name) {
     std::ofstream file(dir / name);
-    if (!file) throw study::write_error(dir / name, errno);
+    if (!file) throw output::write_error(dir / name, errno);
     return file;
   };
   auto close = [&](std::ofstream& file, const std::string& name) {
     file.close();
-    if (!file) throw study::write_error(dir / name, errno);
+    if (!file) throw output::write_error(dir / name, errno);
   };
   {
     std::ofstream json = open("result.json");
@@ -215,7 +215,7 @@ void write_case_outputs(const CaseResult& r, study::OutputDirectory& output, std
                  run.p1_Pa[e], run.p2_Pa[e], std::hypot(run.p1_Pa[e], run.p2_Pa[e]), static_cast<int>(run.slip[e]));
     close(csv, name);
   }
-  study::draw_figures("plot_tractions.py", dir, log);  // on the staged files: the figures are committed with them
+  output::draw_figures("plot_tractions.py", dir, log);  // on the staged files: the figures are committed with them
   output.commit();
 }
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "case/case_run.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact {
 
@@ -20,10 +20,10 @@ void print_case_report(const CaseResult& result, std::ostream& out);
 // Writes result.json, patch.csv (x1, x2, p3 per contact element), tractions_<solver>.csv
 // (x1, x2, p3, p1, p2, |p|, slip) and the traction maps (tractions.png) into the directory.
 // The files are staged in the locked output directory and committed at the end
-// (study/output_directory.hpp): another run's directory is refused, an interrupted or failed write
+// (output/output_directory.hpp): another run's directory is refused, an interrupted or failed write
 // leaves the outputs of the last complete run.
 void write_case_outputs(const CaseResult& result, const std::filesystem::path& directory, std::ostream& log);
 // The same into an output directory the caller locked before the computation (run --out).
-void write_case_outputs(const CaseResult& result, study::OutputDirectory& output, std::ostream& log);
+void write_case_outputs(const CaseResult& result, output::OutputDirectory& output, std::ostream& log);
 
 }  // namespace railcontact

@@ -18,7 +18,7 @@
 #include "railcontact/geometry.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "study/contact_geometry_study.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact::cli {
 namespace {
@@ -108,7 +108,7 @@ int run_geometry(const GeometryArguments& a, const CLI::App& sub) {
   s.amplitude_m = a.amplitude_m;
   s.stop_at_flange_climb = sub.count("--y-from-m") == 0 && sub.count("--y-to-m") == 0;
   study::validate(s);
-  study::OutputDirectory out(a.out, &std::cerr);
+  output::OutputDirectory out(a.out, &std::cerr);
   const study::ContactGeometryResult r = study::run_contact_geometry_study(track, s, out, std::cerr);
   out.commit();
   const EquivalentConicity& e = r.at_amplitude;

@@ -13,8 +13,8 @@
 #include "railcontact/error.hpp"
 #include "railcontact/version.h"
 #include "railcontact/wheel_rail.hpp"
-#include "study/figures.hpp"
-#include "study/output_directory.hpp"
+#include "output/figures.hpp"
+#include "output/output_directory.hpp"
 #include "study/patch_files.hpp"
 
 namespace railcontact::cli {
@@ -89,7 +89,7 @@ int run_patch(const PatchArguments& args) {
   const std::filesystem::path rail = args.rail ? std::filesystem::path(*args.rail) : default_rail_profile_path();
 
   // --out: locked and staged before the work (docs/RELIABILITY.md "Outputs").
-  std::optional<study::OutputDirectory> output;
+  std::optional<output::OutputDirectory> output;
   if (args.out) output.emplace(*args.out, &std::cerr);
   const auto start = std::chrono::steady_clock::now();
   const WheelRailPair pair = load_wheel_rail_pair(wheel, rail);
@@ -126,10 +126,10 @@ int run_patch(const PatchArguments& args) {
     study::write_pressure_csv(dir / "pressure.csv", patch.patch);
     std::ofstream file(dir / "patch.json");
     if (!(file << json.dump(2) << '\n'))
-      throw study::write_error(dir / "patch.json", errno);
+      throw output::write_error(dir / "patch.json", errno);
     file.close();
-    if (!file) throw study::write_error(dir / "patch.json", errno);
-    study::draw_figures("plot_patch.py", dir, std::cerr);
+    if (!file) throw output::write_error(dir / "patch.json", errno);
+    output::draw_figures("plot_patch.py", dir, std::cerr);
     output->commit();
   }
   if (args.json) {

@@ -47,7 +47,7 @@ int run(const RunArguments& args) {
   // (and its leftovers of an interrupted run removed) before the computation: a directory in use
   // by another run is refused at once.
   const std::string out = !args.out.empty() ? args.out : (built_in ? "railcontact-out" : "");
-  std::optional<study::OutputDirectory> output;
+  std::optional<output::OutputDirectory> output;
   if (!out.empty()) output.emplace(out, &std::cerr);
   const CaseResult result = run_case(input, options, args.json ? nullptr : &std::cerr);
   if (args.json) {

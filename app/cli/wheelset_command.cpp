@@ -20,7 +20,7 @@
 #include "railcontact/wheelset_table.hpp"
 #include "case/wheelset_case.hpp"
 #include "railcontact/wheelset.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 #include "study/wheelset_sweep.hpp"
 
 namespace railcontact::cli {
@@ -353,7 +353,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     sweep.y_from_m = from;
     sweep.y_to_m = to;
     sweep.y_step_m = step;
-    study::OutputDirectory out(a.out, &std::cerr);
+    output::OutputDirectory out(a.out, &std::cerr);
     fmt::print(std::cerr, "wheelset sweep: y = {:g} ... {:g} mm in steps of {:g} mm{}\n", from * 1e3, to * 1e3, step * 1e3,
                table ? " from the table " + a.table : std::string());
     const study::WheelsetSweepResult done =

@@ -6,7 +6,7 @@
 #include "study/bound_study.hpp"
 #include "study/case_pool.hpp"
 #include "study/mpi_cases.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 #include <cerrno>
 #include <algorithm>
@@ -148,10 +148,10 @@ void run_bound_study(const BoundStudyOptions& options, std::ostream& progress) {
     compute_cases(options, progress);
     return;
   }
-  OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  output::OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   const std::filesystem::path& dir = output.staging();
   std::ofstream csv(dir / "bound_sweep.csv");
-  if (!csv) throw write_error(dir / "bound_sweep.csv", errno);
+  if (!csv) throw output::write_error(dir / "bound_sweep.csv", errno);
   csv << "patch,parameter,skew,worst_rel_error\n";
   std::string rows;
   std::array<double, kSkews.size()> ellipse_worst{}, wheel_rail_worst{};

@@ -20,8 +20,8 @@
 #include "railcontact/kalker.hpp"
 #include "study/case_pool.hpp"
 #include "study/mpi_cases.hpp"
-#include "study/figures.hpp"
-#include "study/output_directory.hpp"
+#include "output/figures.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact::study {
 namespace {
@@ -73,7 +73,7 @@ struct TableStatistics {
 
 std::ofstream open_csv(const std::filesystem::path& path) {
   std::ofstream file(path);
-  if (!file) throw write_error(path, errno);
+  if (!file) throw output::write_error(path, errno);
   return file;
 }
 
@@ -231,7 +231,7 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
     for (const Configuration* c : {&ours, &paper, &fine}) compute_table(*c, options.threads, progress);
     return;
   }
-  OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  output::OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   const std::filesystem::path& dir = output.staging();
   const auto start = std::chrono::steady_clock::now();
 
@@ -247,7 +247,7 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   write_fig4(dir / "fig4.csv", options.fine_elements, progress);
 
   std::ofstream md(dir / "summary.md");
-  if (!md) throw write_error(dir / "summary.md", errno);
+  if (!md) throw output::write_error(dir / "summary.md", errno);
   md << "# Creepage coefficients from the full-adhesion steady-state solution (paper §3)\n\n"
         "Relative errors of C11, C22, C23 from K2 (Eq 18) against Kalker's table (57 entries: 19 a/b x 3 nu; "
         "the nu = 0.5 rows solved at nu = 0.5 - 1e-9). Kalker's table has three significant digits: the "
@@ -261,8 +261,8 @@ void run_coefficient_study(const CoefficientStudyOptions& options, std::ostream&
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   fmt::print(md, "\nStudy run time: {:.1f} s.\n", total);
   md.close();
-  if (!md) throw write_error(dir / "summary.md", errno);
-  if (options.figures) draw_figures("plot_coefficient_study.py", dir, progress);
+  if (!md) throw output::write_error(dir / "summary.md", errno);
+  if (options.figures) output::draw_figures("plot_coefficient_study.py", dir, progress);
   output.commit();
   fmt::print(progress, "Wrote {}\n", options.output_directory.string());
 }

@@ -12,8 +12,8 @@
 #include <string>
 
 #include "railcontact/error.hpp"
-#include "study/output_directory.hpp"
-#include "study/figures.hpp"
+#include "output/output_directory.hpp"
+#include "output/figures.hpp"
 
 namespace railcontact::study {
 namespace {
@@ -22,13 +22,13 @@ constexpr double kMm = 1e-3;
 
 std::ofstream open_csv(const std::filesystem::path& path) {
   std::ofstream csv(path);
-  if (!csv) throw write_error(path, errno);
+  if (!csv) throw output::write_error(path, errno);
   return csv;
 }
 
 void close_csv(std::ofstream& csv, const std::filesystem::path& path) {
   csv.close();
-  if (csv.fail()) throw write_error(path, errno);
+  if (csv.fail()) throw output::write_error(path, errno);
 }
 
 }  // namespace
@@ -67,7 +67,7 @@ bool is_flange_climb(const Error& e) {
 }
 
 ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, const ContactGeometryStudy& study,
-                                                 OutputDirectory& out, std::ostream& log) {
+                                                 output::OutputDirectory& out, std::ostream& log) {
   validate(study);
   ContactGeometryResult result;
   const double range = study.y_to_m - study.y_from_m;
@@ -187,7 +187,7 @@ ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, con
   }
   close_csv(profiles, profiles_path);
 
-  draw_figures("plot_contact_geometry.py", out.staging(), log);
+  output::draw_figures("plot_contact_geometry.py", out.staging(), log);
   return result;
 }
 

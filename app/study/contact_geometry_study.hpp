@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "railcontact/contact_geometry.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 #include "railcontact/error.hpp"
 
@@ -44,6 +44,6 @@ void validate(const ContactGeometryStudy& study);
 // Sweeps y, writes the CSV files into `out` and draws the figures (progress to `log`). Throws Error
 // naming the option (--y-from-m, --y-to-m, --y-step-m, --amplitude-m) for a bad range or amplitude.
 ContactGeometryResult run_contact_geometry_study(const WheelsetTrack& track, const ContactGeometryStudy& study,
-                                                 OutputDirectory& out, std::ostream& log);
+                                                 output::OutputDirectory& out, std::ostream& log);
 
 }  // namespace railcontact::study

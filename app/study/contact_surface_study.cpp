@@ -16,8 +16,8 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
-#include "study/figures.hpp"
-#include "study/output_directory.hpp"
+#include "output/figures.hpp"
+#include "output/output_directory.hpp"
 #include "study/wheel_rail_setups.hpp"
 
 namespace railcontact::study {
@@ -182,12 +182,12 @@ void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream
   const std::vector<std::filesystem::path> files = wheel_rail_setup_files(o.setups);
   require(!files.empty(), "study surfaces: no wheel-rail set-up files");
 
-  OutputDirectory out(o.output_directory, &log);
-  std::ofstream rows = open_output_file(out.path("surfaces.csv"));
+  output::OutputDirectory out(o.output_directory, &log);
+  std::ofstream rows = output::open_output_file(out.path("surfaces.csv"));
   fmt::print(rows, "setup,yaw_mrad,y_mm,side,patch,contact_angle_rad,contact_angle_spread_rad,measure,conformal_weight,"
                    "planar_Fx_N,planar_Fy_N,planar_Fz_N,conformal_Fx_N,conformal_Fy_N,conformal_Fz_N,automatic_Fx_N,"
                    "automatic_Fy_N,automatic_Fz_N\n");
-  std::ofstream fine = open_output_file(out.path("smoothness.csv"));
+  std::ofstream fine = output::open_output_file(out.path("smoothness.csv"));
   fmt::print(fine, "setup,y_mm,conformal_weight,planar_Fx_N,planar_Fy_N,planar_Fz_N,conformal_Fx_N,conformal_Fy_N,"
                    "conformal_Fz_N,automatic_Fx_N,automatic_Fy_N,automatic_Fz_N\n");
   std::array<Bin, kBinEdges.size() - 1> bins{};
@@ -256,14 +256,14 @@ void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream
     }
   }
   rows.close();
-  if (rows.fail()) throw write_error(out.path("surfaces.csv"), errno);
+  if (rows.fail()) throw output::write_error(out.path("surfaces.csv"), errno);
   fine.close();
-  if (fine.fail()) throw write_error(out.path("smoothness.csv"), errno);
-  std::ofstream md = open_output_file(out.path("summary.md"));
+  if (fine.fail()) throw output::write_error(out.path("smoothness.csv"), errno);
+  std::ofstream md = output::open_output_file(out.path("summary.md"));
   write_summary(o, bins, windows, states, mismatched, md);
   md.close();
-  if (md.fail()) throw write_error(out.path("summary.md"), errno);
-  if (o.figures) draw_figures("plot_contact_surfaces.py", out.staging(), log);
+  if (md.fail()) throw output::write_error(out.path("summary.md"), errno);
+  if (o.figures) output::draw_figures("plot_contact_surfaces.py", out.staging(), log);
   out.commit();
 }
 

@@ -18,8 +18,8 @@
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
-#include "study/figures.hpp"
-#include "study/output_directory.hpp"
+#include "output/figures.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact::study {
 namespace {
@@ -202,12 +202,12 @@ void run_hertz_study(const HertzStudyOptions& requested, std::ostream& progress)
     return fmt::format("study hertz: --elements must lie in [100, 50000] (got {})", requested.elements);
   });
   require(requested.points >= 2 && requested.points <= 100, "study hertz: --points must lie in [2, 100]");
-  OutputDirectory output(requested.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  output::OutputDirectory output(requested.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   HertzStudyOptions options = requested;
   options.output_directory = output.staging();
   const std::filesystem::path& dir = options.output_directory;
   std::ofstream csv(dir / "creep_curves.csv");
-  if (!csv) throw write_error(dir / "creep_curves.csv", errno);
+  if (!csv) throw output::write_error(dir / "creep_curves.csv", errno);
   csv << "a_over_b,family,creepage_normalised,xi,eta,phi,solver,F1,F2,M3,F_over_muF3,adhesion_fraction,time_s\n";
   Tallies tallies;
   const auto start = Clock::now();
@@ -215,7 +215,7 @@ void run_hertz_study(const HertzStudyOptions& requested, std::ostream& progress)
   for (double ratio : kRatios) run_ellipse(ratio, options, csv, tallies, counter, progress);
   csv.close();
   write_summary(options, tallies, start);
-  if (options.figures) draw_figures("plot_hertz_study.py", dir, progress);
+  if (options.figures) output::draw_figures("plot_hertz_study.py", dir, progress);
   output.commit();
   fmt::print(progress, "Wrote {}\n", requested.output_directory.string());
 }

@@ -27,8 +27,8 @@
 #include "railcontact/wheel_rail.hpp"
 #include "study/case_pool.hpp"
 #include "study/mpi_cases.hpp"
-#include "study/figures.hpp"
-#include "study/output_directory.hpp"
+#include "output/figures.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact::study {
 namespace {
@@ -107,7 +107,7 @@ constexpr std::array<double, 5> kLevels{0.1, 0.25, 0.5, 0.75, 1.0};
 
 std::ofstream open_csv(const std::filesystem::path& path, const char* header) {
   std::ofstream f(path);
-  if (!f) throw write_error(path, errno);
+  if (!f) throw output::write_error(path, errno);
   f << header;
   return f;
 }
@@ -476,7 +476,7 @@ void run_paper_study(const PaperStudyOptions& requested, std::ostream& progress)
     write_fig5_error_sweep(default_wheel_rail_pair(), requested, progress);
     return;
   }
-  OutputDirectory output(requested.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  output::OutputDirectory output(requested.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   PaperStudyOptions options = requested;
   options.output_directory = output.staging();
   const std::filesystem::path& dir = options.output_directory;
@@ -497,7 +497,7 @@ void run_paper_study(const PaperStudyOptions& requested, std::ostream& progress)
   summary.fig8 = write_fig8_timings(pair, options, progress);
 
   write_summary(options, summary);
-  if (options.figures) draw_figures("plot_paper_study.py", dir, progress);
+  if (options.figures) output::draw_figures("plot_paper_study.py", dir, progress);
   output.commit();
   fmt::print(progress, "Wrote {}\n", requested.output_directory.string());
 }

@@ -8,18 +8,18 @@
 #include <fstream>
 
 #include "railcontact/error.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact::study {
 
 void write_pressure_csv(const std::filesystem::path& path, const ContactPatch& patch) {
   std::ofstream csv(path);
-  if (!csv) throw write_error(path, errno);
+  if (!csv) throw output::write_error(path, errno);
   csv << "x1_m,x2_m,pressure_Pa\n";
   for (std::size_t e = 0; e < patch.elements().count(); ++e)
     fmt::print(csv, "{:.9e},{:.9e},{:.9e}\n", patch.x1(e), patch.x2(e), patch.pressure_Pa()[e]);
   csv.close();  // a full disk shows here
-  if (!csv) throw write_error(path, errno);
+  if (!csv) throw output::write_error(path, errno);
 }
 
 nlohmann::json patch_json(const WheelRailPatch& p) {

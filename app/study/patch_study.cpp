@@ -17,8 +17,8 @@
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "study/case_pool.hpp"
-#include "study/figures.hpp"
-#include "study/output_directory.hpp"
+#include "output/figures.hpp"
+#include "output/output_directory.hpp"
 #include "study/patch_files.hpp"
 
 namespace railcontact::study {
@@ -106,7 +106,7 @@ Row solve_row(const WheelRailPair& pair, double y_m, const PatchStudyOptions& op
 
 void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) {
   std::ofstream csv(path);
-  if (!csv) throw write_error(path, errno);
+  if (!csv) throw output::write_error(path, errno);
   csv << "y_m,status,patches,contact_angle_rad,rolling_radius_m,spin_per_m,normal_force_N,area_m2,"
          "elements_in_contact,extent_x1_m,extent_x2_m,max_pressure_Pa,approach_m,iterations,"
          "y_rail_m,y_wheel_m,y_track_m,pressure_centre_x2_m,centre_y_rail_m,centre_y_wheel_m,centre_contact_angle_rad,"
@@ -131,7 +131,7 @@ void write_csv(const std::filesystem::path& path, const std::vector<Row>& rows) 
     fmt::print(csv, "{:.9g},{:.9g},{},{},{},{:.6f},{}\n", m.dx1_m, m.dx2_m, m.n1, m.n2, p.mesh_passes, r.solve_time_s,
                r.patch_file);
   }
-  if (!csv) throw write_error(path, errno);
+  if (!csv) throw output::write_error(path, errno);
 }
 
 std::string ratio_text(double value, double reference) {
@@ -141,7 +141,7 @@ std::string ratio_text(double value, double reference) {
 void write_summary(const std::filesystem::path& path, const PatchStudyOptions& o, const std::vector<Row>& rows,
                    const std::string& wheel, const std::string& rail, double total_s) {
   std::ofstream md(path);
-  if (!md) throw write_error(path, errno);
+  if (!md) throw output::write_error(path, errno);
   md << "# Wheel–rail normal contact over the wheelset displacement (METHOD.md §9)\n\n";
   fmt::print(md, "Wheel `{}` on rail `{}`; vertical load Fz = {} N, F3 = Fz / cos γ; E = 2.1e11 Pa, ν = 0.3; "
                  "about {} elements in contact (rolling-resolved mesh); y from {} to {} mm in steps of {} mm. "
@@ -224,7 +224,7 @@ int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
   const std::filesystem::path wheel = options.wheel_profile.value_or(default_wheel_profile_path());
   const std::filesystem::path rail = options.rail_profile.value_or(default_rail_profile_path());
   const WheelRailPair pair = load_wheel_rail_pair(wheel, rail);
-  OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
+  output::OutputDirectory output(options.output_directory, &progress);  // locked, staged (docs/RELIABILITY.md "Outputs")
   const std::filesystem::path& dir = output.staging();
   const auto start = std::chrono::steady_clock::now();
 
@@ -258,7 +258,7 @@ int run_patch_study(const PatchStudyOptions& options, std::ostream& progress) {
   write_csv(dir / "patches.csv", rows);
   const double total = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_summary(dir / "summary.md", options, rows, wheel.filename().string(), rail.filename().string(), total);
-  if (options.figures) draw_figures("plot_patch_study.py", dir, progress);
+  if (options.figures) output::draw_figures("plot_patch_study.py", dir, progress);
   output.commit();
   fmt::print(progress, "Wrote {}\n", options.output_directory.string());
   return single;

@@ -21,9 +21,9 @@
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_table.hpp"
 #include "study/contact_geometry_study.hpp"
-#include "study/figures.hpp"
+#include "output/figures.hpp"
 #include "study/mpi_cases.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 #include "study/wheel_rail_setups.hpp"
 
 namespace railcontact::study {
@@ -189,15 +189,15 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   const std::vector<std::filesystem::path> files = wheel_rail_setup_files(o.setups);
   require(!files.empty(), "study profiles: no wheel-rail set-up files");
 
-  OutputDirectory out(o.output_directory, &log);
-  std::ofstream rows = open_output_file(out.path("profile_pairs.csv"));
+  output::OutputDirectory out(o.output_directory, &log);
+  std::ofstream rows = output::open_output_file(out.path("profile_pairs.csv"));
   fmt::print(rows,
              "setup,yaw_mrad,y_mm,side,patch,patches,contact_angle_rad,rail_profile_y_mm,normal_force_N,xi,eta,"
              "phi_per_m,exact_F1_N,exact_F2_N,nh_fastsim_F1_N,nh_fastsim_F2_N,dF1_percent_mu_F3,dF2_percent_mu_F3,"
              "wheel_Fx_N,wheel_Fy_N,wheel_Fz_N,contact_angle_variation_rad\n");
   std::ofstream table_rows;
   if (o.table) {
-    table_rows = open_output_file(out.path("table_check.csv"));
+    table_rows = output::open_output_file(out.path("table_check.csv"));
     fmt::print(table_rows, "setup,yaw_mrad,y_mm,side,patches,on_the_fly_Fx_N,on_the_fly_Fy_N,on_the_fly_Fz_N,table_Fx_N,"
                            "table_Fy_N,table_Fz_N,dFx_percent_mu_Fz,dFy_percent_mu_Fz,dFz_percent_mu_Fz\n");
   }
@@ -285,13 +285,13 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
     }
   }
   rows.close();
-  if (rows.fail()) throw write_error(out.path("profile_pairs.csv"), errno);
+  if (rows.fail()) throw output::write_error(out.path("profile_pairs.csv"), errno);
   if (o.table) {
     table_rows.close();
-    if (table_rows.fail()) throw write_error(out.path("table_check.csv"), errno);
+    if (table_rows.fail()) throw output::write_error(out.path("table_check.csv"), errno);
   }
 
-  std::ofstream pairs = open_output_file(out.path("pairs.csv"));
+  std::ofstream pairs = output::open_output_file(out.path("pairs.csv"));
   fmt::print(pairs, "setup,yaw_mrad,tan_gamma_e_3mm,states,last_y_mm,most_patches,worst_dF1_percent,worst_dF1_y_mm,"
                     "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,largest_angle_variation_rad,stop,"
                     "table_states,table_refused,table_dFx_percent,table_dFx_y_mm,table_dFy_percent,table_dFy_y_mm,"
@@ -306,9 +306,9 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
                s.worst_table_percent[0], s.worst_table_y_m[0] / kMm, s.worst_table_percent[1],
                s.worst_table_y_m[1] / kMm, s.worst_table_percent[2], s.worst_table_y_m[2] / kMm);
   pairs.close();
-  if (pairs.fail()) throw write_error(out.path("pairs.csv"), errno);
+  if (pairs.fail()) throw output::write_error(out.path("pairs.csv"), errno);
 
-  std::ofstream md = open_output_file(out.path("summary.md"));
+  std::ofstream md = output::open_output_file(out.path("summary.md"));
   fmt::print(md, "# Profile pairs end to end\n\n");
   fmt::print(md,
              "Each wheel–rail set-up: the wheelset by load (98.1 kN per wheel, μ = 0.3, 20 m/s, pure rolling) from y = 0 "
@@ -362,8 +362,8 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
                    s.yaw_rad * 1e3, s.table_refused, s.table_refusal);
   }
   md.close();
-  if (md.fail()) throw write_error(out.path("summary.md"), errno);
-  if (o.figures) draw_figures("plot_profile_pairs.py", out.staging(), log);
+  if (md.fail()) throw output::write_error(out.path("summary.md"), errno);
+  if (o.figures) output::draw_figures("plot_profile_pairs.py", out.staging(), log);
   out.commit();
 }
 

@@ -16,9 +16,9 @@
 #include "railcontact/flexibility_table.hpp"
 #include "railcontact/version.h"
 #include "railcontact/wheelset.hpp"
-#include "study/figures.hpp"
+#include "output/figures.hpp"
 #include "study/mpi_cases.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 #include "study/sweep_journal.hpp"
 
 namespace railcontact::study {
@@ -221,7 +221,7 @@ ErrorKind failed_kind(const std::string& row) {
 
 // sweep.csv, sweep.json and the figures from the complete set of cases (the CSV streamed: a
 // large sweep's rows are in memory once, in `done`).
-void write_outputs(OutputDirectory& dir, const std::string& metadata, const std::string& header,
+void write_outputs(output::OutputDirectory& dir, const std::string& metadata, const std::string& header,
                    const std::map<std::size_t, CaseResult>& done, std::ostream& log) {
   const std::string json_text = sweep_json(metadata, done);
   const auto write = [&](const char* name, const auto& write_text) {
@@ -229,11 +229,11 @@ void write_outputs(OutputDirectory& dir, const std::string& metadata, const std:
     std::ofstream file(path, std::ios::binary);
     write_text(file);
     file.close();
-    if (file.fail()) throw write_error(path, errno);
+    if (file.fail()) throw output::write_error(path, errno);
   };
   write("sweep.csv", [&](std::ostream& out) { write_sweep_csv(out, header, done); });
   write("sweep.json", [&](std::ostream& out) { out << json_text; });
-  draw_figures("plot_sweep.py", dir.staging(), log);
+  output::draw_figures("plot_sweep.py", dir.staging(), log);
 }
 
 void summarise_failures(const std::map<std::size_t, CaseResult>& done, SweepSummary& s) {
@@ -265,7 +265,7 @@ SweepSummary run_sweep(const SweepFile& sweep, const SweepRunOptions& options, s
     summary.worker_rank = true;
     return summary;
   }
-  OutputDirectory dir(options.out, &log);
+  output::OutputDirectory dir(options.out, &log);
   const std::filesystem::path journal_path = dir.directory() / sweep_journal_name(options.shard);
   SweepJournalHeader header{RC_VERSION_STRING, recipe.hash, sweep.size(), options.shard, recipe.metadata, recipe.header};
   std::map<std::size_t, CaseResult> done;
@@ -338,7 +338,7 @@ void write_sweep_csv(std::ostream& out, const std::string& header, const std::ma
 SweepSummary merge_sweep_journals(const SweepJournalHeader& header, const std::map<std::size_t, CaseResult>& done,
                                   const std::filesystem::path& out, std::ostream& log) {
   sweep_json(header.metadata, done);  // a damaged journal's metadata refused before DIR is made
-  OutputDirectory dir(out, &log);
+  output::OutputDirectory dir(out, &log);
   write_outputs(dir, header.metadata, header.header, done, log);
   dir.commit();
   SweepSummary summary;

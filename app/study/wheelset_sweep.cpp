@@ -10,19 +10,19 @@
 #include <fstream>
 
 #include "railcontact/error.hpp"
-#include "study/output_directory.hpp"
-#include "study/figures.hpp"
+#include "output/output_directory.hpp"
+#include "output/figures.hpp"
 
 namespace railcontact::study {
 
 WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const WheelsetSweep& sweep,
-                                       OutputDirectory& out, std::ostream& log) {
+                                       output::OutputDirectory& out, std::ostream& log) {
   return run_wheelset_sweep([&](const WheelsetState& s) { return wheelset.evaluate(s); }, wheelset.options().solvers,
                             state, sweep, out, log);
 }
 
 WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const std::vector<TangentialSolver>& solvers,
-                                       const WheelsetState& state, const WheelsetSweep& sweep, OutputDirectory& out,
+                                       const WheelsetState& state, const WheelsetSweep& sweep, output::OutputDirectory& out,
                                        std::ostream& log) {
   WheelsetSweepResult result;
   require(std::isfinite(sweep.y_from_m) && std::isfinite(sweep.y_to_m) && std::isfinite(sweep.y_step_m) &&
@@ -39,7 +39,7 @@ WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const
 
   const std::filesystem::path csv_path = out.path("wheelset_sweep.csv");
   std::ofstream csv(csv_path);
-  if (!csv) throw write_error(csv_path, errno);
+  if (!csv) throw output::write_error(csv_path, errno);
   fmt::print(csv,
              "y_mm,vertical_displacement_mm,roll_mrad,side,patch,patches,reference_x_mm,reference_y_mm,reference_z_mm,"
              "rail_profile_y_mm,wheel_profile_y_mm,contact_angle_rad,rolling_radius_mm,xi,eta,phi_per_m,"
@@ -88,8 +88,8 @@ WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const
     }
   }
   csv.close();
-  if (csv.fail()) throw write_error(csv_path, errno);
-  draw_figures("plot_wheelset_sweep.py", out.staging(), log);
+  if (csv.fail()) throw output::write_error(csv_path, errno);
+  output::draw_figures("plot_wheelset_sweep.py", out.staging(), log);
   return result;
 }
 

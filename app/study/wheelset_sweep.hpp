@@ -9,7 +9,7 @@
 #include "railcontact/error.hpp"
 
 #include "railcontact/wheelset.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 namespace railcontact::study {
 
@@ -33,12 +33,12 @@ struct WheelsetSweepResult {
 // `log`. A position that fails after the first ends the sweep: the rows before it are written and
 // the result says where and why (the first position failing throws).
 WheelsetSweepResult run_wheelset_sweep(Wheelset& wheelset, const WheelsetState& state, const WheelsetSweep& sweep,
-                                       OutputDirectory& out, std::ostream& log);
+                                       output::OutputDirectory& out, std::ostream& log);
 // The same with another evaluation of a state (e.g. WheelsetTable::evaluate) whose patches carry
 // the forces of `solvers`, in that order.
 using WheelsetEvaluation = std::function<WheelsetResult(const WheelsetState&)>;
 WheelsetSweepResult run_wheelset_sweep(const WheelsetEvaluation& evaluate, const std::vector<TangentialSolver>& solvers,
-                                       const WheelsetState& state, const WheelsetSweep& sweep, OutputDirectory& out,
+                                       const WheelsetState& state, const WheelsetSweep& sweep, output::OutputDirectory& out,
                                        std::ostream& log);
 
 }  // namespace railcontact::study

@@ -12,10 +12,10 @@
 #include <ostream>
 #include <string>
 
-namespace railcontact::study {
+namespace railcontact::output {
 
 // Runs scripts/<script> with the output directory as argument. Returns true when the figures are
 // drawn, false after a warning; throws Error(io) when a figure cannot be written.
 bool draw_figures(const std::string& script, const std::filesystem::path& directory, std::ostream& log);
 
-}  // namespace railcontact::study
+}  // namespace railcontact::output

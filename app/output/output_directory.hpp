@@ -20,7 +20,7 @@
 
 #include "railcontact/error.hpp"
 
-namespace railcontact::study {
+namespace railcontact::output {
 
 // A path inside a staging directory (DIR/.staging-<pid>/name) as the user knows it (DIR/name);
 // any other path as it is. Messages name the file the user asked for, not the staged one.
@@ -63,4 +63,4 @@ class OutputDirectory {
   bool handlers_installed_ = false;
 };
 
-}  // namespace railcontact::study
+}  // namespace railcontact::output

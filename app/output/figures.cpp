@@ -1,4 +1,4 @@
-#include "study/figures.hpp"
+#include "output/figures.hpp"
 
 #include <sys/wait.h>
 
@@ -12,9 +12,9 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/text_file.hpp"
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
-namespace railcontact::study {
+namespace railcontact::output {
 namespace {
 
 std::filesystem::path scripts_directory() {
@@ -115,4 +115,4 @@ bool draw_figures(const std::string& script, const std::filesystem::path& direct
   return false;
 }
 
-}  // namespace railcontact::study
+}  // namespace railcontact::output

@@ -1,4 +1,4 @@
-#include "study/output_directory.hpp"
+#include "output/output_directory.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -16,7 +16,7 @@
 
 #include "railcontact/error.hpp"
 
-namespace railcontact::study {
+namespace railcontact::output {
 namespace {
 
 constexpr const char* kLockFile = ".railcontact.lock";
@@ -193,4 +193,4 @@ void OutputDirectory::commit() {
   }
 }
 
-}  // namespace railcontact::study
+}  // namespace railcontact::output
