@@ -827,120 +827,150 @@ WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
                           kMaximumFreeRollingIterations, previous_moment, previous_omega));
 }
 
-WheelsetResult Wheelset::evaluate_rolling(const WheelsetState& input) {
-  WheelsetResult result;
-  result.state = input;
-  const std::array<WheelSide, 2> sides{WheelSide::right, WheelSide::left};
+namespace {
+
+// A rigid axle's roll (WheelLoads::balance_roll): the wheels' heights must agree. The first step
+// turns the axle about its centre (the left wheel rises by roll × its lever); then secant steps,
+// since in flange contact each wheel's own height also moves with the roll.
+struct RollBalance {
+  double previous_roll = 0.0, previous_mismatch = 0.0;
+
+  // True when the heights agree (kHeightTolerance_m); otherwise `roll` moves to the next guess.
+  bool settle(int pass, const std::array<double, 2>& heights, double lever_m, double& roll) {
+    const double mismatch = heights[1] - heights[0];
+    double next = roll + mismatch / (2.0 * lever_m);
+    if (pass > 0 && mismatch != previous_mismatch)
+      next = roll - mismatch * (roll - previous_roll) / (mismatch - previous_mismatch);
+    previous_roll = roll;
+    previous_mismatch = mismatch;
+    if (std::abs(mismatch) < kHeightTolerance_m) return true;
+    roll = next;
+    return false;
+  }
+};
+
+// One wheel's tangential part T of its vertical balance, a fixed point T = g(T) with g'(T) near −1
+// in flange contact (F2 saturated, γ steep): secant steps on the residual r(T) = g(T) − T, which
+// falls with T, kept inside the bracket of the T values seen with r > 0 and r < 0 (bisection when a
+// secant step leaves it). The discretisation makes g jump where elements enter the patch: when the
+// bracket has shrunk to kBracketTolerance of the load around such a jump, its middle is the answer.
+struct TangentialBalance {
+  double value_N = 0.0;  // T, the guess the pass solves the height with
+  double previous_N = 0.0, previous_residual_N = 0.0;
+  double lo_N = -std::numeric_limits<double>::infinity(), hi_N = std::numeric_limits<double>::infinity();
+
+  // The next guess after the pass's g(T).
+  void step(int pass, double g_N) {
+    const double T = value_N, residual = g_N - T;
+    if (residual > 0.0) lo_N = std::max(lo_N, T);
+    if (residual < 0.0) hi_N = std::min(hi_N, T);
+    double next = g_N;
+    if (pass > 0 && residual != previous_residual_N)
+      next = T - residual * (T - previous_N) / (residual - previous_residual_N);
+    if (std::isfinite(lo_N) && std::isfinite(hi_N) && !(next > lo_N && next < hi_N)) next = 0.5 * (lo_N + hi_N);
+    previous_N = T;
+    previous_residual_N = residual;
+    value_N = next;
+  }
+  [[nodiscard]] bool bracket_closed(double load_N) const { return hi_N - lo_N <= kBracketTolerance * load_N; }
+};
+
+constexpr std::array<WheelSide, 2> kSides{WheelSide::right, WheelSide::left};
+
+// By position: each wheel's patches at the state's overlap.
+void evaluate_by_position(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
+                          WheelsetResult& result) {
+  for (std::size_t k = 0; k < 2; ++k) {
+    std::vector<NormalPatch> normal = solve_normal(track, kSides[k], result.state.position, options, warm);
+    result.wheels[k] = finish_wheel(track, kSides[k], result.state, normal, options);
+  }
+}
+
+// By load: each wheel's height (or, balancing roll, the axle's height and roll) so that the
+// vertical force of its patches equals its load; optionally with the tangential forces' vertical
+// components, from the previous pass. In a time step (a state near the last one, the warm start)
+// the heights and the tangential parts start from the last ones.
+void evaluate_by_load(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
+                      WheelsetResult& result) {
+  const WheelsetState input = result.state;
+  const std::array<double, 2> loads{options.loads->right_N, options.loads->left_N};
+  const bool stepped = warm.near_last_position(input.position);
+  if (!stepped) warm.stiffness_N_per_m = {0.0, 0.0};
+  std::array<TangentialBalance, 2> tangential{};
+  if (stepped && options.tangential_forces_in_vertical_balance)
+    for (std::size_t k = 0; k < 2; ++k) tangential[k].value_N = warm.tangential_vertical_N[k];
+  std::array<double, 2> overlap = stepped ? warm.overlap_m : std::array<double, 2>{0.08e-3, 0.08e-3};
+  RollBalance roll;
+  std::array<double, 2> heights{0.0, 0.0};
   std::array<std::vector<NormalPatch>, 2> normal;
   std::array<int, 2> iterations{0, 0};
-
-  if (!options_.loads) {
+  WheelsetState state = input;
+  for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
+    for (std::size_t k = 0; k < 2; ++k)
+      heights[k] = solve_height(track, kSides[k], state.position, loads[k] - tangential[k].value_N, options, overlap[k],
+                                normal[k], iterations[k], warm);
+    bool settled = true;
+    if (options.loads->balance_roll)
+      settled = roll.settle(pass, heights, track.wheel_profile_origin_y_m(WheelSide::left), state.position.roll_rad);
+    state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
+    std::array<double, 2> new_tangential{0.0, 0.0};
     for (std::size_t k = 0; k < 2; ++k) {
-      normal[k] = solve_normal(track_, sides[k], input.position, options_, *warm_);
-      result.wheels[k] = finish_wheel(track_, sides[k], result.state, normal[k], options_);
+      WheelsetState wheel_state = state;
+      wheel_state.position.vertical_displacement_m = heights[k];
+      result.wheels[k] = finish_wheel(track, kSides[k], wheel_state, normal[k], options);
+      result.wheels[k].load_iterations = iterations[k];
+      if (options.tangential_forces_in_vertical_balance)
+        new_tangential[k] = tangential_vertical_force(result.wheels[k], balance_index(options));
+      const double tolerance = pass < kStrictBalancePasses ? kTangentialBalanceTolerance : kCoarseTangentialBalanceTolerance;
+      settled = settled && std::abs(new_tangential[k] - tangential[k].value_N) <=
+                               std::max(options.load_tolerance, tolerance) * loads[k];
     }
-  } else {
-    // By load: each wheel's height (or, balancing roll, the axle's height and roll) so that the
-    // vertical force of its patches equals its load; optionally with the tangential forces'
-    // vertical components, from the previous pass.
-    const std::array<double, 2> loads{options_.loads->right_N, options_.loads->left_N};
-    const bool stepped = warm_->near_last_position(input.position);
-    if (!stepped) warm_->stiffness_N_per_m = {0.0, 0.0};
-    std::array<double, 2> tangential_vertical{0.0, 0.0};
-    if (stepped && options_.tangential_forces_in_vertical_balance) tangential_vertical = warm_->tangential_vertical_N;
-    std::array<double, 2> previous_tangential{0.0, 0.0}, previous_residual{0.0, 0.0};
-    double previous_roll = 0.0, previous_mismatch = 0.0;
-    std::array<double, 2> bracket_lo{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-    std::array<double, 2> bracket_hi{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-    std::array<double, 2> heights{0.0, 0.0};
-    std::array<double, 2> overlap{0.08e-3, 0.08e-3};
-    if (stepped) overlap = warm_->overlap_m;
-    WheelsetState state = input;
-    for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
-      for (std::size_t k = 0; k < 2; ++k) {
-        heights[k] = solve_height(track_, sides[k], state.position, loads[k] - tangential_vertical[k], options_,
-                                  overlap[k], normal[k], iterations[k], *warm_);
-      }
-      bool settled = true;
-      if (options_.loads->balance_roll) {
-        // One rigid axle: the wheels' heights must agree. The first step turns the axle about its
-        // centre (the left wheel rises by roll × its lever); then secant steps, since in flange
-        // contact each wheel's own height also moves with the roll.
-        const double mismatch = heights[1] - heights[0];
-        const double roll = state.position.roll_rad;
-        double next = roll + mismatch / (2.0 * track_.wheel_profile_origin_y_m(WheelSide::left));
-        if (pass > 0 && mismatch != previous_mismatch) next = roll - mismatch * (roll - previous_roll) / (mismatch - previous_mismatch);
-        previous_roll = roll;
-        previous_mismatch = mismatch;
-        settled = std::abs(mismatch) < kHeightTolerance_m;
-        if (!settled) state.position.roll_rad = next;
-      }
-      state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
-      std::array<double, 2> new_tangential{0.0, 0.0};
-      for (std::size_t k = 0; k < 2; ++k) {
-        WheelsetState wheel_state = state;
-        wheel_state.position.vertical_displacement_m = heights[k];
-        result.wheels[k] = finish_wheel(track_, sides[k], wheel_state, normal[k], options_);
-        result.wheels[k].load_iterations = iterations[k];
-        if (options_.tangential_forces_in_vertical_balance)
-          new_tangential[k] = tangential_vertical_force(result.wheels[k], balance_index(options_));
-        const double tolerance = pass < kStrictBalancePasses ? kTangentialBalanceTolerance : kCoarseTangentialBalanceTolerance;
-        settled = settled && std::abs(new_tangential[k] - tangential_vertical[k]) <=
-                                 std::max(options_.load_tolerance, tolerance) * loads[k];
-      }
-      if (settled) break;
-      // The tangential part T is a fixed point T = g(T) with g'(T) near −1 in flange contact (F2
-      // saturated, γ steep): secant steps on the residual r(T) = g(T) − T, which falls with T, kept
-      // inside the bracket of the T values seen with r > 0 and r < 0 (bisection when a secant step
-      // leaves it). The discretisation makes g jump where elements enter the patch: when the bracket
-      // has shrunk to kBracketTolerance of the load around such a jump, its middle is the answer.
-      for (std::size_t k = 0; k < 2; ++k) {
-        const double T = tangential_vertical[k];
-        const double residual = new_tangential[k] - T;
-        if (residual > 0.0) bracket_lo[k] = std::max(bracket_lo[k], T);
-        if (residual < 0.0) bracket_hi[k] = std::min(bracket_hi[k], T);
-        double next = new_tangential[k];
-        if (pass > 0 && residual != previous_residual[k])
-          next = T - residual * (T - previous_tangential[k]) / (residual - previous_residual[k]);
-        const bool bracketed = std::isfinite(bracket_lo[k]) && std::isfinite(bracket_hi[k]);
-        if (bracketed && !(next > bracket_lo[k] && next < bracket_hi[k])) next = 0.5 * (bracket_lo[k] + bracket_hi[k]);
-        previous_tangential[k] = T;
-        previous_residual[k] = residual;
-        tangential_vertical[k] = next;
-      }
-      bool bracket_closed = true;
-      for (std::size_t k = 0; k < 2; ++k)
-        bracket_closed = bracket_closed && bracket_hi[k] - bracket_lo[k] <= kBracketTolerance * loads[k];
-      if (bracket_closed) break;
-      if (pass + 1 >= kMaximumBalanceIterations) {
-        throw Error(ErrorKind::not_converged,
-                    fmt::format("wheelset: the vertical balance of the wheels did not settle in {} passes (the "
-                                "tangential forces' vertical part still changes by {:.3g} N and {:.3g} N)",
-                                kMaximumBalanceIterations, new_tangential[0] - previous_tangential[0],
-                                new_tangential[1] - previous_tangential[1]));
-      }
+    if (settled) break;
+    for (std::size_t k = 0; k < 2; ++k) tangential[k].step(pass, new_tangential[k]);
+    if (tangential[0].bracket_closed(loads[0]) && tangential[1].bracket_closed(loads[1])) break;
+    if (pass + 1 >= kMaximumBalanceIterations) {
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("wheelset: the vertical balance of the wheels did not settle in {} passes (the "
+                              "tangential forces' vertical part still changes by {:.3g} N and {:.3g} N)",
+                              kMaximumBalanceIterations, new_tangential[0] - tangential[0].previous_N,
+                              new_tangential[1] - tangential[1].previous_N));
     }
-    result.state = state;
-    warm_->overlap_m = overlap;
-    warm_->tangential_vertical_N = tangential_vertical;
-    warm_->last_position = input.position;
   }
+  result.state = state;
+  warm.overlap_m = overlap;
+  for (std::size_t k = 0; k < 2; ++k) warm.tangential_vertical_N[k] = tangential[k].value_N;
+  warm.last_position = input.position;
+}
 
+// The wheelset's totals (a lifted wheel refused unless allowed), every number finite.
+void assemble_totals(const WheelsetOptions& options, const WheelsetState& input, WheelsetResult& result) {
   for (std::size_t k = 0; k < 2; ++k) {
-    if (result.wheels[k].patches.empty() && !options_.allow_wheel_lift) {
+    if (result.wheels[k].patches.empty() && !options.allow_wheel_lift) {
       throw Error(ErrorKind::no_contact,
                   fmt::format("wheelset: the {} wheel does not touch its rail at y = {:.3f} mm, z = {:.3f} mm "
                               "(lifted; allow_wheel_lift accepts this with zero forces)",
-                              side_name(sides[k]), input.position.lateral_displacement_m / kMm,
+                              side_name(kSides[k]), input.position.lateral_displacement_m / kMm,
                               input.position.vertical_displacement_m / kMm));
     }
     for (std::size_t i = 0; i < 3; ++i) result.force_track_N[i] += result.wheels[k].force_track_N[i];
   }
-  result.solver_force_track_N.assign(options_.solvers.size(), Vector3{});
+  result.solver_force_track_N.assign(options.solvers.size(), Vector3{});
   for (const WheelResult& w : result.wheels)
     for (std::size_t s = 0; s < w.solver_force_track_N.size(); ++s)
       for (std::size_t i = 0; i < 3; ++i) result.solver_force_track_N[s][i] += w.solver_force_track_N[s][i];
   require_finite(result);
+}
+
+}  // namespace
+
+WheelsetResult Wheelset::evaluate_rolling(const WheelsetState& input) {
+  WheelsetResult result;
+  result.state = input;
+  if (options_.loads)
+    evaluate_by_load(track_, options_, *warm_, result);
+  else
+    evaluate_by_position(track_, options_, *warm_, result);
+  assemble_totals(options_, input, result);
   return result;
 }
 
