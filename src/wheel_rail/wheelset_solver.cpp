@@ -407,6 +407,65 @@ void solve_conformal(const InterpenetrationRegion& region, const SurfaceSolution
   }
 }
 
+// A planar patch's tangential solutions (its creepage and normal force already in `patch`), with
+// its origin moved to the centre of pressure; `elements` are those in contact.
+void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Mesh& mesh,
+                  const std::vector<double>& pressure_Pa, const std::vector<std::size_t>& elements,
+                  const WheelsetOptions& options, WheelsetPatch& patch) {
+  // The left wheel's patches are solved as the mirror image of a right wheel's (x2 -> −x2, so
+  // η, φ, F2, M3 change sign): both wheels then see the same discretisation, and the left wheel
+  // is the mirrored right wheel to rounding (nH-FastSim's coarse blocks and FastSim's strips are
+  // laid out from one side of the patch).
+  const bool mirror = side == WheelSide::left;
+  const double s2 = mirror ? -1.0 : 1.0;
+  Mesh solve_mesh = mesh;
+  std::vector<double> solve_pressure = pressure_Pa;
+  std::vector<std::size_t> solve_elements = elements;
+  if (mirror) {
+    solve_mesh.x2_first_m = -mesh.x2(mesh.n2 - 1);
+    for (int i2 = 0; i2 < mesh.n2; ++i2)
+      for (int i1 = 0; i1 < mesh.n1; ++i1)
+        solve_pressure[solve_mesh.index(i1, mesh.n2 - 1 - i2)] = pressure_Pa[mesh.index(i1, i2)];
+    solve_elements.clear();
+    for (std::size_t k = 0; k < solve_mesh.size(); ++k)
+      if (solve_pressure[k] > 0.0) solve_elements.push_back(k);
+  }
+  ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
+  // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
+  // corner, which jumps by an element as elements enter): the forces then change continuously.
+  if (std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) != options.solvers.end() &&
+      contact.elements().count() >= kMinimumElementsForK2) {
+    // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
+    const int factor = options.nh_fastsim.flexibility_coarsening;
+    const CoarseBlocks blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(contact);
+    if (blocks != CoarseBlocks{1, 1})
+      contact = detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, blocks);
+  }
+  // The patch's origin moved to the centre of pressure (x1c, x2c from the reference point):
+  // the rigid slip (ξ − φ x2, η + φ x1) gives the creepages there.
+  patch.pressure_centre_x1_m = -contact.x1_shift_m();
+  patch.pressure_centre_x2_m = -s2 * contact.x2_shift_m();
+  const Creepage c{patch.creepage.xi, s2 * patch.creepage.eta, s2 * patch.creepage.phi};  // in the solve frame
+  const double x2c = s2 * patch.pressure_centre_x2_m;
+  const Creepage at_centre{c.xi - c.phi * x2c, c.eta + c.phi * patch.pressure_centre_x1_m, c.phi};
+  // Semi-axes of the equivalent ellipse for classical FastSim: the extents' ratio, the area kept.
+  const std::array<double, 2> ab = equivalent_semi_axes(mesh, elements);
+  // nH-FastSim on a patch of several connected lobes: each lobe with its own flexibilities
+  // (NhFastSimPerLobe, docs/WHEELSET.md §8), coarsened as the caller asked (0: automatically).
+  const bool lobed = NhFastSimPerLobe::has_several_lobes(contact);
+  for (TangentialSolver s : options.solvers) {
+    PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobed
+                              ? solve_nh_fastsim_per_lobe(contact, at_centre, options)
+                              : solve_tangential(s, contact, at_centre, options, ab[0], ab[1]);
+    r.forces.F2_N *= s2;
+    r.forces.M3_Nm *= s2;
+    for (double& p2 : r.p2_Pa) p2 *= s2;
+    r.force_track_N = combine(region, r.forces.F1_N, r.forces.F2_N, patch.normal_force_N);
+    patch.solvers.push_back(std::move(r));
+  }
+  if (options.keep_tractions) patch.patch = std::move(contact);
+}
+
 // One patch on one contact surface with its creepages and tangential solutions.
 WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const Vector3& centre,
                            const InterpenetrationRegion& region, const SurfaceSolution& n,
@@ -452,62 +511,10 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
     }
     return patch;
   }
-  if (!n.area.strips.empty()) {
+  if (!n.area.strips.empty())
     solve_conformal(region, n, motion, centre, options, patch);
-    return patch;
-  }
-  // The left wheel's patches are solved as the mirror image of a right wheel's (x2 -> −x2, so
-  // η, φ, F2, M3 change sign): both wheels then see the same discretisation, and the left wheel
-  // is the mirrored right wheel to rounding (nH-FastSim's coarse blocks and FastSim's strips are
-  // laid out from one side of the patch).
-  const bool mirror = side == WheelSide::left;
-  const double s2 = mirror ? -1.0 : 1.0;
-  Mesh solve_mesh = mesh;
-  std::vector<double> solve_pressure = n.normal.pressure_Pa;
-  std::vector<std::size_t> solve_elements = elements;
-  if (mirror) {
-    solve_mesh.x2_first_m = -mesh.x2(mesh.n2 - 1);
-    for (int i2 = 0; i2 < mesh.n2; ++i2)
-      for (int i1 = 0; i1 < mesh.n1; ++i1)
-        solve_pressure[solve_mesh.index(i1, mesh.n2 - 1 - i2)] = n.normal.pressure_Pa[mesh.index(i1, i2)];
-    solve_elements.clear();
-    for (std::size_t k = 0; k < solve_mesh.size(); ++k)
-      if (solve_pressure[k] > 0.0) solve_elements.push_back(k);
-  }
-  ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
-  // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
-  // corner, which jumps by an element as elements enter): the forces then change continuously.
-  if (std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) != options.solvers.end() &&
-      contact.elements().count() >= kMinimumElementsForK2) {
-    // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
-    const int factor = options.nh_fastsim.flexibility_coarsening;
-    const CoarseBlocks blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(contact);
-    if (blocks != CoarseBlocks{1, 1})
-      contact = detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, blocks);
-  }
-  // The patch's origin moved to the centre of pressure (x1c, x2c from the reference point):
-  // the rigid slip (ξ − φ x2, η + φ x1) gives the creepages there.
-  patch.pressure_centre_x1_m = -contact.x1_shift_m();
-  patch.pressure_centre_x2_m = -s2 * contact.x2_shift_m();
-  const Creepage c{patch.creepage.xi, s2 * patch.creepage.eta, s2 * patch.creepage.phi};  // in the solve frame
-  const double x2c = s2 * patch.pressure_centre_x2_m;
-  const Creepage at_centre{c.xi - c.phi * x2c, c.eta + c.phi * patch.pressure_centre_x1_m, c.phi};
-  // Semi-axes of the equivalent ellipse for classical FastSim: the extents' ratio, the area kept.
-  const std::array<double, 2> ab = equivalent_semi_axes(mesh, elements);
-  // nH-FastSim on a patch of several connected lobes: each lobe with its own flexibilities
-  // (NhFastSimPerLobe, docs/WHEELSET.md §8), coarsened as the caller asked (0: automatically).
-  const bool lobed = NhFastSimPerLobe::has_several_lobes(contact);
-  for (TangentialSolver s : options.solvers) {
-    PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobed
-                              ? solve_nh_fastsim_per_lobe(contact, at_centre, options)
-                              : solve_tangential(s, contact, at_centre, options, ab[0], ab[1]);
-    r.forces.F2_N *= s2;
-    r.forces.M3_Nm *= s2;
-    for (double& p2 : r.p2_Pa) p2 *= s2;
-    r.force_track_N = combine(region, r.forces.F1_N, r.forces.F2_N, patch.normal_force_N);
-    patch.solvers.push_back(std::move(r));
-  }
-  if (options.keep_tractions) patch.patch = std::move(contact);
+  else
+    solve_planar(side, region, mesh, n.normal.pressure_Pa, elements, options, patch);
   return patch;
 }
 
