@@ -14,7 +14,9 @@
 
 #include "cli_run.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/geometry.hpp"
 #include "railcontact/normal.hpp"
+#include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
 
 namespace railcontact {
@@ -89,6 +91,33 @@ TEST(Wheelset, MeetsTheWheelLoads) {
   EXPECT_NEAR(b.wheels[1].force_track_N[2], 110e3, 110e3 * 1e-3);
   EXPECT_NEAR(b.wheels[0].vertical_displacement_m, b.wheels[1].vertical_displacement_m, 1e-8);
   EXPECT_LT(b.state.position.roll_rad, 0.0);  // the left wheel (more load) lower
+}
+
+// By load, a time step starts from the previous step's heights and contact stiffness; where those
+// guesses lead to a trial height that cannot be solved (on the 1:20 rail at yaw 10 mrad, 0.1 mm
+// from the last state, a Newton step pressed the flange until its potential area ran off the rail
+// profile), the state is solved afresh: a warm wheelset gives every state a fresh one gives.
+TEST(Wheelset, AWarmTimeStepByLoadSolvesWhatAFreshWheelsetSolves) {
+  const WheelRailSetup setup = read_wheel_rail_setup(std::filesystem::path(RAILCONTACT_DATA_DIR) / "wheel_rail" /
+                                                     "s1002_uic60_1in20.json");
+  const WheelsetTrack rail_1in20(read_profile(setup.wheel_profile, ProfileReadOptions{.role = ProfileKind::wheel}),
+                                 read_profile(setup.rail_profile, ProfileReadOptions{.role = ProfileKind::rail}),
+                                 setup.track);
+  WheelsetOptions o;
+  o.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
+  o.balance_solver = TangentialSolver::nh_fastsim;
+  Wheelset warm(rail_1in20, o);
+  for (const double y : {-6.4e-3, -6.5e-3}) {
+    WheelsetState s;
+    s.position.lateral_displacement_m = y;
+    s.position.yaw_rad = 0.01;
+    const WheelsetResult stepped = warm.evaluate(s);
+    const WheelsetResult fresh = Wheelset(rail_1in20, o).evaluate(s);
+    for (int w = 0; w < 2; ++w)
+      for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(stepped.wheels[w].force_track_N[i], fresh.wheels[w].force_track_N[i], 1e-3 * 0.3 * 98.1e3)
+            << y << " " << w << " " << i;
+  }
 }
 
 // By position: a patch that has just appeared (overlap of a few micrometres) carries a small,

@@ -22,16 +22,22 @@ namespace {
 constexpr std::size_t kMaximumWheelsetTableNodes = 20000;
 
 // The coarse copy of a patch for FastSim at lookup: blocks of factor × factor elements, the largest
-// factor (at most kMaximumCoarsening) that leaves about `target` elements.
-int runtime_coarsening(const ContactPatch& fine, int target) {
+// factor (at most kMaximumCoarsening) that leaves about `target` elements; on a steep patch
+// (|sin γ| > 0.5: flange contact, whose spin sin γ / r is several per metre) at most 2 × 2 blocks,
+// since FastSim's error grows with the spin times the block's size: on S1002/UIC60 at y = −6.6 mm
+// (γ = 1.2 rad, 4600 elements) 3 × 3 blocks put the table's lateral force 3.0 % of μFz from the
+// wheelset on the fly, 2 × 2 blocks 0.9 % (docs/WHEELSET_TABLE.md §3).
+int runtime_coarsening(const ContactPatch& fine, int target, double contact_angle_rad) {
   const double ratio = static_cast<double>(fine.elements().count()) / std::max(1, target);
-  return std::clamp(static_cast<int>(std::floor(std::sqrt(std::max(1.0, ratio)))), 1, kMaximumCoarsening);
+  const int largest = std::abs(std::sin(contact_angle_rad)) > 0.5 ? 2 : kMaximumCoarsening;
+  return std::clamp(static_cast<int>(std::floor(std::sqrt(std::max(1.0, ratio)))), 1, largest);
 }
 
 // The coarse copy of `fine` into mesh and pressure. Returns the coarse copy's centre of pressure
 // measured from the fine one's (zero when the copy is the patch itself, factor 1).
-std::array<double, 2> keep_runtime_copy(const ContactPatch& fine, int target, Mesh& mesh, std::vector<double>& pressure_Pa) {
-  const int factor = runtime_coarsening(fine, target);
+std::array<double, 2> keep_runtime_copy(const ContactPatch& fine, int target, double contact_angle_rad, Mesh& mesh,
+                                        std::vector<double>& pressure_Pa) {
+  const int factor = runtime_coarsening(fine, target, contact_angle_rad);
   const ContactPatch coarse = coarsened(fine, factor);
   mesh = coarse.mesh();
   pressure_Pa.assign(coarse.mesh().size(), 0.0);
@@ -67,7 +73,8 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   // of pressure; the coarse copy is re-centred on its own, a fraction of an element away. Centres
   // are kept in the contact frame: x2 = s2 × (solve frame x2).
   const double s2 = side == WheelSide::left ? -1.0 : 1.0;
-  const std::array<double, 2> coarse = keep_runtime_copy(patch.patch, runtime_elements, t.runtime_mesh, t.runtime_pressure_Pa);
+  const std::array<double, 2> coarse =
+      keep_runtime_copy(patch.patch, runtime_elements, region.contact_angle_rad, t.runtime_mesh, t.runtime_pressure_Pa);
   const double fine_x1 = t.pressure_centre_x1_m, fine_x2 = t.pressure_centre_x2_m;
   t.pressure_centre_x1_m += coarse[0];
   t.pressure_centre_x2_m += s2 * coarse[1];
@@ -86,7 +93,8 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
       l.flexibility = lobe.flexibility;
       const int target = std::max(
           20, static_cast<int>(std::lround(runtime_elements * static_cast<double>(lobe.patch.elements().count()) / fine_elements)));
-      const std::array<double, 2> lobe_coarse = keep_runtime_copy(lobe.patch, target, l.runtime_mesh, l.runtime_pressure_Pa);
+      const std::array<double, 2> lobe_coarse =
+          keep_runtime_copy(lobe.patch, target, region.contact_angle_rad, l.runtime_mesh, l.runtime_pressure_Pa);
       l.pressure_centre_x1_m = fine_x1 + lobe.x1_centre_m + lobe_coarse[0];
       l.pressure_centre_x2_m = fine_x2 + s2 * (lobe.x2_centre_m + lobe_coarse[1]);
       t.lobes.push_back(std::move(l));

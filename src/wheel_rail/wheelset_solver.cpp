@@ -897,11 +897,30 @@ void evaluate_by_position(const WheelsetTrack& track, const WheelsetOptions& opt
 // vertical force of its patches equals its load; optionally with the tangential forces' vertical
 // components, from the previous pass. In a time step (a state near the last one, the warm start)
 // the heights and the tangential parts start from the last ones.
+void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
+                   bool stepped, WheelsetResult& result);
+
 void evaluate_by_load(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
                       WheelsetResult& result) {
+  if (warm.near_last_position(result.state.position)) {
+    // A time step: from the last heights, stiffnesses and tangential parts. Should those guesses
+    // lead the iteration to a height that cannot be solved (a trial overlap whose potential area
+    // runs off the rail profile, where the state itself can be), the state is solved afresh.
+    WheelsetResult stepped = result;
+    try {
+      balance_loads(track, options, warm, true, stepped);
+      result = std::move(stepped);
+      return;
+    } catch (const Error&) {
+    }
+  }
+  balance_loads(track, options, warm, false, result);
+}
+
+void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
+                   bool stepped, WheelsetResult& result) {
   const WheelsetState input = result.state;
   const std::array<double, 2> loads{options.loads->right_N, options.loads->left_N};
-  const bool stepped = warm.near_last_position(input.position);
   if (!stepped) warm.stiffness_N_per_m = {0.0, 0.0};
   std::array<TangentialBalance, 2> tangential{};
   if (stepped && options.tangential_forces_in_vertical_balance)
