@@ -160,9 +160,10 @@ struct WheelsetState {
 // The contact surface of each patch (docs/WHEELSET.md §4 "Conformal contact"): planar, the patch
 // in the tangent plane at its reference point with one contact angle (Kalker's CONTACT's planar
 // approach), or conformal, curved with the profiles across the rolling direction, each strip of
-// the patch in its own frame (CONTACT's conformal approach). The conformal surface is solved by the
-// exact solvers (exact, exact-regularised). automatic chooses per patch: planar where its contact
-// angle hardly varies, conformal where it does, both blended between (ContactSurfaceSwitch).
+// the patch in its own frame (CONTACT's conformal approach), by every tangential solver (the
+// strips' own creepages; nH-FastSim with K2 on the developed patch). automatic chooses per patch:
+// planar where its contact angle hardly varies, conformal where it does, both blended between
+// (ContactSurfaceSwitch).
 enum class ContactSurface { planar, conformal, automatic };
 // "planar", "conformal", "auto"
 const char* contact_surface_name(ContactSurface surface);
