@@ -58,6 +58,9 @@ TEST(ContactSurfaceStudy, ComparesTheSurfacesPerPatchAndSweepsTheBlend) {
   text << md.rdbuf();
   EXPECT_NE(text.str().find("| measure | patches | conformal − planar Fx |"), std::string::npos);
   EXPECT_NE(text.str().find("| s1002_uic60 |"), std::string::npos);
+  // The sweep's end is said, with its reason: the flange climbing beyond y = -9 mm.
+  EXPECT_NE(text.str().find("- s1002_uic60 at yaw +0 mrad: y = -10.00 mm: "), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("flange is climbing"), std::string::npos);
 
   const CommandResult bad = run_cli("study surfaces --fine-y-step-m 0.002 --y-step-m 0.001 --out " + dir.string());
   EXPECT_EQ(bad.exit_code, 2);

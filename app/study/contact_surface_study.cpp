@@ -129,7 +129,7 @@ WindowSummary sweep_window(const WheelsetTrack& track, const ContactSurfaceStudy
 
 void write_summary(const ContactSurfaceStudyOptions& o, const std::array<Bin, kBinEdges.size() - 1>& bins,
                    const std::vector<WindowSummary>& windows, std::size_t states, std::size_t mismatched,
-                   std::ostream& md) {
+                   const std::vector<std::string>& stops, std::ostream& md) {
   const ContactSurfaceSwitch& band = o.surface_switch;
   fmt::print(md, "# The planar and the conformal contact surface\n\n");
   fmt::print(md,
@@ -155,6 +155,8 @@ void write_summary(const ContactSurfaceStudyOptions& o, const std::array<Bin, kB
     fmt::print(md, "\n{} wheel states are left out: the surfaces found different numbers of patches there (a patch "
                    "appearing at slightly different heights).\n",
                mismatched);
+  fmt::print(md, "\nWhere each sweep ended (the flange climbing, as a rule):\n\n");
+  for (const std::string& stop : stops) fmt::print(md, "- {}\n", stop);
   fmt::print(md,
              "\n## Smoothness where the automatic surface blends\n\n"
              "Per set-up at yaw {:+.0f} mrad, the step of the sweep where the right wheel's conformal weight changes most, "
@@ -193,6 +195,7 @@ void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream
   std::array<Bin, kBinEdges.size() - 1> bins{};
   std::vector<WindowSummary> windows;
   std::size_t states = 0, mismatched = 0;
+  std::vector<std::string> stops;  // per sweep: where and why it ended
   const double mu = Solvers::options(o, ContactSurface::planar).friction_coefficient;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t sweeps = files.size() * o.yaws_rad.size();
@@ -210,7 +213,10 @@ void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream
           r = solvers.evaluate(rolling_at(y, yaw));
         } catch (const Error& e) {
           if (k == 0) throw Error(e.kind(), fmt::format("study surfaces: {} at y = 0, yaw {:g} rad: {}", name, yaw, e.what()));
-          break;  // the flange climbs (or the contact is lost): the sweep's end
+          // The sweep's end: the flange climbs (or the contact is lost); said where and why.
+          stops.push_back(fmt::format("{} at yaw {:+.0f} mrad: y = {:.2f} mm: {}", name, yaw * 1e3, y / kMm, e.what()));
+          fmt::print(log, "{}\n", stops.back());
+          break;
         }
         ++states;
         ys.push_back(y);
@@ -260,7 +266,7 @@ void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream
   fine.close();
   if (fine.fail()) throw output::write_error(out.path("smoothness.csv"), errno);
   std::ofstream md = output::open_output_file(out.path("summary.md"));
-  write_summary(o, bins, windows, states, mismatched, md);
+  write_summary(o, bins, windows, states, mismatched, stops, md);
   md.close();
   if (md.fail()) throw output::write_error(out.path("summary.md"), errno);
   if (o.figures) output::draw_figures("plot_contact_surfaces.py", out.staging(), log);
