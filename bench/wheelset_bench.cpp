@@ -13,7 +13,8 @@
 //                              with Eq 8's slip direction instead of the default): y within
 //                              ±0.5 mm of the argument in 1 µm steps, 98.1 kN per wheel, 2 mrad of
 //                              yaw; the table (0.2 mm elements, y in 0.1 mm steps over ±0.5 mm,
-//                              90/100/110 kN) is built before the timing
+//                              90/100/110 kN) is built before the timing; ...Auto: the table
+//                              built on the automatic contact surface
 // Counters: patches, elements in contact, and the normal solver's iterations per patch of the last
 // evaluation.
 // The argument is y in micrometres (BM_WheelsetByLoad and BM_WheelsetTable: each wheel's own height
@@ -210,12 +211,14 @@ void BM_WheelsetStageTangential(benchmark::State& state) {
     }
 }
 
-void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction, bool tangential_in_balance = false) {
+void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction, bool tangential_in_balance = false,
+                         ContactSurface surface = ContactSurface::planar) {
   const double y0 = static_cast<double>(state.range(0)) * 1e-6;
   std::vector<double> ys;
   for (int k = -5; k <= 5; ++k) ys.push_back(y0 + k * 0.1e-3);
   WheelsetTableOptions options;
   options.wheelset.nh_fastsim.bound.slip_direction = slip_direction;
+  options.wheelset.contact_surface = surface;
   const WheelsetTable table = build_wheelset_table(track(), {ys, {0.0}, {90e3, 100e3, 110e3}}, options);
   WheelsetState s;
   s.position.yaw_rad = 2e-3;
@@ -238,6 +241,10 @@ void BM_WheelsetTableRadial(benchmark::State& state) { wheelset_table_step(state
 void BM_WheelsetTableBalanced(benchmark::State& state) {
   wheelset_table_step(state, SlipDirection::flexibility_weighted, true);
 }
+// A table built on the automatic surface: the flange patch (weight 1) marched strip by strip.
+void BM_WheelsetTableAuto(benchmark::State& state) {
+  wheelset_table_step(state, SlipDirection::flexibility_weighted, false, ContactSurface::automatic);
+}
 
 BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6300)->Arg(-6400)->Arg(-6500)->Arg(-6600)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStageSearch)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
@@ -252,6 +259,7 @@ BENCHMARK(BM_WheelsetStepConformal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillis
 BENCHMARK(BM_WheelsetTable)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableRadial)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableBalanced)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WheelsetTableAuto)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -71,6 +71,16 @@ const WheelsetTable& table() {
   return t;
 }
 
+// A table file as an older format wrote it: without format 6's contact surface and conformal parts.
+nlohmann::json before_format_6(nlohmann::json file) {
+  file.erase("contact_surface");
+  file.erase("contact_surface_switch");
+  for (nlohmann::json& node : file["nodes"])
+    for (nlohmann::json& wheel : node["wheels"])
+      for (nlohmann::json& patch : wheel) patch.erase("conformal");
+  return file;
+}
+
 TEST(WheelsetTable, AtANodeWithTheFullPatchItIsTheWheelsetSolvedOnTheFly) {
   for (double y : {-2e-3, 0.0, 1e-3}) {
     for (double load : {90e3, 110e3}) {
@@ -320,7 +330,7 @@ TEST(WheelsetTable, MismatchesNameEverySettingItWasNotBuiltFor) {
   is(4, WheelsetTableSetting::slip_direction, "radial", "flexibility-weighted");
   EXPECT_EQ(m[5].setting, WheelsetTableSetting::traction_bound_skew);
   // A table of an older recipe (format 3: not recorded) differs from this railcontact's.
-  nlohmann::json old = nlohmann::json::parse(wheelset_table_json(table()));
+  nlohmann::json old = before_format_6(nlohmann::json::parse(wheelset_table_json(table())));
   old.erase("nh_fastsim_recipe");
   old.erase("reference_weighting");
   old.erase("creepage_point");
@@ -452,7 +462,16 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   // Format 3 names the slip direction; format 1-2 files evaluate with the radial one (Eq 8).
   // Format 4 records the nH-FastSim recipe; older files load with recipe 0 (not recorded).
   nlohmann::json slip = nlohmann::json::parse(wheelset_table_json(table()));
-  EXPECT_EQ(slip["format_version"], 5);
+  EXPECT_EQ(slip["format_version"], 6);
+  EXPECT_EQ(slip["contact_surface"], "planar");
+  EXPECT_TRUE(slip["nodes"][0]["wheels"][0][0]["conformal"].is_null());
+  nlohmann::json band = slip;
+  band["contact_surface_switch"] = {0.03, 0.02};
+  EXPECT_NE(message(band.dump()).find("contact_surface_switch: "), std::string::npos) << message(band.dump());
+  band = slip;
+  band["contact_surface"] = "curved";
+  EXPECT_NE(message(band.dump()).find("contact_surface: unknown contact surface 'curved'"), std::string::npos)
+      << message(band.dump());
   EXPECT_EQ(slip["reference_weighting"], "squared-gap");
   EXPECT_EQ(slip["creepage_point"], "undeformed wheel surface");
   EXPECT_EQ(slip["nh_fastsim_recipe"], kNhFastSimRecipe);
@@ -461,6 +480,7 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   newer["nh_fastsim_recipe"] = kNhFastSimRecipe + 1;
   EXPECT_NE(message(newer.dump()).find("nh_fastsim_recipe = 4 must lie in [0, 3]"), std::string::npos)
       << message(newer.dump());
+  slip = before_format_6(slip);
   slip.erase("nh_fastsim_recipe");
   slip.erase("reference_weighting");
   slip.erase("creepage_point");

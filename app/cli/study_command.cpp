@@ -161,8 +161,7 @@ void add_profile_pair_study(CLI::App* study, Action& action) {
   cmd->add_flag("!--no-table", options->table, "skip the wheelset table against the wheelset on the fly");
   auto surface = std::make_shared<std::string>();
   cmd->add_option("--contact-surface", *surface,
-                  "the sweeps' contact surface: planar (default), conformal or auto (docs/WHEELSET.md §4); the tables are "
-                  "planar");
+                  "the sweeps' and the tables' contact surface: planar (default), conformal or auto (docs/WHEELSET.md §4)");
   auto threads = std::make_shared<std::string>();
   cmd->add_option("--threads", *threads,
                   "threads for the wheelset tables' nodes (a whole number >= 1; default: all cores); the files do not "

@@ -249,6 +249,7 @@ std::optional<std::string> requested_by(WheelsetTableSetting setting, const Whee
     case WheelsetTableSetting::traction_bound_skew: return option_or_case(nullptr, "default");
     case WheelsetTableSetting::nh_fastsim_recipe: return std::string("this railcontact's");
     case WheelsetTableSetting::contact_definition: return std::string("this railcontact's");
+    case WheelsetTableSetting::contact_surface: return option_or_case("--contact-surface", "[mesh] contact_surface");
   }
   return std::nullopt;
 }
@@ -276,11 +277,6 @@ TableUse table_use(const WheelsetArguments& a, const CLI::App& sub, const Wheels
   require(options.loads.has_value(), "--table needs the wheels' loads (by load): the case gives the vertical position");
   require(options.solvers.size() == 1 && options.solvers.front() == TangentialSolver::nh_fastsim,
           "--table gives nh-fastsim only: leave out --solver (or give --solver nh-fastsim)");
-  require(options.contact_surface == ContactSurface::planar, [&] {
-    return fmt::format("--contact-surface {} cannot be evaluated from --table {}: its nodes hold planar "
-                       "patches; leave out --table to solve the conformal surface",
-                       contact_surface_name(options.contact_surface), a.table);
-  });
   require(!c.state.velocity.free_rolling, [&] {
     return fmt::format("--free-rolling cannot be evaluated from --table {}: free rolling is solved on the fly; give "
                        "--wheel-angular-velocity-rad-per-s or --extra-creepage with --table, or leave out --table",

@@ -31,6 +31,7 @@ struct BuildArguments {
   std::vector<double> loads_N{80e3, 100e3, 120e3};
   double element_size_m = 0.2e-3;
   std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
+  std::string contact_surface;      // --contact-surface (planar, conformal, auto)
   std::string threads;
   int runtime_elements = kWheelsetTableRuntimeElements;
 };
@@ -84,6 +85,13 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
       throw Error(fmt::format("--reference-weighting: {}", e.what()));
     }
   }
+  if (sub.count("--contact-surface") > 0) {
+    try {
+      options.wheelset.contact_surface = parse_contact_surface(a.contact_surface);
+    } catch (const Error& e) {
+      throw Error(fmt::format("--contact-surface: {}", e.what()));
+    }
+  }
   require(a.runtime_elements >= 20 && a.runtime_elements <= 100000, [&] {
     return fmt::format("--runtime-elements {} must lie in [20, 100000] (elements of the coarse patch FastSim runs on at "
                        "lookup)",
@@ -98,9 +106,10 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
 
   if (rank0)
     fmt::print(std::cerr,
-               "wheelset-table build: {} y values x {} yaw(s) x {} load(s) = {} nodes, elements {:g} mm, {} thread(s){}\n",
+               "wheelset-table build: {} y values x {} yaw(s) x {} load(s) = {} nodes, elements {:g} mm, {} surface, {} "
+               "thread(s){}\n",
                grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
-               options.wheelset.element_size_m * 1e3, threads,
+               options.wheelset.element_size_m * 1e3, contact_surface_name(options.wheelset.contact_surface), threads,
                study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
   const auto start = std::chrono::steady_clock::now();
   std::size_t next_report = 0;
@@ -171,6 +180,9 @@ void add_wheelset_table_command(CLI::App& app, Action& action) {
   build->add_option("--reference-weighting", args->reference_weighting,
                     "the nodes' reference points: squared-gap (default, as Kalker's CONTACT) or depth (docs/WHEELSET.md "
                     "§4); recorded in the table");
+  build->add_option("--contact-surface", args->contact_surface,
+                    "the nodes' contact surface: planar (default), conformal or auto (docs/WHEELSET.md §4); recorded in "
+                    "the table, and a lookup asks for the same");
   build->add_option("--threads", args->threads,
                     "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any "
                     "number");

@@ -221,11 +221,7 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
     options.contact_surface = o.contact_surface;
     const int steps = static_cast<int>(std::floor(-geometry.climb_y_m / o.y_step_m + 1e-9));
     std::optional<WheelsetTable> table;
-    if (o.table) {
-      WheelsetOptions planar = options;
-      planar.contact_surface = ContactSurface::planar;
-      table = build_table(track, planar, steps, o, log);
-    }
+    if (o.table) table = build_table(track, options, steps, o, log);  // on the sweeps' contact surface
     for (const double yaw : o.yaws_rad) {
       Wheelset wheelset(track, options);
       SweepSummary s;

@@ -22,7 +22,7 @@ struct ProfilePairStudyOptions {
   double element_size_m = 0.2e-3;  // the accuracy targets' mesh
   double y_step_m = 0.1e-3;
   std::vector<double> yaws_rad{0.0, 0.01, -0.01};
-  ContactSurface contact_surface = ContactSurface::planar;  // of the sweeps (the tables are planar)
+  ContactSurface contact_surface = ContactSurface::planar;  // of the sweeps and the tables
   // Build a wheelset table per set-up and compare it with the sweep's on-the-fly states.
   bool table = true;
   int threads = 1;  // the table builds' threads

@@ -292,6 +292,9 @@ struct WheelsetPatch {
   // stored as solved, mirrored into a right wheel's frame (x2 -> −x2; the tractions p2 of
   // PatchSolverResult are given in the patch's own frame, with their sign restored).
   ContactPatch patch;
+  // With keep_tractions, a patch that blends the two surfaces (0 < conformal_weight < 1) keeps each
+  // surface's own patch, unblended (what the wheelset table stores of it); empty otherwise.
+  std::shared_ptr<const WheelsetPatch> planar_surface, conformal_surface;
   [[nodiscard]] const TangentialForces& forces() const { return solvers.front().forces; }
 };
 

@@ -166,6 +166,9 @@ struct WheelContactSearch {
 // and each strip has its own frame, turned about X1 from the region's (X2, X3) by angle_rad:
 //   t = cos(angle) X2 + sin(angle) X3,   n = cos(angle) X3 − sin(angle) X2.
 struct ConformalStrip {
+  // The strip's developed lateral coordinate: the rail profile's arc length from the reference
+  // point along X2 (m), the x2 of its column in the developed mesh.
+  double s_m = 0.0;
   // The strip's point midway between rail and wheel along X2 from the reference point (m): where
   // the strip lies in the tangent plane.
   double x2_m = 0.0;

@@ -63,6 +63,35 @@ struct WheelsetTableLobe {
   std::vector<double> runtime_pressure_Pa;
 };
 
+// One strip (column) of a conformal patch's runtime copy, in the runtime mesh's column order (the
+// solve frame: a left wheel's mirrored): its turn from the patch's X3 about X1 in the wheel's own
+// frame (ConformalStrip::angle_rad) and its creepage point on the undeformed wheel surface from the
+// wheelset centre (track frame, the node's position).
+struct WheelsetTableStrip {
+  double angle_rad = 0.0;
+  Vector3 point_from_wheelset_centre_m{};
+};
+
+// A patch's solution on the conformal surface (docs/WHEELSET.md §4 "Conformal contact"), for a table
+// built with the conformal or automatic surface: its own numbers and its runtime copy, on which a
+// lookup marches FastSim strip by strip with each strip's creepages, and sums every element's
+// traction and pressure in its strip's frame.
+struct WheelsetTableConformalPatch {
+  // The conformal surface's weight in the patch (WheelsetPatch::conformal_weight): 1 conformal; in
+  // (0, 1) blended with the planar surface's solution that the patch's other fields hold.
+  double weight = 1.0;
+  double normal_force_N = 0.0;         // Σ p3 S over the curved surface
+  Vector3 pressure_force_track_N{};    // the pressures along their strips' normals, summed
+  double area_m2 = 0.0;
+  std::size_t elements_in_contact = 0;
+  double max_pressure_Pa = 0.0;
+  double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;  // of the runtime copy, developed
+  Flexibility flexibility;  // L1-L3 of nH-FastSim on the developed patch
+  Mesh runtime_mesh;        // solve frame, origin at its centre of pressure
+  std::vector<double> runtime_pressure_Pa;
+  std::vector<WheelsetTableStrip> strips;  // one per runtime_mesh column
+};
+
 struct WheelsetTablePatch {
   Vector3 reference_point_track_m{};       // reference point, track frame (the node's y, yaw, height)
   // The creepage point (on the undeformed wheel surface, docs/WHEEL_RAIL.md §12) from the
@@ -93,6 +122,10 @@ struct WheelsetTablePatch {
   // whole_patch_weight): the lobes' forces blended with the whole patch's (FastSim on the runtime
   // patch with `flexibility`, then the whole patch's) with this weight in (0, 1); 0 otherwise.
   double whole_patch_weight = 0.0;
+  // A table of the conformal or automatic surface: the patch on the conformal surface where its
+  // weight is above 0. With weight 1 the fields above are the conformal solution's and carry no
+  // runtime copy; below 1 they are the planar surface's solution, blended with this one at lookup.
+  std::optional<WheelsetTableConformalPatch> conformal;
 };
 
 enum class WheelsetTableNodeStatus {
@@ -147,6 +180,10 @@ struct WheelsetTableMetadata {
   // reference points, creepages on the rail surface over the forward speed.
   ReferenceWeighting reference_weighting = ReferenceWeighting::squared_gap;
   bool creepage_on_wheel_surface = true;
+  // The contact surface of the build (format version 6; older: planar) and, for the automatic
+  // surface, its switch.
+  ContactSurface contact_surface = ContactSurface::planar;
+  ContactSurfaceSwitch contact_surface_switch{};
   std::string railcontact_version;
   std::string created_utc;
 };
@@ -186,14 +223,16 @@ enum class WheelsetTableSetting {
   traction_bound_skew,     // FastSim's traction bound (TractionBound::skew)
   nh_fastsim_recipe,       // kNhFastSimRecipe of the build (this railcontact computes with today's)
   contact_definition,      // the reference point's weighting and where the creepages are taken
+  contact_surface,         // planar, conformal or automatic (with its switch)
 };
 inline constexpr WheelsetTableSetting kWheelsetTableSettings[] = {
     WheelsetTableSetting::material,           WheelsetTableSetting::element_size,
     WheelsetTableSetting::flexibility_coarsening, WheelsetTableSetting::collocation_offset,
     WheelsetTableSetting::slip_direction,     WheelsetTableSetting::traction_bound_skew,
-    WheelsetTableSetting::nh_fastsim_recipe, WheelsetTableSetting::contact_definition};
+    WheelsetTableSetting::nh_fastsim_recipe, WheelsetTableSetting::contact_definition,
+    WheelsetTableSetting::contact_surface};
 // "material", "element-size", "flexibility-coarsening", "collocation-offset", "slip-direction",
-// "traction-bound-skew", "recipe", "contact-definition".
+// "traction-bound-skew", "recipe", "contact-definition", "contact-surface".
 const char* wheelset_table_setting_name(WheelsetTableSetting setting);
 // Throws Error (invalid_input) naming the allowed names.
 WheelsetTableSetting parse_wheelset_table_setting(const std::string& name);
@@ -265,6 +304,8 @@ class WheelsetTable {
   struct RuntimePatch {
     std::optional<FastSim> whole;
     std::vector<FastSim> lobes;  // parallel to WheelsetTablePatch::lobes
+    std::optional<FastSim> conformal;  // on WheelsetTablePatch::conformal's runtime copy
+    std::vector<std::size_t> conformal_column;  // its elements' columns (strips), patch order
   };
   std::vector<std::array<std::vector<RuntimePatch>, 2>> runtime_;
 };

@@ -191,6 +191,35 @@ def test_contact_surface():
         railcontact.Wheelset(element_size=COARSE, contact_surface="curved")
 
 
+def test_a_table_on_the_automatic_surface():
+    """A table built with contact_surface="auto" keeps the flange patch on the conformal surface: at
+    its nodes (y = -6.5 mm) its lookup is the wheelset on the fly to 1e-6 of the load, where a planar
+    table misses the lateral force by more than 10 % of mu Fz; a planar wheelset refuses the table,
+    naming the contact surface."""
+    on_the_fly = {}
+    for surface in ("auto", "planar"):
+        w = railcontact.Wheelset(element_size=COARSE, loads=(98.1e3, 98.1e3), contact_surface="auto",
+                                 tangential_in_balance=False)
+        on_the_fly[surface] = w.evaluate(-6.5e-3, speed=25.0, lateral_velocity=0.01)
+        tabled = railcontact.Wheelset(element_size=COARSE, loads=(98.1e3, 98.1e3), contact_surface=surface,
+                                      tangential_in_balance=False)
+        tabled.build_table((-6.6e-3, -6.5e-3), (0.0,), (98.1e3,))
+        table = tabled.evaluate_table(-6.5e-3, speed=25.0, lateral_velocity=0.01)
+        if surface == "auto":
+            assert table.right.patches[0].conformal_weight == 1.0
+            assert np.allclose(table.right.force_track_N, on_the_fly["auto"].right.force_track_N, atol=1e-6 * 98.1e3)
+            path = os.path.join(os.environ.get("TMPDIR", "/tmp"), f"railcontact_pytest_auto_table_{os.getpid()}.json")
+            tabled.save_table(path)
+            try:
+                with pytest.raises(railcontact.InvalidInputError, match="contact-surface planar .* differs from the "
+                                                                        "table's auto"):
+                    railcontact.Wheelset(element_size=COARSE).load_table(path)
+            finally:
+                os.remove(path)
+        else:
+            assert abs(table.right.force_track_N[1] - on_the_fly["auto"].right.force_track_N[1]) > 0.1 * 0.3 * 98.1e3
+
+
 def test_balance_solver_reference_weighting_and_radius_datum():
     """balance_solver moves the wheel heights (the exact solver's vertical force components carry
     the load); reference_weighting="depth" moves the contact angle of the two-lobe patch at

@@ -278,6 +278,7 @@ const char* options_field(rc::WheelsetTableSetting setting) {
     case rc::WheelsetTableSetting::element_size: return "element_size_m";
     case rc::WheelsetTableSetting::slip_direction: return "slip_direction";
     case rc::WheelsetTableSetting::contact_definition: return "reference_weighting";
+    case rc::WheelsetTableSetting::contact_surface: return "contact_surface";
     default: return "not an option: rebuild the table";
   }
 }

@@ -30,6 +30,30 @@ void check_grid(const std::vector<double>& grid, const char* name, bool positive
   }
 }
 
+// A patch's conformal part: a weight in (0, 1], finite numbers, one plausible strip per column of
+// its runtime copy.
+template <typename Fail, typename CheckRuntime>
+void check_conformal(const WheelsetTableConformalPatch& c, const Fail& fail, const CheckRuntime& check_runtime) {
+  if (!(c.weight > 0.0 && c.weight <= 1.0)) fail("the conformal surface's weight must lie in (0, 1]");
+  if (!(c.normal_force_N >= 0.0 && c.normal_force_N <= kMaximumNormalForce_N) || !finite3(c.pressure_force_track_N))
+    fail("the conformal surface's normal force must lie in [0, 1e7] N, its resultant be finite");
+  if (!(c.area_m2 >= 0.0 && c.area_m2 < 0.01) || !(c.max_pressure_Pa >= 0.0 && std::isfinite(c.max_pressure_Pa)) ||
+      !std::isfinite(c.pressure_centre_x1_m) || !std::isfinite(c.pressure_centre_x2_m))
+    fail("the conformal surface's area, pressure and centre must be finite (area in [0, 0.01) m²)");
+  if (c.runtime_pressure_Pa.empty()) {
+    if (!c.strips.empty()) fail("a conformal surface without elements in contact has no strips");
+    return;
+  }
+  check_runtime(c.flexibility, c.runtime_mesh, c.runtime_pressure_Pa);
+  if (c.strips.size() != static_cast<std::size_t>(c.runtime_mesh.n2))
+    fail("the conformal surface needs one strip per column of its runtime mesh");
+  for (const WheelsetTableStrip& strip : c.strips)
+    if (!(std::abs(strip.angle_rad) <= 1.6) || !finite3(strip.point_from_wheelset_centre_m) ||
+        !(std::abs(strip.point_from_wheelset_centre_m[0]) + std::abs(strip.point_from_wheelset_centre_m[1]) +
+              std::abs(strip.point_from_wheelset_centre_m[2]) <= 10.0))
+      fail("a strip's angle must lie in [-1.6, 1.6] rad and its point within 10 m of the wheelset centre");
+}
+
 void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::size_t k) {
   const auto fail = [&](const char* what) {
     throw Error(fmt::format("wheelset table: nodes[{}] wheel {} patch {}: {}", node, wheel, k, what));
@@ -46,10 +70,6 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
   if (!(p.max_pressure_Pa >= 0.0 && std::isfinite(p.max_pressure_Pa))) fail("the maximum pressure must be finite, >= 0");
   if (!std::isfinite(p.pressure_centre_x1_m) || !std::isfinite(p.pressure_centre_x2_m))
     fail("the centre of pressure must be finite");
-  if (p.runtime_pressure_Pa.empty()) {  // a patch with overlap but no element in contact
-    if (!p.lobes.empty()) fail("a patch without elements in contact has no lobes");
-    return;
-  }
   // Plausible runtime patches only: a fuzzed table with elements of 3e99 m and a pressure of 1e306 Pa
   // made FastSim's forces overflow to NaN (fuzz/crashes/wheelset_table/). A coarse element is at
   // most a few millimetres, a pressure at most a few GPa, a flexibility about 1e-14 m/Pa.
@@ -64,6 +84,11 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
     for (double p3 : pressure_Pa)
       if (!(p3 >= 0.0 && p3 <= 1e11)) fail("the runtime pressures must lie in [0, 1e11] Pa");
   };
+  if (p.conformal) check_conformal(*p.conformal, fail, check_runtime);
+  if (p.runtime_pressure_Pa.empty()) {  // a patch with overlap but no element in contact (or fully conformal)
+    if (!p.lobes.empty()) fail("a patch without elements in contact has no lobes");
+    return;
+  }
   check_runtime(p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
   if (p.lobes.size() == 1) fail("a patch of one lobe keeps no lobes (two or more, or none)");
   if (!(p.whole_patch_weight >= 0.0 && p.whole_patch_weight < 1.0) || (p.whole_patch_weight > 0.0 && p.lobes.empty()))
@@ -111,8 +136,68 @@ struct PatchSum {
   // ... and of the forces (a node without the patch counts with zero force).
   TangentialForces forces{};
   double normal_force_N = 0.0;
-  Vector3 force_track_N{};
+  Vector3 force_track_N{}, pressure_force_track_N{};
+  double conformal_weight = 0.0;  // over the nodes present
 };
+
+// A patch's forces at a lookup: the tangential forces on the wheel (contact frame; on a conformal
+// patch F1, F2 the projections of the whole contact force, as Wheelset::evaluate gives them) and
+// the whole contact force in the track frame.
+struct PatchForces {
+  TangentialForces forces{};
+  Vector3 track_N{};
+};
+
+// FastSim on a conformal patch's runtime copy (docs/WHEELSET.md §4 "Conformal contact"): each
+// strip's creepages in its own frame (X1, t, n) at its creepage point (turned by the yaw the node
+// does not have: turn), over the patch's rolling speed; every element's traction along its strip's
+// tangent and its pressure along its strip's normal summed in the patch's frame.
+PatchForces conformal_patch_forces(const FastSim& fastsim, const std::vector<std::size_t>& column,
+                                   const WheelsetTablePatch& p, const WheelsetMotion& motion, double cos_turn,
+                                   double sin_turn, double s2, double mu) {
+  const WheelsetTableConformalPatch& c = *p.conformal;
+  const auto turned = [&](const Vector3& r) {
+    return Vector3{cos_turn * r[0] - sin_turn * r[1], sin_turn * r[0] + cos_turn * r[1], r[2]};
+  };
+  ContactFrame patch_frame{turned(p.point_from_wheelset_centre_m), p.x1_axis, p.x2_axis, p.x3_axis};
+  const double patch_speed = rolling_speed_m_per_s(motion, patch_frame);
+  const Mesh& mesh = c.runtime_mesh;
+  StripCreepages creepages(static_cast<std::size_t>(mesh.n2));
+  std::vector<double> cos_angle(creepages.size()), sin_angle(creepages.size());
+  for (std::size_t j = 0; j < creepages.size(); ++j) {
+    const WheelsetTableStrip& strip = c.strips[j];
+    cos_angle[j] = std::cos(strip.angle_rad);
+    sin_angle[j] = std::sin(strip.angle_rad);
+    ContactFrame frame;
+    frame.point_from_wheelset_centre_m = turned(strip.point_from_wheelset_centre_m);
+    frame.x1 = p.x1_axis;
+    for (std::size_t i = 0; i < 3; ++i) {
+      frame.x2[i] = cos_angle[j] * p.x2_axis[i] + sin_angle[j] * p.x3_axis[i];
+      frame.x3[i] = cos_angle[j] * p.x3_axis[i] - sin_angle[j] * p.x2_axis[i];
+    }
+    const double scale = rolling_speed_m_per_s(motion, frame) / patch_speed;
+    const Creepage k = kinematic_creepage(motion, frame);
+    // In the solve frame (x2 -> −x2 for a left wheel), from the runtime copy's centre of pressure.
+    const double phi = s2 * k.phi * scale;
+    creepages[j] = {k.xi * scale, s2 * k.eta * scale + phi * c.pressure_centre_x1_m, phi};
+  }
+  const FastSimResult f = fastsim.solve(creepages, c.flexibility, mu);
+  // F1 = Σ p1 S; along X2 and X3 the tangential tractions s2 Σ p2 (cos Δ, sin Δ) S, plus the pressures.
+  const double S = mesh.element_area_m2();
+  double t1 = 0.0, t2 = 0.0, t3 = 0.0;
+  for (std::size_t e = 0; e < column.size(); ++e) {
+    const std::size_t j = column[e];
+    t1 += f.p1_Pa[e] * S;
+    t2 += f.p2_Pa[e] * cos_angle[j] * S;
+    t3 += f.p2_Pa[e] * sin_angle[j] * S;
+  }
+  PatchForces out;
+  for (std::size_t i = 0; i < 3; ++i)
+    out.track_N[i] = t1 * p.x1_axis[i] + s2 * t2 * p.x2_axis[i] + s2 * t3 * p.x3_axis[i] + c.pressure_force_track_N[i];
+  const auto dot = [](const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  out.forces = {t1, dot(out.track_N, p.x2_axis), s2 * f.forces.M3_Nm};
+  return out;
+}
 
 }  // namespace
 
@@ -163,6 +248,12 @@ WheelsetTable::WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNo
           runtime.whole.emplace(ContactPatch(p.runtime_mesh, p.runtime_pressure_Pa, material_), bound_);
         for (const WheelsetTableLobe& l : p.lobes)
           runtime.lobes.emplace_back(ContactPatch(l.runtime_mesh, l.runtime_pressure_Pa, material_), bound_);
+        if (p.conformal && !p.conformal->runtime_pressure_Pa.empty()) {
+          const ContactPatch copy(p.conformal->runtime_mesh, p.conformal->runtime_pressure_Pa, material_);
+          runtime.conformal.emplace(copy, bound_);
+          for (std::size_t e : copy.elements().indices())
+            runtime.conformal_column.push_back(e / static_cast<std::size_t>(copy.mesh().n1));
+        }
       }
     }
   }
@@ -223,6 +314,7 @@ const char* wheelset_table_setting_name(WheelsetTableSetting setting) {
     case WheelsetTableSetting::traction_bound_skew: return "traction-bound-skew";
     case WheelsetTableSetting::nh_fastsim_recipe: return "recipe";
     case WheelsetTableSetting::contact_definition: return "contact-definition";
+    case WheelsetTableSetting::contact_surface: return "contact-surface";
   }
   return "?";
 }
@@ -275,6 +367,17 @@ std::vector<WheelsetTableMismatch> WheelsetTable::mismatches(const WheelsetOptio
     add(WheelsetTableSetting::contact_definition, definition(options.search.weighting, true),
         definition(metadata_.reference_weighting, metadata_.creepage_on_wheel_surface));
   }
+  const auto surface = [](ContactSurface kind, const ContactSurfaceSwitch& band) {
+    if (kind != ContactSurface::automatic) return std::string(contact_surface_name(kind));
+    return fmt::format("auto (conformal from {:g} to {:g})", band.planar_up_to, band.conformal_from);
+  };
+  const ContactSurfaceSwitch& a = options.contact_surface_switch;
+  const ContactSurfaceSwitch& b = metadata_.contact_surface_switch;
+  if (options.contact_surface != metadata_.contact_surface ||
+      (options.contact_surface == ContactSurface::automatic &&
+       (!same(a.planar_up_to, b.planar_up_to) || !same(a.conformal_from, b.conformal_from))))
+    add(WheelsetTableSetting::contact_surface, surface(options.contact_surface, a),
+        surface(metadata_.contact_surface, b));
   return found;
 }
 
@@ -425,6 +528,39 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
           forces.F2_N *= s2;
           forces.M3_Nm *= s2;
         }
+        // The patch's numbers: the planar surface's, or on the conformal surface, or their blend.
+        PatchForces total{forces, {}};
+        for (std::size_t i = 0; i < 3; ++i)
+          total.track_N[i] = forces.F1_N * p.x1_axis[i] + forces.F2_N * p.x2_axis[i] + p.normal_force_N * p.x3_axis[i];
+        double surface_weight = 0.0, normal_force_N = p.normal_force_N, area_m2 = p.area_m2, max_pressure_Pa = p.max_pressure_Pa;
+        double elements = static_cast<double>(p.elements_in_contact);
+        double centre_x1_m = p.pressure_centre_x1_m, centre_x2_m = p.pressure_centre_x2_m;
+        Flexibility flexibility = p.flexibility;
+        Vector3 pressure_force_track_N{};
+        for (std::size_t i = 0; i < 3; ++i) pressure_force_track_N[i] = p.normal_force_N * p.x3_axis[i];
+        if (p.conformal) {
+          const WheelsetTableConformalPatch& curved = *p.conformal;
+          surface_weight = curved.weight;
+          PatchForces on_curve{{}, curved.pressure_force_track_N};  // no element in contact yet: its pressure only
+          if (runtime.conformal)
+            on_curve = conformal_patch_forces(*runtime.conformal, runtime.conformal_column, p, motion, cos_turn, sin_turn,
+                                              s2, friction_coefficient);
+          const auto mix = [surface_weight](double a, double b) { return (1.0 - surface_weight) * a + surface_weight * b; };
+          total.forces = {mix(total.forces.F1_N, on_curve.forces.F1_N), mix(total.forces.F2_N, on_curve.forces.F2_N),
+                          mix(total.forces.M3_Nm, on_curve.forces.M3_Nm)};
+          for (std::size_t i = 0; i < 3; ++i) {
+            total.track_N[i] = mix(total.track_N[i], on_curve.track_N[i]);
+            pressure_force_track_N[i] = mix(pressure_force_track_N[i], curved.pressure_force_track_N[i]);
+          }
+          normal_force_N = mix(normal_force_N, curved.normal_force_N);
+          area_m2 = mix(area_m2, curved.area_m2);
+          max_pressure_Pa = mix(max_pressure_Pa, curved.max_pressure_Pa);
+          elements = mix(elements, static_cast<double>(curved.elements_in_contact));
+          centre_x1_m = mix(centre_x1_m, curved.pressure_centre_x1_m);
+          centre_x2_m = mix(centre_x2_m, curved.pressure_centre_x2_m);
+          flexibility = {mix(flexibility.L1, curved.flexibility.L1), mix(flexibility.L2, curved.flexibility.L2),
+                         mix(flexibility.L3, curved.flexibility.L3)};
+        }
         // Match: the patch of another node at nearly the same place on the rail profile.
         PatchSum* sum = nullptr;
         for (PatchSum& s : sums) {
@@ -452,28 +588,29 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
           sum->x1[i] += weight * p.x1_axis[i];
           sum->x2[i] += weight * p.x2_axis[i];
           sum->x3[i] += weight * p.x3_axis[i];
-          sum->force_track_N[i] +=
-              weight * (forces.F1_N * p.x1_axis[i] + forces.F2_N * p.x2_axis[i] + p.normal_force_N * p.x3_axis[i]);
+          sum->force_track_N[i] += weight * total.track_N[i];
+          sum->pressure_force_track_N[i] += weight * pressure_force_track_N[i];
         }
         sum->contact_angle_rad += weight * p.contact_angle_rad;
         sum->rolling_radius_m += weight * p.rolling_radius_m;
         sum->wheel_profile_y_m += weight * p.wheel_profile_y_m;
         sum->rail_y_sum_m += weight * p.rail_profile_y_m;
-        sum->area_m2 += weight * p.area_m2;
-        sum->elements += weight * static_cast<double>(p.elements_in_contact);
-        sum->max_pressure_Pa += weight * p.max_pressure_Pa;
-        sum->centre_x1_m += weight * p.pressure_centre_x1_m;
-        sum->centre_x2_m += weight * p.pressure_centre_x2_m;
+        sum->area_m2 += weight * area_m2;
+        sum->elements += weight * elements;
+        sum->max_pressure_Pa += weight * max_pressure_Pa;
+        sum->centre_x1_m += weight * centre_x1_m;
+        sum->centre_x2_m += weight * centre_x2_m;
         sum->creepage.xi += weight * creepage.xi;
         sum->creepage.eta += weight * creepage.eta;
         sum->creepage.phi += weight * creepage.phi;
-        sum->flexibility.L1 += weight * p.flexibility.L1;
-        sum->flexibility.L2 += weight * p.flexibility.L2;
-        sum->flexibility.L3 += weight * p.flexibility.L3;
-        sum->forces.F1_N += weight * forces.F1_N;
-        sum->forces.F2_N += weight * forces.F2_N;
-        sum->forces.M3_Nm += weight * forces.M3_Nm;
-        sum->normal_force_N += weight * p.normal_force_N;
+        sum->flexibility.L1 += weight * flexibility.L1;
+        sum->flexibility.L2 += weight * flexibility.L2;
+        sum->flexibility.L3 += weight * flexibility.L3;
+        sum->forces.F1_N += weight * total.forces.F1_N;
+        sum->forces.F2_N += weight * total.forces.F2_N;
+        sum->forces.M3_Nm += weight * total.forces.M3_Nm;
+        sum->normal_force_N += weight * normal_force_N;
+        sum->conformal_weight += weight * surface_weight;
       }
     }
     // The patches, gauge side first, each from its sums.
@@ -500,6 +637,9 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
       region.rolling_radius_m = g * s.rolling_radius_m;
       patch.creepage = Creepage{g * s.creepage.xi, g * s.creepage.eta, g * s.creepage.phi};
       patch.normal_force_N = s.normal_force_N;
+      patch.pressure_force_track_N = s.pressure_force_track_N;
+      patch.conformal_weight = g * s.conformal_weight;
+      patch.surface = patch.conformal_weight > 0.0 ? ContactSurface::conformal : ContactSurface::planar;
       patch.area_m2 = s.area_m2;
       patch.elements_in_contact = static_cast<std::size_t>(std::lround(s.elements));
       patch.max_pressure_Pa = s.max_pressure_Pa;

@@ -47,8 +47,71 @@ std::array<double, 2> keep_runtime_copy(const ContactPatch& fine, int target, do
   return {-coarse.x1_shift_m(), -coarse.x2_shift_m()};
 }
 
+// The conformal surface's solution of a patch (its own numbers, unblended) and its runtime copy:
+// each column of the coarse copy takes the strip frame at its developed coordinate, interpolated
+// linearly between the patch's strips in contact.
+WheelsetTableConformalPatch conformal_table_patch(const WheelsetPatch& patch, double weight, const Vector3& centre,
+                                                  WheelSide side, int runtime_elements) {
+  WheelsetTableConformalPatch c;
+  c.weight = weight;
+  c.normal_force_N = patch.normal_force_N;
+  c.pressure_force_track_N = patch.pressure_force_track_N;
+  c.area_m2 = patch.area_m2;
+  c.elements_in_contact = patch.elements_in_contact;
+  c.max_pressure_Pa = patch.max_pressure_Pa;
+  c.pressure_centre_x1_m = patch.pressure_centre_x1_m;
+  c.pressure_centre_x2_m = patch.pressure_centre_x2_m;
+  c.flexibility = patch.solvers.front().flexibility;
+  if (patch.elements_in_contact == 0 || patch.strips.empty()) return c;
+  const double s2 = side == WheelSide::left ? -1.0 : 1.0;
+  // The runtime copy as for a planar patch (2 × 2 blocks at most where the patch is steep).
+  const std::array<double, 2> coarse =
+      keep_runtime_copy(patch.patch, runtime_elements, patch.region.contact_angle_rad, c.runtime_mesh, c.runtime_pressure_Pa);
+  c.pressure_centre_x1_m += coarse[0];
+  c.pressure_centre_x2_m += s2 * coarse[1];
+  // Column j of the copy lies at x2 = s2 (x2_solve(j) + s2 centre_x2) from the reference point along
+  // X2 in the wheel's own frame: the developed coordinate of the patch's strips.
+  const std::vector<ConformalStrip>& strips = patch.strips;
+  c.strips.resize(static_cast<std::size_t>(c.runtime_mesh.n2));
+  for (int j = 0; j < c.runtime_mesh.n2; ++j) {
+    const double s = s2 * c.runtime_mesh.x2(j) + c.pressure_centre_x2_m;
+    std::size_t k = 0;
+    while (k + 2 < strips.size() && strips[k + 1].s_m < s) ++k;
+    const ConformalStrip& a = strips[k];
+    const ConformalStrip& b = strips[std::min(k + 1, strips.size() - 1)];
+    const double t = b.s_m > a.s_m ? std::clamp((s - a.s_m) / (b.s_m - a.s_m), 0.0, 1.0) : 0.0;
+    WheelsetTableStrip& out = c.strips[static_cast<std::size_t>(j)];
+    out.angle_rad = (1.0 - t) * a.angle_rad + t * b.angle_rad;
+    for (std::size_t i = 0; i < 3; ++i)
+      out.point_from_wheelset_centre_m[i] =
+          (1.0 - t) * a.wheel_point_track_m[i] + t * b.wheel_point_track_m[i] - centre[i];
+  }
+  return c;
+}
+
 WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre, WheelSide side, int runtime_elements,
                                const NhFastSimOptions& nh_fastsim) {
+  // A patch on the conformal surface: its planar part (blended) or nothing of a planar patch's
+  // runtime (fully conformal), and its conformal part.
+  if (patch.conformal_weight > 0.0) {
+    const bool blended = patch.conformal_weight < 1.0;
+    require(!blended || (patch.planar_surface && patch.conformal_surface),
+            "wheelset table: a blended patch came without its two surfaces' solutions");
+    WheelsetTablePatch t;
+    if (blended) {
+      WheelsetPatch planar = *patch.planar_surface;
+      t = table_patch(planar, centre, side, runtime_elements, nh_fastsim);
+    } else {
+      WheelsetPatch copy = patch;
+      copy.conformal_weight = 0.0;
+      copy.elements_in_contact = 0;  // the fields, no planar runtime copy
+      t = table_patch(copy, centre, side, runtime_elements, nh_fastsim);
+      t.elements_in_contact = patch.elements_in_contact;
+    }
+    t.conformal = conformal_table_patch(blended ? *patch.conformal_surface : patch, patch.conformal_weight, centre,
+                                        side, runtime_elements);
+    return t;
+  }
   WheelsetTablePatch t;
   const InterpenetrationRegion& region = patch.region;
   t.reference_point_track_m = region.reference_point_track_m;
@@ -116,11 +179,6 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   validate(grid);  // before the work
   if (!(options.runtime_elements >= 20 && options.runtime_elements <= 100000))
     throw Error(fmt::format("wheelset table: runtime_elements = {} must lie in [20, 100000]", options.runtime_elements));
-  if (options.wheelset.contact_surface != ContactSurface::planar)
-    throw Error(fmt::format("wheelset table: its nodes hold planar patches (the lookups march one creepage per patch); "
-                            "the {} contact surface is solved on the fly only (docs/WHEELSET.md §4 \"Conformal "
-                            "contact\")",
-                            contact_surface_name(options.wheelset.contact_surface)));
   WheelsetOptions wheelset_options = options.wheelset;
   wheelset_options.solvers = {TangentialSolver::nh_fastsim};
   wheelset_options.keep_tractions = true;
@@ -235,6 +293,8 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   metadata.runtime_elements = options.runtime_elements;
   metadata.reference_weighting = wheelset_options.search.weighting;
   metadata.creepage_on_wheel_surface = true;
+  metadata.contact_surface = wheelset_options.contact_surface;
+  metadata.contact_surface_switch = wheelset_options.contact_surface_switch;
   metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
   if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));

@@ -23,8 +23,9 @@ constexpr const char* kFormat = "railcontact wheelset table";
 // Version 2 (2026-11-25): each patch's "lobes" (a patch of several lobes); version 1 files read as
 // patches without lobes.
 // 3: slip_direction (1-2: the radial one); 4: nh_fastsim_recipe; 5: reference_weighting and
-// creepage_point (older: depth, the rail surface).
-constexpr int kFormatVersion = 5;
+// creepage_point (older: depth, the rail surface); 6: contact_surface, contact_surface_switch and
+// each patch's "conformal" part (older: planar).
+constexpr int kFormatVersion = 6;
 // The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
 // At most this many nodes (as a build makes) and elements per runtime mesh.
@@ -39,6 +40,26 @@ json mesh_json(const Mesh& m) {
 }
 
 json flexibility_json(const Flexibility& L) { return json::array({L.L1, L.L2, L.L3}); }
+
+json conformal_json(const std::optional<WheelsetTableConformalPatch>& conformal) {
+  if (!conformal) return nullptr;
+  const WheelsetTableConformalPatch& c = *conformal;
+  json strips = json::array();
+  for (const WheelsetTableStrip& s : c.strips)
+    strips.push_back(json{{"angle_rad", s.angle_rad}, {"point_from_wheelset_centre_m", vector3(s.point_from_wheelset_centre_m)}});
+  return json{{"weight", c.weight},
+              {"normal_force_N", c.normal_force_N},
+              {"pressure_force_track_N", vector3(c.pressure_force_track_N)},
+              {"area_m2", c.area_m2},
+              {"elements_in_contact", c.elements_in_contact},
+              {"max_pressure_Pa", c.max_pressure_Pa},
+              {"pressure_centre_x1_m", c.pressure_centre_x1_m},
+              {"pressure_centre_x2_m", c.pressure_centre_x2_m},
+              {"flexibility_m_per_Pa", flexibility_json(c.flexibility)},
+              {"runtime_mesh", mesh_json(c.runtime_mesh)},
+              {"runtime_pressure_Pa", c.runtime_pressure_Pa},
+              {"strips", strips}};
+}
 
 json patch_json(const WheelsetTablePatch& p) {
   json lobes = json::array();
@@ -67,7 +88,8 @@ json patch_json(const WheelsetTablePatch& p) {
               {"runtime_mesh", mesh_json(p.runtime_mesh)},
               {"runtime_pressure_Pa", p.runtime_pressure_Pa},
               {"lobes", lobes},
-              {"whole_patch_weight", p.whole_patch_weight}};
+              {"whole_patch_weight", p.whole_patch_weight},
+              {"conformal", conformal_json(p.conformal)}};
 }
 
 json node_json(const WheelsetTableNode& n) {
@@ -131,6 +153,35 @@ void read_runtime(StrictJsonReader& r, Flexibility& flexibility, Mesh& mesh, std
 // At most this many lobes per patch (a build finds two).
 constexpr std::size_t kMaxLobes = 16;
 
+// At most this many strips per conformal patch (one per runtime mesh column).
+constexpr std::size_t kMaxStrips = 1u << 16;
+
+WheelsetTableConformalPatch read_conformal(StrictJsonReader r) {
+  WheelsetTableConformalPatch c;
+  c.weight = r.number("weight");
+  c.normal_force_N = r.number("normal_force_N");
+  c.pressure_force_track_N = read_vector3(r, "pressure_force_track_N");
+  c.area_m2 = r.number("area_m2");
+  c.elements_in_contact = r.count("elements_in_contact");
+  c.max_pressure_Pa = r.number("max_pressure_Pa");
+  c.pressure_centre_x1_m = r.number("pressure_centre_x1_m");
+  c.pressure_centre_x2_m = r.number("pressure_centre_x2_m");
+  read_runtime(r, c.flexibility, c.runtime_mesh, c.runtime_pressure_Pa);
+  const json& strips = r.array("strips");
+  if (strips.size() > kMaxStrips)
+    r.fail(fmt::format("{} has {} strips; at most {} are allowed", r.qualified("strips"), strips.size(), kMaxStrips));
+  for (std::size_t j = 0; j < strips.size(); ++j) {
+    StrictJsonReader sr = r.item(strips[j], fmt::format("{}[{}]", r.qualified("strips"), j));
+    WheelsetTableStrip strip;
+    strip.angle_rad = sr.number("angle_rad");
+    strip.point_from_wheelset_centre_m = read_vector3(sr, "point_from_wheelset_centre_m");
+    sr.finish();
+    c.strips.push_back(strip);
+  }
+  r.finish();
+  return c;
+}
+
 WheelsetTablePatch read_patch(StrictJsonReader r, int version) {
   WheelsetTablePatch p;
   p.reference_point_track_m = read_vector3(r, "reference_point_track_m");
@@ -163,6 +214,10 @@ WheelsetTablePatch read_patch(StrictJsonReader r, int version) {
       p.lobes.push_back(std::move(lobe));
     }
     p.whole_patch_weight = r.number("whole_patch_weight");
+  }
+  if (version >= 6) {
+    const json& conformal = r.get("conformal");
+    if (!conformal.is_null()) p.conformal = read_conformal(r.item(conformal, r.qualified("conformal")));
   }
   r.finish();
   return p;
@@ -228,6 +283,22 @@ WheelsetTableMetadata read_metadata(StrictJsonReader& r, int format_version) {
       r.fail(fmt::format("creepage_point must be \"undeformed wheel surface\" (got \"{}\")", printable_excerpt(point)));
     m.creepage_on_wheel_surface = true;
   }
+  // Format versions 1 to 5: planar patches.
+  if (format_version >= 6) {
+    try {
+      m.contact_surface = parse_contact_surface(r.string("contact_surface"));
+    } catch (const Error& e) {
+      r.fail(fmt::format("contact_surface: {}", e.what()));
+    }
+    const std::vector<double> band = r.numbers("contact_surface_switch");
+    if (band.size() != 2) r.fail("contact_surface_switch must be a list of 2 numbers (planar_up_to, conformal_from)");
+    m.contact_surface_switch = {band[0], band[1]};
+    try {
+      validate(m.contact_surface_switch);
+    } catch (const Error& e) {
+      r.fail(fmt::format("contact_surface_switch: {}", e.what()));
+    }
+  }
   return m;
 }
 
@@ -276,6 +347,9 @@ std::string wheelset_table_json(const WheelsetTable& table) {
                     {"nh_fastsim_recipe", m.nh_fastsim_recipe},
                     {"reference_weighting", reference_weighting_name(m.reference_weighting)},
                     {"creepage_point", "undeformed wheel surface"},
+                    {"contact_surface", contact_surface_name(m.contact_surface)},
+                    {"contact_surface_switch",
+                     json::array({m.contact_surface_switch.planar_up_to, m.contact_surface_switch.conformal_from})},
                     {"nominal_rolling_radius_m", table.nominal_rolling_radius_m()},
                     {"y_m", table.grid().y_m},
                     {"yaw_rad", table.grid().yaw_rad},

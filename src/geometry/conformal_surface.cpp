@@ -21,6 +21,7 @@ constexpr double kNotInContact_m = 1.0;  // the gap given to strips that cannot 
 ConformalStrip strip_at(const geometry::WheelOnRail& w, const InterpenetrationRegion& region, double s_m,
                         double& wheel_parameter) {
   ConformalStrip strip;
+  strip.s_m = s_m;
   const SmoothProfile& rail = w.rail();
   // X2 runs towards −y_p on the right side and +y_p on the left (the profiles' parameters grow with y_p).
   const double u = rail.parameter_at(region.rail_profile_y_m) + w.sign() * s_m;

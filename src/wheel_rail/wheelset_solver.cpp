@@ -561,10 +561,21 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
                        track.nominal_axle_height_m() + state.position.vertical_displacement_m};
   for (const NormalPatch& n : normal) {
     WheelsetPatch patch = finish_patch(side, motion, centre, n.region, n, options);
-    if (n.planar)
-      patch = blended(finish_patch(side, motion, centre, n.region, *n.planar, options), std::move(patch),
-                      n.conformal_weight);
     patch.conformal_weight = n.conformal_weight;
+    if (n.planar) {
+      WheelsetPatch planar = finish_patch(side, motion, centre, n.region, *n.planar, options);
+      std::shared_ptr<const WheelsetPatch> conformal_surface;
+      if (options.keep_tractions) {
+        auto own = std::make_shared<WheelsetPatch>(patch);
+        own->conformal_weight = 1.0;
+        conformal_surface = std::move(own);
+      }
+      patch = blended(planar, std::move(patch), n.conformal_weight);
+      if (options.keep_tractions) {
+        patch.planar_surface = std::make_shared<const WheelsetPatch>(std::move(planar));
+        patch.conformal_surface = std::move(conformal_surface);
+      }
+    }
     wheel.patches.push_back(std::move(patch));
   }
   wheel.solver_force_track_N.assign(options.solvers.size(), Vector3{});
