@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "carter.hpp"
+#include "geometry/conformal_surface.hpp"
 #include "cli_run.hpp"
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
@@ -237,6 +238,46 @@ TEST(ConformalContact, BetweenNodesTheCurvedTableStaysWithinTwoPercentOfMuFz) {
         EXPECT_LT(miss, 0.02) << "y " << y << " wheel " << w << " component " << i;
       }
   }
+}
+
+// A developed surface that turns by more than 90° from the reference's tangent plane folds over:
+// its strips' tangent-plane points run back. Strips on a circle of radius 10 mm turning from −0.5 to
+// 2 rad rise in x2 = R sin Δ up to Δ = π/2, then fall: refused, naming the wheel, the position and
+// the angles where it folds; strips that cannot touch are not counted. The potential contact area of
+// the flange of S1002/UIC60 at y = −6.5 mm turns by 1.4 rad across its strips, each within ±π/2 of
+// the reference: accepted.
+TEST(ConformalContact, ASurfaceThatFoldsOverIsRefusedNamingWhereItFolds) {
+  std::vector<ConformalStrip> strips;
+  for (double angle = -0.5; angle <= 2.0; angle += 0.1) {
+    ConformalStrip strip;
+    strip.angle_rad = angle;
+    strip.x2_m = 10e-3 * std::sin(angle);
+    strip.s_m = 10e-3 * angle;
+    strips.push_back(strip);
+  }
+  WheelsetPosition at;
+  at.lateral_displacement_m = -6.5e-3;
+  at.yaw_rad = 2e-3;
+  try {
+    geometry::require_unfolded(strips, WheelSide::left, at);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input);
+    EXPECT_NE(std::string(e.what()).find("conformal contact area of the left wheel at y = -6.500 mm, yaw 2.00 mrad: the "
+                                         "curved surface folds over (its normal turns from 1.600 to 1.700 rad"),
+              std::string::npos)
+        << e.what();
+  }
+  // Up to a quarter turn, or with the strips beyond it out of contact, it does not fold.
+  for (ConformalStrip& strip : strips) strip.possible_contact = strip.angle_rad < 1.55;
+  EXPECT_NO_THROW(geometry::require_unfolded(strips, WheelSide::left, at));
+  const TangentPlaneArea flange = track().conformal_contact_area(
+      at, track().contact_search(WheelSide::right, at).regions.front(), 0.2e-3);
+  double lowest = 10.0, highest = -10.0;
+  for (const ConformalStrip& strip : flange.strips)
+    if (strip.possible_contact) lowest = std::min(lowest, strip.angle_rad), highest = std::max(highest, strip.angle_rad);
+  EXPECT_GT(highest - lowest, 1.0);
+  EXPECT_LT(std::max(highest, -lowest), std::acos(-1.0) / 2);
 }
 
 // ContactSurface::automatic, patch by patch (by position, so that both surfaces are solved at one

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/conformal_surface.hpp"
 #include "geometry/wheelset_frames.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset_geometry.hpp"
@@ -55,6 +56,27 @@ ConformalStrip strip_at(const geometry::WheelOnRail& w, const InterpenetrationRe
 
 }  // namespace
 
+namespace geometry {
+
+void require_unfolded(const std::vector<ConformalStrip>& strips, WheelSide side, const WheelsetPosition& position) {
+  double previous_x2 = -std::numeric_limits<double>::infinity(), previous_angle = 0.0;
+  for (const ConformalStrip& strip : strips) {
+    if (!strip.possible_contact) continue;
+    require(strip.x2_m > previous_x2, [&] {
+      return fmt::format(
+          "conformal contact area of the {} wheel at y = {:.3f} mm, yaw {:.2f} mrad: the curved surface folds over "
+          "(its normal turns from {:.3f} to {:.3f} rad from the reference's across one element); use the planar "
+          "contact surface",
+          side_name(side), position.lateral_displacement_m * 1e3, position.yaw_rad * 1e3, previous_angle,
+          strip.angle_rad);
+    });
+    previous_x2 = strip.x2_m;
+    previous_angle = strip.angle_rad;
+  }
+}
+
+}  // namespace geometry
+
 TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& position,
                                                        const InterpenetrationRegion& region, double element_size_m,
                                                        int border_elements) const {
@@ -81,21 +103,7 @@ TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& p
       for (int i2 = direction > 0 ? centre : centre - 1; i2 >= 0 && i2 < mesh.n2; i2 += direction)
         strips[static_cast<std::size_t>(i2)] = strip_at(w, region, mesh.x2(i2), wheel_parameter);
     }
-    // The developed surface must not fold over in the tangent plane: the strips' points in order.
-    double previous_x2 = -std::numeric_limits<double>::infinity(), previous_angle = 0.0;
-    for (const ConformalStrip& strip : strips) {
-      if (!strip.possible_contact) continue;
-      require(strip.x2_m > previous_x2, [&] {
-        return fmt::format(
-            "conformal contact area of the {} wheel at y = {:.3f} mm, yaw {:.2f} mrad: the curved surface folds over "
-            "(its normal turns from {:.3f} to {:.3f} rad from the reference's across one element); use the planar "
-            "contact surface",
-            side_name(region.side), position.lateral_displacement_m * 1e3, position.yaw_rad * 1e3, previous_angle,
-            strip.angle_rad);
-      });
-      previous_x2 = strip.x2_m;
-      previous_angle = strip.angle_rad;
-    }
+    geometry::require_unfolded(strips, region.side, position);
     // h along X3 at each strip's tangent-plane point, times the cosine of its angle (the normal
     // distance between locally parallel surfaces); strips that cannot touch get a wide gap. Strip by
     // strip: a strip whose line along X3 misses the rail profile (far round a flange, at a large
