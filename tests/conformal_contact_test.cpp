@@ -17,6 +17,7 @@
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
+#include "railcontact/normal.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_table.hpp"
@@ -278,6 +279,107 @@ TEST(ConformalContact, ASurfaceThatFoldsOverIsRefusedNamingWhereItFolds) {
     if (strip.possible_contact) lowest = std::min(lowest, strip.angle_rad), highest = std::max(highest, strip.angle_rad);
   EXPECT_GT(highest - lowest, 1.0);
   EXPECT_LT(std::max(highest, -lowest), std::acos(-1.0) / 2);
+}
+
+// A cylinder in a slightly larger groove (issue #31's check of the normal problem): a rail head of
+// radius R1 = 50 mm (an arc of ±1 rad, flanks below) under a wheel whose tread is a groove of radius
+// R2 = 50.25 mm, centred on it, 50 kN. The contact spans ±0.41 rad of the head (the strips' angles),
+// 20.7 mm either side. The reference is the half-space problem on the developed surface (s = R1 θ)
+// with the exact normal gap of the two circles, t(θ) = −e cos θ + √(R2² − e² sin² θ) − R1 with
+// e = R2 − R1 + δ, plus x1² cos θ / (2 r_w) of the wheel's rolling curvature, solved at the approach δ
+// the wheelset reports: the conformal surface meets it to 0.01 % in F3 and p0, to the element in its
+// half-width; the planar surface, whose gap is measured along X3 in the tangent plane, is 1 % off in
+// F3 at its approach and 0.4 mm (1 %) narrower.
+namespace groove {
+constexpr double kR1 = 0.05, kR2 = 0.05025, kArc = 1.0;
+Profile rail() {
+  Profile p;
+  p.kind = ProfileKind::rail;
+  p.source = "cylinder R50";
+  const double y_flank = kR1 * std::sin(kArc), z_flank = kR1 * (1.0 - std::cos(kArc));
+  for (double z = 0.045; z > z_flank + 1e-4; z -= 0.5e-3) p.y_m.push_back(-y_flank), p.z_m.push_back(z);
+  for (double t = -kArc; t <= kArc + 1e-9; t += 0.002) p.y_m.push_back(kR1 * std::sin(t)), p.z_m.push_back(kR1 * (1.0 - std::cos(t)));
+  for (double z = z_flank + 0.5e-3; z <= 0.045; z += 0.5e-3) p.y_m.push_back(y_flank), p.z_m.push_back(z);
+  return p;
+}
+Profile wheel() {  // z down; the deeper side of the groove (y < 0) stands for the flange
+  Profile p;
+  p.kind = ProfileKind::wheel;
+  p.source = "groove R50.25";
+  for (double t = std::asin(0.034 / kR2); t >= -std::asin(0.045 / kR2) - 1e-12; t -= 0.002)
+    p.y_m.push_back(kR2 * std::sin(t)), p.z_m.push_back(kR2 * (1.0 - std::cos(t)));
+  return p;
+}
+WheelsetTrack track() {
+  TrackWheelsetParameters t;  // the groove centred on the rail: the gauge point 14 mm down the head
+  t.flange_back_y_m = -(t.track_gauge_m / 2 + kR1 * std::sin(std::acos(1.0 - t.gauge_measuring_depth_m / kR1)) -
+                        t.flange_back_distance_m / 2);
+  return WheelsetTrack(wheel(), rail(), t);
+}
+// The reference's F3, p0 and half-width in s at approach δ (elements of size h centred as the wheelset's).
+struct Reference {
+  double normal_force_N = 0.0, max_pressure_Pa = 0.0, half_width_m = 0.0;
+};
+Reference solve(double delta_m, double rolling_radius_m, double h_m, const Material& material) {
+  Mesh m;
+  m.n1 = 61;
+  m.n2 = 301;
+  m.dx1_m = m.dx2_m = h_m;
+  m.x1_first_m = -30 * h_m;
+  m.x2_first_m = -150 * h_m;
+  const double e = kR2 - kR1 + delta_m;
+  std::vector<double> gap(m.size());
+  for (int i2 = 0; i2 < m.n2; ++i2) {
+    const double theta = m.x2(i2) / kR1;
+    const double t = -e * std::cos(theta) + std::sqrt(kR2 * kR2 - e * e * std::sin(theta) * std::sin(theta)) - kR1;
+    const double y_wheel = (kR1 + t) * std::sin(theta);
+    const double r_wheel = rolling_radius_m + kR2 - std::sqrt(kR2 * kR2 - y_wheel * y_wheel);
+    for (int i1 = 0; i1 < m.n1; ++i1)
+      gap[m.index(i1, i2)] = t + m.x1(i1) * m.x1(i1) * std::cos(theta) / (2.0 * r_wheel);
+  }
+  const NormalSolution n = solve_normal_contact_at_approach(m, gap, 0.0, material);
+  Reference r;
+  r.normal_force_N = n.normal_force_N;
+  for (int i2 = 0; i2 < m.n2; ++i2)
+    for (int i1 = 0; i1 < m.n1; ++i1)
+      if (const double p = n.pressure_Pa[m.index(i1, i2)]; p > 0.0) {
+        r.max_pressure_Pa = std::max(r.max_pressure_Pa, p);
+        r.half_width_m = std::max(r.half_width_m, std::abs(m.x2(i2)) + 0.5 * h_m);
+      }
+  return r;
+}
+}  // namespace groove
+
+TEST(ConformalContact, ACylinderInASlightlyLargerGrooveIsSolvedWithTheExactNormalGap) {
+  const WheelsetTrack track = groove::track();
+  double planar_off = 0.0, planar_width = 0.0, width = 0.0;
+  for (const ContactSurface surface : {ContactSurface::conformal, ContactSurface::planar}) {
+    WheelsetOptions o;
+    o.contact_surface = surface;
+    o.loads = WheelLoads{50e3, 50e3, false};
+    o.keep_tractions = true;
+    const WheelsetResult r = Wheelset(track, o).evaluate(rolling_at(0.0));
+    ASSERT_EQ(r.wheels[0].patches.size(), 1u);
+    const WheelsetPatch& p = r.wheels[0].patches[0];
+    const groove::Reference ref = groove::solve(p.approach_m, p.rolling_radius_m, o.element_size_m, o.material);
+    const Mesh& mesh = p.patch.mesh();
+    double half_width = 0.0;
+    for (const std::size_t k : p.patch.elements().indices())
+      half_width = std::max(half_width, std::abs(mesh.x2(static_cast<int>(k) / mesh.n1) - mesh.x2(0) - 0.5 * (mesh.x2(mesh.n2 - 1) - mesh.x2(0))));
+    if (surface == ContactSurface::conformal) {
+      ASSERT_GT(p.strips.size(), 100u);
+      EXPECT_NEAR(p.strips.front().angle_rad, 0.41, 0.01);
+      EXPECT_NEAR(p.normal_force_N, ref.normal_force_N, 1e-4 * ref.normal_force_N);
+      EXPECT_NEAR(p.max_pressure_Pa, ref.max_pressure_Pa, 1e-3 * ref.max_pressure_Pa);
+      width = 2.0 * (half_width + 0.5 * o.element_size_m);
+      EXPECT_NEAR(width, 2.0 * ref.half_width_m, 2.01 * o.element_size_m);
+    } else {
+      planar_off = p.normal_force_N / ref.normal_force_N - 1.0;
+      planar_width = 2.0 * (half_width + 0.5 * o.element_size_m);
+    }
+  }
+  EXPECT_GT(planar_off, 0.008);
+  EXPECT_GT(width - planar_width, 0.0003) << width << " " << planar_width;
 }
 
 // ContactSurface::automatic, patch by patch (by position, so that both surfaces are solved at one
