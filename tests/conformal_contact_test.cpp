@@ -137,8 +137,9 @@ TEST(ConformalContact, NhFastSimIsWithinThreePercentOfTheExactSolverOnIt) {
 // node keeps a patch's conformal solution with one strip frame per column of its runtime copy, and
 // a lookup marches FastSim strip by strip with each strip's creepages. With the fine patches as the
 // runtime copies, at a node it is the wheelset on the fly to rounding, on the tread (y = 0), in the
-// automatic surface's blend (−0.5 mm: the right wheel's tread, weight 0.6) and in flange contact
-// (−6.5 mm), for a moving state with yaw; the round trip through the file keeps it to the digit.
+// automatic surface's blend (−0.5 mm: the right wheel's tread), at the flange root (a
+// patch of two lobes, −5.2 mm) and in flange contact (−6.5 mm), for a moving state; the round trip
+// through the file keeps it to the digit.
 WheelsetOptions table_wheelset_options(ContactSurface surface) {
   WheelsetOptions o;
   o.element_size_m = 0.5e-3;
@@ -156,13 +157,27 @@ WheelsetState moving_at(double y_m, double yaw_rad) {
 }
 
 TEST(ConformalContact, AWheelsetTableOnTheCurvedSurfaceIsTheWheelsetOnTheFlyAtItsNodes) {
-  const std::vector<double> y{-6.5e-3, -0.5e-3, 0.0};
+  const std::vector<double> y{-6.5e-3, -5.2e-3, -0.5e-3, 0.0};
   for (const ContactSurface surface : {ContactSurface::conformal, ContactSurface::automatic}) {
     WheelsetTableOptions o;
     o.wheelset = table_wheelset_options(surface);
     o.runtime_elements = 100000;  // the fine patches themselves
     const WheelsetTable built = build_wheelset_table(track(), {y, {0.0}, {kLoad}}, o);
     EXPECT_EQ(built.metadata().contact_surface, surface);
+    // At −5.2 mm the flange root and the tread form one conformal patch of two lobes, each with its
+    // own flexibilities and strips (as the wheelset solves it: NhFastSimPerLobe on the developed patch).
+    const WheelsetTablePatch& root = built.node(1, 0, 0).wheels[0].front();
+    ASSERT_TRUE(root.conformal.has_value());
+    EXPECT_EQ(root.conformal->lobes.size(), 2u);
+    for (const WheelsetTableLobe& lobe : root.conformal->lobes)
+      EXPECT_EQ(lobe.strips.size(), static_cast<std::size_t>(lobe.runtime_mesh.n2));
+    if (surface == ContactSurface::automatic) {  // the tread at −0.5 mm: both surfaces, blended
+      const WheelsetTablePatch& tread = built.node(2, 0, 0).wheels[0].front();
+      ASSERT_TRUE(tread.conformal.has_value());
+      EXPECT_GT(tread.conformal->weight, 0.1);
+      EXPECT_LT(tread.conformal->weight, 0.9);
+      EXPECT_FALSE(tread.runtime_pressure_Pa.empty());
+    }
     const WheelsetTable table = parse_wheelset_table(wheelset_table_json(built), "round trip");
     // A malformed conformal part is refused, naming the node, wheel and patch.
     nlohmann::json file = nlohmann::json::parse(wheelset_table_json(built));

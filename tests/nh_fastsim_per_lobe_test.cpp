@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "case/case_run.hpp"
+#include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "wheel_rail/cropped_patch.hpp"
@@ -24,9 +25,15 @@ struct TwoLobes {
   std::vector<double> pressure_Pa;
 };
 
-TwoLobes two_lobes(int neck_width) {
+// aligned: element centres at whole multiples of the element size from the origin, as a wheelset's
+// meshes are laid out from the reference point (the lobes' crops for K2's blocks count blocks from it).
+TwoLobes two_lobes(int neck_width, bool aligned = false) {
   TwoLobes t;
   t.mesh = Mesh::covering(-6e-3, 6e-3, -8e-3, 7e-3, 48, 60);
+  if (aligned) {
+    t.mesh.x1_first_m += 0.5 * t.mesh.dx1_m;
+    t.mesh.x2_first_m += 0.5 * t.mesh.dx2_m;
+  }
   t.pressure_Pa.assign(t.mesh.size(), 0.0);
   for (int i2 = 0; i2 < t.mesh.n2; ++i2) {
     for (int i1 = 0; i1 < t.mesh.n1; ++i1) {
@@ -150,6 +157,38 @@ TEST(NhFastSimPerLobe, AWideningNeckBlendsIntoTheWholePatch) {
 }
 
 // A neck is a valley in the strip widths: an ellipse (widths rise, then fall) has none.
+// From strip creepages (a conformal patch's): one creepage (ξ, η, φ) given as the strips
+// (ξ − φ x2, η, φ) is the same rigid slip, and gives solve(ξ, η, φ)'s numbers per lobe, apart, with
+// a narrow neck and with a blended one (to 1e-9 of μF3), on a mesh laid out from its origin as a
+// wheelset's; a lateral creepage on one lobe's strips moves F2. A count of strips other than the
+// patch's columns is refused.
+TEST(NhFastSimPerLobe, StripCreepagesOfOneCreepageGiveItsSolution) {
+  for (const int neck : {0, 3, 9}) {
+    const TwoLobes t = two_lobes(neck, true);
+    const ContactPatch patch(t.mesh, t.pressure_Pa, Material{});
+    const NhFastSimPerLobe per_lobe(patch);
+    ASSERT_GE(per_lobe.lobe_count(), 2u);
+    const Creepage c{-1.1e-3, 0.7e-3, 0.4};
+    StripCreepages strips(static_cast<std::size_t>(patch.mesh().n2));
+    for (int i2 = 0; i2 < patch.mesh().n2; ++i2)
+      strips[static_cast<std::size_t>(i2)] = {c.xi - c.phi * patch.mesh().x2(i2), c.eta, c.phi};
+    const double mu = 0.3, scale = mu * patch.normal_force_N();
+    const FastSimResult a = per_lobe.solve(c, mu), b = per_lobe.solve(strips, mu);
+    EXPECT_NEAR(b.forces.F1_N, a.forces.F1_N, 1e-9 * scale) << neck;
+    EXPECT_NEAR(b.forces.F2_N, a.forces.F2_N, 1e-9 * scale) << neck;
+    EXPECT_NEAR(b.forces.M3_Nm, a.forces.M3_Nm, 1e-9 * scale * 5e-3) << neck;
+    EXPECT_NEAR(b.adhesion_fraction, a.adhesion_fraction, 1e-12) << neck;
+    // A lateral creepage on the small lobe's strips only (x2 > 2 mm) moves F2.
+    StripCreepages side = strips;
+    for (int i2 = 0; i2 < patch.mesh().n2; ++i2)
+      if (patch.mesh().x2(i2) > 2e-3) side[static_cast<std::size_t>(i2)].eta += 1e-3;
+    EXPECT_GT(std::abs(per_lobe.solve(side, mu).forces.F2_N - b.forces.F2_N), 1e-2 * scale) << neck;
+  }
+  const TwoLobes t = two_lobes(0);
+  EXPECT_THROW((void)NhFastSimPerLobe(ContactPatch(t.mesh, t.pressure_Pa, Material{})).solve(StripCreepages(3), 0.3),
+               Error);
+}
+
 TEST(NhFastSimPerLobe, AnEllipseHasNoNeck) {
   const ContactPatch ellipse = hertzian_patch(elliptical_contact_with_count(6e-3, 4e-3, 2000), 6e-3, 4e-3, 9e4, Material{});
   EXPECT_FALSE(detail::has_neck(ellipse));

@@ -255,6 +255,11 @@ class NhFastSimPerLobe {
   // there; tractions and slip flags per element of the patch (patch order), adhesion fraction over
   // the whole patch. Throws Error unless mu > 0 and the creepages are finite.
   [[nodiscard]] FastSimResult solve(const Creepage& creepage, double mu) const;
+  // The same from the creepages of each strip (one per column of the patch's mesh, the rigid slip of
+  // an element at x1 of strip j being (ξ_j, η_j + φ_j x1) from the patch's origin: a conformal
+  // patch, docs/WHEELSET.md §4): each lobe marches its own columns' strips, η_j moved to its centre.
+  // Throws Error for another count of strips or a non-finite creepage, and as solve().
+  [[nodiscard]] FastSimResult solve(const StripCreepages& creepages, double mu) const;
 
   [[nodiscard]] std::size_t lobe_count() const;
   // Lobe k (by decreasing load): its patch (the crop nH-FastSim solved, origin at its centre of
@@ -281,11 +286,17 @@ class NhFastSimPerLobe {
 
  private:
   struct Lobe;
-  [[nodiscard]] FastSimResult solve_lobes(const Creepage& creepage, double mu) const;
+  // Each lobe's solution from the creepages at its centre (lobe k: `at_lobe(lobe)`), summed.
+  template <typename CreepagesAtLobe>
+  [[nodiscard]] FastSimResult solve_lobes(const CreepagesAtLobe& at_lobe, double mu) const;
+  [[nodiscard]] FastSimResult blended_with_whole(FastSimResult per_lobe, const FastSimResult& whole) const;
   std::vector<Lobe> lobes_;
   std::vector<Lobe> whole_;  // the whole patch, when blended (at most one)
   double whole_weight_ = 0.0;
   std::size_t patch_elements_ = 0;
+  // The patch's columns in the coordinates of the mesh it was cut from (first centre, count, size).
+  double source_x2_first_m_ = 0.0, dx2_m_ = 0.0;
+  int columns_ = 0;
 };
 
 }  // namespace railcontact

@@ -53,6 +53,15 @@ inline constexpr double kWheelsetTablePatchMatchDistance_m = 4e-3;
 
 // One patch of one wheel at one node, in that wheel's own terms (the left wheel's as it is, not
 // mirrored).
+// One strip (column) of a conformal patch's runtime copy, in the runtime mesh's column order (the
+// solve frame: a left wheel's mirrored): its turn from the patch's X3 about X1 in the wheel's own
+// frame (ConformalStrip::angle_rad) and its creepage point on the undeformed wheel surface from the
+// wheelset centre (track frame, the node's position).
+struct WheelsetTableStrip {
+  double angle_rad = 0.0;
+  Vector3 point_from_wheelset_centre_m{};
+};
+
 // One lobe of a patch of several (tread and flange root joined: NhFastSimPerLobe, docs/WHEELSET.md
 // §8): its own flexibilities, centre of pressure and coarse patch.
 struct WheelsetTableLobe {
@@ -61,15 +70,8 @@ struct WheelsetTableLobe {
   Flexibility flexibility;  // L1-L3 of nH-FastSim on this lobe
   Mesh runtime_mesh;        // as the patch's: solve frame, origin at the lobe's centre of pressure
   std::vector<double> runtime_pressure_Pa;
-};
-
-// One strip (column) of a conformal patch's runtime copy, in the runtime mesh's column order (the
-// solve frame: a left wheel's mirrored): its turn from the patch's X3 about X1 in the wheel's own
-// frame (ConformalStrip::angle_rad) and its creepage point on the undeformed wheel surface from the
-// wheelset centre (track frame, the node's position).
-struct WheelsetTableStrip {
-  double angle_rad = 0.0;
-  Vector3 point_from_wheelset_centre_m{};
+  // A lobe of a conformal patch: one strip per runtime_mesh column (empty for a planar patch's).
+  std::vector<WheelsetTableStrip> strips;
 };
 
 // A patch's solution on the conformal surface (docs/WHEELSET.md §4 "Conformal contact"), for a table
@@ -90,6 +92,10 @@ struct WheelsetTableConformalPatch {
   Mesh runtime_mesh;        // solve frame, origin at its centre of pressure
   std::vector<double> runtime_pressure_Pa;
   std::vector<WheelsetTableStrip> strips;  // one per runtime_mesh column
+  // A patch of several lobes, as on a planar patch (WheelsetTablePatch::lobes): each lobe's
+  // flexibilities, coarse copy and strips, and the whole patch's weight where a neck is blended.
+  std::vector<WheelsetTableLobe> lobes;
+  double whole_patch_weight = 0.0;
 };
 
 struct WheelsetTablePatch {
@@ -304,8 +310,14 @@ class WheelsetTable {
   struct RuntimePatch {
     std::optional<FastSim> whole;
     std::vector<FastSim> lobes;  // parallel to WheelsetTablePatch::lobes
-    std::optional<FastSim> conformal;  // on WheelsetTablePatch::conformal's runtime copy
-    std::vector<std::size_t> conformal_column;  // its elements' columns (strips), patch order
+    // On WheelsetTablePatch::conformal's runtime copy and its lobes' (parallel to its lobes), with
+    // their elements' columns (strips) in patch order.
+    struct Copy {
+      FastSim fastsim;
+      std::vector<std::size_t> column;
+    };
+    std::optional<Copy> conformal;
+    std::vector<Copy> conformal_lobes;
   };
   std::vector<std::array<std::vector<RuntimePatch>, 2>> runtime_;
 };

@@ -44,14 +44,27 @@ void check_conformal(const WheelsetTableConformalPatch& c, const Fail& fail, con
     if (!c.strips.empty()) fail("a conformal surface without elements in contact has no strips");
     return;
   }
-  check_runtime(c.flexibility, c.runtime_mesh, c.runtime_pressure_Pa);
-  if (c.strips.size() != static_cast<std::size_t>(c.runtime_mesh.n2))
-    fail("the conformal surface needs one strip per column of its runtime mesh");
-  for (const WheelsetTableStrip& strip : c.strips)
-    if (!(std::abs(strip.angle_rad) <= 1.6) || !finite3(strip.point_from_wheelset_centre_m) ||
-        !(std::abs(strip.point_from_wheelset_centre_m[0]) + std::abs(strip.point_from_wheelset_centre_m[1]) +
-              std::abs(strip.point_from_wheelset_centre_m[2]) <= 10.0))
-      fail("a strip's angle must lie in [-1.6, 1.6] rad and its point within 10 m of the wheelset centre");
+  const auto check_copy = [&](const Flexibility& L, const Mesh& mesh, const std::vector<double>& pressure_Pa,
+                              const std::vector<WheelsetTableStrip>& strips) {
+    check_runtime(L, mesh, pressure_Pa);
+    if (strips.size() != static_cast<std::size_t>(mesh.n2))
+      fail("the conformal surface needs one strip per column of its runtime mesh");
+    for (const WheelsetTableStrip& strip : strips)
+      if (!(std::abs(strip.angle_rad) <= 1.6) || !finite3(strip.point_from_wheelset_centre_m) ||
+          !(std::abs(strip.point_from_wheelset_centre_m[0]) + std::abs(strip.point_from_wheelset_centre_m[1]) +
+                std::abs(strip.point_from_wheelset_centre_m[2]) <= 10.0))
+        fail("a strip's angle must lie in [-1.6, 1.6] rad and its point within 10 m of the wheelset centre");
+  };
+  check_copy(c.flexibility, c.runtime_mesh, c.runtime_pressure_Pa, c.strips);
+  if (c.lobes.size() == 1) fail("a conformal patch of one lobe keeps no lobes (two or more, or none)");
+  if (!(c.whole_patch_weight >= 0.0 && c.whole_patch_weight < 1.0) || (c.whole_patch_weight > 0.0 && c.lobes.empty()))
+    fail("the conformal whole patch's weight must lie in [0, 1), and be 0 without lobes");
+  for (const WheelsetTableLobe& l : c.lobes) {
+    if (!std::isfinite(l.pressure_centre_x1_m) || !std::isfinite(l.pressure_centre_x2_m))
+      fail("a lobe's centre of pressure must be finite");
+    if (l.runtime_pressure_Pa.empty()) fail("a lobe needs its runtime pressure");
+    check_copy(l.flexibility, l.runtime_mesh, l.runtime_pressure_Pa, l.strips);
+  }
 }
 
 void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::size_t k) {
@@ -148,24 +161,26 @@ struct PatchForces {
   Vector3 track_N{};
 };
 
-// FastSim on a conformal patch's runtime copy (docs/WHEELSET.md §4 "Conformal contact"): each
+// The tractions of FastSim on one runtime copy of a conformal patch (the whole patch's or a lobe's,
+// in the solve frame, its origin at its centre x1c_m along X1 from the reference point): each
 // strip's creepages in its own frame (X1, t, n) at its creepage point (turned by the yaw the node
-// does not have: turn), over the patch's rolling speed; every element's traction along its strip's
-// tangent and its pressure along its strip's normal summed in the patch's frame.
-PatchForces conformal_patch_forces(const FastSim& fastsim, const std::vector<std::size_t>& column,
-                                   const WheelsetTablePatch& p, const WheelsetMotion& motion, double cos_turn,
-                                   double sin_turn, double s2, double mu) {
-  const WheelsetTableConformalPatch& c = *p.conformal;
+// does not have), over the patch's rolling speed; the sums of every element's traction along X1 and
+// along its strip's tangent resolved on X2 and X3 (still in the solve frame), and FastSim's forces.
+struct CopyTractions {
+  double t1 = 0.0, t2 = 0.0, t3 = 0.0;
+  TangentialForces fastsim{};  // F1, F2 in the developed solve frame; M3 about the copy's origin
+};
+CopyTractions copy_tractions(const FastSim& fastsim, const std::vector<std::size_t>& column, const Mesh& mesh,
+                             const std::vector<WheelsetTableStrip>& strips, const Flexibility& flexibility,
+                             double x1c_m, const WheelsetTablePatch& p, const WheelsetMotion& motion,
+                             double patch_speed, double cos_turn, double sin_turn, double s2, double mu) {
   const auto turned = [&](const Vector3& r) {
     return Vector3{cos_turn * r[0] - sin_turn * r[1], sin_turn * r[0] + cos_turn * r[1], r[2]};
   };
-  ContactFrame patch_frame{turned(p.point_from_wheelset_centre_m), p.x1_axis, p.x2_axis, p.x3_axis};
-  const double patch_speed = rolling_speed_m_per_s(motion, patch_frame);
-  const Mesh& mesh = c.runtime_mesh;
   StripCreepages creepages(static_cast<std::size_t>(mesh.n2));
   std::vector<double> cos_angle(creepages.size()), sin_angle(creepages.size());
   for (std::size_t j = 0; j < creepages.size(); ++j) {
-    const WheelsetTableStrip& strip = c.strips[j];
+    const WheelsetTableStrip& strip = strips[j];
     cos_angle[j] = std::cos(strip.angle_rad);
     sin_angle[j] = std::sin(strip.angle_rad);
     ContactFrame frame;
@@ -177,25 +192,73 @@ PatchForces conformal_patch_forces(const FastSim& fastsim, const std::vector<std
     }
     const double scale = rolling_speed_m_per_s(motion, frame) / patch_speed;
     const Creepage k = kinematic_creepage(motion, frame);
-    // In the solve frame (x2 -> −x2 for a left wheel), from the runtime copy's centre of pressure.
+    // In the solve frame (x2 -> −x2 for a left wheel), from the copy's origin.
     const double phi = s2 * k.phi * scale;
-    creepages[j] = {k.xi * scale, s2 * k.eta * scale + phi * c.pressure_centre_x1_m, phi};
+    creepages[j] = {k.xi * scale, s2 * k.eta * scale + phi * x1c_m, phi};
   }
-  const FastSimResult f = fastsim.solve(creepages, c.flexibility, mu);
-  // F1 = Σ p1 S; along X2 and X3 the tangential tractions s2 Σ p2 (cos Δ, sin Δ) S, plus the pressures.
+  const FastSimResult f = fastsim.solve(creepages, flexibility, mu);
   const double S = mesh.element_area_m2();
-  double t1 = 0.0, t2 = 0.0, t3 = 0.0;
+  CopyTractions out;
   for (std::size_t e = 0; e < column.size(); ++e) {
     const std::size_t j = column[e];
-    t1 += f.p1_Pa[e] * S;
-    t2 += f.p2_Pa[e] * cos_angle[j] * S;
-    t3 += f.p2_Pa[e] * sin_angle[j] * S;
+    out.t1 += f.p1_Pa[e] * S;
+    out.t2 += f.p2_Pa[e] * cos_angle[j] * S;
+    out.t3 += f.p2_Pa[e] * sin_angle[j] * S;
+  }
+  out.fastsim = f.forces;
+  return out;
+}
+
+// A conformal patch's forces at a lookup (docs/WHEELSET.md §4 "Conformal contact"): FastSim strip
+// by strip on its runtime copy, or on each lobe's with its own flexibilities (blended with the whole
+// copy's where a neck is: WheelsetTableConformalPatch::whole_patch_weight), every element's traction
+// along its strip's tangent and its pressure along its strip's normal summed in the patch's frame.
+// (Runtime: WheelsetTable's private RuntimePatch of the patch.)
+template <typename Runtime>
+PatchForces conformal_patch_forces(const Runtime& runtime, const WheelsetTablePatch& p,
+                                   const WheelsetMotion& motion, double cos_turn, double sin_turn, double s2,
+                                   double mu) {
+  const WheelsetTableConformalPatch& c = *p.conformal;
+  const Vector3& r = p.point_from_wheelset_centre_m;
+  const ContactFrame patch_frame{{cos_turn * r[0] - sin_turn * r[1], sin_turn * r[0] + cos_turn * r[1], r[2]},
+                                 p.x1_axis, p.x2_axis, p.x3_axis};
+  const double patch_speed = rolling_speed_m_per_s(motion, patch_frame);
+  const auto on = [&](const auto& copy, const Mesh& mesh,
+                      const std::vector<WheelsetTableStrip>& strips, const Flexibility& flexibility, double x1c_m) {
+    return copy_tractions(copy.fastsim, copy.column, mesh, strips, flexibility, x1c_m, p, motion, patch_speed, cos_turn,
+                          sin_turn, s2, mu);
+  };
+  CopyTractions sum;
+  double M3 = 0.0;  // solve frame, about the copy's centre
+  if (c.lobes.empty()) {
+    sum = on(*runtime.conformal, c.runtime_mesh, c.strips, c.flexibility, c.pressure_centre_x1_m);
+    M3 = sum.fastsim.M3_Nm;
+  } else {
+    // Each lobe at its own centre (solve frame: x2 mirrored); M3 about the patch's centre.
+    for (std::size_t k = 0; k < c.lobes.size(); ++k) {
+      const WheelsetTableLobe& lobe = c.lobes[k];
+      const CopyTractions t = on(runtime.conformal_lobes[k], lobe.runtime_mesh, lobe.strips, lobe.flexibility,
+                                 lobe.pressure_centre_x1_m);
+      sum.t1 += t.t1;
+      sum.t2 += t.t2;
+      sum.t3 += t.t3;
+      M3 += t.fastsim.M3_Nm + (lobe.pressure_centre_x1_m - c.pressure_centre_x1_m) * t.fastsim.F2_N -
+            s2 * (lobe.pressure_centre_x2_m - c.pressure_centre_x2_m) * t.fastsim.F1_N;
+    }
+    if (const double blend = c.whole_patch_weight; blend > 0.0) {
+      const CopyTractions whole = on(*runtime.conformal, c.runtime_mesh, c.strips, c.flexibility, c.pressure_centre_x1_m);
+      sum.t1 = (1.0 - blend) * sum.t1 + blend * whole.t1;
+      sum.t2 = (1.0 - blend) * sum.t2 + blend * whole.t2;
+      sum.t3 = (1.0 - blend) * sum.t3 + blend * whole.t3;
+      M3 = (1.0 - blend) * M3 + blend * whole.fastsim.M3_Nm;
+    }
   }
   PatchForces out;
   for (std::size_t i = 0; i < 3; ++i)
-    out.track_N[i] = t1 * p.x1_axis[i] + s2 * t2 * p.x2_axis[i] + s2 * t3 * p.x3_axis[i] + c.pressure_force_track_N[i];
+    out.track_N[i] = sum.t1 * p.x1_axis[i] + s2 * sum.t2 * p.x2_axis[i] + s2 * sum.t3 * p.x3_axis[i] +
+                     c.pressure_force_track_N[i];
   const auto dot = [](const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-  out.forces = {t1, dot(out.track_N, p.x2_axis), s2 * f.forces.M3_Nm};
+  out.forces = {sum.t1, dot(out.track_N, p.x2_axis), s2 * M3};
   return out;
 }
 
@@ -249,10 +312,15 @@ WheelsetTable::WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNo
         for (const WheelsetTableLobe& l : p.lobes)
           runtime.lobes.emplace_back(ContactPatch(l.runtime_mesh, l.runtime_pressure_Pa, material_), bound_);
         if (p.conformal && !p.conformal->runtime_pressure_Pa.empty()) {
-          const ContactPatch copy(p.conformal->runtime_mesh, p.conformal->runtime_pressure_Pa, material_);
-          runtime.conformal.emplace(copy, bound_);
-          for (std::size_t e : copy.elements().indices())
-            runtime.conformal_column.push_back(e / static_cast<std::size_t>(copy.mesh().n1));
+          const auto prepared = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa) {
+            const ContactPatch copy(mesh, pressure_Pa, material_);
+            RuntimePatch::Copy c{FastSim(copy, bound_), {}};
+            for (std::size_t e : copy.elements().indices()) c.column.push_back(e / static_cast<std::size_t>(mesh.n1));
+            return c;
+          };
+          runtime.conformal.emplace(prepared(p.conformal->runtime_mesh, p.conformal->runtime_pressure_Pa));
+          for (const WheelsetTableLobe& l : p.conformal->lobes)
+            runtime.conformal_lobes.push_back(prepared(l.runtime_mesh, l.runtime_pressure_Pa));
         }
       }
     }
@@ -543,8 +611,7 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
           surface_weight = curved.weight;
           PatchForces on_curve{{}, curved.pressure_force_track_N};  // no element in contact yet: its pressure only
           if (runtime.conformal)
-            on_curve = conformal_patch_forces(*runtime.conformal, runtime.conformal_column, p, motion, cos_turn, sin_turn,
-                                              s2, friction_coefficient);
+            on_curve = conformal_patch_forces(runtime, p, motion, cos_turn, sin_turn, s2, friction_coefficient);
           const auto mix = [surface_weight](double a, double b) { return (1.0 - surface_weight) * a + surface_weight * b; };
           total.forces = {mix(total.forces.F1_N, on_curve.forces.F1_N), mix(total.forces.F2_N, on_curve.forces.F2_N),
                           mix(total.forces.M3_Nm, on_curve.forces.M3_Nm)};

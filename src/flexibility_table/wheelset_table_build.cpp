@@ -47,11 +47,35 @@ std::array<double, 2> keep_runtime_copy(const ContactPatch& fine, int target, do
   return {-coarse.x1_shift_m(), -coarse.x2_shift_m()};
 }
 
-// The conformal surface's solution of a patch (its own numbers, unblended) and its runtime copy:
-// each column of the coarse copy takes the strip frame at its developed coordinate, interpolated
-// linearly between the patch's strips in contact.
+// The strips of a conformal runtime copy: column j lies at x2 = s2 x2_solve(j) + centre_x2 from
+// the reference point along X2 in the wheel's own frame (the developed coordinate of the patch's
+// strips; centre_x2 the copy's centre in the contact frame), and takes the strip frame there,
+// interpolated linearly between the patch's strips in contact.
+std::vector<WheelsetTableStrip> runtime_strips(const std::vector<ConformalStrip>& strips, const Mesh& runtime_mesh,
+                                               double centre_x2_m, double s2, const Vector3& centre) {
+  std::vector<WheelsetTableStrip> out(static_cast<std::size_t>(runtime_mesh.n2));
+  for (int j = 0; j < runtime_mesh.n2; ++j) {
+    const double s = s2 * runtime_mesh.x2(j) + centre_x2_m;
+    std::size_t k = 0;
+    while (k + 2 < strips.size() && strips[k + 1].s_m < s) ++k;
+    const ConformalStrip& a = strips[k];
+    const ConformalStrip& b = strips[std::min(k + 1, strips.size() - 1)];
+    const double t = b.s_m > a.s_m ? std::clamp((s - a.s_m) / (b.s_m - a.s_m), 0.0, 1.0) : 0.0;
+    WheelsetTableStrip& strip = out[static_cast<std::size_t>(j)];
+    strip.angle_rad = (1.0 - t) * a.angle_rad + t * b.angle_rad;
+    for (std::size_t i = 0; i < 3; ++i)
+      strip.point_from_wheelset_centre_m[i] =
+          (1.0 - t) * a.wheel_point_track_m[i] + t * b.wheel_point_track_m[i] - centre[i];
+  }
+  return out;
+}
+
+// The conformal surface's solution of a patch (its own numbers, unblended), its runtime copy with
+// a strip per column, and for a patch of several lobes each lobe's (as the wheelset solves it:
+// NhFastSimPerLobe on the developed patch).
 WheelsetTableConformalPatch conformal_table_patch(const WheelsetPatch& patch, double weight, const Vector3& centre,
-                                                  WheelSide side, int runtime_elements) {
+                                                  WheelSide side, int runtime_elements,
+                                                  const NhFastSimOptions& nh_fastsim) {
   WheelsetTableConformalPatch c;
   c.weight = weight;
   c.normal_force_N = patch.normal_force_N;
@@ -64,27 +88,32 @@ WheelsetTableConformalPatch conformal_table_patch(const WheelsetPatch& patch, do
   c.flexibility = patch.solvers.front().flexibility;
   if (patch.elements_in_contact == 0 || patch.strips.empty()) return c;
   const double s2 = side == WheelSide::left ? -1.0 : 1.0;
+  const double fine_x1 = c.pressure_centre_x1_m, fine_x2 = c.pressure_centre_x2_m;
   // The runtime copy as for a planar patch (2 × 2 blocks at most where the patch is steep).
   const std::array<double, 2> coarse =
       keep_runtime_copy(patch.patch, runtime_elements, patch.region.contact_angle_rad, c.runtime_mesh, c.runtime_pressure_Pa);
   c.pressure_centre_x1_m += coarse[0];
   c.pressure_centre_x2_m += s2 * coarse[1];
-  // Column j of the copy lies at x2 = s2 (x2_solve(j) + s2 centre_x2) from the reference point along
-  // X2 in the wheel's own frame: the developed coordinate of the patch's strips.
-  const std::vector<ConformalStrip>& strips = patch.strips;
-  c.strips.resize(static_cast<std::size_t>(c.runtime_mesh.n2));
-  for (int j = 0; j < c.runtime_mesh.n2; ++j) {
-    const double s = s2 * c.runtime_mesh.x2(j) + c.pressure_centre_x2_m;
-    std::size_t k = 0;
-    while (k + 2 < strips.size() && strips[k + 1].s_m < s) ++k;
-    const ConformalStrip& a = strips[k];
-    const ConformalStrip& b = strips[std::min(k + 1, strips.size() - 1)];
-    const double t = b.s_m > a.s_m ? std::clamp((s - a.s_m) / (b.s_m - a.s_m), 0.0, 1.0) : 0.0;
-    WheelsetTableStrip& out = c.strips[static_cast<std::size_t>(j)];
-    out.angle_rad = (1.0 - t) * a.angle_rad + t * b.angle_rad;
-    for (std::size_t i = 0; i < 3; ++i)
-      out.point_from_wheelset_centre_m[i] =
-          (1.0 - t) * a.wheel_point_track_m[i] + t * b.wheel_point_track_m[i] - centre[i];
+  c.strips = runtime_strips(patch.strips, c.runtime_mesh, c.pressure_centre_x2_m, s2, centre);
+  if (!NhFastSimPerLobe::has_several_lobes(patch.patch)) return c;
+  const NhFastSimPerLobe per_lobe(patch.patch, nh_fastsim);
+  if (const Flexibility* whole = per_lobe.whole_patch_flexibility()) {
+    c.whole_patch_weight = per_lobe.whole_patch_weight();
+    c.flexibility = *whole;
+  }
+  const double fine_elements = static_cast<double>(patch.patch.elements().count());
+  for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
+    const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);
+    WheelsetTableLobe l;
+    l.flexibility = lobe.flexibility;
+    const int target = std::max(
+        20, static_cast<int>(std::lround(runtime_elements * static_cast<double>(lobe.patch.elements().count()) / fine_elements)));
+    const std::array<double, 2> lobe_coarse =
+        keep_runtime_copy(lobe.patch, target, patch.region.contact_angle_rad, l.runtime_mesh, l.runtime_pressure_Pa);
+    l.pressure_centre_x1_m = fine_x1 + lobe.x1_centre_m + lobe_coarse[0];
+    l.pressure_centre_x2_m = fine_x2 + s2 * (lobe.x2_centre_m + lobe_coarse[1]);
+    l.strips = runtime_strips(patch.strips, l.runtime_mesh, l.pressure_centre_x2_m, s2, centre);
+    c.lobes.push_back(std::move(l));
   }
   return c;
 }
@@ -109,7 +138,7 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
       t.elements_in_contact = patch.elements_in_contact;
     }
     t.conformal = conformal_table_patch(blended ? *patch.conformal_surface : patch, patch.conformal_weight, centre,
-                                        side, runtime_elements);
+                                        side, runtime_elements, nh_fastsim);
     return t;
   }
   WheelsetTablePatch t;

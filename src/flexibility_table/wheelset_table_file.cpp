@@ -41,13 +41,34 @@ json mesh_json(const Mesh& m) {
 
 json flexibility_json(const Flexibility& L) { return json::array({L.L1, L.L2, L.L3}); }
 
+json strips_json(const std::vector<WheelsetTableStrip>& strips) {
+  json out = json::array();
+  for (const WheelsetTableStrip& s : strips)
+    out.push_back(json{{"angle_rad", s.angle_rad}, {"point_from_wheelset_centre_m", vector3(s.point_from_wheelset_centre_m)}});
+  return out;
+}
+
+// A patch's lobes; a conformal patch's with their strips.
+json lobes_json(const std::vector<WheelsetTableLobe>& lobes, bool with_strips) {
+  json out = json::array();
+  for (const WheelsetTableLobe& l : lobes) {
+    json lobe{{"pressure_centre_x1_m", l.pressure_centre_x1_m},
+              {"pressure_centre_x2_m", l.pressure_centre_x2_m},
+              {"flexibility_m_per_Pa", flexibility_json(l.flexibility)},
+              {"runtime_mesh", mesh_json(l.runtime_mesh)},
+              {"runtime_pressure_Pa", l.runtime_pressure_Pa}};
+    if (with_strips) lobe["strips"] = strips_json(l.strips);
+    out.push_back(std::move(lobe));
+  }
+  return out;
+}
+
 json conformal_json(const std::optional<WheelsetTableConformalPatch>& conformal) {
   if (!conformal) return nullptr;
   const WheelsetTableConformalPatch& c = *conformal;
-  json strips = json::array();
-  for (const WheelsetTableStrip& s : c.strips)
-    strips.push_back(json{{"angle_rad", s.angle_rad}, {"point_from_wheelset_centre_m", vector3(s.point_from_wheelset_centre_m)}});
-  return json{{"weight", c.weight},
+  const json strips = strips_json(c.strips);
+  return json{{"lobes", lobes_json(c.lobes, true)},
+              {"whole_patch_weight", c.whole_patch_weight},{"weight", c.weight},
               {"normal_force_N", c.normal_force_N},
               {"pressure_force_track_N", vector3(c.pressure_force_track_N)},
               {"area_m2", c.area_m2},
@@ -62,13 +83,7 @@ json conformal_json(const std::optional<WheelsetTableConformalPatch>& conformal)
 }
 
 json patch_json(const WheelsetTablePatch& p) {
-  json lobes = json::array();
-  for (const WheelsetTableLobe& l : p.lobes)
-    lobes.push_back(json{{"pressure_centre_x1_m", l.pressure_centre_x1_m},
-                         {"pressure_centre_x2_m", l.pressure_centre_x2_m},
-                         {"flexibility_m_per_Pa", flexibility_json(l.flexibility)},
-                         {"runtime_mesh", mesh_json(l.runtime_mesh)},
-                         {"runtime_pressure_Pa", l.runtime_pressure_Pa}});
+  const json lobes = lobes_json(p.lobes, false);
   return json{{"reference_point_track_m", vector3(p.reference_point_track_m)},
               {"point_from_wheelset_centre_m", vector3(p.point_from_wheelset_centre_m)},
               {"x1_axis", vector3(p.x1_axis)},
@@ -156,6 +171,41 @@ constexpr std::size_t kMaxLobes = 16;
 // At most this many strips per conformal patch (one per runtime mesh column).
 constexpr std::size_t kMaxStrips = 1u << 16;
 
+std::vector<WheelsetTableStrip> read_strips(StrictJsonReader& r) {
+  const json& strips = r.array("strips");
+  if (strips.size() > kMaxStrips)
+    r.fail(fmt::format("{} has {} strips; at most {} are allowed", r.qualified("strips"), strips.size(), kMaxStrips));
+  std::vector<WheelsetTableStrip> out;
+  for (std::size_t j = 0; j < strips.size(); ++j) {
+    StrictJsonReader sr = r.item(strips[j], fmt::format("{}[{}]", r.qualified("strips"), j));
+    WheelsetTableStrip strip;
+    strip.angle_rad = sr.number("angle_rad");
+    strip.point_from_wheelset_centre_m = read_vector3(sr, "point_from_wheelset_centre_m");
+    sr.finish();
+    out.push_back(strip);
+  }
+  return out;
+}
+
+
+std::vector<WheelsetTableLobe> read_lobes(StrictJsonReader& r, bool with_strips) {
+  const json& lobes = r.array("lobes");
+  if (lobes.size() > kMaxLobes)
+    r.fail(fmt::format("{} has {} lobes; at most {} are allowed", r.qualified("lobes"), lobes.size(), kMaxLobes));
+  std::vector<WheelsetTableLobe> out;
+  for (std::size_t j = 0; j < lobes.size(); ++j) {
+    StrictJsonReader l = r.item(lobes[j], fmt::format("{}[{}]", r.qualified("lobes"), j));
+    WheelsetTableLobe lobe;
+    lobe.pressure_centre_x1_m = l.number("pressure_centre_x1_m");
+    lobe.pressure_centre_x2_m = l.number("pressure_centre_x2_m");
+    read_runtime(l, lobe.flexibility, lobe.runtime_mesh, lobe.runtime_pressure_Pa);
+    if (with_strips) lobe.strips = read_strips(l);
+    l.finish();
+    out.push_back(std::move(lobe));
+  }
+  return out;
+}
+
 WheelsetTableConformalPatch read_conformal(StrictJsonReader r) {
   WheelsetTableConformalPatch c;
   c.weight = r.number("weight");
@@ -167,17 +217,9 @@ WheelsetTableConformalPatch read_conformal(StrictJsonReader r) {
   c.pressure_centre_x1_m = r.number("pressure_centre_x1_m");
   c.pressure_centre_x2_m = r.number("pressure_centre_x2_m");
   read_runtime(r, c.flexibility, c.runtime_mesh, c.runtime_pressure_Pa);
-  const json& strips = r.array("strips");
-  if (strips.size() > kMaxStrips)
-    r.fail(fmt::format("{} has {} strips; at most {} are allowed", r.qualified("strips"), strips.size(), kMaxStrips));
-  for (std::size_t j = 0; j < strips.size(); ++j) {
-    StrictJsonReader sr = r.item(strips[j], fmt::format("{}[{}]", r.qualified("strips"), j));
-    WheelsetTableStrip strip;
-    strip.angle_rad = sr.number("angle_rad");
-    strip.point_from_wheelset_centre_m = read_vector3(sr, "point_from_wheelset_centre_m");
-    sr.finish();
-    c.strips.push_back(strip);
-  }
+  c.strips = read_strips(r);
+  c.lobes = read_lobes(r, true);
+  c.whole_patch_weight = r.number("whole_patch_weight");
   r.finish();
   return c;
 }
@@ -201,18 +243,7 @@ WheelsetTablePatch read_patch(StrictJsonReader r, int version) {
   p.pressure_centre_x2_m = r.number("pressure_centre_x2_m");
   read_runtime(r, p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
   if (version >= 2) {
-    const json& lobes = r.array("lobes");
-    if (lobes.size() > kMaxLobes)
-      r.fail(fmt::format("{} has {} lobes; at most {} are allowed", r.qualified("lobes"), lobes.size(), kMaxLobes));
-    for (std::size_t j = 0; j < lobes.size(); ++j) {
-      StrictJsonReader l = r.item(lobes[j], fmt::format("{}[{}]", r.qualified("lobes"), j));
-      WheelsetTableLobe lobe;
-      lobe.pressure_centre_x1_m = l.number("pressure_centre_x1_m");
-      lobe.pressure_centre_x2_m = l.number("pressure_centre_x2_m");
-      read_runtime(l, lobe.flexibility, lobe.runtime_mesh, lobe.runtime_pressure_Pa);
-      l.finish();
-      p.lobes.push_back(std::move(lobe));
-    }
+    p.lobes = read_lobes(r, false);
     p.whole_patch_weight = r.number("whole_patch_weight");
   }
   if (version >= 6) {

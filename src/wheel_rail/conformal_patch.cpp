@@ -8,6 +8,7 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/wheel_rail.hpp"
 #include "wheel_rail/cropped_patch.hpp"
 
 namespace railcontact::detail {
@@ -48,8 +49,16 @@ StripTractions strip_tractions(TangentialSolver solver, const ContactPatch& cont
       break;
     }
     case TangentialSolver::nh_fastsim: {
-      // As on a planar patch: K2's flexibilities on the developed patch, or the equivalent
-      // ellipse's for a patch too small for K2 (docs/WHEELSET.md §5).
+      // As on a planar patch: per lobe where the patch has several (docs/WHEELSET.md §8), else K2's
+      // flexibilities on the developed patch, or the equivalent ellipse's for a patch too small for
+      // K2 (docs/WHEELSET.md §5).
+      if (NhFastSimPerLobe::has_several_lobes(contact)) {
+        const NhFastSimPerLobe per_lobe(contact, options.nh_fastsim);
+        t.flexibility = per_lobe.flexibility();  // the most loaded lobe's
+        FastSimResult f = per_lobe.solve(creepages, mu);
+        take(f, f.forces.M3_Nm);
+        break;
+      }
       const std::optional<NhFastSim> nh = nh_fastsim_unless_too_small(contact, options.nh_fastsim);
       t.flexibility = nh ? nh->flexibility() : fastsim_flexibility(semi_axes_m[0], semi_axes_m[1], contact.material());
       FastSimResult f = nh ? nh->solve(creepages, mu)

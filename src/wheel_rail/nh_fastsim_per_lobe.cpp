@@ -1,6 +1,7 @@
 // nH-FastSim per lobe of a patch (include/railcontact/wheel_rail.hpp, docs/WHEELSET.md §8): the
 // patch split into its 4-neighbour connected lobes, each with its own flexibilities and the
 // creepages at its own centre of pressure; forces summed, spin moment about the patch's origin.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
@@ -39,6 +40,9 @@ struct NhFastSimPerLobe::Lobe {
   [[nodiscard]] FastSimResult solve(const Creepage& c, double mu) const {
     return nh ? nh->solve(c, mu) : fallback->solve(c, fallback_flexibility, mu);
   }
+  [[nodiscard]] FastSimResult solve(const StripCreepages& c, double mu) const {
+    return nh ? nh->solve(c, mu) : fallback->solve(c, fallback_flexibility, mu);
+  }
 };
 
 NhFastSimPerLobe::NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOptions& options)
@@ -48,6 +52,9 @@ NhFastSimPerLobe::NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOpt
   Mesh source = patch.mesh();
   source.x1_first_m -= patch.x1_shift_m();
   source.x2_first_m -= patch.x2_shift_m();
+  source_x2_first_m_ = source.x2_first_m;
+  dx2_m_ = source.dx2_m;
+  columns_ = source.n2;
   const auto whole_patch = [&] {
     Lobe lobe(patch, options, source, indices);
     lobe.to_patch.resize(patch_elements_);
@@ -102,27 +109,8 @@ NhFastSimPerLobe& NhFastSimPerLobe::operator=(const NhFastSimPerLobe&) = default
 NhFastSimPerLobe& NhFastSimPerLobe::operator=(NhFastSimPerLobe&&) noexcept = default;
 NhFastSimPerLobe::~NhFastSimPerLobe() = default;
 
-FastSimResult NhFastSimPerLobe::solve(const Creepage& creepage, double mu) const {
-  if (lobes_.size() == 1) return lobes_.front().solve(creepage, mu);
-  FastSimResult r = solve_lobes(creepage, mu);
-  if (whole_.empty()) return r;
-  // A neck between kNeckWidthFraction and kNeckBlendEnd: the per-lobe and the whole-patch
-  // solutions blended (slip flags: the heavier one's).
-  const FastSimResult whole = whole_.front().solve(creepage, mu);
-  const double w = whole_weight_;
-  r.forces.F1_N = (1.0 - w) * r.forces.F1_N + w * whole.forces.F1_N;
-  r.forces.F2_N = (1.0 - w) * r.forces.F2_N + w * whole.forces.F2_N;
-  r.forces.M3_Nm = (1.0 - w) * r.forces.M3_Nm + w * whole.forces.M3_Nm;
-  for (std::size_t e = 0; e < patch_elements_; ++e) {
-    r.p1_Pa[e] = (1.0 - w) * r.p1_Pa[e] + w * whole.p1_Pa[e];
-    r.p2_Pa[e] = (1.0 - w) * r.p2_Pa[e] + w * whole.p2_Pa[e];
-    if (w >= 0.5) r.slip[e] = whole.slip[e];
-  }
-  r.adhesion_fraction = (1.0 - w) * r.adhesion_fraction + w * whole.adhesion_fraction;
-  return r;
-}
-
-FastSimResult NhFastSimPerLobe::solve_lobes(const Creepage& creepage, double mu) const {
+template <typename CreepagesAtLobe>
+FastSimResult NhFastSimPerLobe::solve_lobes(const CreepagesAtLobe& at_lobe, double mu) const {
   FastSimResult r;
   r.p1_Pa.assign(patch_elements_, 0.0);
   r.p2_Pa.assign(patch_elements_, 0.0);
@@ -130,9 +118,7 @@ FastSimResult NhFastSimPerLobe::solve_lobes(const Creepage& creepage, double mu)
   double adhesion_elements = 0.0;
   for (const Lobe& lobe : lobes_) {
     const double x1 = lobe.x1_centre_m, x2 = lobe.x2_centre_m;
-    // The rigid slip (ξ − φ x2, η + φ x1) gives the creepages at the lobe's centre of pressure.
-    const Creepage at_lobe{creepage.xi - creepage.phi * x2, creepage.eta + creepage.phi * x1, creepage.phi};
-    const FastSimResult s = lobe.solve(at_lobe, mu);
+    const FastSimResult s = lobe.solve(at_lobe(lobe), mu);
     r.forces.F1_N += s.forces.F1_N;
     r.forces.F2_N += s.forces.F2_N;
     r.forces.M3_Nm += s.forces.M3_Nm + x1 * s.forces.F2_N - x2 * s.forces.F1_N;
@@ -146,6 +132,60 @@ FastSimResult NhFastSimPerLobe::solve_lobes(const Creepage& creepage, double mu)
     adhesion_elements += s.adhesion_fraction * static_cast<double>(lobe.part.elements().count());
   }
   r.adhesion_fraction = adhesion_elements / static_cast<double>(patch_elements_);
+  return r;
+}
+
+FastSimResult NhFastSimPerLobe::solve(const Creepage& creepage, double mu) const {
+  if (lobes_.size() == 1) return lobes_.front().solve(creepage, mu);
+  // The rigid slip (ξ − φ x2, η + φ x1) gives the creepages at a lobe's centre of pressure.
+  FastSimResult r = solve_lobes(
+      [&](const Lobe& lobe) {
+        return Creepage{creepage.xi - creepage.phi * lobe.x2_centre_m, creepage.eta + creepage.phi * lobe.x1_centre_m,
+                        creepage.phi};
+      },
+      mu);
+  if (whole_.empty()) return r;
+  return blended_with_whole(std::move(r), whole_.front().solve(creepage, mu));
+}
+
+FastSimResult NhFastSimPerLobe::solve(const StripCreepages& creepages, double mu) const {
+  require(creepages.size() == static_cast<std::size_t>(columns_), [&] {
+    return fmt::format("nH-FastSim per lobe: {} strip creepages for a patch of {} columns", creepages.size(), columns_);
+  });
+  if (lobes_.size() == 1) return lobes_.front().solve(creepages, mu);
+  // A lobe's columns are the patch's at the same x2 of the mesh both were cut from (a block-aligned
+  // crop may reach a column beyond the patch's, of zero pressure: the nearest strip's); η moves to
+  // the lobe's centre.
+  FastSimResult r = solve_lobes(
+      [&](const Lobe& lobe) {
+        const Mesh& m = lobe.part.mesh();
+        StripCreepages at(static_cast<std::size_t>(m.n2));
+        for (int i2 = 0; i2 < m.n2; ++i2) {
+          const double x2 = m.x2(i2) - lobe.part.x2_shift_m();
+          const int j = std::clamp(static_cast<int>(std::lround((x2 - source_x2_first_m_) / dx2_m_)), 0, columns_ - 1);
+          const Creepage& c = creepages[static_cast<std::size_t>(j)];
+          at[static_cast<std::size_t>(i2)] = {c.xi, c.eta + c.phi * lobe.x1_centre_m, c.phi};
+        }
+        return at;
+      },
+      mu);
+  if (whole_.empty()) return r;
+  return blended_with_whole(std::move(r), whole_.front().solve(creepages, mu));
+}
+
+FastSimResult NhFastSimPerLobe::blended_with_whole(FastSimResult r, const FastSimResult& whole) const {
+  // A neck between kNeckWidthFraction and kNeckBlendEnd: the per-lobe and the whole-patch
+  // solutions blended (slip flags: the heavier one's).
+  const double w = whole_weight_;
+  r.forces.F1_N = (1.0 - w) * r.forces.F1_N + w * whole.forces.F1_N;
+  r.forces.F2_N = (1.0 - w) * r.forces.F2_N + w * whole.forces.F2_N;
+  r.forces.M3_Nm = (1.0 - w) * r.forces.M3_Nm + w * whole.forces.M3_Nm;
+  for (std::size_t e = 0; e < patch_elements_; ++e) {
+    r.p1_Pa[e] = (1.0 - w) * r.p1_Pa[e] + w * whole.p1_Pa[e];
+    r.p2_Pa[e] = (1.0 - w) * r.p2_Pa[e] + w * whole.p2_Pa[e];
+    if (w >= 0.5) r.slip[e] = whole.slip[e];
+  }
+  r.adhesion_fraction = (1.0 - w) * r.adhesion_fraction + w * whole.adhesion_fraction;
   return r;
 }
 
