@@ -29,6 +29,11 @@ class Error : public std::runtime_error {
   explicit Error(const std::string& message, ErrorKind kind = ErrorKind::invalid_input)
       : std::runtime_error(message), kind_(kind) {}
   Error(ErrorKind kind, const std::string& message) : std::runtime_error(message), kind_(kind) {}
+  Error(const Error&) = default;
+  Error& operator=(const Error&) = default;
+  // Defined in the library (its key function): the exception's type information lives in
+  // librailcontact.so, so that a program catches what the shared library throws.
+  ~Error() override;
   [[nodiscard]] ErrorKind kind() const noexcept { return kind_; }
 
  private:

@@ -1,7 +1,9 @@
-// Names of the error kinds (railcontact/error.hpp).
+// The error type's key function and the names of the error kinds (railcontact/error.hpp).
 #include "railcontact/error.hpp"
 
 namespace railcontact {
+
+Error::~Error() = default;
 
 std::string_view error_kind_name(ErrorKind kind) {
   switch (kind) {
