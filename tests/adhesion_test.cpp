@@ -23,8 +23,8 @@ TEST(Adhesion, DenseAndKrylovAgree) {
   krylov.tolerance = 1e-13;
   for (double alpha : {0.0, 0.5}) {
     dense.collocation_offset = krylov.collocation_offset = alpha;
-    const Eigen::Matrix3d K_dense = solve_full_adhesion(ellipse, kSteel, dense).creepage_matrix;
-    const Eigen::Matrix3d K_krylov = solve_full_adhesion(ellipse, kSteel, krylov).creepage_matrix;
+    const Matrix3 K_dense = solve_full_adhesion(ellipse, kSteel, dense).creepage_matrix;
+    const Matrix3 K_krylov = solve_full_adhesion(ellipse, kSteel, krylov).creepage_matrix;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) {
         const double scale = std::sqrt(std::fabs(K_dense(i, i) * K_dense(j, j)));
@@ -36,7 +36,7 @@ TEST(Adhesion, DenseAndKrylovAgree) {
 TEST(Adhesion, CreepageMatrixHasKalkersSignPatternOnAnEllipse) {
   // Eq 16: K1 = [[-f11, 0, 0], [0, -f22, -f23], [0, f23, -f33]] with f > 0.
   const ContactElements ellipse = elliptical_contact_with_count(6e-3, 4e-3, 1500);
-  const Eigen::Matrix3d K = solve_full_adhesion(ellipse, kSteel).creepage_matrix;
+  const Matrix3 K = solve_full_adhesion(ellipse, kSteel).creepage_matrix;
   EXPECT_LT(K(0, 0), 0);
   EXPECT_LT(K(1, 1), 0);
   EXPECT_LT(K(2, 2), 0);
@@ -62,7 +62,7 @@ TEST(Adhesion, TractionsVanishAtTheLeadingEdgeAndGrowTowardsTheTrailingEdge) {
   const auto& idx = ellipse.indices();
   std::vector<double> strip;
   for (std::size_t e = 0; e < idx.size(); ++e)
-    if (static_cast<int>(idx[e] / mesh.n1) == mesh.n2 / 2) strip.push_back(s.unit_tractions(static_cast<Eigen::Index>(e), 0));
+    if (static_cast<int>(idx[e] / mesh.n1) == mesh.n2 / 2) strip.push_back(s.unit_tractions(e, 0));
   ASSERT_GT(strip.size(), 10u);
   for (double p : strip) EXPECT_LT(p, 0.0);
   EXPECT_LT(std::fabs(strip.back()), 0.25 * std::fabs(strip.front()));  // leading edge (largest x1) small
@@ -155,12 +155,12 @@ TEST(Adhesion, ForceRowsByAdjointSolvesEqualTheFullMatrix) {
   const ContactElements patch = elliptical_contact_with_count(6e-3, 4e-3, 900, EllipseMeshLayout::rolling_resolved);
   AdhesionOptions full;
   full.tolerance = 1e-12;
-  const Eigen::Matrix3d K = solve_full_adhesion(patch, kSteel, full).creepage_matrix;
+  const Matrix3 K = solve_full_adhesion(patch, kSteel, full).creepage_matrix;
   for (LinearSolver solver : {LinearSolver::krylov, LinearSolver::dense}) {
     AdhesionOptions rows = full;
     rows.part = CreepageMatrixPart::force_rows;
     rows.solver = solver;
-    const Eigen::Matrix3d R = solve_full_adhesion(patch, kSteel, rows).creepage_matrix;
+    const Matrix3 R = solve_full_adhesion(patch, kSteel, rows).creepage_matrix;
     for (int i = 0; i < 2; ++i)
       for (int j = 0; j < 3; ++j)
         EXPECT_NEAR(R(i, j), K(i, j), 1e-8 * std::sqrt(std::fabs(K(i, i) * K(j, j)))) << i << j;

@@ -21,6 +21,7 @@
 #include "railcontact/kalker.hpp"
 #include "carter.hpp"
 #include "different_paths.hpp"
+#include "tangential/matrix3_eigen.hpp"
 
 namespace railcontact {
 namespace {
@@ -324,7 +325,7 @@ TEST(FastSimMarching, DiffersFromElementwiseClippingOnlyWithSpin) {
 // construction of the term-by-term match, METHOD.md §7).
 void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
   const AdhesionSolution adhesion = solve_full_adhesion(patch.elements(), patch.material());
-  const Eigen::Matrix3d& K2 = adhesion.creepage_matrix;
+  const Matrix3& K2 = adhesion.creepage_matrix;
   const FastSim fastsim(patch);
   const Flexibility L = nh_fastsim_flexibility(fastsim, K2);
   const double xi = 1e-7, eta = 1e-7, phi = 1e-4;  // phi in 1/m
@@ -368,7 +369,7 @@ TEST(NhFastSim, FlexibilitiesCloseToKalkerOnEllipses) {
   for (double a_over_b : {0.5, 1.0, 2.0}) {
     const double a = 6e-3, b = a / a_over_b;
     const ContactPatch patch = ellipse_patch(a, b, 2800);
-    const Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
+    const Matrix3 K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
     const FastSim fastsim(patch);
     const Flexibility kalker = fastsim_flexibility(a, b, patch.material());
     const Flexibility nh = nh_fastsim_flexibility(fastsim, K2);
@@ -545,13 +546,13 @@ TEST(FastSimSigns, KalkerConventionInTheLinearRegime) {
   EXPECT_LT(fphi.F2_N, 0.0);   // -f23 phi
   EXPECT_LT(fphi.M3_Nm, 0.0);  // -f33 phi
   // Same signs as the adhesion solver's K2.
-  const Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
+  const Matrix3 K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
   EXPECT_LT(K2(0, 0), 0.0);
   EXPECT_LT(K2(1, 1), 0.0);
   EXPECT_LT(K2(1, 2), 0.0);
   EXPECT_GT(K2(2, 1), 0.0);
   EXPECT_LT(K2(2, 2), 0.0);
-  const Eigen::Matrix3d& SDB = fastsim.adhesion_force_matrix();
+  const Matrix3& SDB = fastsim.adhesion_force_matrix();
   for (const auto& [i, j] : {std::pair{0, 0}, std::pair{1, 1}, std::pair{1, 2}, std::pair{2, 1}, std::pair{2, 2}}) {
     EXPECT_EQ(SDB(i, j) > 0, K2(i, j) > 0) << i << j;
   }
@@ -564,11 +565,11 @@ TEST(FastSimAdhesion, ForcesWithoutSlipEqualTheAdhesionForceMatrix) {
   for (const ContactPatch& patch : {ellipse_patch(6e-3, 4e-3, 2800), two_lobe_patch()}) {
     const FastSim fastsim(patch);
     const Flexibility L{5e-13, 6e-13, 4e-13};  // m/Pa, about Kalker's for these patches
-    const Eigen::Matrix3d& SDB = fastsim.adhesion_force_matrix();
+    const Matrix3& SDB = fastsim.adhesion_force_matrix();
     EXPECT_EQ(SDB(0, 0), SDB(1, 1));
     for (const Creepage& c : {Creepage{2e-6, -3e-6, 0}, Creepage{-1e-6, 2e-6, 4e-4}}) {
       const TangentialForces f = fastsim.forces(c, L, 1e3);  // mu large: no element slips
-      const Eigen::Vector3d expected = SDB * Eigen::Vector3d(c.xi / L.L1, c.eta / L.L2, c.phi / L.L3);
+      const Eigen::Vector3d expected = detail::to_eigen(SDB) * Eigen::Vector3d(c.xi / L.L1, c.eta / L.L2, c.phi / L.L3);
       const double scale = expected.head<2>().norm();
       EXPECT_GT(scale, 1.0);
       EXPECT_NEAR(f.F1_N, expected(0), 1e-12 * scale);
@@ -617,15 +618,15 @@ TEST(FastSimInput, RejectsBadInput) {
   }
   EXPECT_THROW(FastSim{ContactPatch{}}, Error);
   // Flexibilities from a K2 with the wrong signs or not finite.
-  Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
-  Eigen::Matrix3d wrong = K2;
+  Matrix3 K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
+  Matrix3 wrong = K2;
   wrong(1, 2) = -wrong(1, 2);
   EXPECT_THROW((void)nh_fastsim_flexibility(fastsim, wrong), Error);
   EXPECT_NO_THROW((void)nh_fastsim_flexibility(fastsim, wrong, FlexibilityMatch::spin_from_moment));
   wrong = K2;
   wrong(0, 0) = nan;
   EXPECT_THROW((void)nh_fastsim_flexibility(fastsim, wrong), Error);
-  EXPECT_THROW((void)nh_fastsim_flexibility(fastsim, Eigen::Matrix3d::Zero(), FlexibilityMatch::full_matrix), Error);
+  EXPECT_THROW((void)nh_fastsim_flexibility(fastsim, Matrix3{}, FlexibilityMatch::full_matrix), Error);
 }
 
 }  // namespace

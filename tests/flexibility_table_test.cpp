@@ -88,7 +88,7 @@ std::string error_of(const std::function<void()>& f) {
 struct OnTheFly {
   WheelRailPatch patch;
   Flexibility L;
-  Eigen::Matrix3d K2;
+  Matrix3 K2;
 };
 OnTheFly on_the_fly(double y_m, double Fz_N, ContactReference reference = ContactReference::smooth) {
   WheelRailPatchOptions options;

@@ -27,7 +27,7 @@ struct Errors {
 // Largest error over the normalised creepages (Eq 22-23 with f11, f22 of the patch's K2) of the
 // three families of the paper's Fig 5 at levels 0.25, 0.5, 0.75, with the spin `phi` in B and C.
 Errors worst_errors(const ContactPatch& patch, double phi) {
-  const Eigen::Matrix3d K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
+  const Matrix3 K2 = solve_full_adhesion(patch.elements(), patch.material()).creepage_matrix;
   const FastSim ours(patch), paper(patch, TractionBound::parabolic());
   const Flexibility L = nh_fastsim_flexibility(ours, K2);
   const Flexibility L_default = NhFastSim(patch).flexibility();  // the default recipe

@@ -194,7 +194,7 @@ TEST(AdhesionValues, ToleranceAndAlphaAreRefusedWithTheirRange) {
   // The lower limit converges and gives finite K2.
   o = AdhesionOptions{};
   o.collocation_offset = kMinimumCollocationOffset;
-  EXPECT_TRUE(solve_full_adhesion(ellipse, kSteel, o).creepage_matrix.allFinite());
+  EXPECT_TRUE(solve_full_adhesion(ellipse, kSteel, o).creepage_matrix.all_finite());
 }
 
 // The normal solver on a mesh of 1e-151 m elements (positive and finite, so accepted): the element

@@ -9,6 +9,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
 #include "carter.hpp"
+#include "tangential/matrix3_eigen.hpp"
 
 namespace railcontact {
 namespace {
@@ -23,10 +24,10 @@ ContactPatch patch(double a, double b, int elements) {
 
 TEST(ExactRolling, SmallCreepageEqualsLinearTheoryOfTheSamePatch) {
   const ContactPatch p = patch(6e-3, 4e-3, 1200);
-  const Eigen::Matrix3d K2 = solve_full_adhesion(p.elements(), kSteel).creepage_matrix;
+  const Matrix3 K2 = solve_full_adhesion(p.elements(), kSteel).creepage_matrix;
   for (const Creepage c : {Creepage{2e-6, 0, 0}, Creepage{0, 2e-6, 0}, Creepage{0, 0, 2e-3}, Creepage{1e-6, -1e-6, 1e-3}}) {
     const RollingSolution s = solve_rolling_exact(p, c, kMu);
-    const Eigen::Vector3d linear = K2 * Eigen::Vector3d(c.xi, c.eta, c.phi);
+    const Eigen::Vector3d linear = detail::to_eigen(K2) * Eigen::Vector3d(c.xi, c.eta, c.phi);
     const double scale = std::hypot(linear(0), linear(1));
     EXPECT_NEAR(s.forces.F1_N, linear(0), 0.005 * scale);
     EXPECT_NEAR(s.forces.F2_N, linear(1), 0.005 * scale);

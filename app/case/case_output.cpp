@@ -54,7 +54,7 @@ nlohmann::json patch_json(const CaseResult& r) {
     j["contact_reference"] = contact_reference_name(r.input.wheel_rail.reference);
   }
   if (r.creepage_matrix) {
-    const Eigen::Matrix3d& K = *r.creepage_matrix;
+    const Matrix3& K = *r.creepage_matrix;
     j["creepage_matrix_K2"] = {{K(0, 0), K(0, 1), K(0, 2)}, {K(1, 0), K(1, 1), K(1, 2)}, {K(2, 0), K(2, 1), K(2, 2)}};
   }
   return j;

@@ -1,6 +1,5 @@
 #pragma once
 // Runs a case end to end: patch -> (K2 -> flexibilities) -> the requested tangential solvers.
-#include <Eigen/Core>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -48,7 +47,7 @@ struct CaseResult {
   ContactPatch patch;
   PatchSummary summary;
   Creepage creepage;                          // the raw creepages used (after normalisation)
-  std::optional<Eigen::Matrix3d> creepage_matrix;  // K2 when nh-fastsim ran or normalisation needed it
+  std::optional<Matrix3> creepage_matrix;  // K2 when nh-fastsim ran or normalisation needed it
   std::vector<SolverRun> runs;
   // With a flexibility table: its name and target elements, and its values at (y, Fz) scaled to
   // this patch's area (nh-fastsim's L and the normalisation's f11, f22 come from them).

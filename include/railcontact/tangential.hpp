@@ -2,7 +2,8 @@
 // Stage: tangential problem. Full adhesion and the creepage matrix K2 (Eq 10-18), FastSim on a
 // regular mesh (Eq 1-9), nH-FastSim (Eq 19-21) and the exact steady-rolling solvers with Coulomb
 // friction (Appendix, Eq A1). docs/ADHESION.md, docs/FASTSIM.md, docs/ROLLING.md.
-#include <Eigen/Core>
+#include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -78,12 +79,38 @@ struct AdhesionOptions {
   CreepageMatrixPart part = CreepageMatrixPart::full;
 };
 
+// A 3 × 3 matrix of doubles (the creepage matrix K2, FastSim's S D B): m(i, j) is row i, column j,
+// counted from 0.
+struct Matrix3 {
+  std::array<double, 9> values{};  // row by row
+  [[nodiscard]] double operator()(int i, int j) const { return values[static_cast<std::size_t>(3 * i + j)]; }
+  double& operator()(int i, int j) { return values[static_cast<std::size_t>(3 * i + j)]; }
+  [[nodiscard]] bool all_finite() const {
+    for (double v : values)
+      if (!std::isfinite(v)) return false;
+    return true;
+  }
+};
+
+// Tractions (Pa) per unit creepage: 2N rows [p1 on elements 0..N-1, p2 on elements 0..N-1] in the
+// order of ContactElements::indices(), one column per creepage (xi, eta, phi).
+struct UnitTractions {
+  std::size_t rows = 0;
+  std::vector<double> values;  // column by column: (row, j) at values[j rows + row]
+  [[nodiscard]] double operator()(std::size_t row, int column) const {
+    return values[static_cast<std::size_t>(column) * rows + row];
+  }
+  [[nodiscard]] bool all_finite() const {
+    for (double v : values)
+      if (!std::isfinite(v)) return false;
+    return true;
+  }
+};
+
 struct AdhesionSolution {
   // (F1, F2, M3) = K2 (xi, eta, phi): units N, N, N m per unit xi, eta and per 1/m of phi.
-  Eigen::Matrix3d creepage_matrix;
-  // Tractions (Pa) per unit creepage: column j for creepage j (xi, eta, phi); rows
-  // [p1 on elements 0..N-1, p2 on elements 0..N-1] in the order of ContactElements::indices().
-  Eigen::MatrixXd unit_tractions;
+  Matrix3 creepage_matrix;
+  UnitTractions unit_tractions;  // empty for CreepageMatrixPart::force_rows
   int iterations = 0;               // Krylov iterations, all three right-hand sides
   double relative_residual = 0.0;   // largest over the right-hand sides
 };
@@ -101,7 +128,7 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
 struct CreepageCoefficients {
   double C11 = 0.0, C22 = 0.0, C23 = 0.0, C33 = 0.0;
 };
-CreepageCoefficients creepage_coefficients(const Eigen::Matrix3d& creepage_matrix, double shear_modulus_Pa, double c_m);
+CreepageCoefficients creepage_coefficients(const Matrix3& creepage_matrix, double shear_modulus_Pa, double c_m);
 
 }  // namespace railcontact
 
@@ -209,7 +236,7 @@ class FastSim {
   // S D B of Eq 19: (F1, F2, M3) of FastSim's full-adhesion traction with L1 = L2 = L3 = 1
   // (units N, N, N m per unit creepage per Pa/m of 1/L), column j for creepage j (xi, eta,
   // phi). Without slip FastSim gives F = (S D B) diag(1/L1, 1/L2, 1/L3) (xi, eta, phi).
-  [[nodiscard]] const Eigen::Matrix3d& adhesion_force_matrix() const;
+  [[nodiscard]] const Matrix3& adhesion_force_matrix() const;
 
  private:
   std::shared_ptr<const detail::FastSimLayout> layout_;
@@ -237,7 +264,7 @@ enum class FlexibilityMatch {
 // (Eq 19-20, or Eq 21 for full_matrix). The building block of NhFastSim; throws
 // railcontact::Error if K2 is not finite or a resulting flexibility is not positive and finite
 // (e.g. K2_23 of the wrong sign), or, for full_matrix, if K2 is singular.
-Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d& K2,
+Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Matrix3& K2,
                                    FlexibilityMatch match = FlexibilityMatch::term_by_term);
 
 // The recipe of nH-FastSim (docs/FASTSIM.md, docs/METHOD.md §7).
@@ -320,7 +347,7 @@ class NhFastSim {
   [[nodiscard]] const Flexibility& flexibility() const { return flexibilities_.flexibility; }
   // K2 of the coarsened patch as solved (rows 1-2; row 3 NaN with the term-by-term match), when
   // computed on the fly.
-  [[nodiscard]] const std::optional<Eigen::Matrix3d>& creepage_matrix() const { return creepage_matrix_; }
+  [[nodiscard]] const std::optional<Matrix3>& creepage_matrix() const { return creepage_matrix_; }
   // The coarsening used for K2: its blocks, and coarsening() their length along the rolling
   // direction (0 when the flexibilities were given).
   [[nodiscard]] CoarseBlocks coarse_blocks() const { return coarse_blocks_; }
@@ -329,11 +356,11 @@ class NhFastSim {
   [[nodiscard]] const FastSim& fastsim() const { return fastsim_; }
 
  private:
-  NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Eigen::Matrix3d> K2,
+  NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Matrix3> K2,
             CoarseBlocks coarse_blocks, int krylov_iterations);
   FastSim fastsim_;
   NhFastSimFlexibilities flexibilities_;
-  std::optional<Eigen::Matrix3d> creepage_matrix_;
+  std::optional<Matrix3> creepage_matrix_;
   CoarseBlocks coarse_blocks_{0, 0};
   int krylov_iterations_ = 0;
 };
@@ -441,7 +468,7 @@ struct EllipseCoefficientOptions {
 
 struct EllipseCoefficientResult {
   CreepageCoefficients coefficients;
-  Eigen::Matrix3d creepage_matrix;
+  Matrix3 creepage_matrix;
   std::size_t elements_in_contact = 0;
   int n1 = 0, n2 = 0;               // mesh over the bounding box
   double area_error = 0.0;          // (N S - pi a b) / (pi a b)

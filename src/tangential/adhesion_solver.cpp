@@ -12,6 +12,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/error.hpp"
 #include "tangential/steady_rolling_preconditioner.hpp"
+#include "tangential/matrix3_eigen.hpp"
 
 namespace railcontact {
 namespace {
@@ -64,7 +65,15 @@ void require_valid_offset(double alpha, const char* name) {
 // this (its residual test catches NaN); a dense LU of R, singular only for alpha = -1 (refused),
 // or a Krylov solution passing its residual test cannot give non-finite K2 or tractions with
 // valid input: an invariant is broken, kind internal.
-void require_finite_solution(const AdhesionSolution& s, CreepageMatrixPart part) {
+// The solution as the solver builds it (Eigen), returned as AdhesionSolution's value types.
+struct Work {
+  Eigen::Matrix3d creepage_matrix = Eigen::Matrix3d::Zero();
+  Eigen::MatrixXd unit_tractions;
+  int iterations = 0;
+  double relative_residual = 0.0;
+};
+
+void require_finite_solution(const Work& s, CreepageMatrixPart part) {
   const bool K2_finite = part == CreepageMatrixPart::full ? s.creepage_matrix.allFinite()
                                                           : s.creepage_matrix.topRows<2>().allFinite();
   if (K2_finite && s.unit_tractions.allFinite()) return;
@@ -83,7 +92,7 @@ int restart_for(double tolerance) { return tolerance >= 1e-4 ? 20 : 60; }
 // Solves R(alpha) P = W for the given columns of W (the unit creepages), writing into P.
 void solve_columns(const ContactElements& elements, const Material& material, double alpha,
                    RigidSlipPoint rigid_slip_point, const std::vector<int>& columns, const AdhesionOptions& options,
-                   const AdhesionTuning& tuning, AdhesionSolution& solution) {
+                   const AdhesionTuning& tuning, Work& solution) {
   const Mesh& mesh = elements.mesh();
   const auto n = static_cast<Eigen::Index>(elements.count());
   const double slip_offset =
@@ -123,7 +132,7 @@ void solve_columns(const ContactElements& elements, const Material& material, do
 
 // Rows 1 and 2 of K2 by adjoint solves: K2(i, :) = (R^-T (S D)^T e_i)^T W.
 void solve_force_rows(const ContactElements& elements, const Material& material, const AdhesionOptions& options,
-                      const AdhesionTuning& tuning, AdhesionSolution& solution) {
+                      const AdhesionTuning& tuning, Work& solution) {
   const Mesh& mesh = elements.mesh();
   const auto n = static_cast<Eigen::Index>(elements.count());
   const double alpha = options.collocation_offset;
@@ -201,27 +210,34 @@ AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Mate
     });
   }
   const auto n = static_cast<Eigen::Index>(elements.count());
-  AdhesionSolution solution;
+  Work work;
   if (options.part == CreepageMatrixPart::force_rows) {
     require(spin_alpha == options.collocation_offset,
             "adhesion solver: the force rows of K2 need one collocation offset for all creepages");
-    solve_force_rows(elements, material, options, tuning, solution);
-    require_finite_solution(solution, options.part);
-    return solution;
-  }
-  solution.unit_tractions.resize(2 * n, 3);
-  if (spin_alpha == options.collocation_offset) {
-    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {0, 1, 2}, options, tuning, solution);
+    solve_force_rows(elements, material, options, tuning, work);
   } else {
-    solve_columns(elements, material, options.collocation_offset, options.rigid_slip_point, {0, 1}, options, tuning, solution);
-    solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {2}, options, tuning, solution);
+    work.unit_tractions.resize(2 * n, 3);
+    if (spin_alpha == options.collocation_offset) {
+      solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {0, 1, 2}, options, tuning, work);
+    } else {
+      solve_columns(elements, material, options.collocation_offset, options.rigid_slip_point, {0, 1}, options, tuning,
+                    work);
+      solve_columns(elements, material, spin_alpha, options.rigid_slip_point, {2}, options, tuning, work);
+    }
+    work.creepage_matrix = force_rows(elements) * work.unit_tractions;
   }
-  solution.creepage_matrix = force_rows(elements) * solution.unit_tractions;
-  require_finite_solution(solution, options.part);
+  require_finite_solution(work, options.part);
+  AdhesionSolution solution;
+  solution.creepage_matrix = detail::to_matrix3(work.creepage_matrix);
+  solution.unit_tractions.rows = static_cast<std::size_t>(work.unit_tractions.rows());
+  solution.unit_tractions.values.assign(work.unit_tractions.data(),
+                                        work.unit_tractions.data() + work.unit_tractions.size());  // column-major
+  solution.iterations = work.iterations;
+  solution.relative_residual = work.relative_residual;
   return solution;
 }
 
-CreepageCoefficients creepage_coefficients(const Eigen::Matrix3d& K2, double G, double c) {
+CreepageCoefficients creepage_coefficients(const Matrix3& K2, double G, double c) {
   require(G > 0 && c > 0, "creepage coefficients: G and c must be positive");
   return {-K2(0, 0) / (G * c * c), -K2(1, 1) / (G * c * c), -K2(1, 2) / (G * c * c * c),
           -K2(2, 2) / (G * c * c * c * c)};

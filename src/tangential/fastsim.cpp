@@ -29,6 +29,7 @@
 
 #include "railcontact/error.hpp"
 #include "tangential/fastsim_strips.hpp"
+#include "tangential/matrix3_eigen.hpp"
 
 namespace railcontact {
 namespace {
@@ -77,7 +78,7 @@ struct detail::FastSimLayout {
   // Patch order:
   TractionBound bound;
   std::vector<double> bound_pressure_Pa;
-  Eigen::Matrix3d adhesion_force_matrix;      // S D B (Eq 19)
+  Matrix3 adhesion_force_matrix;              // S D B (Eq 19)
 };
 
 namespace {
@@ -414,14 +415,14 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
     layout->reach_m = std::max({layout->reach_m, std::fabs(mesh.x1(run.i1_trailing)) + 0.5 * mesh.dx1_m,
                                 std::fabs(mesh.x1(run.i1_leading)) + 0.5 * mesh.dx1_m,
                                 std::fabs(mesh.x2(run.i2)) + 0.5 * mesh.dx2_m});
-  layout->adhesion_force_matrix = marched_adhesion_force_matrix(*layout);
+  layout->adhesion_force_matrix = detail::to_matrix3(marched_adhesion_force_matrix(*layout));
   layout_ = std::move(layout);
 }
 
 std::size_t FastSim::element_count() const { return layout_->element_count; }
 TractionBound FastSim::bound() const { return layout_->bound; }
 const std::vector<double>& FastSim::bound_pressure_Pa() const { return layout_->bound_pressure_Pa; }
-const Eigen::Matrix3d& FastSim::adhesion_force_matrix() const { return layout_->adhesion_force_matrix; }
+const Matrix3& FastSim::adhesion_force_matrix() const { return layout_->adhesion_force_matrix; }
 
 TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
   const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);

@@ -13,6 +13,7 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
+#include "tangential/matrix3_eigen.hpp"
 
 namespace railcontact {
 namespace {
@@ -41,13 +42,13 @@ double checked_diagonal(double value, const char* name) {
 
 }  // namespace
 
-Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d& K2, FlexibilityMatch match) {
+Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Matrix3& K2, FlexibilityMatch match) {
   // term_by_term reads K2_11, K2_22, K2_23 only (the force rows may come without the M3 row).
   const bool needed_finite = match == FlexibilityMatch::term_by_term
                                  ? std::isfinite(K2(0, 0)) && std::isfinite(K2(1, 1)) && std::isfinite(K2(1, 2))
-                                 : K2.allFinite();
+                                 : K2.all_finite();
   require(needed_finite, "nH-FastSim flexibility: the creepage matrix K2 is not finite");
-  const Eigen::Matrix3d& SDB = fastsim.adhesion_force_matrix();
+  const Matrix3& SDB = fastsim.adhesion_force_matrix();
   Flexibility L;
   switch (match) {
     case FlexibilityMatch::term_by_term:
@@ -60,9 +61,9 @@ Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Eigen::Matrix3d
       break;
     case FlexibilityMatch::full_matrix: {
       // Eq 21: K2 = S D B L^-1  =>  L = K2^-1 S D B, of which the diagonal is kept.
-      const Eigen::FullPivLU<Eigen::Matrix3d> lu(K2);
+      const Eigen::FullPivLU<Eigen::Matrix3d> lu(detail::to_eigen(K2));
       require(lu.isInvertible(), "nH-FastSim flexibility: K2 is singular (full-matrix match, Eq 21)");
-      const Eigen::Matrix3d full = lu.solve(SDB);
+      const Eigen::Matrix3d full = lu.solve(detail::to_eigen(SDB));
       L.L1 = checked_diagonal(full(0, 0), "L1");
       L.L2 = checked_diagonal(full(1, 1), "L2");
       L.L3 = checked_diagonal(full(2, 2), "L3");

@@ -59,7 +59,7 @@ CoarseBlocks NhFastSim::automatic_coarse_blocks(const ContactPatch& patch) {
   return {factor, factor >= 3 ? factor + 1 : factor};
 }
 
-NhFastSim::NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Eigen::Matrix3d> K2,
+NhFastSim::NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Matrix3> K2,
                      CoarseBlocks coarse_blocks, int krylov_iterations)
     : fastsim_(std::move(fastsim)),
       flexibilities_(flexibilities),
@@ -80,7 +80,7 @@ NhFastSim::NhFastSim(const ContactPatch& patch, const NhFastSimOptions& options)
   const ContactPatch& flexibility_patch = coarse_patch ? coarse : patch;
   const AdhesionSolution K2 = solve_full_adhesion(flexibility_patch.elements(), flexibility_patch.material(),
                                                   adhesion_options(options), kAdhesionTuning);
-  const Eigen::Matrix3d& k = K2.creepage_matrix;
+  const Matrix3& k = K2.creepage_matrix;
   flexibilities_.flexibility = coarse_patch ? nh_fastsim_flexibility(FastSim(coarse), k, options.match)
                                             : nh_fastsim_flexibility(fastsim_, k, options.match);
   flexibilities_.f11_N = -k(0, 0);
