@@ -49,6 +49,7 @@ PUBLIC_LAYERS = {
     "normal.hpp": 6,
     "tangential.hpp": 7,
     "wheel_rail.hpp": 8,
+    "wheelset_kinematics.hpp": 8,
     "wheelset.hpp": 8,
     "text_file.hpp": 0,
     "flexibility_table.hpp": 9,

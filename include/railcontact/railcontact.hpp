@@ -11,8 +11,11 @@
 //   normal.hpp            the non-Hertzian normal problem (docs/METHOD.md §5)
 //   tangential.hpp        K2 (Eq 10-18), FastSim (Eq 1-9), NhFastSim (Eq 19-21), exact rolling (Eq A1)
 //   wheel_rail.hpp        the wheel–rail stage: profiles in, contact patch with angle, spin, F3 out
-//   wheelset.hpp          the wheelset's motion and the kinematic creepages of a contact
+//   wheelset_geometry.hpp the wheelset on its track in 3-D: contact search, regions, tangent planes
+//   wheelset_kinematics.hpp the wheelset's motion and the kinematic creepages of a contact
+//   wheelset.hpp          the wheelset evaluated as a whole: options, patches, Wheelset
 //   flexibility_table.hpp precomputed nH-FastSim flexibilities over y and load
+//   wheelset_table.hpp    the wheelset precomputed over y, yaw and load
 // Units are SI throughout (m, N, Pa, rad; spin in 1/m); names carry the unit where it matters.
 #include "railcontact/contact_geometry.hpp"
 #include "railcontact/contact_patch.hpp"
@@ -27,4 +30,5 @@
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_geometry.hpp"
+#include "railcontact/wheelset_kinematics.hpp"
 #include "railcontact/wheelset_table.hpp"

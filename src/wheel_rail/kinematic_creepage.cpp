@@ -1,4 +1,4 @@
-// Kinematic creepages of a contact from the wheelset's motion (railcontact/wheelset.hpp,
+// Kinematic creepages of a contact from the wheelset's motion (railcontact/wheelset_kinematics.hpp,
 // docs/WHEEL_RAIL.md §12): v_Q = v_C + ω × q at the creepage point Q (on the undeformed wheel
 // surface), the rolling speed V_ref = (V + Ω r_Q)/2, then ξ = v_Q·X1 / V_ref, η = v_Q·X2 / V_ref,
 // φ = ω·X3 / V_ref.
@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "railcontact/error.hpp"
-#include "railcontact/wheelset.hpp"
+#include "railcontact/wheelset_kinematics.hpp"
 
 namespace railcontact {
 namespace {
