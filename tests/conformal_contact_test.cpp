@@ -57,6 +57,24 @@ TEST(ConformalContact, StripCreepagesOfAPlanarPatchAreItsOneCreepage) {
   EXPECT_NEAR(b.forces.F2_N, a.forces.F2_N, 1e-9 * kMu * kLoad);
   EXPECT_NEAR(b.forces.M3_Nm, a.forces.M3_Nm, 1e-9 * kMu * kLoad * 6e-3);
   EXPECT_THROW((void)nh.solve(StripCreepages(3), kMu), Error);
+  // FastSim::strip_forces: the same march, each strip's S Σ p1 and S Σ p2 (the table's conformal
+  // lookups), to rounding of solve()'s tractions summed per column.
+  const FastSim fastsim(p);
+  const FastSimResult traced = fastsim.solve(strips, nh.flexibility(), kMu);
+  const StripForces by_strip = fastsim.strip_forces(strips, nh.flexibility(), kMu);
+  std::vector<double> F1(strips.size(), 0.0), F2(strips.size(), 0.0);
+  const std::vector<std::size_t>& indices = p.elements().indices();
+  for (std::size_t e = 0; e < indices.size(); ++e) {
+    F1[indices[e] / static_cast<std::size_t>(p.mesh().n1)] += traced.p1_Pa[e] * p.mesh().element_area_m2();
+    F2[indices[e] / static_cast<std::size_t>(p.mesh().n1)] += traced.p2_Pa[e] * p.mesh().element_area_m2();
+  }
+  for (std::size_t j = 0; j < strips.size(); ++j) {
+    EXPECT_NEAR(by_strip.F1_N[j], F1[j], 1e-9 * kMu * kLoad) << j;
+    EXPECT_NEAR(by_strip.F2_N[j], F2[j], 1e-9 * kMu * kLoad) << j;
+  }
+  EXPECT_NEAR(by_strip.forces.F1_N, traced.forces.F1_N, 1e-12 * kMu * kLoad);
+  EXPECT_NEAR(by_strip.forces.M3_Nm, traced.forces.M3_Nm, 1e-12 * kMu * kLoad * 6e-3);
+  EXPECT_THROW((void)fastsim.strip_forces(StripCreepages(3), nh.flexibility(), kMu), Error);
   // The count of strips and their values are checked.
   EXPECT_THROW((void)solve_rolling_exact(p, StripCreepages(3), kMu), Error);
   strips[2].eta = std::nan("");

@@ -186,6 +186,13 @@ struct TractionBound {
   static constexpr TractionBound parabolic() { return {0.0, SlipDirection::radial}; }
 };
 
+// FastSim's forces on a patch and, per strip (mesh column), the sums S Σ p1 and S Σ p2 (N) of its
+// elements' tractions.
+struct StripForces {
+  TangentialForces forces;
+  std::vector<double> F1_N, F2_N;
+};
+
 struct FastSimResult {
   TangentialForces forces;
   // Per contact element, in the order of patch.elements().indices():
@@ -227,6 +234,10 @@ class FastSim {
   // (ξ − φ x2, η, φ) give solve(ξ, η, φ)'s numbers. Throws Error (invalid_input) for another count
   // or a non-finite creepage, and as solve().
   [[nodiscard]] FastSimResult solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const;
+  // The same march, forces only, with each strip's sums (what a conformal patch turns strip by
+  // strip into its frame): no per-element output is allocated. Same checks as solve().
+  [[nodiscard]] StripForces strip_forces(const StripCreepages& creepages, const Flexibility& flexibility,
+                                         double mu) const;
 
   [[nodiscard]] std::size_t element_count() const;
   [[nodiscard]] TractionBound bound() const;

@@ -84,4 +84,28 @@ Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& co
 void check_kinematic_creepage(const Creepage& creepage, const WheelsetMotion& motion, const ContactFrame& contact,
                               WheelSide side);
 
+// The wheelset's motion prepared for many contacts (a time step's patches, a conformal patch's
+// strips): its axle, angular velocity and centre velocity computed once. Its numbers are those of
+// rolling_speed_m_per_s and kinematic_creepage (which use it), with the same checks.
+class WheelsetKinematics {
+ public:
+  // Throws Error (invalid_input) unless V > 0 and every value of the motion is finite.
+  explicit WheelsetKinematics(const WheelsetMotion& motion);
+  [[nodiscard]] const WheelsetMotion& motion() const { return motion_; }
+  // The contact's rolling speed V_ref and its creepages (each over V_ref).
+  struct AtContact {
+    double rolling_speed_m_per_s = 0.0;
+    Creepage creepage{0.0, 0.0, 0.0};
+  };
+  [[nodiscard]] AtContact at(const ContactFrame& contact) const;
+  [[nodiscard]] double rolling_speed_m_per_s(const ContactFrame& contact) const;
+  // The wheel's velocity at the contact's point along X1 and X2 (m/s) and its angular velocity
+  // along X3 (rad/s): the creepages times V_ref, also where the wheels do not roll.
+  [[nodiscard]] Creepage creep_velocities(const ContactFrame& contact) const;
+
+ private:
+  WheelsetMotion motion_;
+  Vector3 axle_{}, omega_{}, centre_velocity_{};
+};
+
 }  // namespace railcontact

@@ -311,13 +311,14 @@ class WheelsetTable {
     std::optional<FastSim> whole;
     std::vector<FastSim> lobes;  // parallel to WheelsetTablePatch::lobes
     // On WheelsetTablePatch::conformal's runtime copy and its lobes' (parallel to its lobes), with
-    // their elements' columns (strips) in patch order.
-    struct Copy {
+    // each strip's frame (its creepage point at the node's yaw) and the cosine and sine of its turn.
+    struct CurvedCopy {
       FastSim fastsim;
-      std::vector<std::size_t> column;
+      std::vector<ContactFrame> frames;
+      std::vector<double> cos_angle, sin_angle;
     };
-    std::optional<Copy> conformal;
-    std::vector<Copy> conformal_lobes;
+    std::optional<CurvedCopy> conformal;
+    std::vector<CurvedCopy> conformal_lobes;
   };
   std::vector<std::array<std::vector<RuntimePatch>, 2>> runtime_;
 };

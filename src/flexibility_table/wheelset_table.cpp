@@ -170,40 +170,32 @@ struct CopyTractions {
   double t1 = 0.0, t2 = 0.0, t3 = 0.0;
   TangentialForces fastsim{};  // F1, F2 in the developed solve frame; M3 about the copy's origin
 };
-CopyTractions copy_tractions(const FastSim& fastsim, const std::vector<std::size_t>& column, const Mesh& mesh,
-                             const std::vector<WheelsetTableStrip>& strips, const Flexibility& flexibility,
-                             double x1c_m, const WheelsetTablePatch& p, const WheelsetMotion& motion,
-                             double patch_speed, double cos_turn, double sin_turn, double s2, double mu) {
+// (Copy: WheelsetTable's private RuntimePatch::CurvedCopy.)
+template <typename Copy>
+CopyTractions copy_tractions(const Copy& copy, const Flexibility& flexibility, double x1c_m,
+                             const WheelsetKinematics& kinematics, double patch_speed, double cos_turn, double sin_turn,
+                             double s2, double mu) {
   const auto turned = [&](const Vector3& r) {
     return Vector3{cos_turn * r[0] - sin_turn * r[1], sin_turn * r[0] + cos_turn * r[1], r[2]};
   };
-  StripCreepages creepages(static_cast<std::size_t>(mesh.n2));
-  std::vector<double> cos_angle(creepages.size()), sin_angle(creepages.size());
+  const std::vector<double>&cos_angle = copy.cos_angle, &sin_angle = copy.sin_angle;
+  StripCreepages creepages(copy.frames.size());
   for (std::size_t j = 0; j < creepages.size(); ++j) {
-    const WheelsetTableStrip& strip = strips[j];
-    cos_angle[j] = std::cos(strip.angle_rad);
-    sin_angle[j] = std::sin(strip.angle_rad);
-    ContactFrame frame;
-    frame.point_from_wheelset_centre_m = turned(strip.point_from_wheelset_centre_m);
-    frame.x1 = p.x1_axis;
-    for (std::size_t i = 0; i < 3; ++i) {
-      frame.x2[i] = cos_angle[j] * p.x2_axis[i] + sin_angle[j] * p.x3_axis[i];
-      frame.x3[i] = cos_angle[j] * p.x3_axis[i] - sin_angle[j] * p.x2_axis[i];
-    }
-    const double scale = rolling_speed_m_per_s(motion, frame) / patch_speed;
-    const Creepage k = kinematic_creepage(motion, frame);
+    ContactFrame frame = copy.frames[j];
+    frame.point_from_wheelset_centre_m = turned(frame.point_from_wheelset_centre_m);
+    const WheelsetKinematics::AtContact at = kinematics.at(frame);
+    const double scale = at.rolling_speed_m_per_s / patch_speed;
+    const Creepage& k = at.creepage;
     // In the solve frame (x2 -> −x2 for a left wheel), from the copy's origin.
     const double phi = s2 * k.phi * scale;
     creepages[j] = {k.xi * scale, s2 * k.eta * scale + phi * x1c_m, phi};
   }
-  const FastSimResult f = fastsim.solve(creepages, flexibility, mu);
-  const double S = mesh.element_area_m2();
+  const StripForces f = copy.fastsim.strip_forces(creepages, flexibility, mu);
   CopyTractions out;
-  for (std::size_t e = 0; e < column.size(); ++e) {
-    const std::size_t j = column[e];
-    out.t1 += f.p1_Pa[e] * S;
-    out.t2 += f.p2_Pa[e] * cos_angle[j] * S;
-    out.t3 += f.p2_Pa[e] * sin_angle[j] * S;
+  for (std::size_t j = 0; j < creepages.size(); ++j) {
+    out.t1 += f.F1_N[j];
+    out.t2 += f.F2_N[j] * cos_angle[j];
+    out.t3 += f.F2_N[j] * sin_angle[j];
   }
   out.fastsim = f.forces;
   return out;
@@ -216,29 +208,26 @@ CopyTractions copy_tractions(const FastSim& fastsim, const std::vector<std::size
 // (Runtime: WheelsetTable's private RuntimePatch of the patch.)
 template <typename Runtime>
 PatchForces conformal_patch_forces(const Runtime& runtime, const WheelsetTablePatch& p,
-                                   const WheelsetMotion& motion, double cos_turn, double sin_turn, double s2,
+                                   const WheelsetKinematics& kinematics, double cos_turn, double sin_turn, double s2,
                                    double mu) {
   const WheelsetTableConformalPatch& c = *p.conformal;
   const Vector3& r = p.point_from_wheelset_centre_m;
   const ContactFrame patch_frame{{cos_turn * r[0] - sin_turn * r[1], sin_turn * r[0] + cos_turn * r[1], r[2]},
                                  p.x1_axis, p.x2_axis, p.x3_axis};
-  const double patch_speed = rolling_speed_m_per_s(motion, patch_frame);
-  const auto on = [&](const auto& copy, const Mesh& mesh,
-                      const std::vector<WheelsetTableStrip>& strips, const Flexibility& flexibility, double x1c_m) {
-    return copy_tractions(copy.fastsim, copy.column, mesh, strips, flexibility, x1c_m, p, motion, patch_speed, cos_turn,
-                          sin_turn, s2, mu);
+  const double patch_speed = kinematics.rolling_speed_m_per_s(patch_frame);
+  const auto on = [&](const auto& copy, const Flexibility& flexibility, double x1c_m) {
+    return copy_tractions(copy, flexibility, x1c_m, kinematics, patch_speed, cos_turn, sin_turn, s2, mu);
   };
   CopyTractions sum;
   double M3 = 0.0;  // solve frame, about the copy's centre
   if (c.lobes.empty()) {
-    sum = on(*runtime.conformal, c.runtime_mesh, c.strips, c.flexibility, c.pressure_centre_x1_m);
+    sum = on(*runtime.conformal, c.flexibility, c.pressure_centre_x1_m);
     M3 = sum.fastsim.M3_Nm;
   } else {
     // Each lobe at its own centre (solve frame: x2 mirrored); M3 about the patch's centre.
     for (std::size_t k = 0; k < c.lobes.size(); ++k) {
       const WheelsetTableLobe& lobe = c.lobes[k];
-      const CopyTractions t = on(runtime.conformal_lobes[k], lobe.runtime_mesh, lobe.strips, lobe.flexibility,
-                                 lobe.pressure_centre_x1_m);
+      const CopyTractions t = on(runtime.conformal_lobes[k], lobe.flexibility, lobe.pressure_centre_x1_m);
       sum.t1 += t.t1;
       sum.t2 += t.t2;
       sum.t3 += t.t3;
@@ -246,7 +235,7 @@ PatchForces conformal_patch_forces(const Runtime& runtime, const WheelsetTablePa
             s2 * (lobe.pressure_centre_x2_m - c.pressure_centre_x2_m) * t.fastsim.F1_N;
     }
     if (const double blend = c.whole_patch_weight; blend > 0.0) {
-      const CopyTractions whole = on(*runtime.conformal, c.runtime_mesh, c.strips, c.flexibility, c.pressure_centre_x1_m);
+      const CopyTractions whole = on(*runtime.conformal, c.flexibility, c.pressure_centre_x1_m);
       sum.t1 = (1.0 - blend) * sum.t1 + blend * whole.t1;
       sum.t2 = (1.0 - blend) * sum.t2 + blend * whole.t2;
       sum.t3 = (1.0 - blend) * sum.t3 + blend * whole.t3;
@@ -312,15 +301,26 @@ WheelsetTable::WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNo
         for (const WheelsetTableLobe& l : p.lobes)
           runtime.lobes.emplace_back(ContactPatch(l.runtime_mesh, l.runtime_pressure_Pa, material_), bound_);
         if (p.conformal && !p.conformal->runtime_pressure_Pa.empty()) {
-          const auto prepared = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa) {
-            const ContactPatch copy(mesh, pressure_Pa, material_);
-            RuntimePatch::Copy c{FastSim(copy, bound_), {}};
-            for (std::size_t e : copy.elements().indices()) c.column.push_back(e / static_cast<std::size_t>(mesh.n1));
+          const auto curved = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa,
+                                  const std::vector<WheelsetTableStrip>& strips) {
+            RuntimePatch::CurvedCopy c{FastSim(ContactPatch(mesh, pressure_Pa, material_), bound_), {}, {}, {}};
+            for (const WheelsetTableStrip& strip : strips) {
+              const double cos_angle = std::cos(strip.angle_rad), sin_angle = std::sin(strip.angle_rad);
+              ContactFrame& frame = c.frames.emplace_back();
+              frame.point_from_wheelset_centre_m = strip.point_from_wheelset_centre_m;
+              frame.x1 = p.x1_axis;
+              for (std::size_t i = 0; i < 3; ++i) {
+                frame.x2[i] = cos_angle * p.x2_axis[i] + sin_angle * p.x3_axis[i];
+                frame.x3[i] = cos_angle * p.x3_axis[i] - sin_angle * p.x2_axis[i];
+              }
+              c.cos_angle.push_back(cos_angle);
+              c.sin_angle.push_back(sin_angle);
+            }
             return c;
           };
-          runtime.conformal.emplace(prepared(p.conformal->runtime_mesh, p.conformal->runtime_pressure_Pa));
+          runtime.conformal.emplace(curved(p.conformal->runtime_mesh, p.conformal->runtime_pressure_Pa, p.conformal->strips));
           for (const WheelsetTableLobe& l : p.conformal->lobes)
-            runtime.conformal_lobes.push_back(prepared(l.runtime_mesh, l.runtime_pressure_Pa));
+            runtime.conformal_lobes.push_back(curved(l.runtime_mesh, l.runtime_pressure_Pa, l.strips));
         }
       }
     }
@@ -520,6 +520,7 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
     throw Error("wheelset table: free rolling is solved by Wheelset::evaluate only; from a table give the wheels' "
                 "angular velocity or the extra longitudinal creepage");
   const WheelsetMotion motion = wheelset_motion(state, nominal_rolling_radius_m_);
+  const WheelsetKinematics kinematics(motion);
   const Bracket by = bracket(grid_.y_m, position.lateral_displacement_m, "the lateral displacement y", "mm", kMm);
   // One yaw node serves every yaw (the contact point turned); several are interpolated.
   const Bracket byaw = grid_.yaw_rad.size() == 1 ? Bracket{}
@@ -563,7 +564,7 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
         frame.x1 = p.x1_axis;
         frame.x2 = p.x2_axis;
         frame.x3 = p.x3_axis;
-        const Creepage creepage = kinematic_creepage(motion, frame);
+        const Creepage creepage = kinematics.at(frame).creepage;
         check_kinematic_creepage(creepage, motion, frame, side);
         TangentialForces forces{};
         const RuntimePatch& runtime = runtime_[n][w][k];
@@ -611,7 +612,7 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
           surface_weight = curved.weight;
           PatchForces on_curve{{}, curved.pressure_force_track_N};  // no element in contact yet: its pressure only
           if (runtime.conformal)
-            on_curve = conformal_patch_forces(runtime, p, motion, cos_turn, sin_turn, s2, friction_coefficient);
+            on_curve = conformal_patch_forces(runtime, p, kinematics, cos_turn, sin_turn, s2, friction_coefficient);
           const auto mix = [surface_weight](double a, double b) { return (1.0 - surface_weight) * a + surface_weight * b; };
           total.forces = {mix(total.forces.F1_N, on_curve.forces.F1_N), mix(total.forces.F2_N, on_curve.forces.F2_N),
                           mix(total.forces.M3_Nm, on_curve.forces.M3_Nm)};

@@ -11,6 +11,7 @@
 #include "railcontact/tangential.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -143,9 +144,10 @@ inline void limit_weighted(Native& p1, Native& p2, const Native& norm2, const Na
 // kCount: only the count of slipping elements into record->slipping (the adhesion fraction).
 // kWeighted: the flexibility-weighted limiting (else radial).
 // kStrips: the coefficients per lane from `strips` (strip creepages; kSpin must be set).
+// strip_sums (with kStrips): S sum p1 and S sum p2 of each strip (mesh column) added to [0] and [1].
 template <bool kSpin, bool kWeighted, bool kRecord, bool kCount = kRecord, bool kStrips = false>
 TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record,
-                       const StripLaneCoefficients* strips = nullptr) {
+                       const StripLaneCoefficients* strips = nullptr, std::array<double*, 2> strip_sums = {}) {
   Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
   const double* step_m = layout.step_m.data();
   const double* x1_m = layout.x1_m.data();
@@ -214,6 +216,18 @@ TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficie
     F1 += sum_p1;
     F2 += sum_p2;
     M3 += sum_x1p2 - x2 * sum_p1;  // x2 is constant along a run
+    if constexpr (kStrips) {
+      if (strip_sums[0] != nullptr) {  // padding lanes add zero to strip 0
+        alignas(kAlignment) double q1[kLanes], q2[kLanes];
+        sum_p1.copy_to(q1, stdx::vector_aligned);
+        sum_p2.copy_to(q2, stdx::vector_aligned);
+        for (std::size_t r = 0; r < kLanes; ++r) {
+          const auto strip = static_cast<std::size_t>(layout.lane_strip[b * kLanes + r]);
+          strip_sums[0][strip] += layout.element_area_m2 * q1[r];
+          strip_sums[1][strip] += layout.element_area_m2 * q2[r];
+        }
+      }
+    }
   }
   const double S = layout.element_area_m2;
   return {S * stdx::reduce(F1), S * stdx::reduce(F2), S * stdx::reduce(M3)};
@@ -452,8 +466,12 @@ FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexib
   return recorded_result(forces, std::move(record));
 }
 
-FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const {
-  const detail::FastSimLayout& layout = *layout_;
+namespace {
+
+// The march's coefficients for strip creepages (FastSim::solve(StripCreepages, ...)), checked as
+// solve() checks one creepage; k receives the coefficients of the largest ones (the limiting's).
+StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layout, const StripCreepages& creepages,
+                                              const Flexibility& flexibility, double mu, MarchCoefficients& k) {
   require(creepages.size() == static_cast<std::size_t>(layout.strips), [&] {
     return fmt::format("fastsim: {} strip creepages for a patch of {} strips (mesh columns)", creepages.size(),
                        layout.strips);
@@ -468,7 +486,7 @@ FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility&
     largest = {std::max(largest.xi, std::fabs(c.xi)), std::max(largest.eta, std::fabs(c.eta)),
                std::max(largest.phi, std::fabs(c.phi))};
   }
-  const MarchCoefficients k = checked_coefficients(largest, flexibility, mu);
+  k = checked_coefficients(largest, flexibility, mu);
   require_marchable(k, layout.reach_m, largest, flexibility);
   // ξ0: the strips' ξ at x2 = 0, linear between the two strips around it (the patch's origin).
   // Marching every strip's ξ − ξ0 with L3 (as Eq 2 marches −φ x2) is within 4.6 % of μ F3 of the
@@ -490,11 +508,35 @@ FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility&
     lanes.c2[l] = c.eta / flexibility.L2;
     lanes.c3[l] = c.phi / flexibility.L3;
   }
+  return lanes;
+}
+
+}  // namespace
+
+FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const {
+  const detail::FastSimLayout& layout = *layout_;
+  MarchCoefficients k{};
+  const StripLaneCoefficients lanes = strip_lane_coefficients(layout, creepages, flexibility, mu, k);
   MarchRecord record = empty_record(layout.element_count);
   const bool weighted = layout.bound.slip_direction == SlipDirection::flexibility_weighted && k.rho1 != k.rho2;
   const TangentialForces forces = weighted ? march<true, true, true, true, true>(layout, k, mu, &record, &lanes)
                                            : march<true, false, true, true, true>(layout, k, mu, &record, &lanes);
   return recorded_result(forces, std::move(record));
+}
+
+StripForces FastSim::strip_forces(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const {
+  const detail::FastSimLayout& layout = *layout_;
+  MarchCoefficients k{};
+  const StripLaneCoefficients lanes = strip_lane_coefficients(layout, creepages, flexibility, mu, k);
+  StripForces out;
+  out.F1_N.assign(creepages.size(), 0.0);
+  out.F2_N.assign(creepages.size(), 0.0);
+  const std::array<double*, 2> sums{out.F1_N.data(), out.F2_N.data()};
+  const bool weighted = layout.bound.slip_direction == SlipDirection::flexibility_weighted && k.rho1 != k.rho2;
+  out.forces = weighted ? march<true, true, false, false, true>(layout, k, mu, nullptr, &lanes, sums)
+                        : march<true, false, false, false, true>(layout, k, mu, nullptr, &lanes, sums);
+  require_finite_forces(out.forces);
+  return out;
 }
 
 FastSimResult fastsim(const ContactPatch& patch, const Creepage& creepage, const Flexibility& flexibility, double mu) {

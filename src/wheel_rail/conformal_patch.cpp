@@ -100,6 +100,7 @@ StripCreepages conformal_strip_creepages(const WheelsetMotion& motion, const Vec
                                          const InterpenetrationRegion& region, const TangentPlaneArea& area,
                                          double patch_rolling_speed_m_per_s) {
   StripCreepages creepages(area.strips.size());
+  const WheelsetKinematics kinematics(motion);
   for (std::size_t j = 0; j < area.strips.size(); ++j) {
     const ConformalStrip& strip = area.strips[j];
     if (!strip.possible_contact) continue;  // no element of it can be in contact
@@ -111,8 +112,9 @@ StripCreepages conformal_strip_creepages(const WheelsetMotion& motion, const Vec
     frame.x3 = f.n;
     // The velocities of the strip's point over the patch's rolling speed, as the planar patch's
     // rigid slip divides every element's by its one rolling speed.
-    const double scale = rolling_speed_m_per_s(motion, frame) / patch_rolling_speed_m_per_s;
-    const Creepage c = kinematic_creepage(motion, frame);
+    const WheelsetKinematics::AtContact at = kinematics.at(frame);
+    const double scale = at.rolling_speed_m_per_s / patch_rolling_speed_m_per_s;
+    const Creepage& c = at.creepage;
     creepages[j] = {c.xi * scale, c.eta * scale, c.phi * scale};
   }
   return creepages;

@@ -95,46 +95,54 @@ ContactFrame contact_frame(const Vector3& point_from_wheelset_centre_m, double c
   return frame;
 }
 
-double rolling_speed_m_per_s(const WheelsetMotion& motion, const ContactFrame& contact) {
+WheelsetKinematics::WheelsetKinematics(const WheelsetMotion& motion) : motion_(motion) {
   validate(motion);
+  axle_ = axle_direction(motion.roll_rad, motion.yaw_rad);
+  omega_ = wheelset_angular_velocity(motion);
+  centre_velocity_ = {motion.forward_speed_m_per_s, motion.lateral_velocity_m_per_s, motion.vertical_velocity_m_per_s};
+}
+
+double WheelsetKinematics::rolling_speed_m_per_s(const ContactFrame& contact) const {
   validate(contact);
   // The wheel's circumferential speed at the point: the wheels' rotation about the axle alone.
-  const Vector3 axle = axle_direction(motion.roll_rad, motion.yaw_rad);
-  const double W = motion.wheel_angular_velocity_rad_per_s;
-  const Vector3 turning = cross(Vector3{W * axle[0], W * axle[1], W * axle[2]}, contact.point_from_wheelset_centre_m);
+  const double W = motion_.wheel_angular_velocity_rad_per_s;
+  const Vector3 turning = cross(Vector3{W * axle_[0], W * axle_[1], W * axle_[2]}, contact.point_from_wheelset_centre_m);
   const double circumferential = -dot(turning, contact.x1);
   // A wheel that does not turn forward does not roll (a locked wheel slides: ξ = 2).
   require(circumferential > 0.0, [&] {
     return fmt::format("wheelset motion: the wheels' rotation wheel_angular_velocity_rad_per_s = {:g} rad/s does not "
                        "roll the wheels forward at the forward speed V = {:g} m/s (the wheel's surface at the contact "
                        "moves at {:.3g} m/s about the axle; rolling forward is V / r0 = {:.4g} rad/s at r0 = {:.4g} m)",
-                       W, motion.forward_speed_m_per_s, circumferential,
-                       motion.forward_speed_m_per_s / std::hypot(contact.point_from_wheelset_centre_m[0],
-                                                                  contact.point_from_wheelset_centre_m[2]),
+                       W, motion_.forward_speed_m_per_s, circumferential,
+                       motion_.forward_speed_m_per_s / std::hypot(contact.point_from_wheelset_centre_m[0],
+                                                                   contact.point_from_wheelset_centre_m[2]),
                        std::hypot(contact.point_from_wheelset_centre_m[0], contact.point_from_wheelset_centre_m[2]));
   });
-  return 0.5 * (motion.forward_speed_m_per_s + circumferential);
+  return 0.5 * (motion_.forward_speed_m_per_s + circumferential);
 }
 
-namespace {
-
-// The wheel's velocity at the point along X1 and X2 and its angular velocity along X3: the
-// creepages times the rolling speed.
-Creepage creep_velocities(const WheelsetMotion& motion, const ContactFrame& contact) {
-  const Vector3 omega = wheelset_angular_velocity(motion);
-  const Vector3 centre_velocity{motion.forward_speed_m_per_s, motion.lateral_velocity_m_per_s,
-                                motion.vertical_velocity_m_per_s};
-  const Vector3 spin_part = cross(omega, contact.point_from_wheelset_centre_m);
-  const Vector3 v{centre_velocity[0] + spin_part[0], centre_velocity[1] + spin_part[1], centre_velocity[2] + spin_part[2]};
-  return {dot(v, contact.x1), dot(v, contact.x2), dot(omega, contact.x3)};
+Creepage WheelsetKinematics::creep_velocities(const ContactFrame& contact) const {
+  const Vector3 spin_part = cross(omega_, contact.point_from_wheelset_centre_m);
+  const Vector3 v{centre_velocity_[0] + spin_part[0], centre_velocity_[1] + spin_part[1],
+                  centre_velocity_[2] + spin_part[2]};
+  return {dot(v, contact.x1), dot(v, contact.x2), dot(omega_, contact.x3)};
 }
 
-}  // namespace
+WheelsetKinematics::AtContact WheelsetKinematics::at(const ContactFrame& contact) const {
+  AtContact out;
+  out.rolling_speed_m_per_s = rolling_speed_m_per_s(contact);  // validates the frame
+  const Creepage v = creep_velocities(contact);
+  const double V_ref = out.rolling_speed_m_per_s;
+  out.creepage = {v.xi / V_ref, v.eta / V_ref, v.phi / V_ref};
+  return out;
+}
+
+double rolling_speed_m_per_s(const WheelsetMotion& motion, const ContactFrame& contact) {
+  return WheelsetKinematics(motion).rolling_speed_m_per_s(contact);
+}
 
 Creepage kinematic_creepage(const WheelsetMotion& motion, const ContactFrame& contact) {
-  const double V_ref = rolling_speed_m_per_s(motion, contact);  // validates both
-  const Creepage v = creep_velocities(motion, contact);
-  return {v.xi / V_ref, v.eta / V_ref, v.phi / V_ref};
+  return WheelsetKinematics(motion).at(contact).creepage;
 }
 
 void check_kinematic_creepage(const Creepage& creepage, const WheelsetMotion& motion, const ContactFrame& contact,
@@ -150,7 +158,7 @@ void check_kinematic_creepage(const Creepage& creepage, const WheelsetMotion& mo
   // without the rates; each rate's share is its velocity alone less that of no motion at all.
   const double V_ref = rolling_speed_m_per_s(motion, contact);
   const auto part = [&](const WheelsetMotion& m) {
-    const Creepage c = creep_velocities(m, contact);
+    const Creepage c = WheelsetKinematics(m).creep_velocities(contact);
     return (component == 0 ? c.xi : component == 1 ? c.eta : c.phi) / V_ref;
   };
   WheelsetMotion rolling = motion;
