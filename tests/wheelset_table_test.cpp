@@ -692,6 +692,30 @@ TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
   std::filesystem::remove_all(dir);
 }
 
+// `wheelset-table build --contact-surface auto` records the surface; a lookup that asks for it
+// gives the automatic wheelset's patches (the flange's conformal weight 1 in the JSON), one that
+// asks for the planar surface is refused naming the setting, and an unknown name is refused.
+TEST(WheelsetTableCli, ATableOnTheAutomaticSurface) {
+  const std::filesystem::path dir = scratch_directory("wheelset_table_cli_auto");
+  const std::string file = (dir / "table.json").string();
+  const CommandResult build = run_cli("wheelset-table build --y-m=-0.0066:-0.0064:0.0002 --load-N 90000,110000 "
+                                      "--element-size-m 0.0005 --contact-surface auto --out " + file);
+  ASSERT_EQ(build.exit_code, 0) << build.err;
+  EXPECT_NE(build.err.find("auto surface"), std::string::npos) << build.err;
+  EXPECT_EQ(load_wheelset_table(file).metadata().contact_surface, ContactSurface::automatic);
+  const std::string at = " --y-m -0.0065 --load-N 100000 --element-size-m 0.0005 --json";
+  const CommandResult run = run_cli("wheelset --table " + file + at + " --contact-surface auto");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["wheels"][0]["patches"][0]["conformal_weight"].get<double>(), 1.0);
+  EXPECT_EQ(j["wheels"][0]["patches"][0]["contact_surface"], "conformal");
+  const CommandResult planar = run_cli("wheelset --table " + file + at + " --contact-surface planar");
+  EXPECT_EQ(planar.exit_code, 2);
+  EXPECT_NE(planar.err.find("contact-surface planar (--contact-surface) differs from the table's auto"), std::string::npos)
+      << planar.err;
+  EXPECT_EQ(run_cli("wheelset-table build --contact-surface curved --out " + file).exit_code, 2);
+  std::filesystem::remove_all(dir);
+}
 
 // Near flange climb with yaw the tangential forces pull the wheel down by a fifth of its load: the
 // balance needs a table load beyond a narrow load grid and is refused with the loads named (it
