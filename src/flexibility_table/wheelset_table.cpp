@@ -30,6 +30,22 @@ void check_grid(const std::vector<double>& grid, const char* name, bool positive
   }
 }
 
+// A patch's lobes (two or more, or none), each with its centre and runtime copy (check_copy), and the
+// whole patch's weight in [0, 1), 0 without lobes.
+template <typename Fail, typename CheckCopy>
+void check_lobes(const std::vector<WheelsetTableLobe>& lobes, double whole_patch_weight, const Fail& fail,
+                 const CheckCopy& check_copy) {
+  if (lobes.size() == 1) fail("a patch of one lobe keeps no lobes (two or more, or none)");
+  if (!(whole_patch_weight >= 0.0 && whole_patch_weight < 1.0) || (whole_patch_weight > 0.0 && lobes.empty()))
+    fail("the whole patch's weight must lie in [0, 1), and be 0 without lobes");
+  for (const WheelsetTableLobe& l : lobes) {
+    if (!std::isfinite(l.pressure_centre_x1_m) || !std::isfinite(l.pressure_centre_x2_m))
+      fail("a lobe's centre of pressure must be finite");
+    if (l.runtime_pressure_Pa.empty()) fail("a lobe needs its runtime pressure");
+    check_copy(l);
+  }
+}
+
 // A patch's conformal part: a weight in (0, 1], finite numbers, one plausible strip per column of
 // its runtime copy.
 template <typename Fail, typename CheckRuntime>
@@ -56,15 +72,9 @@ void check_conformal(const WheelsetTableConformalPatch& c, const Fail& fail, con
         fail("a strip's angle must lie in [-1.6, 1.6] rad and its point within 10 m of the wheelset centre");
   };
   check_copy(c.flexibility, c.runtime_mesh, c.runtime_pressure_Pa, c.strips);
-  if (c.lobes.size() == 1) fail("a conformal patch of one lobe keeps no lobes (two or more, or none)");
-  if (!(c.whole_patch_weight >= 0.0 && c.whole_patch_weight < 1.0) || (c.whole_patch_weight > 0.0 && c.lobes.empty()))
-    fail("the conformal whole patch's weight must lie in [0, 1), and be 0 without lobes");
-  for (const WheelsetTableLobe& l : c.lobes) {
-    if (!std::isfinite(l.pressure_centre_x1_m) || !std::isfinite(l.pressure_centre_x2_m))
-      fail("a lobe's centre of pressure must be finite");
-    if (l.runtime_pressure_Pa.empty()) fail("a lobe needs its runtime pressure");
+  check_lobes(c.lobes, c.whole_patch_weight, fail, [&](const WheelsetTableLobe& l) {
     check_copy(l.flexibility, l.runtime_mesh, l.runtime_pressure_Pa, l.strips);
-  }
+  });
 }
 
 void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::size_t k) {
@@ -103,15 +113,9 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
     return;
   }
   check_runtime(p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
-  if (p.lobes.size() == 1) fail("a patch of one lobe keeps no lobes (two or more, or none)");
-  if (!(p.whole_patch_weight >= 0.0 && p.whole_patch_weight < 1.0) || (p.whole_patch_weight > 0.0 && p.lobes.empty()))
-    fail("the whole patch's weight must lie in [0, 1), and be 0 without lobes");
-  for (const WheelsetTableLobe& l : p.lobes) {
-    if (!std::isfinite(l.pressure_centre_x1_m) || !std::isfinite(l.pressure_centre_x2_m))
-      fail("a lobe's centre of pressure must be finite");
-    if (l.runtime_pressure_Pa.empty()) fail("a lobe needs its runtime pressure");
+  check_lobes(p.lobes, p.whole_patch_weight, fail, [&](const WheelsetTableLobe& l) {
     check_runtime(l.flexibility, l.runtime_mesh, l.runtime_pressure_Pa);
-  }
+  });
 }
 
 // The interval of `grid` holding x and the weight of its upper node; a grid of one value holds

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
@@ -45,6 +46,40 @@ std::array<double, 2> keep_runtime_copy(const ContactPatch& fine, int target, do
   for (std::size_t e = 0; e < indices.size(); ++e) pressure_Pa[indices[e]] = coarse.pressure_Pa()[e];
   if (factor == 1) return {0.0, 0.0};
   return {-coarse.x1_shift_m(), -coarse.x2_shift_m()};
+}
+
+// The lobes of a patch of several, as the wheelset solves it (the same NhFastSimPerLobe on the same
+// patch): each lobe's flexibilities and coarse copy (its share of the runtime elements) with its
+// centre of pressure in the contact frame (fine_x1, fine_x2: the patch's), and where a neck is
+// blended the whole patch's weight and flexibilities. Nothing for a patch of one lobe.
+struct KeptLobes {
+  std::vector<WheelsetTableLobe> lobes;
+  double whole_patch_weight = 0.0;
+  std::optional<Flexibility> whole_patch_flexibility;
+};
+KeptLobes keep_lobes(const ContactPatch& fine, int runtime_elements, double contact_angle_rad, double fine_x1_m,
+                     double fine_x2_m, double s2, const NhFastSimOptions& nh_fastsim) {
+  KeptLobes kept;
+  if (!NhFastSimPerLobe::has_several_lobes(fine)) return kept;
+  const NhFastSimPerLobe per_lobe(fine, nh_fastsim);
+  if (const Flexibility* whole = per_lobe.whole_patch_flexibility()) {
+    kept.whole_patch_weight = per_lobe.whole_patch_weight();
+    kept.whole_patch_flexibility = *whole;
+  }
+  const double fine_elements = static_cast<double>(fine.elements().count());
+  for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
+    const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);
+    WheelsetTableLobe l;
+    l.flexibility = lobe.flexibility;
+    const int target = std::max(
+        20, static_cast<int>(std::lround(runtime_elements * static_cast<double>(lobe.patch.elements().count()) / fine_elements)));
+    const std::array<double, 2> lobe_coarse =
+        keep_runtime_copy(lobe.patch, target, contact_angle_rad, l.runtime_mesh, l.runtime_pressure_Pa);
+    l.pressure_centre_x1_m = fine_x1_m + lobe.x1_centre_m + lobe_coarse[0];
+    l.pressure_centre_x2_m = fine_x2_m + s2 * (lobe.x2_centre_m + lobe_coarse[1]);
+    kept.lobes.push_back(std::move(l));
+  }
+  return kept;
 }
 
 // The strips of a conformal runtime copy: column j lies at x2 = s2 x2_solve(j) + centre_x2 from
@@ -95,26 +130,13 @@ WheelsetTableConformalPatch conformal_table_patch(const WheelsetPatch& patch, do
   c.pressure_centre_x1_m += coarse[0];
   c.pressure_centre_x2_m += s2 * coarse[1];
   c.strips = runtime_strips(patch.strips, c.runtime_mesh, c.pressure_centre_x2_m, s2, centre);
-  if (!NhFastSimPerLobe::has_several_lobes(patch.patch)) return c;
-  const NhFastSimPerLobe per_lobe(patch.patch, nh_fastsim);
-  if (const Flexibility* whole = per_lobe.whole_patch_flexibility()) {
-    c.whole_patch_weight = per_lobe.whole_patch_weight();
-    c.flexibility = *whole;
-  }
-  const double fine_elements = static_cast<double>(patch.patch.elements().count());
-  for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
-    const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);
-    WheelsetTableLobe l;
-    l.flexibility = lobe.flexibility;
-    const int target = std::max(
-        20, static_cast<int>(std::lround(runtime_elements * static_cast<double>(lobe.patch.elements().count()) / fine_elements)));
-    const std::array<double, 2> lobe_coarse =
-        keep_runtime_copy(lobe.patch, target, patch.region.contact_angle_rad, l.runtime_mesh, l.runtime_pressure_Pa);
-    l.pressure_centre_x1_m = fine_x1 + lobe.x1_centre_m + lobe_coarse[0];
-    l.pressure_centre_x2_m = fine_x2 + s2 * (lobe.x2_centre_m + lobe_coarse[1]);
+  KeptLobes kept = keep_lobes(patch.patch, runtime_elements, patch.region.contact_angle_rad, fine_x1, fine_x2, s2,
+                              nh_fastsim);
+  c.lobes = std::move(kept.lobes);
+  for (WheelsetTableLobe& l : c.lobes)
     l.strips = runtime_strips(patch.strips, l.runtime_mesh, l.pressure_centre_x2_m, s2, centre);
-    c.lobes.push_back(std::move(l));
-  }
+  c.whole_patch_weight = kept.whole_patch_weight;
+  if (kept.whole_patch_flexibility) c.flexibility = *kept.whole_patch_flexibility;
   return c;
 }
 
@@ -170,28 +192,11 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   const double fine_x1 = t.pressure_centre_x1_m, fine_x2 = t.pressure_centre_x2_m;
   t.pressure_centre_x1_m += coarse[0];
   t.pressure_centre_x2_m += s2 * coarse[1];
-  // A patch of several lobes, as the wheelset solved it (the same NhFastSimPerLobe on the same
-  // patch): each lobe's flexibilities and coarse copy, its share of the runtime elements.
-  if (NhFastSimPerLobe::has_several_lobes(patch.patch)) {
-    const NhFastSimPerLobe per_lobe(patch.patch, nh_fastsim);
-    if (const Flexibility* whole = per_lobe.whole_patch_flexibility()) {
-      t.whole_patch_weight = per_lobe.whole_patch_weight();
-      t.flexibility = *whole;
-    }
-    const double fine_elements = static_cast<double>(patch.patch.elements().count());
-    for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
-      const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);
-      WheelsetTableLobe l;
-      l.flexibility = lobe.flexibility;
-      const int target = std::max(
-          20, static_cast<int>(std::lround(runtime_elements * static_cast<double>(lobe.patch.elements().count()) / fine_elements)));
-      const std::array<double, 2> lobe_coarse =
-          keep_runtime_copy(lobe.patch, target, region.contact_angle_rad, l.runtime_mesh, l.runtime_pressure_Pa);
-      l.pressure_centre_x1_m = fine_x1 + lobe.x1_centre_m + lobe_coarse[0];
-      l.pressure_centre_x2_m = fine_x2 + s2 * (lobe.x2_centre_m + lobe_coarse[1]);
-      t.lobes.push_back(std::move(l));
-    }
-  }
+  // A patch of several lobes: each lobe's flexibilities and coarse copy.
+  KeptLobes kept = keep_lobes(patch.patch, runtime_elements, region.contact_angle_rad, fine_x1, fine_x2, s2, nh_fastsim);
+  t.lobes = std::move(kept.lobes);
+  t.whole_patch_weight = kept.whole_patch_weight;
+  if (kept.whole_patch_flexibility) t.flexibility = *kept.whole_patch_flexibility;
   return t;
 }
 
