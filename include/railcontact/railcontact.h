@@ -451,7 +451,7 @@ typedef struct rc_wheelset_options {
   int reference_weighting;     /* rc_reference_weighting of each patch's reference point and
                                   contact angle; default RC_WEIGHTING_SQUARED_GAP */
   int contact_surface;         /* rc_contact_surface; default RC_SURFACE_PLANAR (a wheelset
-                                  table: planar only) */
+                                  table is built on this surface and used with it) */
 } rc_wheelset_options;
 
 RC_API rc_status rc_wheelset_options_default(rc_wheelset_options* options);

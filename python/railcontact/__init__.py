@@ -539,7 +539,8 @@ class Wheelset:
     and contact angle as Kalker's CONTACT weights them; "depth": by the overlap depth, smoother onto
     the flange); contact_surface ["planar"] (each patch in the tangent plane at its reference point;
     "conformal": curved with the profiles across the rolling direction; "auto": planar where the
-    contact angle hardly varies over a patch, conformal where it does, blended between);
+    contact angle hardly varies over a patch, conformal where it does, blended between; a table is
+    built on this surface and used with it);
     nominal_radius_at ["profile-origin"] (where the wheel's radius is nominal_radius;
     "taping-line"; with profiles only).
     A Wheelset may be shared between threads (one call at a time); evaluations release the GIL.
