@@ -28,7 +28,8 @@ const std::vector<Unit>& units() {
 }
 
 // Numbers without a unit: friction, creepage, Poisson's ratio, ratios of lengths, collocation offsets.
-const std::set<std::string> kDimensionless{"--mu", "--extra-creepage", "--nu", "--a-over-b", "--alpha", "--alpha-spin"};
+const std::set<std::string> kDimensionless{"--mu", "--extra-creepage", "--nu", "--a-over-b", "--alpha", "--alpha-spin",
+                                           "--refine-lateral-force-fraction"};
 
 struct HelpOption {
   std::string name, type, description;

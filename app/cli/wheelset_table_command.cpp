@@ -32,6 +32,7 @@ struct BuildArguments {
   double element_size_m = 0.2e-3;
   std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
   std::string contact_surface;      // --contact-surface (planar, conformal, auto)
+  double refine_lateral_force = 0.0;  // --refine-lateral-force-fraction (0: no refinement)
   std::string threads;
   int runtime_elements = kWheelsetTableRuntimeElements;
 };
@@ -92,6 +93,15 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
       throw Error(fmt::format("--contact-surface: {}", e.what()));
     }
   }
+  require(a.refine_lateral_force >= 0.0 && a.refine_lateral_force <= 1.0, [&] {
+    return fmt::format("--refine-lateral-force-fraction {:g} must lie in [0, 1] (a fraction of the wheel load; 0: no refinement)",
+                       a.refine_lateral_force);
+  });
+  // The refinement decides from the nodes which to add: over MPI the other ranks would not know.
+  require(a.refine_lateral_force == 0.0 || !study::MpiWorld::several(),
+          "--refine-lateral-force-fraction is not available over MPI ranks: run the build on one rank (with --threads), or "
+          "give the finer y steps in --y-m");
+  options.refinement.lateral_force_fraction = a.refine_lateral_force;
   require(a.runtime_elements >= 20 && a.runtime_elements <= 100000, [&] {
     return fmt::format("--runtime-elements {} must lie in [20, 100000] (elements of the coarse patch FastSim runs on at "
                        "lookup)",
@@ -183,6 +193,11 @@ void add_wheelset_table_command(CLI::App& app, Action& action) {
   build->add_option("--contact-surface", args->contact_surface,
                     "the nodes' contact surface: planar (default), conformal or auto (docs/WHEELSET.md §4); recorded in "
                     "the table, and a lookup asks for the same");
+  build->add_option("--refine-lateral-force-fraction", args->refine_lateral_force,
+                    "halve the y steps (up to three times, to 0.0125 mm) around a node whose wheel's lateral normal "
+                    "force lies further than this fraction of its load from the line between its neighbours: a flange "
+                    "snapping in, a second contact appearing (docs/WHEELSET_TABLE.md §3; 0: off, 0.01 recommended)")
+      ->capture_default_str();
   build->add_option("--threads", args->threads,
                     "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any "
                     "number");

@@ -41,6 +41,7 @@ constexpr double kWheelLoad_N = WheelLoads{}.right_N;  // the sweeps' load per w
 // (docs/WHEELSET_TABLE.md §3), and at half steps elsewhere.
 constexpr double kTableFineStretch_m = 2e-3;
 constexpr std::array<double, 3> kTableLoads{0.75, 1.0, 1.25};  // the table's loads, per sweep load
+constexpr double kTableRefinement = 0.01;  // WheelsetTableRefinement::lateral_force_fraction of the tables
 
 // The rigid contact geometry: where the right wheel's flange climbs (towards −y, at most 15 mm) and
 // the equivalent conicity at 3 mm (NaN when the flange climbs before it). A wide gauge puts flange
@@ -124,6 +125,8 @@ WheelsetTable build_table(const WheelsetTrack& track, const WheelsetOptions& whe
   const WheelsetTableGrid grid{table_y_grid(steps, o.y_step_m), yaws, {kTableLoads[0] * kWheelLoad_N, kTableLoads[1] * kWheelLoad_N, kTableLoads[2] * kWheelLoad_N}};
   WheelsetTableOptions options;
   options.wheelset = wheelset;
+  // Nodes added where a flange snaps in or a second contact appears (docs/WHEELSET_TABLE.md §3).
+  options.refinement.lateral_force_fraction = kTableRefinement;
   options.runner = table_node_runner(o.threads);
   const auto start = std::chrono::steady_clock::now();
   std::size_t reported = 0;
@@ -336,11 +339,14 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
                "\n## The wheelset table against the wheelset on the fly\n\n"
                "Per set-up a wheelset table (docs/WHEELSET_TABLE.md) over the sweeps' yaws, its lateral nodes midway "
                "between the sweep's positions ({:g} mm apart, {:g} mm over the last {:g} mm before the flange climbs; the "
-               "last position itself a node), wheel loads of {:g}, {:g} and {:g} kN; looked up at every state with the "
-               "tangential forces in the vertical balance, against nH-FastSim on the fly. The largest difference of a "
-               "wheel's force per track-frame component, over both wheels, as a share of μ Fz (target {:g} %).\n\n",
-               o.y_step_m / kMm, 0.5 * o.y_step_m / kMm, kTableFineStretch_m / kMm, kTableLoads[0] * kWheelLoad_N / 1e3,
-               kTableLoads[1] * kWheelLoad_N / 1e3, kTableLoads[2] * kWheelLoad_N / 1e3, kTableTarget_percent);
+               "last position itself a node; refined where a wheel's lateral normal force leaves the line between "
+               "neighbouring nodes by more than {:g} % of the load), wheel loads of {:g}, {:g} and {:g} kN; looked up at "
+               "every state with the tangential forces in the vertical balance, against nH-FastSim on the fly. The "
+               "largest difference of a wheel's force per track-frame component, over both wheels, as a share of μ Fz "
+               "(target {:g} %).\n\n",
+               o.y_step_m / kMm, 0.5 * o.y_step_m / kMm, kTableFineStretch_m / kMm, 100.0 * kTableRefinement,
+               kTableLoads[0] * kWheelLoad_N / 1e3, kTableLoads[1] * kWheelLoad_N / 1e3, kTableLoads[2] * kWheelLoad_N / 1e3,
+               kTableTarget_percent);
     fmt::print(md, "| set-up | yaw (mrad) | states | Fx (at y mm) | Fy (at y mm) | Fz (at y mm) | within target |\n"
                    "|---|---|---|---|---|---|---|\n");
     for (const SweepSummary& s : summaries) {

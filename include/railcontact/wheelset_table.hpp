@@ -194,11 +194,24 @@ struct WheelsetTableMetadata {
   std::string created_utc;
 };
 
+// The y grid refined where linear interpolation between neighbouring nodes would miss a node's
+// contact: a flange snapping into contact, a second contact appearing (docs/WHEELSET_TABLE.md §3
+// "Where the contact jumps"). A node whose wheel's lateral normal force (its patches' pressure
+// resultants along y) lies further than lateral_force_fraction of its load from the straight line
+// between its two neighbours along y has the intervals on both sides halved, at every yaw and load,
+// for at most `rounds` halvings; intervals of smallest_step_m or less are kept.
+struct WheelsetTableRefinement {
+  double lateral_force_fraction = 0.0;  // 0: no refinement; else in (0, 1]
+  double smallest_step_m = 0.0125e-3;
+  int rounds = 3;
+};
+
 struct WheelsetTableOptions {
   // The wheelset solver of each node: material, element size, nH-FastSim's recipe, normal solver,
   // contact search. Its loads, solvers, friction and keep_tractions are set by the build.
   WheelsetOptions wheelset{};
   int runtime_elements = kWheelsetTableRuntimeElements;
+  WheelsetTableRefinement refinement{};
   // Who computes the blocks of nodes (TableNodeRunner, railcontact/flexibility_table.hpp; a block
   // is kWheelsetTableBlock consecutive y values at one yaw and load); empty: serially.
   TableNodeRunner runner;

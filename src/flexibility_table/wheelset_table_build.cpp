@@ -6,6 +6,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <mutex>
 #include <optional>
 
@@ -200,26 +201,16 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   return t;
 }
 
-}  // namespace
-
-WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTableGrid& grid,
-                                   const WheelsetTableOptions& options, const WheelsetTableProgressCallback& progress) {
-  if (grid.y_m.empty() || grid.yaw_rad.empty() || grid.wheel_load_N.empty() || grid.size() > kMaximumWheelsetTableNodes) {
-    throw Error(fmt::format("wheelset table: {} y values × {} yaws × {} loads = {} nodes; from 1 to {} nodes are allowed "
-                            "(about 0.2 s each)",
-                            grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
-                            kMaximumWheelsetTableNodes));
-  }
-  validate(grid);  // before the work
-  if (!(options.runtime_elements >= 20 && options.runtime_elements <= 100000))
-    throw Error(fmt::format("wheelset table: runtime_elements = {} must lie in [20, 100000]", options.runtime_elements));
-  WheelsetOptions wheelset_options = options.wheelset;
-  wheelset_options.solvers = {TangentialSolver::nh_fastsim};
-  wheelset_options.keep_tractions = true;
-  wheelset_options.tangential_forces_in_vertical_balance = false;
-  wheelset_options.allow_wheel_lift = false;
-  validate(wheelset_options);
-
+// The nodes of a grid (Wheelset::evaluate at each, its patches kept), computed by the options'
+// runner; the progress counts them from done_before of total.
+struct SolvedNodes {
+  std::vector<WheelsetTableNode> nodes;  // in the order of grid.index()
+  std::size_t solved = 0;
+  std::string first_failure;  // the message of the first gap
+};
+SolvedNodes solve_nodes(const WheelsetTrack& track, const WheelsetTableGrid& grid, const WheelsetOptions& wheelset_options,
+                        const WheelsetTableOptions& options, const WheelsetTableProgressCallback& progress,
+                        std::size_t done_before, std::size_t total) {
   // The nodes in blocks of kWheelsetTableBlock consecutive y values at one yaw and load: along a
   // block the wheelset's warm start carries over from node to node, each block starts cold. The
   // blocks are independent, so the runner may compute them in any order and anywhere, and the
@@ -267,10 +258,11 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return fmt::format("{:.17g}\n{}", seconds, detail::wheelset_table_nodes_json(solved_nodes));
   };
-  std::vector<WheelsetTableNode> nodes(grid.size());
+  SolvedNodes out;
+  std::vector<WheelsetTableNode>& nodes = out.nodes;
+  nodes.resize(grid.size());
   std::mutex store_lock;
-  std::size_t solved = 0, done = 0, blocks_stored = 0;
-  std::string first_failure;
+  std::size_t done = 0, blocks_stored = 0;
   std::size_t first_failure_index = grid.size();
   const TableNodeStore store = [&](std::size_t b, const std::string& text) {
     const Block& block = blocks.at(b);
@@ -284,16 +276,16 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
       const std::size_t index = grid.index(block.iy_begin + i, block.iyaw, block.il);
       WheelsetTableNode& node = nodes[index];
       node = std::move(block_nodes[i]);
-      if (node.status == WheelsetTableNodeStatus::solved) ++solved;
+      if (node.status == WheelsetTableNodeStatus::solved) ++out.solved;
       else if (index < first_failure_index) {
         first_failure_index = index;
-        first_failure = node.message;
+        out.first_failure = node.message;
       }
       ++done;
       if (progress) {
         WheelsetTableProgress p;
-        p.nodes_done = done;
-        p.nodes_total = nodes.size();
+        p.nodes_done = done_before + done;
+        p.nodes_total = total;
         p.node = &node;
         p.node_seconds = seconds / static_cast<double>(block_nodes.size());
         progress(p);
@@ -308,6 +300,102 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   require(blocks_stored == blocks.size() && done == nodes.size(), [&] {
     return fmt::format("wheelset table: the runner stored {} of the {} blocks", blocks_stored, blocks.size());
   });
+  return out;
+}
+
+// A wheel's lateral normal force at a node: its patches' pressure resultants along y (the
+// conformal part's blended in by its weight).
+double lateral_normal_force_N(const std::vector<WheelsetTablePatch>& patches) {
+  double f = 0.0;
+  for (const WheelsetTablePatch& p : patches) {
+    const double planar = p.normal_force_N * p.x3_axis[1];
+    const double w = p.conformal ? p.conformal->weight : 0.0;
+    f += (1.0 - w) * planar + (w > 0.0 ? w * p.conformal->pressure_force_track_N[1] : 0.0);
+  }
+  return f;
+}
+
+// The midpoints of the grid's y intervals that WheelsetTableRefinement halves (sorted).
+std::vector<double> refined_y(const WheelsetTableGrid& grid, const std::vector<WheelsetTableNode>& nodes,
+                              const WheelsetTableRefinement& refinement) {
+  const std::vector<double>& y = grid.y_m;
+  std::vector<char> halve(y.size() > 1 ? y.size() - 1 : 0, 0);
+  for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw)
+    for (std::size_t il = 0; il < grid.wheel_load_N.size(); ++il)
+      for (std::size_t iy = 1; iy + 1 < y.size(); ++iy) {
+        const WheelsetTableNode &a = nodes[grid.index(iy - 1, iyaw, il)], &n = nodes[grid.index(iy, iyaw, il)],
+                                &b = nodes[grid.index(iy + 1, iyaw, il)];
+        if (a.status != WheelsetTableNodeStatus::solved || n.status != WheelsetTableNodeStatus::solved ||
+            b.status != WheelsetTableNodeStatus::solved)
+          continue;
+        const double t = (y[iy] - y[iy - 1]) / (y[iy + 1] - y[iy - 1]);
+        for (std::size_t w = 0; w < 2; ++w) {
+          const double line = (1.0 - t) * lateral_normal_force_N(a.wheels[w]) + t * lateral_normal_force_N(b.wheels[w]);
+          if (std::abs(lateral_normal_force_N(n.wheels[w]) - line) > refinement.lateral_force_fraction * n.wheel_load_N)
+            halve[iy - 1] = halve[iy] = 1;
+        }
+      }
+  std::vector<double> added;
+  for (std::size_t k = 0; k < halve.size(); ++k)
+    if (halve[k] && y[k + 1] - y[k] > refinement.smallest_step_m) added.push_back(0.5 * (y[k] + y[k + 1]));
+  return added;
+}
+
+}  // namespace
+
+WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTableGrid& grid,
+                                   const WheelsetTableOptions& options, const WheelsetTableProgressCallback& progress) {
+  if (grid.y_m.empty() || grid.yaw_rad.empty() || grid.wheel_load_N.empty() || grid.size() > kMaximumWheelsetTableNodes) {
+    throw Error(fmt::format("wheelset table: {} y values × {} yaws × {} loads = {} nodes; from 1 to {} nodes are allowed "
+                            "(about 0.2 s each)",
+                            grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
+                            kMaximumWheelsetTableNodes));
+  }
+  validate(grid);  // before the work
+  if (!(options.runtime_elements >= 20 && options.runtime_elements <= 100000))
+    throw Error(fmt::format("wheelset table: runtime_elements = {} must lie in [20, 100000]", options.runtime_elements));
+  const WheelsetTableRefinement& refine = options.refinement;
+  if (!(refine.lateral_force_fraction >= 0.0 && refine.lateral_force_fraction <= 1.0) ||
+      !(refine.smallest_step_m > 0.0 && refine.smallest_step_m <= 1e-3) || !(refine.rounds >= 0 && refine.rounds <= 8))
+    throw Error(fmt::format("wheelset table: the refinement's lateral_force_fraction = {:g} must lie in [0, 1], "
+                            "smallest_step_m = {:g} in (0, 0.001] m and rounds = {} in [0, 8]",
+                            refine.lateral_force_fraction, refine.smallest_step_m, refine.rounds));
+  WheelsetOptions wheelset_options = options.wheelset;
+  wheelset_options.solvers = {TangentialSolver::nh_fastsim};
+  wheelset_options.keep_tractions = true;
+  wheelset_options.tangential_forces_in_vertical_balance = false;
+  wheelset_options.allow_wheel_lift = false;
+  validate(wheelset_options);
+
+  SolvedNodes built = solve_nodes(track, grid, wheelset_options, options, progress, 0, grid.size());
+  std::vector<WheelsetTableNode> nodes = std::move(built.nodes);
+  std::size_t solved = built.solved;
+  const std::string first_failure = built.first_failure;
+  // The refinement: the new y values' nodes at every yaw and load, merged into the grid.
+  WheelsetTableGrid refined = grid;
+  for (int round = 0; round < (options.refinement.lateral_force_fraction > 0.0 ? options.refinement.rounds : 0); ++round) {
+    WheelsetTableGrid extra{refined_y(refined, nodes, options.refinement), refined.yaw_rad, refined.wheel_load_N};
+    if (extra.y_m.empty()) break;
+    if (refined.size() + extra.size() > kMaximumWheelsetTableNodes) break;  // the grid as it is
+    SolvedNodes more = solve_nodes(track, extra, wheelset_options, options, progress, refined.size(),
+                                   refined.size() + extra.size());
+    solved += more.solved;
+    WheelsetTableGrid merged{{}, refined.yaw_rad, refined.wheel_load_N};
+    std::merge(refined.y_m.begin(), refined.y_m.end(), extra.y_m.begin(), extra.y_m.end(), std::back_inserter(merged.y_m));
+    std::vector<WheelsetTableNode> merged_nodes(merged.size());
+    std::size_t from_old = 0, from_new = 0;
+    for (std::size_t iy = 0; iy < merged.y_m.size(); ++iy) {
+      const bool old = from_old < refined.y_m.size() && refined.y_m[from_old] == merged.y_m[iy];
+      for (std::size_t iyaw = 0; iyaw < merged.yaw_rad.size(); ++iyaw)
+        for (std::size_t il = 0; il < merged.wheel_load_N.size(); ++il)
+          merged_nodes[merged.index(iy, iyaw, il)] = old ? std::move(nodes[refined.index(from_old, iyaw, il)])
+                                                         : std::move(more.nodes[extra.index(from_new, iyaw, il)]);
+      if (old) ++from_old;
+      else ++from_new;
+    }
+    refined = std::move(merged);
+    nodes = std::move(merged_nodes);
+  }
   WheelsetTableMetadata metadata;
   const auto fingerprint = [](const std::string& source) {
     try {
@@ -332,7 +420,7 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
   if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));
-  return WheelsetTable(grid, std::move(nodes), track.parameters().nominal_rolling_radius_m,
+  return WheelsetTable(refined, std::move(nodes), track.parameters().nominal_rolling_radius_m,
                        wheelset_options.material, wheelset_options.nh_fastsim.bound, std::move(metadata));
 }
 
