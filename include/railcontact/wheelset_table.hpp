@@ -14,7 +14,9 @@
 // balance: the normal forces carry the load), with nH-FastSim on every patch. Per wheel and patch
 // it keeps the reference point and frame, F3, the flexibilities L1-L3 of nH-FastSim (from K2 on the
 // patch itself) and the patch coarsened to about kWheelsetTableRuntimeElements elements (the
-// pressure of each block of elements summed, so F3 and the centre of pressure are kept).
+// pressure of each block of elements summed, so F3 and the centre of pressure are kept). Built on
+// the conformal or automatic surface, a patch also keeps its solution on the curved surface with a
+// strip frame per column of its coarse copy (WheelsetTableConformalPatch), marched strip by strip.
 //
 // What a lookup does (WheelsetTable::evaluate): for each wheel, the nodes around (y, ψ, Fz of that
 // wheel); on each of their patches the kinematic creepages of the state (its velocities and yaw;
