@@ -532,6 +532,31 @@ TEST(CApiWheelsetTable, BuildSaveLoadEvaluateEqualsTheCppTable) {
   EXPECT_EQ(rc_wheelset_table_load(w.h, "/nonexistent/t.json"), RC_IO);
 }
 
+// rc_wheelset_table_set_refinement: the next builds add y nodes where the contact jumps, as the
+// C++ build with WheelsetTableRefinement does (the same grid to the last digit); the progress
+// callback's total grows; a fraction outside [0, 1] is refused, naming it.
+TEST(CApiWheelsetTable, TheRefinementAddsTheCppBuildsNodes) {
+  CWheelset w;
+  const double y[] = {-7.1e-3, -7.0e-3, -6.9e-3, -6.8e-3, -6.7e-3, -6.6e-3, -6.5e-3}, yaw[] = {0.0}, loads[] = {98.1e3};
+  EXPECT_EQ(rc_wheelset_table_set_refinement(w.h, 1.5), RC_INVALID_INPUT);
+  EXPECT_NE(w.error().find("lateral_force_fraction = 1.5 must lie in [0, 1]"), std::string::npos) << w.error();
+  ASSERT_EQ(rc_wheelset_table_set_refinement(w.h, 0.01), RC_OK) << w.error();
+  std::size_t last_total = 0;
+  const auto progress = [](size_t, size_t total, void* user) {
+    *static_cast<std::size_t*>(user) = total;
+    return 0;
+  };
+  ASSERT_EQ(rc_wheelset_table_build(w.h, y, 7, yaw, 1, loads, 1, progress, &last_total), RC_OK) << w.error();
+  std::size_t ny = 0, nyaw = 0, nl = 0;
+  ASSERT_EQ(rc_wheelset_table_size(w.h, &ny, &nyaw, &nl), RC_OK);
+  EXPECT_GT(ny, 7u);
+  EXPECT_EQ(last_total, ny);
+  WheelsetTableOptions o;
+  o.refinement.lateral_force_fraction = 0.01;
+  const WheelsetTable cpp = build_wheelset_table(default_wheelset_track(), {{y, y + 7}, {0.0}, {98.1e3}}, o);
+  EXPECT_EQ(ny, cpp.grid().y_m.size());
+}
+
 // A table is used only with the track and options it was built for: rc_wheelset_table_load
 // refuses one built for another element size, naming it; rc_wheelset_set_options keeps the table
 // for a change of loads and mu and drops it for another material, and rc_wheelset_evaluate_table

@@ -615,6 +615,13 @@ RC_API rc_status rc_wheelset_batch_evaluate(rc_wheelset* wheelset, size_t count,
 RC_API rc_status rc_wheelset_table_build(rc_wheelset* wheelset, const double* y_m, size_t y_count, const double* yaw_rad,
                                          size_t yaw_count, const double* loads_N, size_t load_count,
                                          rc_progress_callback progress, void* user_data);
+/* The y refinement of the wheelset's next table builds (docs/WHEELSET_TABLE.md §3 "Where the
+   contact jumps"): y nodes are added, halving the steps up to three times, around a node whose
+   wheel's lateral normal force lies further than lateral_force_fraction of its load from the line
+   between its neighbours (a flange snapping in, a second contact appearing). 0 (the default): none;
+   0.01 for a table that runs into the flange; in [0, 1]. The progress callback's total grows as
+   nodes are added. */
+RC_API rc_status rc_wheelset_table_set_refinement(rc_wheelset* wheelset, double lateral_force_fraction);
 /* Loads a table file (`railcontact wheelset-table build`, rc_wheelset_table_save) and checks that it
    was built for this wheelset's track (its four profile files (hashes) and dimensions) and options
    (material, element size, slip direction, nH-FastSim's recipe): RC_INVALID_INPUT naming each

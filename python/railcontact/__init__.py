@@ -705,15 +705,21 @@ class Wheelset:
 
     # ---- The wheelset table (docs/WHEELSET_TABLE.md) ---------------------------------------------
 
-    def build_table(self, y, yaw=(0.0,), loads=(80e3, 100e3, 120e3), *, progress=None) -> None:
-        """Builds this wheelset's table (its track, material and element size) over the grid y (m),
-        yaw (rad; one value serves every yaw by turning the contact point) and loads (N per wheel),
-        each strictly increasing; about 0.2-0.5 s per node. progress(done, total) is called after
-        each node; returning False cancels (CancelledError). Replaces a table the wheelset had."""
+    def build_table(self, y, yaw=(0.0,), loads=(80e3, 100e3, 120e3), *, progress=None,
+                    refine_lateral_force_fraction: float = 0.0) -> None:
+        """Builds this wheelset's table (its track, material, element size and contact surface) over
+        the grid y (m), yaw (rad; one value serves every yaw by turning the contact point) and loads
+        (N per wheel), each strictly increasing; about 0.02-0.5 s per node. progress(done, total) is
+        called after each node; returning False cancels (CancelledError). refine_lateral_force_fraction
+        [0: none; 0.01 for a table that runs into the flange] adds y nodes where the contact jumps
+        (docs/WHEELSET_TABLE.md §3; the total of progress grows as they are added). Replaces a table
+        the wheelset had."""
         grids = [_check.grid(name, value) for name, value in (("y", y), ("yaw", yaw), ("loads", loads))]
         progress = _check.callback("progress", progress)
-        with _check.library_names({"y_m": "y", "yaw_rad": "yaw", "loads_N": "loads", "wheel load": "loads"}):
-            self._core.build_table(*grids, progress)
+        refine = _check.number("refine_lateral_force_fraction", refine_lateral_force_fraction)
+        with _check.library_names({"y_m": "y", "yaw_rad": "yaw", "loads_N": "loads", "wheel load": "loads",
+                                   "lateral_force_fraction": "refine_lateral_force_fraction"}):
+            self._core.build_table(*grids, progress, refine)
 
     def load_table(self, path) -> None:
         """Loads a table file (`railcontact wheelset-table build`, save_table), checked against this

@@ -752,9 +752,12 @@ class WheelsetHandle {
   }
 
   // The wheelset table (docs/WHEELSET_TABLE.md).
-  void build_table(const DoubleArray& y, const DoubleArray& yaw, const DoubleArray& loads, const py::object& progress) {
+  void build_table(const DoubleArray& y, const DoubleArray& yaw, const DoubleArray& loads, const py::object& progress,
+                   double refine_lateral_force_fraction) {
     ProgressCallback context{progress, std::nullopt};
     const Outcome result = lock_.exclusive("Wheelset", [&] {
+      const Outcome refinement = outcome(rc_wheelset_table_set_refinement(handle_, refine_lateral_force_fraction));
+      if (refinement.status != RC_OK) return refinement;
       return outcome(rc_wheelset_table_build(handle_, y.data(), static_cast<std::size_t>(y.size()), yaw.data(),
                                              static_cast<std::size_t>(yaw.size()), loads.data(),
                                              static_cast<std::size_t>(loads.size()),

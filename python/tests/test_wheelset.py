@@ -220,6 +220,19 @@ def test_a_table_on_the_automatic_surface():
             assert abs(table.right.force_track_N[1] - on_the_fly["auto"].right.force_track_N[1]) > 0.1 * 0.3 * 98.1e3
 
 
+def test_a_table_refined_where_the_flange_comes_in():
+    """refine_lateral_force_fraction adds y nodes where the flange contact comes in (the progress
+    callback's total grows beyond the grid's 7 nodes); a fraction outside [0, 1] is refused, naming
+    the argument."""
+    w = railcontact.Wheelset(element_size=COARSE)
+    calls = []
+    w.build_table(np.linspace(-7.1e-3, -6.5e-3, 7), (0.0,), (98.1e3,), progress=lambda done, total: calls.append(total),
+                  refine_lateral_force_fraction=0.01)
+    assert calls[0] == 7 and calls[-1] > 7
+    with pytest.raises(railcontact.InvalidInputError, match="refine_lateral_force_fraction.*must lie in \\[0, 1\\]"):
+        w.build_table((0.0, 1e-3), (0.0,), (98.1e3,), refine_lateral_force_fraction=2.0)
+
+
 def test_balance_solver_reference_weighting_and_radius_datum():
     """balance_solver moves the wheel heights (the exact solver's vertical force components carry
     the load); reference_weighting="depth" moves the contact angle of the two-lobe patch at

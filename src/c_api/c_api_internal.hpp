@@ -197,6 +197,9 @@ struct rc_wheelset {
   // Why the wheelset has no table: the call that dropped it and what no longer fits (empty when
   // none was dropped), for rc_wheelset_evaluate_table's message.
   std::string table_dropped;
+  // rc_wheelset_table_set_refinement: WheelsetTableRefinement::lateral_force_fraction of the next
+  // builds (0: none).
+  double table_refinement = 0.0;
   mutable railcontact::c_api::LastError error;  // set by const calls too
   rc_wheelset();
 };

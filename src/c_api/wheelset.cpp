@@ -649,6 +649,7 @@ rc_status rc_wheelset_table_build(rc_wheelset* w, const double* y_m, size_t y_co
     const rc::Wheelset& wheelset = require_wheelset(w);
     rc::WheelsetTableOptions options;
     options.wheelset = wheelset.options();
+    options.refinement.lateral_force_fraction = w->table_refinement;
     rc::WheelsetTableProgressCallback callback;
     if (progress != nullptr)
       callback = [&](const rc::WheelsetTableProgress& p) {
@@ -662,6 +663,19 @@ rc_status rc_wheelset_table_build(rc_wheelset* w, const double* y_m, size_t y_co
     } catch (const TableBuildCancelled&) {
       throw StatusError{RC_CANCELLED, "rc_wheelset_table_build: cancelled by the progress callback"};
     }
+  });
+}
+
+rc_status rc_wheelset_table_set_refinement(rc_wheelset* w, double lateral_force_fraction) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require(std::isfinite(lateral_force_fraction) && lateral_force_fraction >= 0.0 && lateral_force_fraction <= 1.0,
+            [&] {
+              return fmt::format("rc_wheelset_table_set_refinement: lateral_force_fraction = {:g} must lie in [0, 1] "
+                                 "(a fraction of the wheel load; 0: no refinement)",
+                                 lateral_force_fraction);
+            });
+    w->table_refinement = lateral_force_fraction;
   });
 }
 
