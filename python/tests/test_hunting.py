@@ -1,7 +1,7 @@
 """The hunting example (examples/hunting_simulation.py, docs/PYTHON.md "A hunting simulation"),
 run in its quick mode: the motion decays at 40 m/s and grows to a limit cycle at 70 m/s from a
-small start, the three contact models agree over the first steps, and the table is the cheapest
-by far. Quick mode names no critical speed (its runs are too short and too few), and the table
+small start, the three contact models agree over the first steps, and each model's cost is
+reported. Quick mode names no critical speed (its runs are too short and too few), and the table
 build's progress reaches its last node."""
 import json
 import os
@@ -32,8 +32,12 @@ def test_hunting_example_quick(tmp_path):
     # From a 0.5 mm start: decaying at 40 m/s, a flange-contact limit cycle at 70 m/s.
     rows = np.genfromtxt(out / "hunting.csv", delimiter=",", names=True, dtype=None, encoding=None)
     assert rows["amplitude_small_start_m"][0] < 1e-3 < rows["amplitude_small_start_m"][1] < 8e-3
+    # The cost of each model is reported (its speed is measured by benchmarks, docs/BENCHMARKS.md,
+    # not asserted here: a timing depends on the machine's load).
     cost = {c["model"]: c for c in summary["cost"]}
-    assert cost["table"]["us_per_evaluation"] * 100 < cost["on-the-fly nh-fastsim"]["us_per_evaluation"]
+    assert set(cost) == {"table", "on-the-fly nh-fastsim", "on-the-fly fastsim"}, sorted(cost)
+    for c in cost.values():
+        assert c["evaluations"] > 0 and 0.0 < c["us_per_evaluation"] < 1e7, c
     # The three models over the same first 20 ms at 70 m/s: the same motion to a few micrometres.
     runs = np.genfromtxt(out / "hunting_runs.csv", delimiter=",", names=True, dtype=None, encoding=None)
     ends = {m: runs["y_m"][runs["model"] == m][-1] for m in set(runs["model"])}
