@@ -110,6 +110,9 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
   if (p.conformal) check_conformal(*p.conformal, fail, check_runtime);
   if (p.runtime_pressure_Pa.empty()) {  // a patch with overlap but no element in contact (or fully conformal)
     if (!p.lobes.empty()) fail("a patch without elements in contact has no lobes");
+    // Its planar forces would be zero: only a fully conformal patch has elements and no planar copy.
+    if (p.elements_in_contact > 0 && !(p.conformal && p.conformal->weight == 1.0))
+      fail("a patch with elements in contact needs its runtime copy (runtime_pressure_Pa)");
     return;
   }
   check_runtime(p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);

@@ -141,29 +141,8 @@ WheelsetTableConformalPatch conformal_table_patch(const WheelsetPatch& patch, do
   return c;
 }
 
-WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre, WheelSide side, int runtime_elements,
-                               const NhFastSimOptions& nh_fastsim) {
-  // A patch on the conformal surface: its planar part (blended) or nothing of a planar patch's
-  // runtime (fully conformal), and its conformal part.
-  if (patch.conformal_weight > 0.0) {
-    const bool blended = patch.conformal_weight < 1.0;
-    require(!blended || (patch.planar_surface && patch.conformal_surface),
-            "wheelset table: a blended patch came without its two surfaces' solutions");
-    WheelsetTablePatch t;
-    if (blended) {
-      WheelsetPatch planar = *patch.planar_surface;
-      t = table_patch(planar, centre, side, runtime_elements, nh_fastsim);
-    } else {
-      WheelsetPatch copy = patch;
-      copy.conformal_weight = 0.0;
-      copy.elements_in_contact = 0;  // the fields, no planar runtime copy
-      t = table_patch(copy, centre, side, runtime_elements, nh_fastsim);
-      t.elements_in_contact = patch.elements_in_contact;
-    }
-    t.conformal = conformal_table_patch(blended ? *patch.conformal_surface : patch, patch.conformal_weight, centre,
-                                        side, runtime_elements, nh_fastsim);
-    return t;
-  }
+// A patch's reference point, frame, geometry, normal force and measures as a node keeps them.
+WheelsetTablePatch table_patch_fields(const WheelsetPatch& patch, const Vector3& centre) {
   WheelsetTablePatch t;
   const InterpenetrationRegion& region = patch.region;
   t.reference_point_track_m = region.reference_point_track_m;
@@ -183,21 +162,48 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   t.pressure_centre_x1_m = patch.pressure_centre_x1_m;
   t.pressure_centre_x2_m = patch.pressure_centre_x2_m;
   t.flexibility = patch.solvers.front().flexibility;
-  if (patch.elements_in_contact == 0) return t;  // overlap, no element in contact yet
+  return t;
+}
+
+// A planar patch's runtime copy and lobes for FastSim at lookup (nothing for a patch with overlap
+// but no element in contact yet).
+void keep_planar_runtime(const WheelsetPatch& patch, WheelSide side, int runtime_elements,
+                         const NhFastSimOptions& nh_fastsim, WheelsetTablePatch& t) {
+  if (patch.elements_in_contact == 0) return;
   // The kept patch is in the solve frame (mirrored for a left wheel) with its origin at the centre
   // of pressure; the coarse copy is re-centred on its own, a fraction of an element away. Centres
   // are kept in the contact frame: x2 = s2 × (solve frame x2).
   const double s2 = side == WheelSide::left ? -1.0 : 1.0;
+  const double angle = patch.region.contact_angle_rad;
   const std::array<double, 2> coarse =
-      keep_runtime_copy(patch.patch, runtime_elements, region.contact_angle_rad, t.runtime_mesh, t.runtime_pressure_Pa);
+      keep_runtime_copy(patch.patch, runtime_elements, angle, t.runtime_mesh, t.runtime_pressure_Pa);
   const double fine_x1 = t.pressure_centre_x1_m, fine_x2 = t.pressure_centre_x2_m;
   t.pressure_centre_x1_m += coarse[0];
   t.pressure_centre_x2_m += s2 * coarse[1];
   // A patch of several lobes: each lobe's flexibilities and coarse copy.
-  KeptLobes kept = keep_lobes(patch.patch, runtime_elements, region.contact_angle_rad, fine_x1, fine_x2, s2, nh_fastsim);
+  KeptLobes kept = keep_lobes(patch.patch, runtime_elements, angle, fine_x1, fine_x2, s2, nh_fastsim);
   t.lobes = std::move(kept.lobes);
   t.whole_patch_weight = kept.whole_patch_weight;
   if (kept.whole_patch_flexibility) t.flexibility = *kept.whole_patch_flexibility;
+}
+
+// A patch as a node keeps it. On the conformal surface (weight above 0) its conformal part, and
+// where it blends the two surfaces the planar surface's fields and runtime copy; fully conformal,
+// the fields of its own solution without a planar runtime copy.
+WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre, WheelSide side, int runtime_elements,
+                               const NhFastSimOptions& nh_fastsim) {
+  if (patch.conformal_weight == 0.0) {
+    WheelsetTablePatch t = table_patch_fields(patch, centre);
+    keep_planar_runtime(patch, side, runtime_elements, nh_fastsim, t);
+    return t;
+  }
+  const bool blended = patch.conformal_weight < 1.0;
+  require(!blended || (patch.planar_surface && patch.conformal_surface),
+          "wheelset table: a blended patch came without its two surfaces' solutions");
+  WheelsetTablePatch t = table_patch_fields(blended ? *patch.planar_surface : patch, centre);
+  if (blended) keep_planar_runtime(*patch.planar_surface, side, runtime_elements, nh_fastsim, t);
+  t.conformal = conformal_table_patch(blended ? *patch.conformal_surface : patch, patch.conformal_weight, centre, side,
+                                      runtime_elements, nh_fastsim);
   return t;
 }
 
