@@ -48,6 +48,7 @@ PUBLIC_LAYERS = {
     "contact_geometry.hpp": 4,
     "normal.hpp": 6,
     "tangential.hpp": 7,
+    "tangential_model.hpp": 7,
     "wheel_rail.hpp": 8,
     "wheelset_kinematics.hpp": 8,
     "wheelset.hpp": 8,

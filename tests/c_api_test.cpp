@@ -274,6 +274,28 @@ TEST(CApi, TractionFieldsSumToTheForces) {
   EXPECT_NEAR(1.0 - static_cast<double>(slipping) / in_contact, f.adhesion_fraction, 1e-12);
 }
 
+// The exact solvers' options changed after the patch was set reach the next solve: the patch keeps
+// its normal solution and its tangential model is prepared again.
+TEST(CApi, ExactSolverOptionsSetAfterThePatchTakeEffect) {
+  Solver s(RC_METHOD_EXACT);
+  ASSERT_EQ(rc_solver_set_ellipse(s.h, kA, kB, kF3), RC_OK);
+  const rc_creepage c{1e-3, 1e-3, 0.5};
+  rc_forces converged{};
+  ASSERT_EQ(rc_solver_solve(s.h, &c, &converged), RC_OK);
+  rc_settings settings;
+  ASSERT_EQ(rc_solver_get_settings(s.h, &settings), RC_OK);
+  settings.max_newton_iterations = 1;
+  ASSERT_EQ(rc_solver_set_settings(s.h, &settings), RC_OK);
+  rc_forces f{};
+  EXPECT_EQ(rc_solver_solve(s.h, &c, &f), RC_NOT_CONVERGED) << "one Newton step cannot reach 1e-9";
+  settings.max_newton_iterations = 100;
+  settings.tolerance = 1e-4;  // looser: fewer steps, the same forces to ~1e-4 of mu F3
+  ASSERT_EQ(rc_solver_set_settings(s.h, &settings), RC_OK);
+  ASSERT_EQ(rc_solver_solve(s.h, &c, &f), RC_OK);
+  EXPECT_NEAR(f.F1_N, converged.F1_N, 1e-3 * 0.3 * kF3);
+  EXPECT_NE(f.F1_N, converged.F1_N);
+}
+
 TEST(CApi, JacobianAtSmallCreepageIsTheCreepageMatrix) {
   Solver s;
   ASSERT_EQ(rc_solver_set_ellipse(s.h, kA, kB, kF3), RC_OK);

@@ -878,7 +878,7 @@ TEST(CApiWheelset, BalanceSolverWeightingAndRadiusDatumAreTheCppWheelsets) {
       << by_exact.error();
   o.balance_solver = 7;
   EXPECT_EQ(rc_wheelset_set_options(by_exact.h, &o), RC_INVALID_INPUT);
-  EXPECT_NE(by_exact.error().find("rc_wheelset_options.balance_solver: 7 is not an rc_method"), std::string::npos)
+  EXPECT_NE(by_exact.error().find("rc_wheelset_options.balance_solver = 7 is not an rc_method"), std::string::npos)
       << by_exact.error();
 
   // The depth weighting on the two-lobe patch.

@@ -12,7 +12,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheel_rail.hpp"
-#include "wheel_rail/cropped_patch.hpp"
+#include "tangential/cropped_patch.hpp"
 
 namespace railcontact {
 namespace {

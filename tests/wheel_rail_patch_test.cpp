@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "elastic/influence_operator.hpp"
-#include "wheel_rail/cropped_patch.hpp"
+#include "tangential/cropped_patch.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/error.hpp"

@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 #include <fmt/ostream.h>
 
 #include "railcontact/tangential.hpp"
+#include "railcontact/tangential_model.hpp"
 #include "railcontact/contact_patch.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/hertz.hpp"
@@ -98,20 +100,11 @@ ContactPatch wheel_rail_patch(const Case& c, const WheelRailPair& pair, PatchSum
   s.contact_angle_rad = wr.contact_angle_rad;
   s.rolling_radius_m = wr.rolling_radius_m;
   s.spin_per_m = wr.spin_per_m;
-  // Equivalent ellipse (classical FastSim on a non-elliptical patch): the same area, the axis
-  // ratio of the rectangle circumscribing the patch (Piotrowski & Kik 2008).
-  const double ratio = wr.extent_x1_m / wr.extent_x2_m;
-  s.a_m = std::sqrt(wr.area_m2 * ratio / M_PI);
-  s.b_m = std::sqrt(wr.area_m2 / (M_PI * ratio));
+  // The equivalent ellipse (classical FastSim on a non-elliptical patch, Eq 9).
+  const std::array<double, 2> ab = equivalent_ellipse_semi_axes(wr.patch);
+  s.a_m = ab[0];
+  s.b_m = ab[1];
   return wr.patch;
-}
-
-void take_fastsim_result(const FastSimResult& r, SolverRun& run) {
-  run.forces = r.forces;
-  run.p1_Pa = r.p1_Pa;
-  run.p2_Pa = r.p2_Pa;
-  run.slip = r.slip;
-  run.adhesion_fraction = r.adhesion_fraction;
 }
 
 // [a, b] contains x (false for NaN).
@@ -200,46 +193,59 @@ void solve_patch(const Case& input, const FlexibilityTable* table, CaseResult& r
   summarise(result.patch, result.summary);
 }
 
-// nH-FastSim with its flexibilities (from K2, or from the table) and the time its set-up took.
+// The options of one tangential model for the case (railcontact/tangential_model.hpp).
+TangentialModelOptions model_options(TangentialSolver kind, const Case& input, const CaseResult& result) {
+  TangentialModelOptions o;
+  o.solver = kind;
+  o.nh_fastsim.bound = TractionBound{input.bound_skew, input.slip_direction};
+  o.nh_fastsim.flexibility_coarsening = input.flexibility_coarsening;
+  o.nh_fastsim.collocation_offset = input.rolling.collocation_offset;
+  o.rolling = input.rolling;
+  // Classical FastSim: the flexibilities of the ellipse, or the wheel-rail patch's equivalent one (Eq 9).
+  o.ellipse_semi_axes_m = std::array<double, 2>{result.summary.a_m, result.summary.b_m};
+  if (const std::optional<FlexibilityTableValues>& t = result.flexibility_table_values)
+    o.given_flexibilities = NhFastSimFlexibilities{t->flexibility, t->f11_N, t->f22_N, t->f23_Nm};
+  return o;
+}
+
+// nH-FastSim prepared once (its K2, or the table's flexibilities), if the normalisation or the
+// nh-fastsim solver needs it, and the time its set-up took (it counts towards nh-fastsim's).
 struct NhFastSimSetUp {
-  std::optional<NhFastSim> nh;  // empty when neither the normalisation nor the nh-fastsim solver needs it
-  // A wheel-rail patch of several lobes with flexibilities on the fly: nh-fastsim per lobe (nh
-  // still gives K2 of the whole patch for the report and the normalisation).
-  std::optional<NhFastSimPerLobe> per_lobe;
+  std::optional<TangentialModel> model;  // the nh-fastsim solver's (per lobe on a wheel-rail patch of several)
+  // The whole patch's nH-FastSim: K2 for the report and f11, f22 for the normalisation (the model's
+  // own unless it runs per lobe).
+  std::optional<NhFastSim> whole_patch;
   double time_s = 0.0;
+  [[nodiscard]] const NhFastSim* whole() const {
+    if (whole_patch) return &*whole_patch;
+    return model ? model->nh_fastsim() : nullptr;
+  }
 };
 
-// nH-FastSim once, if the normalisation or the nh-fastsim solver needs it; its set-up time counts
-// towards nh-fastsim's. Its K2 goes into the result.
 NhFastSimSetUp set_up_nh_fastsim(const Case& input, CaseResult& result, std::ostream* progress) {
-  const std::optional<FlexibilityTableValues>& tabled = result.flexibility_table_values;
+  const bool tabled = result.flexibility_table_values.has_value();
   const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
   const bool wants_nh = std::find(input.solvers.begin(), input.solvers.end(), TangentialSolver::nh_fastsim) != input.solvers.end();
-  NhFastSimOptions nh_options;
-  nh_options.bound = TractionBound{input.bound_skew, input.slip_direction};
-  nh_options.flexibility_coarsening = input.flexibility_coarsening;
-  nh_options.collocation_offset = input.rolling.collocation_offset;
   NhFastSimSetUp setup;
-  if (normalised || wants_nh) {
-    if (progress) *progress << (tabled ? "  nH-FastSim from the flexibility table ...\n" : "  creepage matrix K2 ...\n");
-    const auto start = Clock::now();
-    if (tabled)
-      setup.nh.emplace(result.patch,
-                       NhFastSimFlexibilities{tabled->flexibility, tabled->f11_N, tabled->f22_N, tabled->f23_Nm},
-                       nh_options);
+  if (!normalised && !wants_nh) return setup;
+  if (progress) *progress << (tabled ? "  nH-FastSim from the flexibility table ...\n" : "  creepage matrix K2 ...\n");
+  const auto start = Clock::now();
+  const TangentialModelOptions options = model_options(TangentialSolver::nh_fastsim, input, result);
+  if (wants_nh) setup.model.emplace(result.patch, options);
+  if (setup.whole() == nullptr) {
+    if (options.given_flexibilities)
+      setup.whole_patch.emplace(result.patch, *options.given_flexibilities, options.nh_fastsim);
     else
-      setup.nh.emplace(result.patch, nh_options);
-    if (wants_nh && !tabled && NhFastSimPerLobe::has_several_lobes(result.patch))
-      setup.per_lobe.emplace(result.patch, nh_options);
-    setup.time_s = seconds_since(start);
-    result.creepage_matrix = setup.nh->creepage_matrix();
+      setup.whole_patch.emplace(result.patch, options.nh_fastsim);
   }
+  setup.time_s = seconds_since(start);
+  result.creepage_matrix = setup.whole()->creepage_matrix();
   return setup;
 }
 
 // The raw creepages of the case: normalised ones (Eq 22-23) with f11, f22 of nH-FastSim's K2 (or
 // the table's); spin from conicity (Eq 24).
-void resolve_creepage(const Case& input, const std::optional<NhFastSim>& nh, CaseResult& result) {
+void resolve_creepage(const Case& input, const NhFastSim* nh, CaseResult& result) {
   const bool normalised = input.creepage.xi_normalised || input.creepage.eta_normalised;
   const Creepage normalised_creepage = normalised ? nh->creepage_from_normalised(input.creepage.xi_normalised.value_or(0.0),
                                                                                 input.creepage.eta_normalised.value_or(0.0),
@@ -250,81 +256,29 @@ void resolve_creepage(const Case& input, const std::optional<NhFastSim>& nh, Cas
   if (input.creepage.phi_from_conicity) result.creepage.phi = result.summary.spin_per_m;
 }
 
-// nh-fastsim with the set-up's flexibilities; the set-up's time is its flexibility time.
-SolverRun run_nh_fastsim(const NhFastSimSetUp& setup, bool tabled, const Creepage& creepage, double mu) {
-  const NhFastSim& nh = *setup.nh;
-  SolverRun run;
-  if (setup.per_lobe) {
-    const NhFastSimPerLobe& lobes = *setup.per_lobe;
-    run.flexibility = lobes.flexibility();
-    run.flexibility_source = fmt::format("K2 of each of its {} lobes (the most loaded one's shown)", lobes.lobe_count());
-    run.flexibility_time_s = setup.time_s;
-    run.iterations = lobes.krylov_iterations();
-    take_fastsim_result(lobes.solve(creepage, mu), run);
-    return run;
-  }
-  run.flexibility = nh.flexibility();
-  const CoarseBlocks blocks = nh.coarse_blocks();
-  run.flexibility_source =
-      tabled                            ? std::string("table")
-      : blocks == CoarseBlocks{1, 1}    ? std::string("K2")
-      : blocks.along == blocks.across   ? fmt::format("K2 of the patch coarsened by {}", blocks.along)
-                                        : fmt::format("K2 of the patch coarsened in blocks of {} elements along x1 by {} "
-                                                      "across",
-                                                      blocks.along, blocks.across);
-  run.flexibility_time_s = setup.time_s;  // K2 counts: it is nH-FastSim's
-  run.iterations = nh.krylov_iterations();
-  take_fastsim_result(nh.solve(creepage, mu), run);
-  return run;
-}
-
-// Classical FastSim: the flexibilities of the (equivalent) ellipse (Eq 9), the parabolic bound (Eq 1).
-SolverRun run_fastsim(const ContactPatch& patch, const PatchSummary& summary, const Creepage& creepage, double mu) {
-  const auto start = Clock::now();
-  SolverRun run;
-  run.flexibility = fastsim_flexibility(summary.a_m, summary.b_m, patch.material());
-  run.flexibility_source = "Eq 9";
-  run.flexibility_time_s = seconds_since(start);
-  const FastSim classical(patch, TractionBound::parabolic());  // the classical bound, Eq 1
-  take_fastsim_result(classical.solve(creepage, *run.flexibility, mu), run);
-  return run;
-}
-
-// The exact solver (Coulomb's law) or the regularised one (Eq A1).
-SolverRun run_exact(TangentialSolver kind, const ContactPatch& patch, const Creepage& creepage, const Case& input) {
-  const RollingSolution r = kind == TangentialSolver::exact ? solve_rolling_exact(patch, creepage, input.mu, input.rolling)
-                                                      : solve_rolling_regularised(patch, creepage, input.mu, input.rolling);
-  SolverRun run;
-  run.forces = r.forces;
-  run.iterations = r.newton_iterations;
-  run.krylov_iterations = r.krylov_iterations;
-  run.p1_Pa = r.p1_Pa;
-  run.p2_Pa = r.p2_Pa;
-  run.slip = r.slip;
-  run.adhesion_fraction = r.adhesion_fraction;
-  return run;
-}
-
-// One requested solver on the result's patch and creepages, timed (nh-fastsim: with its set-up).
+// One requested solver on the result's patch and creepages, timed (nh-fastsim: with its set-up,
+// which is its flexibility time; the others' preparation is theirs).
 SolverRun run_solver(TangentialSolver kind, const Case& input, const CaseResult& result, const NhFastSimSetUp& nh,
                      std::ostream* progress) {
   if (progress) fmt::print(*progress, "  {} ...\n", solver_name(kind));
   const auto start = Clock::now();
+  const bool nh_fastsim = kind == TangentialSolver::nh_fastsim;
+  const TangentialModel model = nh_fastsim ? *nh.model : TangentialModel(result.patch, model_options(kind, input, result));
   SolverRun run;
-  switch (kind) {
-    case TangentialSolver::nh_fastsim:
-      run = run_nh_fastsim(nh, result.flexibility_table_values.has_value(), result.creepage, input.mu);
-      break;
-    case TangentialSolver::fastsim:
-      run = run_fastsim(result.patch, result.summary, result.creepage, input.mu);
-      break;
-    case TangentialSolver::exact:
-    case TangentialSolver::exact_regularised:
-      run = run_exact(kind, result.patch, result.creepage, input);
-      break;
-  }
   run.kind = kind;
-  run.time_s = seconds_since(start) + (kind == TangentialSolver::nh_fastsim ? nh.time_s : 0.0);
+  run.flexibility_time_s = nh_fastsim ? nh.time_s : seconds_since(start);
+  run.flexibility = model.flexibility();
+  run.flexibility_source = nh_fastsim && result.flexibility_table_values ? std::string("table") : model.flexibility_source();
+  TangentialSolution t = model.solve(result.creepage, input.mu, TangentialOutput::fields);
+  run.forces = t.forces;
+  // Newton's iterations for the exact solvers, K2's GMRES iterations for nh-fastsim.
+  run.iterations = nh_fastsim ? model.preparation_krylov_iterations() : t.newton_iterations;
+  run.krylov_iterations = t.krylov_iterations;
+  run.p1_Pa = std::move(t.p1_Pa);
+  run.p2_Pa = std::move(t.p2_Pa);
+  run.slip = std::move(t.slip);
+  run.adhesion_fraction = t.adhesion_fraction;
+  run.time_s = seconds_since(start) + (nh_fastsim ? nh.time_s : 0.0);
   return run;
 }
 
@@ -354,7 +308,7 @@ CaseResult run_case(const Case& input, const CaseRunOptions& run_options, std::o
   }
   solve_patch(input, table, result, progress);
   const NhFastSimSetUp nh = set_up_nh_fastsim(input, result, progress);
-  resolve_creepage(input, nh.nh, result);
+  resolve_creepage(input, nh.whole(), result);
   for (TangentialSolver kind : input.solvers) result.runs.push_back(run_solver(kind, input, result, nh, progress));
   return result;
 }

@@ -26,6 +26,7 @@
 #include "railcontact/kalker.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/tangential_model.hpp"
 #include "railcontact/text_file.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"

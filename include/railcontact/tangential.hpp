@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
@@ -32,11 +33,19 @@ namespace railcontact {
 // the C API (rc_method) and Python (METHODS): nH-FastSim (NhFastSim), classic FastSim with the
 // equivalent ellipse's flexibilities (FastSim, Eq 9), and the exact solver with its regularised
 // variant (solve_rolling_exact, solve_rolling_regularised).
+// Each model is prepared and solved behind one seam, TangentialModel (railcontact/tangential_model.hpp).
+// The C API's rc_method values are these enumerators' values.
 enum class TangentialSolver { nh_fastsim, fastsim, exact, exact_regularised };
+inline constexpr std::array<TangentialSolver, 4> kTangentialSolvers{
+    TangentialSolver::nh_fastsim, TangentialSolver::fastsim, TangentialSolver::exact,
+    TangentialSolver::exact_regularised};
 // "nh-fastsim", "fastsim", "exact", "exact-regularised"
 const char* solver_name(TangentialSolver solver);
 // Throws Error (invalid_input) naming the allowed names.
 TangentialSolver parse_tangential_solver(const std::string& name);
+// The solver of an integer value (the C API's rc_method); throws Error (invalid_input) "<what> =
+// <value> is not <kind> (0 nh-fastsim, 1 fastsim, 2 exact, 3 exact-regularised)".
+TangentialSolver tangential_solver_of(int value, std::string_view what, std::string_view kind = "a tangential solver");
 
 enum class LinearSolver {
   krylov,  // GMRES on the FFT operator, preconditioned by strip marching (fast path)
@@ -374,6 +383,82 @@ class NhFastSim {
   std::optional<Matrix3> creepage_matrix_;
   CoarseBlocks coarse_blocks_{0, 0};
   int krylov_iterations_ = 0;
+};
+
+// nH-FastSim on a patch of one or several connected lobes (docs/WHEELSET.md §8). A merged
+// wheel–rail patch, such as the tread and the flange root of S1002 on UIC60 at y = −4.6 … −5.7 mm,
+// holds two lobes 10–20 mm apart: one set of flexibilities for both, from K2 of the whole patch,
+// misses the exact forces by up to 6.9 % of μF3. Here each lobe (a 4-neighbour connected set of
+// elements, contact_regions) gets its own flexibilities, from K2 of that lobe coarsened as a patch
+// of its own, and the creepages at its own centre of pressure; the lobes' elastic coupling is
+// neglected, as FastSim neglects it within a patch. A patch of one lobe is plain NhFastSim.
+//
+// The patch's mesh coordinates minus its shift (ContactPatch::x1_shift_m) are those of the mesh it
+// was cut from: a lobe coarsened by its automatic factor is cropped in whole blocks counted from
+// that mesh's origin (a wheel–rail patch's reference point), as the patch itself was. A lobe of
+// fewer than 20 elements (just appeared: too few for K2) takes the flexibilities of its equivalent
+// ellipse (Eq 9) with nH-FastSim's traction bound. Immutable after construction; solves are
+// thread-safe.
+class NhFastSimPerLobe {
+ public:
+  // Whether the patch's elements form more than one lobe, or two joined by a neck (then it is
+  // worth more than NhFastSim).
+  [[nodiscard]] static bool has_several_lobes(const ContactPatch& patch);
+
+  // Throws Error as NhFastSim does (for a lobe of 200 elements or more whose K2 fails).
+  explicit NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOptions& options = {});
+  NhFastSimPerLobe(const NhFastSimPerLobe&);
+  NhFastSimPerLobe(NhFastSimPerLobe&&) noexcept;
+  NhFastSimPerLobe& operator=(const NhFastSimPerLobe&);
+  NhFastSimPerLobe& operator=(NhFastSimPerLobe&&) noexcept;
+  ~NhFastSimPerLobe();
+
+  // Forces and spin moment about the patch's origin (its centre of pressure), for the creepages
+  // there; tractions and slip flags per element of the patch (patch order), adhesion fraction over
+  // the whole patch. Throws Error unless mu > 0 and the creepages are finite.
+  [[nodiscard]] FastSimResult solve(const Creepage& creepage, double mu) const;
+  // The same from the creepages of each strip (one per column of the patch's mesh, the rigid slip of
+  // an element at x1 of strip j being (ξ_j, η_j + φ_j x1) from the patch's origin: a conformal
+  // patch, docs/WHEELSET.md §4): each lobe marches its own columns' strips, η_j moved to its centre.
+  // Throws Error for another count of strips or a non-finite creepage, and as solve().
+  [[nodiscard]] FastSimResult solve(const StripCreepages& creepages, double mu) const;
+
+  [[nodiscard]] std::size_t lobe_count() const;
+  // Lobe k (by decreasing load): its patch (the crop nH-FastSim solved, origin at its centre of
+  // pressure), its flexibilities (Eq 9 of its equivalent ellipse for a lobe too small for K2) and
+  // its centre of pressure in the patch's coordinates.
+  struct LobeView {
+    const ContactPatch& patch;
+    const Flexibility& flexibility;
+    double x1_centre_m, x2_centre_m;
+  };
+  [[nodiscard]] LobeView lobe(std::size_t k) const;
+  // The most loaded lobe's flexibilities (those of the patch when it has one lobe).
+  [[nodiscard]] const Flexibility& flexibility() const;
+  // Its coarsening factor (NhFastSim::coarsening(); 0 for the equivalent-ellipse fallback).
+  [[nodiscard]] int coarsening() const;
+  // GMRES iterations of all the lobes' K2 solves.
+  [[nodiscard]] int krylov_iterations() const;
+  // A patch whose neck lies between a quarter and half the width of its lobes is solved both per
+  // lobe and whole, the results blended with this weight of the whole patch's (0 otherwise;
+  // linear in the neck's ratio, so that the forces do not jump where a widening neck stops being
+  // one: src/tangential/cropped_patch.hpp); the whole patch's flexibilities then (else nullptr).
+  [[nodiscard]] double whole_patch_weight() const { return whole_weight_; }
+  [[nodiscard]] const Flexibility* whole_patch_flexibility() const;
+
+ private:
+  struct Lobe;
+  // Each lobe's solution from the creepages at its centre (lobe k: `at_lobe(lobe)`), summed.
+  template <typename CreepagesAtLobe>
+  [[nodiscard]] FastSimResult solve_lobes(const CreepagesAtLobe& at_lobe, double mu) const;
+  [[nodiscard]] FastSimResult blended_with_whole(FastSimResult per_lobe, const FastSimResult& whole) const;
+  std::vector<Lobe> lobes_;
+  std::vector<Lobe> whole_;  // the whole patch, when blended (at most one)
+  double whole_weight_ = 0.0;
+  std::size_t patch_elements_ = 0;
+  // The patch's columns in the coordinates of the mesh it was cut from (first centre, count, size).
+  double source_x2_first_m_ = 0.0, dx2_m_ = 0.0;
+  int columns_ = 0;
 };
 
 }  // namespace railcontact

@@ -6,6 +6,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
@@ -13,6 +14,7 @@
 #include "railcontact/flexibility_table.hpp"
 #include "railcontact/railcontact.h"
 #include "railcontact/tangential.hpp"
+#include "railcontact/tangential_model.hpp"
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_table.hpp"
 
@@ -103,15 +105,18 @@ void validate_settings(const rc_settings& settings);
 // Error naming the field, the value and the allowed ones otherwise.
 SlipDirection slip_direction_of(int value, const char* structure = "rc_settings");
 
-// A contact patch prepared for one method: immutable once built, so one may serve several threads
-// (FastSim, NhFastSim and the exact solvers only read it).
+// An rc_method value as the library's TangentialSolver (the same numbers); throws an invalid_input
+// Error "<field> = <value> is not an rc_method (0 nh-fastsim, ...)" otherwise.
+TangentialSolver method_of(int value, std::string_view field);
+
+// A contact patch with the settings' tangential model prepared on it: immutable once built, so one
+// may serve several threads (the models only read it).
 struct PreparedPatch {
   ContactPatch patch;
   rc_normal_result normal{};
   double a_m = 0.0, b_m = 0.0;  // the ellipse of Eq 9 for classical FastSim (or the equivalent one)
-  std::optional<NhFastSim> nh_fastsim;
-  std::optional<FastSim> fastsim;
-  Flexibility fastsim_flexibility;
+  std::optional<NhFastSimFlexibilities> given;  // a flexibility table's, for nh-fastsim
+  std::optional<TangentialModel> model;
 };
 
 // What identifies a prepared patch: the rc_patch's values (and h of a grid) under the settings

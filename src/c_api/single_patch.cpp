@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 
@@ -123,14 +124,8 @@ ContactElements ellipse_elements(const rc_settings& s, double a, double b) {
 // Largest pressure and the equivalent ellipse (same area, axis ratio of the patch's extents).
 void describe_patch(const ContactPatch& patch, rc_normal_result& n, double& a_eq, double& b_eq) {
   const Mesh& mesh = patch.mesh();
-  double x1_min = 1e300, x1_max = -1e300, x2_min = 1e300, x2_max = -1e300, p_max = 0;
-  for (std::size_t e = 0; e < patch.elements().count(); ++e) {
-    p_max = std::max(p_max, patch.pressure_Pa()[e]);
-    x1_min = std::min(x1_min, patch.x1(e));
-    x1_max = std::max(x1_max, patch.x1(e));
-    x2_min = std::min(x2_min, patch.x2(e));
-    x2_max = std::max(x2_max, patch.x2(e));
-  }
+  double p_max = 0;
+  for (std::size_t e = 0; e < patch.elements().count(); ++e) p_max = std::max(p_max, patch.pressure_Pa()[e]);
   n.normal_force_N = patch.normal_force_N();
   n.area_m2 = patch.area_m2();
   n.max_pressure_Pa = p_max;
@@ -141,36 +136,35 @@ void describe_patch(const ContactPatch& patch, rc_normal_result& n, double& a_eq
   n.n1 = mesh.n1;
   n.n2 = mesh.n2;
   n.elements_in_contact = static_cast<int>(patch.elements().count());
-  const double ratio = (x1_max - x1_min + mesh.dx1_m) / (x2_max - x2_min + mesh.dx2_m);
-  a_eq = std::sqrt(n.area_m2 * ratio / M_PI);
-  b_eq = std::sqrt(n.area_m2 / (M_PI * ratio));
+  const std::array<double, 2> ab = equivalent_ellipse_semi_axes(patch);
+  a_eq = ab[0];
+  b_eq = ab[1];
 }
 
-// The method's preparation on a patch whose normal results are set.
-void prepare_method(const rc_settings& s, PreparedPatch& p, const NhFastSimFlexibilities* given) {
-  switch (s.method) {
-    case RC_METHOD_NH_FASTSIM: {
-      NhFastSimOptions o;
-      o.bound.skew = s.bound_skew;
-      o.bound.slip_direction = slip_direction_of(s.slip_direction);
-      o.flexibility_coarsening = s.flexibility_coarsening;
-      o.collocation_offset = s.collocation_offset;
-      if (given != nullptr)
-        p.nh_fastsim.emplace(p.patch, *given, o);
-      else
-        p.nh_fastsim.emplace(p.patch, o);
-      break;
-    }
-    case RC_METHOD_FASTSIM:
-      p.fastsim_flexibility = fastsim_flexibility(p.a_m, p.b_m, p.patch.material());
-      p.fastsim.emplace(p.patch, TractionBound::parabolic());
-      break;
-    default:
-      break;  // the exact solvers work on the patch itself
-  }
+// The settings' tangential model on a patch whose normal results are set (and, from a flexibility
+// table, its given flexibilities).
+void prepare_method(const rc_settings& s, PreparedPatch& p) {
+  TangentialModelOptions o;
+  o.solver = method_of(s.method, "rc_settings.method");
+  o.nh_fastsim.bound.skew = s.bound_skew;
+  o.nh_fastsim.bound.slip_direction = slip_direction_of(s.slip_direction);
+  o.nh_fastsim.flexibility_coarsening = s.flexibility_coarsening;
+  o.nh_fastsim.collocation_offset = s.collocation_offset;
+  o.given_flexibilities = p.given;
+  o.ellipse_semi_axes_m = std::array<double, 2>{p.a_m, p.b_m};
+  o.rolling = rolling_options(s);
+  p.model.emplace(p.patch, o);
 }
 
 }  // namespace
+
+TangentialSolver method_of(int value, std::string_view field) {
+  static_assert(RC_METHOD_NH_FASTSIM == static_cast<int>(TangentialSolver::nh_fastsim) &&
+                RC_METHOD_FASTSIM == static_cast<int>(TangentialSolver::fastsim) &&
+                RC_METHOD_EXACT == static_cast<int>(TangentialSolver::exact) &&
+                RC_METHOD_EXACT_REGULARISED == static_cast<int>(TangentialSolver::exact_regularised));
+  return tangential_solver_of(value, field, "an rc_method");
+}
 
 SlipDirection slip_direction_of(int value, const char* structure) {
   switch (value) {
@@ -187,11 +181,7 @@ void validate_settings(const rc_settings& s) {
               " Pa");
   check_range(s.poisson_ratio, 0.0, 0.5, false, "poisson_ratio", "");
   check_range(s.friction_coefficient, 0.0, 10.0, true, "friction_coefficient", "");
-  require(s.method >= RC_METHOD_NH_FASTSIM && s.method <= RC_METHOD_EXACT_REGULARISED, [&] {
-    return fmt::format("rc_settings.method = {} is not an rc_method (0 nh-fastsim, 1 fastsim, 2 exact, "
-                       "3 exact-regularised)",
-                       s.method);
-  });
+  method_of(s.method, "rc_settings.method");
   switch (s.mesh_mode) {
     case RC_MESH_ELEMENTS_IN_CONTACT: check_range(s.mesh_value, 10, 1e6, false, "mesh_value", " elements in contact"); break;
     case RC_MESH_ELEMENTS_ACROSS: check_range(s.mesh_value, 2, 2000, false, "mesh_value", " elements across"); break;
@@ -244,10 +234,19 @@ void SinglePatchSolver::set_settings(const rc_settings& s) {
       s.mesh_mode == o.mesh_mode && s.mesh_value == o.mesh_value && s.bound_skew == o.bound_skew &&
       s.slip_direction == o.slip_direction && s.flexibility_coarsening == o.flexibility_coarsening && s.collocation_offset == o.collocation_offset &&
       s.normal_tolerance == o.normal_tolerance && s.normal_max_iterations == o.normal_max_iterations;
+  // The exact solvers' options enter their model only: the prepared patch keeps its normal solution.
+  const bool same_rolling = s.tolerance == o.tolerance && s.max_newton_iterations == o.max_newton_iterations &&
+                            s.krylov_tolerance == o.krylov_tolerance &&
+                            s.max_krylov_iterations == o.max_krylov_iterations && s.regularisation == o.regularisation;
   settings_ = s;
   if (!same_preparation) {
     prepared_.reset();
     key_.reset();
+    last_.reset();
+  } else if (!same_rolling && prepared_) {
+    auto p = std::make_shared<PreparedPatch>(*prepared_);
+    prepare_method(s, *p);
+    prepared_ = std::move(p);
     last_.reset();
   }
 }
@@ -327,7 +326,7 @@ std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare(const rc_setting
   }
   n.a_m = p->a_m;
   n.b_m = p->b_m;
-  prepare_method(s, *p, nullptr);
+  prepare_method(s, *p);
   return p;
 }
 
@@ -350,8 +349,8 @@ std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare_wheel_rail(const
   p->a_m = p->normal.a_m = a_eq;
   p->b_m = p->normal.b_m = b_eq;
   const FlexibilityTableValues& v = prepared.table_values();
-  const NhFastSimFlexibilities given{v.flexibility, v.f11_N, v.f22_N, v.f23_Nm};
-  prepare_method(s, *p, &given);
+  p->given = NhFastSimFlexibilities{v.flexibility, v.f11_N, v.f22_N, v.f23_Nm};
+  prepare_method(s, *p);
   return p;
 }
 
@@ -437,28 +436,14 @@ Evaluation SinglePatchSolver::evaluate(const rc_creepage& c, bool with_fields) c
     e.forces.M3_Nm = f.M3_Nm;
     e.forces.adhesion_fraction = adhesion;
   };
-  if (p.nh_fastsim || p.fastsim) {
-    // The forces-only march unless the fields are wanted: the march without per-element output
-    // costs half (docs/BENCHMARKS.md "Python and C API overhead").
-    const FastSim& fastsim = p.nh_fastsim ? p.nh_fastsim->fastsim() : *p.fastsim;
-    const Flexibility& flexibility = p.nh_fastsim ? p.nh_fastsim->flexibility() : p.fastsim_flexibility;
-    FastSimResult r = with_fields ? fastsim.solve(creepage, flexibility, mu)
-                                  : fastsim.forces_and_adhesion(creepage, flexibility, mu);
-    take(r.forces, r.adhesion_fraction);
-    e.has_fields = with_fields;
-    e.p1_Pa = std::move(r.p1_Pa);
-    e.p2_Pa = std::move(r.p2_Pa);
-    e.slip = std::move(r.slip);
-  } else {
-    const RollingOptions options = rolling_options(settings_);
-    RollingSolution r = settings_.method == RC_METHOD_EXACT ? solve_rolling_exact(p.patch, creepage, mu, options)
-                                                            : solve_rolling_regularised(p.patch, creepage, mu, options);
-    take(r.forces, r.adhesion_fraction);
-    e.has_fields = true;
-    e.p1_Pa = std::move(r.p1_Pa);
-    e.p2_Pa = std::move(r.p2_Pa);
-    e.slip = std::move(r.slip);
-  }
+  // FastSim marches without per-element output unless the fields are wanted (half the cost,
+  // docs/BENCHMARKS.md "Python and C API overhead"); the exact solvers give them always.
+  TangentialSolution t = p.model->solve(creepage, mu, with_fields ? TangentialOutput::fields : TangentialOutput::forces);
+  take(t.forces, t.adhesion_fraction);
+  e.has_fields = with_fields || !t.p1_Pa.empty();
+  e.p1_Pa = std::move(t.p1_Pa);
+  e.p2_Pa = std::move(t.p2_Pa);
+  e.slip = std::move(t.slip);
   return e;
 }
 

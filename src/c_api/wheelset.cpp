@@ -39,18 +39,8 @@ void require_flag(int value, const char* field) {
 }
 
 rc::TangentialSolver solver_of(int method, const char* field = "solvers") {
-  switch (method) {
-    case RC_METHOD_NH_FASTSIM: return rc::TangentialSolver::nh_fastsim;
-    case RC_METHOD_FASTSIM: return rc::TangentialSolver::fastsim;
-    case RC_METHOD_EXACT: return rc::TangentialSolver::exact;
-    case RC_METHOD_EXACT_REGULARISED: return rc::TangentialSolver::exact_regularised;
-    default: break;
-  }
-  throw Error(fmt::format("rc_wheelset_options.{}: {} is not an rc_method (0 nh-fastsim, 1 fastsim, 2 exact, "
-                          "3 exact-regularised)",
-                          field, method));
+  return rc::c_api::method_of(method, fmt::format("rc_wheelset_options.{}", field));
 }
-
 rc::WheelsetOptions options_of(const rc_wheelset_options& o) {
   const char* s = "rc_wheelset_options";
   require_finite(o.youngs_modulus_Pa, s, "youngs_modulus_Pa", " Pa");

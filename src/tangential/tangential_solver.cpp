@@ -2,6 +2,7 @@
 #include <fmt/core.h>
 
 #include <string>
+#include <string_view>
 
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
@@ -19,10 +20,21 @@ const char* solver_name(TangentialSolver solver) {
 }
 
 TangentialSolver parse_tangential_solver(const std::string& name) {
-  for (TangentialSolver s : {TangentialSolver::nh_fastsim, TangentialSolver::fastsim, TangentialSolver::exact,
-                             TangentialSolver::exact_regularised})
+  std::string names;
+  for (TangentialSolver s : kTangentialSolvers) {
     if (name == solver_name(s)) return s;
-  throw Error(fmt::format("unknown solver '{}' (solvers: nh-fastsim, fastsim, exact, exact-regularised)", name));
+    names += fmt::format("{}{}", names.empty() ? "" : ", ", solver_name(s));
+  }
+  throw Error(fmt::format("unknown solver '{}' (solvers: {})", name, names));
+}
+
+TangentialSolver tangential_solver_of(int value, std::string_view what, std::string_view kind) {
+  std::string allowed;
+  for (TangentialSolver s : kTangentialSolvers) {
+    if (value == static_cast<int>(s)) return s;
+    allowed += fmt::format("{}{} {}", allowed.empty() ? "" : ", ", static_cast<int>(s), solver_name(s));
+  }
+  throw Error(fmt::format("{} = {} is not {} ({})", what, value, kind, allowed));
 }
 
 }  // namespace railcontact

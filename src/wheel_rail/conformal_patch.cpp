@@ -9,7 +9,8 @@
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheel_rail.hpp"
-#include "wheel_rail/cropped_patch.hpp"
+#include "tangential/cropped_patch.hpp"
+#include "wheel_rail/patch_tangential_model.hpp"
 
 namespace railcontact::detail {
 
@@ -17,63 +18,6 @@ namespace {
 
 Vector3 along(const Vector3& a, double sa, const Vector3& b, double sb) {
   return {sa * a[0] + sb * b[0], sa * a[1] + sb * b[1], sa * a[2] + sb * b[2]};
-}
-
-// One solver's tractions on the developed patch from its strips' creepages.
-struct StripTractions {
-  std::vector<double> p1_Pa, p2_Pa;  // patch order
-  std::vector<std::uint8_t> slip;
-  double adhesion_fraction = 0.0;
-  double M3_Nm = 0.0;  // of the strips' own tractions, about the patch's origin
-  Flexibility flexibility{0.0, 0.0, 0.0};
-};
-
-StripTractions strip_tractions(TangentialSolver solver, const ContactPatch& contact, const StripCreepages& creepages,
-                               const WheelsetOptions& options, std::array<double, 2> semi_axes_m) {
-  const double mu = options.friction_coefficient;
-  StripTractions t;
-  const auto take = [&t](auto&& solution, double M3) {
-    t.p1_Pa = std::move(solution.p1_Pa);
-    t.p2_Pa = std::move(solution.p2_Pa);
-    t.slip = std::move(solution.slip);
-    t.adhesion_fraction = solution.adhesion_fraction;
-    t.M3_Nm = M3;
-  };
-  switch (solver) {
-    case TangentialSolver::exact:
-    case TangentialSolver::exact_regularised: {
-      RollingSolution r = solver == TangentialSolver::exact
-                              ? solve_rolling_exact(contact, creepages, mu, options.rolling)
-                              : solve_rolling_regularised(contact, creepages, mu, options.rolling);
-      take(r, r.forces.M3_Nm);
-      break;
-    }
-    case TangentialSolver::nh_fastsim: {
-      // As on a planar patch: per lobe where the patch has several (docs/WHEELSET.md §8), else K2's
-      // flexibilities on the developed patch, or the equivalent ellipse's for a patch too small for
-      // K2 (docs/WHEELSET.md §5).
-      if (NhFastSimPerLobe::has_several_lobes(contact)) {
-        const NhFastSimPerLobe per_lobe(contact, options.nh_fastsim);
-        t.flexibility = per_lobe.flexibility();  // the most loaded lobe's
-        FastSimResult f = per_lobe.solve(creepages, mu);
-        take(f, f.forces.M3_Nm);
-        break;
-      }
-      const std::optional<NhFastSim> nh = nh_fastsim_unless_too_small(contact, options.nh_fastsim);
-      t.flexibility = nh ? nh->flexibility() : fastsim_flexibility(semi_axes_m[0], semi_axes_m[1], contact.material());
-      FastSimResult f = nh ? nh->solve(creepages, mu)
-                           : FastSim(contact, options.nh_fastsim.bound).solve(creepages, t.flexibility, mu);
-      take(f, f.forces.M3_Nm);
-      break;
-    }
-    case TangentialSolver::fastsim: {
-      t.flexibility = fastsim_flexibility(semi_axes_m[0], semi_axes_m[1], contact.material());
-      FastSimResult f = FastSim(contact, TractionBound::parabolic()).solve(creepages, t.flexibility, mu);
-      take(f, f.forces.M3_Nm);
-      break;
-    }
-  }
-  return t;
 }
 
 }  // namespace
@@ -162,8 +106,11 @@ ConformalSolve solve_conformal_patch(TangentialSolver solver, const Interpenetra
     const Creepage& c = solve_creepages[j];
     patch_creepages[static_cast<std::size_t>(i2)] = {c.xi, c.eta - c.phi * contact.x1_shift_m(), c.phi};
   }
-  const StripTractions s =
-      strip_tractions(solver, contact, patch_creepages, options, equivalent_semi_axes(solve_mesh, elements));
+  // As on a planar patch: nH-FastSim per lobe where the patch has several (docs/WHEELSET.md §8),
+  // else K2's flexibilities on the developed patch, or the equivalent ellipse's for a patch too
+  // small for K2 (docs/WHEELSET.md §5); FastSim marches each strip with its own creepages.
+  const TangentialModel model = patch_tangential_model(solver, contact, options);
+  const TangentialSolution s = model.solve(patch_creepages, options.friction_coefficient, TangentialOutput::fields);
   // Every element's traction (p1, p2 along its strip's tangent) and pressure (along its strip's
   // normal) turned into the contact frame and summed: F2 = Σ (p2 cos Δ − p3 sin Δ) S,
   // F3 = Σ (p2 sin Δ + p3 cos Δ) S (in the solve frame; F2 mirrored back below).
@@ -180,8 +127,8 @@ ConformalSolve solve_conformal_patch(TangentialSolver solver, const Interpenetra
   }
   PatchSolverResult& r = out.result;
   r.solver = solver;
-  r.flexibility = s.flexibility;
-  r.forces = {F1, s2 * F2, s2 * s.M3_Nm};
+  r.flexibility = model.flexibility().value_or(Flexibility{0.0, 0.0, 0.0});
+  r.forces = {F1, s2 * F2, s2 * s.forces.M3_Nm};
   r.force_track_N = along(along(region.x1_axis, F1, region.x2_axis, s2 * F2), 1.0, region.x3_axis, F3);
   r.adhesion_fraction = s.adhesion_fraction;
   if (options.keep_tractions) {

@@ -16,7 +16,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheelset_geometry.hpp"
-#include "wheel_rail/cropped_patch.hpp"
+#include "tangential/cropped_patch.hpp"
 #include "wheel_rail/wheel_height.hpp"
 
 namespace railcontact {

@@ -18,7 +18,8 @@
 #include "railcontact/wheelset.hpp"
 #include "wheel_rail/conformal_patch.hpp"
 #include "wheel_rail/contact_window.hpp"
-#include "wheel_rail/cropped_patch.hpp"
+#include "wheel_rail/patch_tangential_model.hpp"
+#include "tangential/cropped_patch.hpp"
 #include "wheel_rail/wheel_height.hpp"
 
 namespace railcontact {
@@ -40,7 +41,6 @@ constexpr double kTangentialBalanceTolerance = 1e-5;
 constexpr double kCoarseTangentialBalanceTolerance = 1e-3;
 constexpr int kStrictBalancePasses = 6;
 constexpr double kBracketTolerance = 1e-5;
-using detail::equivalent_semi_axes;
 using detail::kMinimumElementsForK2;
 
 // The distance of a point (from the wheelset centre) from the axle.
@@ -293,72 +293,21 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
 }
 
 // Tangential solve of one patch with one solver (creepages at the patch's own origin, the centre
-// of pressure).
+// of pressure): the tractions when the options keep them.
 PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& patch, const Creepage& creepage,
-                                   const WheelsetOptions& options, double a_m, double b_m) {
+                                   const WheelsetOptions& options) {
+  const TangentialModel model = detail::patch_tangential_model(solver, patch, options);
+  TangentialSolution t = model.solve(creepage, options.friction_coefficient,
+                                     options.keep_tractions ? TangentialOutput::fields : TangentialOutput::forces);
   PatchSolverResult r;
   r.solver = solver;
-  const double mu = options.friction_coefficient;
-  switch (solver) {
-    case TangentialSolver::nh_fastsim: {
-      // A patch that has just appeared may have too few elements for K2 (its spin coupling
-      // vanishes on a single strip): FastSim with the equivalent ellipse's flexibilities (Eq 9) and
-      // nH-FastSim's traction bound then gives its small forces (docs/WHEELSET.md §5).
-      const std::optional<NhFastSim> nh = detail::nh_fastsim_unless_too_small(patch, options.nh_fastsim);
-      r.flexibility = nh ? nh->flexibility() : fastsim_flexibility(a_m, b_m, patch.material());
-      FastSimResult f = nh ? nh->solve(creepage, mu) : FastSim(patch, options.nh_fastsim.bound).solve(creepage, r.flexibility, mu);
-      r.forces = f.forces;
-      if (options.keep_tractions) {
-        r.p1_Pa = std::move(f.p1_Pa);
-        r.p2_Pa = std::move(f.p2_Pa);
-        r.slip = std::move(f.slip);
-      }
-      break;
-    }
-    case TangentialSolver::fastsim: {
-      const FastSim classical(patch, TractionBound::parabolic());
-      r.flexibility = fastsim_flexibility(a_m, b_m, patch.material());
-      FastSimResult f = classical.solve(creepage, r.flexibility, mu);
-      r.forces = f.forces;
-      if (options.keep_tractions) {
-        r.p1_Pa = std::move(f.p1_Pa);
-        r.p2_Pa = std::move(f.p2_Pa);
-        r.slip = std::move(f.slip);
-      }
-      break;
-    }
-    case TangentialSolver::exact:
-    case TangentialSolver::exact_regularised: {
-      RollingSolution s = solver == TangentialSolver::exact
-                              ? solve_rolling_exact(patch, creepage, mu, options.rolling)
-                              : solve_rolling_regularised(patch, creepage, mu, options.rolling);
-      r.forces = s.forces;
-      r.adhesion_fraction = s.adhesion_fraction;
-      if (options.keep_tractions) {
-        r.p1_Pa = std::move(s.p1_Pa);
-        r.p2_Pa = std::move(s.p2_Pa);
-        r.slip = std::move(s.slip);
-      }
-      break;
-    }
-  }
-  return r;
-}
-
-// nH-FastSim per lobe on a patch of several connected lobes (NhFastSimPerLobe); creepage at the
-// patch's origin, its centre of pressure.
-PatchSolverResult solve_nh_fastsim_per_lobe(const ContactPatch& patch, const Creepage& creepage,
-                                            const WheelsetOptions& options) {
-  PatchSolverResult r;
-  r.solver = TangentialSolver::nh_fastsim;
-  const NhFastSimPerLobe per_lobe(patch, options.nh_fastsim);
-  r.flexibility = per_lobe.flexibility();  // the most loaded lobe's
-  FastSimResult f = per_lobe.solve(creepage, options.friction_coefficient);
-  r.forces = f.forces;
+  r.forces = t.forces;
+  r.flexibility = model.flexibility().value_or(Flexibility{0.0, 0.0, 0.0});
+  r.adhesion_fraction = t.adhesion_fraction;
   if (options.keep_tractions) {
-    r.p1_Pa = std::move(f.p1_Pa);
-    r.p2_Pa = std::move(f.p2_Pa);
-    r.slip = std::move(f.slip);
+    r.p1_Pa = std::move(t.p1_Pa);
+    r.p2_Pa = std::move(t.p2_Pa);
+    r.slip = std::move(t.slip);
   }
   return r;
 }
@@ -448,15 +397,10 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
   const Creepage c{patch.creepage.xi, s2 * patch.creepage.eta, s2 * patch.creepage.phi};  // in the solve frame
   const double x2c = s2 * patch.pressure_centre_x2_m;
   const Creepage at_centre{c.xi - c.phi * x2c, c.eta + c.phi * patch.pressure_centre_x1_m, c.phi};
-  // Semi-axes of the equivalent ellipse for classical FastSim: the extents' ratio, the area kept.
-  const std::array<double, 2> ab = equivalent_semi_axes(mesh, elements);
-  // nH-FastSim on a patch of several connected lobes: each lobe with its own flexibilities
-  // (NhFastSimPerLobe, docs/WHEELSET.md §8), coarsened as the caller asked (0: automatically).
-  const bool lobed = NhFastSimPerLobe::has_several_lobes(contact);
+  // Classical FastSim and nH-FastSim's small-patch fallback take the patch's equivalent ellipse;
+  // nH-FastSim runs per lobe on a patch of several (NhFastSimPerLobe, docs/WHEELSET.md §8).
   for (TangentialSolver s : options.solvers) {
-    PatchSolverResult r = s == TangentialSolver::nh_fastsim && lobed
-                              ? solve_nh_fastsim_per_lobe(contact, at_centre, options)
-                              : solve_tangential(s, contact, at_centre, options, ab[0], ab[1]);
+    PatchSolverResult r = solve_tangential(s, contact, at_centre, options);
     r.forces.F2_N *= s2;
     r.forces.M3_Nm *= s2;
     for (double& p2 : r.p2_Pa) p2 *= s2;

@@ -1,5 +1,5 @@
 // A contact patch cut out of a potential-contact-area mesh (see the header).
-#include "wheel_rail/cropped_patch.hpp"
+#include "tangential/cropped_patch.hpp"
 
 #include "railcontact/error.hpp"
 
@@ -62,14 +62,6 @@ ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pr
     p[crop.index(static_cast<int>(global1(i1) - first1), static_cast<int>(global2(i2) - first2))] = pressure_Pa[k];
   }
   return ContactPatch(crop, p, material);
-}
-
-std::array<double, 2> equivalent_semi_axes(const Mesh& mesh, const std::vector<std::size_t>& elements) {
-  const IndexBox box = bounding_box(mesh, elements);
-  const double extent1 = (box.hi1 - box.lo1 + 1) * mesh.dx1_m, extent2 = (box.hi2 - box.lo2 + 1) * mesh.dx2_m;
-  const double area = static_cast<double>(elements.size()) * mesh.element_area_m2();
-  const double scale = std::sqrt(area / (M_PI * 0.25 * extent1 * extent2));
-  return {0.5 * extent1 * scale, 0.5 * extent2 * scale};
 }
 
 bool has_several_lobes(const ContactPatch& patch) {

@@ -1,4 +1,4 @@
-// nH-FastSim per lobe of a patch (include/railcontact/wheel_rail.hpp, docs/WHEELSET.md §8): the
+// nH-FastSim per lobe of a patch (include/railcontact/tangential.hpp, docs/WHEELSET.md §8): the
 // patch split into its 4-neighbour connected lobes, each with its own flexibilities and the
 // creepages at its own centre of pressure; forces summed, spin moment about the patch's origin.
 #include <algorithm>
@@ -11,12 +11,12 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/kalker.hpp"
-#include "railcontact/wheel_rail.hpp"
-#include "wheel_rail/cropped_patch.hpp"
+#include "railcontact/tangential.hpp"
+#include "railcontact/tangential_model.hpp"
+#include "tangential/cropped_patch.hpp"
 
 namespace railcontact {
 
-using detail::equivalent_semi_axes;
 using detail::nh_fastsim_unless_too_small;
 using detail::kMinimumElementsForK2;
 
@@ -28,11 +28,10 @@ struct NhFastSimPerLobe::Lobe {
   double x1_centre_m = 0.0, x2_centre_m = 0.0;  // its centre of pressure in the patch's coordinates
   std::vector<std::size_t> to_patch;            // element of `part` -> element of the patch
 
-  Lobe(ContactPatch p, const NhFastSimOptions& options, const Mesh& source, const std::vector<std::size_t>& elements)
-      : part(std::move(p)) {
+  Lobe(ContactPatch p, const NhFastSimOptions& options) : part(std::move(p)) {
     nh = nh_fastsim_unless_too_small(part, options);
     if (!nh) {
-      const std::array<double, 2> ab = equivalent_semi_axes(source, elements);
+      const std::array<double, 2> ab = equivalent_ellipse_semi_axes(part);
       fallback_flexibility = fastsim_flexibility(ab[0], ab[1], part.material());
       fallback.emplace(part, options.bound);
     }
@@ -56,7 +55,7 @@ NhFastSimPerLobe::NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOpt
   dx2_m_ = source.dx2_m;
   columns_ = source.n2;
   const auto whole_patch = [&] {
-    Lobe lobe(patch, options, source, indices);
+    Lobe lobe(patch, options);
     lobe.to_patch.resize(patch_elements_);
     for (std::size_t e = 0; e < patch_elements_; ++e) lobe.to_patch[e] = e;
     return lobe;
@@ -89,7 +88,7 @@ NhFastSimPerLobe::NhFastSimPerLobe(const ContactPatch& patch, const NhFastSimOpt
       if (blocks != CoarseBlocks{1, 1})
         part = detail::block_aligned_patch(source, pressure, region.elements, patch.material(), blocks);
     }
-    Lobe lobe(std::move(part), options, source, region.elements);
+    Lobe lobe(std::move(part), options);
     lobe.x1_centre_m = region.x1_centre_m + patch.x1_shift_m();
     lobe.x2_centre_m = region.x2_centre_m + patch.x2_shift_m();
     const ContactPatch& p = lobe.part;

@@ -61,11 +61,6 @@ bool has_neck(const ContactPatch& patch);
 std::vector<ContactRegion> split_at_necks(const Mesh& mesh, const std::vector<double>& pressure_Pa,
                                           std::vector<ContactRegion> regions, double fraction = kNeckWidthFraction);
 
-// The semi-axes (a, b) of the equivalent ellipse of a set of mesh elements (classical FastSim,
-// Eq 9, on a non-elliptical patch): the axis ratio of their bounding box, their area kept
-// (Piotrowski & Kik 2008).
-std::array<double, 2> equivalent_semi_axes(const Mesh& mesh, const std::vector<std::size_t>& elements);
-
 // nH-FastSim's K2 needs a patch of some extent: below kMinimumElementsForK2 elements in contact
 // (its spin coupling vanishes on a single strip), and below kFallbackElementsForK2 when the
 // adhesion solve fails, a patch just appeared takes the equivalent ellipse's flexibilities
