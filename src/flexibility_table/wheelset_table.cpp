@@ -142,23 +142,7 @@ Bracket bracket(const std::vector<double>& grid, double x, const char* what, con
   return b;
 }
 
-// One patch of the lookup: the contributions of the nodes that have it.
-struct PatchSum {
-  double rail_profile_y_m = 0.0;  // of its first contribution (for matching)
-  std::vector<std::size_t> nodes;  // the nodes that contributed
-  double present_weight = 0.0;     // sum of their weights
-  // Weighted sums (over the nodes present) of the geometry and creepages ...
-  Vector3 reference_point_track_m{}, x1{}, x2{}, x3{};
-  double contact_angle_rad = 0.0, rolling_radius_m = 0.0, wheel_profile_y_m = 0.0, rail_y_sum_m = 0.0;
-  double area_m2 = 0.0, elements = 0.0, max_pressure_Pa = 0.0, centre_x1_m = 0.0, centre_x2_m = 0.0;
-  Creepage creepage{0.0, 0.0, 0.0};
-  Flexibility flexibility{0.0, 0.0, 0.0};
-  // ... and of the forces (a node without the patch counts with zero force).
-  TangentialForces forces{};
-  double normal_force_N = 0.0;
-  Vector3 force_track_N{}, pressure_force_track_N{};
-  double conformal_weight = 0.0;  // over the nodes present
-};
+
 
 // A patch's forces at a lookup: the tangential forces on the wheel (contact frame; on a conformal
 // patch F1, F2 the projections of the whole contact force, as Wheelset::evaluate gives them) and
@@ -256,6 +240,302 @@ PatchForces conformal_patch_forces(const Runtime& runtime, const WheelsetTablePa
   const auto dot = [](const Vector3& a, const Vector3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
   out.forces = {sum.t1, dot(out.track_N, p.x2_axis), s2 * M3};
   return out;
+}
+
+// A lookup's state, friction coefficient and motion checked before any work (the loads and the
+// table's ranges are checked where they are bracketed).
+void check_lookup_state(const WheelsetState& state, double friction_coefficient) {
+  // The nodes have zero roll; a roll would turn the contact points and frames the table does not
+  // have (its kinematic creepages alone moved Fx from -4482 N to 14 N at 10 mrad, where the wheelset
+  // solved at that roll gives 18320 N).
+  if (state.position.roll_rad != 0.0)
+    throw Error(fmt::format("wheelset table: the roll {:g} mrad must be zero: the table's nodes have zero roll (each "
+                            "wheel's height is solved for its load); evaluate a rolled wheelset on the fly",
+                            state.position.roll_rad * 1e3));
+  if (!(friction_coefficient > 0.0 && std::isfinite(friction_coefficient)))
+    throw Error(fmt::format("wheelset table: the friction coefficient {} must be positive and finite", friction_coefficient));
+  const WheelsetPosition& position = state.position;
+  if (!std::isfinite(position.lateral_displacement_m) || !std::isfinite(position.yaw_rad) ||
+      !(std::abs(position.yaw_rad) <= 0.1))
+    throw Error(fmt::format("wheelset table: the lateral displacement {} m and yaw {} rad must be finite, |yaw| <= 0.1 rad",
+                            position.lateral_displacement_m, position.yaw_rad));
+  validate(state.velocity);
+  if (state.velocity.free_rolling)
+    throw Error("wheelset table: free rolling is solved by Wheelset::evaluate only; from a table give the wheels' "
+                "angular velocity or the extra longitudinal creepage");
+}
+
+// A planar patch's tangential forces at a lookup (on the wheel, contact frame, M3 about its centre
+// of pressure): FastSim on its runtime copy with its flexibilities, or on each lobe's with the
+// lobe's (the creepages at the lobe's centre, M3 moved to the patch's centre), blended with the
+// whole copy's where a neck widens (WheelsetTablePatch::whole_patch_weight), as NhFastSimPerLobe
+// solves a patch on the fly. (Runtime: WheelsetTable's private RuntimePatch of the patch.)
+template <typename Runtime>
+TangentialForces planar_patch_forces(const Runtime& runtime, const WheelsetTablePatch& p, const Creepage& creepage,
+                                     double s2, double mu) {
+  if (!runtime.whole) return {};  // no element in contact yet
+  // In the solve frame (x2 -> −x2 for a left wheel), at the coarse patch's centre of pressure.
+  const Creepage c_solve{creepage.xi, s2 * creepage.eta, s2 * creepage.phi};
+  const double x1c = p.pressure_centre_x1_m, x2c = s2 * p.pressure_centre_x2_m;
+  const auto at = [&](double x1, double x2) {
+    return Creepage{c_solve.xi - c_solve.phi * x2, c_solve.eta + c_solve.phi * x1, c_solve.phi};
+  };
+  TangentialForces forces{};
+  if (runtime.lobes.empty()) {
+    forces = runtime.whole->forces(at(x1c, x2c), p.flexibility, mu);
+  } else {
+    for (std::size_t j = 0; j < runtime.lobes.size(); ++j) {
+      const WheelsetTableLobe& lobe = p.lobes[j];
+      const double x1 = lobe.pressure_centre_x1_m, x2 = s2 * lobe.pressure_centre_x2_m;
+      const TangentialForces f = runtime.lobes[j].forces(at(x1, x2), lobe.flexibility, mu);
+      forces.F1_N += f.F1_N;
+      forces.F2_N += f.F2_N;
+      forces.M3_Nm += f.M3_Nm + (x1 - x1c) * f.F2_N - (x2 - x2c) * f.F1_N;
+    }
+    if (const double blend = p.whole_patch_weight; blend > 0.0) {
+      const TangentialForces whole = runtime.whole->forces(at(x1c, x2c), p.flexibility, mu);
+      forces.F1_N = (1.0 - blend) * forces.F1_N + blend * whole.F1_N;
+      forces.F2_N = (1.0 - blend) * forces.F2_N + blend * whole.F2_N;
+      forces.M3_Nm = (1.0 - blend) * forces.M3_Nm + blend * whole.M3_Nm;
+    }
+  }
+  forces.F2_N *= s2;
+  forces.M3_Nm *= s2;
+  return forces;
+}
+
+// A node's patch at a lookup: its creepages, forces and numbers on its surface (the planar one,
+// the conformal one, or their blend by the patch's conformal weight, as Wheelset::evaluate blends
+// them), and its reference point turned with the node's contact points.
+struct PatchAtLookup {
+  Creepage creepage{};
+  Vector3 reference_point_track_m{};
+  PatchForces total{};
+  Vector3 pressure_force_track_N{};
+  double surface_weight = 0.0, normal_force_N = 0.0, area_m2 = 0.0, max_pressure_Pa = 0.0, elements = 0.0;
+  double centre_x1_m = 0.0, centre_x2_m = 0.0;
+  Flexibility flexibility{};
+};
+
+// One patch of the lookup: the contributions of the nodes that have it.
+struct PatchSum {
+  double rail_profile_y_m = 0.0;  // of its first contribution (for matching)
+  std::vector<std::size_t> nodes;  // the nodes that contributed
+  double present_weight = 0.0;     // sum of their weights
+  // Weighted sums (over the nodes present) of the geometry and creepages ...
+  Vector3 reference_point_track_m{}, x1{}, x2{}, x3{};
+  double contact_angle_rad = 0.0, rolling_radius_m = 0.0, wheel_profile_y_m = 0.0, rail_y_sum_m = 0.0;
+  double area_m2 = 0.0, elements = 0.0, max_pressure_Pa = 0.0, centre_x1_m = 0.0, centre_x2_m = 0.0;
+  Creepage creepage{0.0, 0.0, 0.0};
+  Flexibility flexibility{0.0, 0.0, 0.0};
+  // ... and of the forces (a node without the patch counts with zero force).
+  TangentialForces forces{};
+  double normal_force_N = 0.0;
+  Vector3 force_track_N{}, pressure_force_track_N{};
+  double conformal_weight = 0.0;  // over the nodes present
+
+  // Node n's patch at the lookup with the node's weight.
+  void add(const PatchAtLookup& at, const WheelsetTablePatch& p, double weight);
+  // The wheel's patch: averages over the nodes present, forces summed.
+  [[nodiscard]] WheelsetPatch patch(WheelSide side) const;
+};
+
+// The rotation about the vertical by the yaw a node does not have.
+struct Turn {
+  explicit Turn(double angle_rad) : cos(std::cos(angle_rad)), sin(std::sin(angle_rad)) {}
+  [[nodiscard]] Vector3 operator()(const Vector3& r) const { return {cos * r[0] - sin * r[1], sin * r[0] + cos * r[1], r[2]}; }
+  double cos, sin;
+};
+
+template <typename Runtime>
+PatchAtLookup patch_at_lookup(const Runtime& runtime, const WheelsetTablePatch& p, double node_y_m, const Turn& turn,
+                              WheelSide side, double s2, const WheelsetMotion& motion,
+                              const WheelsetKinematics& kinematics, double mu) {
+  PatchAtLookup at;
+  // The contact frame stays the rail's.
+  const ContactFrame frame{turn(p.point_from_wheelset_centre_m), p.x1_axis, p.x2_axis, p.x3_axis};
+  at.creepage = kinematics.at(frame).creepage;
+  check_kinematic_creepage(at.creepage, motion, frame, side);
+  const TangentialForces forces = planar_patch_forces(runtime, p, at.creepage, s2, mu);
+  at.total = {forces, {}};
+  for (std::size_t i = 0; i < 3; ++i) {
+    at.total.track_N[i] = forces.F1_N * p.x1_axis[i] + forces.F2_N * p.x2_axis[i] + p.normal_force_N * p.x3_axis[i];
+    at.pressure_force_track_N[i] = p.normal_force_N * p.x3_axis[i];
+  }
+  at.normal_force_N = p.normal_force_N;
+  at.area_m2 = p.area_m2;
+  at.max_pressure_Pa = p.max_pressure_Pa;
+  at.elements = static_cast<double>(p.elements_in_contact);
+  at.centre_x1_m = p.pressure_centre_x1_m;
+  at.centre_x2_m = p.pressure_centre_x2_m;
+  at.flexibility = p.flexibility;
+  if (p.conformal) {
+    const WheelsetTableConformalPatch& curved = *p.conformal;
+    const double weight = at.surface_weight = curved.weight;
+    PatchForces on_curve{{}, curved.pressure_force_track_N};  // no element in contact yet: its pressure only
+    if (runtime.conformal) on_curve = conformal_patch_forces(runtime, p, kinematics, turn.cos, turn.sin, s2, mu);
+    const auto mix = [weight](double a, double b) { return (1.0 - weight) * a + weight * b; };
+    at.total.forces = {mix(forces.F1_N, on_curve.forces.F1_N), mix(forces.F2_N, on_curve.forces.F2_N),
+                       mix(forces.M3_Nm, on_curve.forces.M3_Nm)};
+    for (std::size_t i = 0; i < 3; ++i) {
+      at.total.track_N[i] = mix(at.total.track_N[i], on_curve.track_N[i]);
+      at.pressure_force_track_N[i] = mix(at.pressure_force_track_N[i], curved.pressure_force_track_N[i]);
+    }
+    at.normal_force_N = mix(at.normal_force_N, curved.normal_force_N);
+    at.area_m2 = mix(at.area_m2, curved.area_m2);
+    at.max_pressure_Pa = mix(at.max_pressure_Pa, curved.max_pressure_Pa);
+    at.elements = mix(at.elements, static_cast<double>(curved.elements_in_contact));
+    at.centre_x1_m = mix(at.centre_x1_m, curved.pressure_centre_x1_m);
+    at.centre_x2_m = mix(at.centre_x2_m, curved.pressure_centre_x2_m);
+    at.flexibility = {mix(at.flexibility.L1, curved.flexibility.L1), mix(at.flexibility.L2, curved.flexibility.L2),
+                      mix(at.flexibility.L3, curved.flexibility.L3)};
+  }
+  // The reference point turned about the wheelset centre (0, y_node, ·) as the contact point is.
+  const Vector3& q = p.reference_point_track_m;
+  at.reference_point_track_m = {node_y_m * turn.sin + turn.cos * q[0] - turn.sin * q[1],
+                                node_y_m + turn.sin * q[0] + turn.cos * (q[1] - node_y_m), q[2]};
+  return at;
+}
+
+void PatchSum::add(const PatchAtLookup& at, const WheelsetTablePatch& p, double weight) {
+  present_weight += weight;
+  for (std::size_t i = 0; i < 3; ++i) {
+    reference_point_track_m[i] += weight * at.reference_point_track_m[i];
+    x1[i] += weight * p.x1_axis[i];
+    x2[i] += weight * p.x2_axis[i];
+    x3[i] += weight * p.x3_axis[i];
+    force_track_N[i] += weight * at.total.track_N[i];
+    pressure_force_track_N[i] += weight * at.pressure_force_track_N[i];
+  }
+  contact_angle_rad += weight * p.contact_angle_rad;
+  rolling_radius_m += weight * p.rolling_radius_m;
+  wheel_profile_y_m += weight * p.wheel_profile_y_m;
+  rail_y_sum_m += weight * p.rail_profile_y_m;
+  area_m2 += weight * at.area_m2;
+  elements += weight * at.elements;
+  max_pressure_Pa += weight * at.max_pressure_Pa;
+  centre_x1_m += weight * at.centre_x1_m;
+  centre_x2_m += weight * at.centre_x2_m;
+  creepage.xi += weight * at.creepage.xi;
+  creepage.eta += weight * at.creepage.eta;
+  creepage.phi += weight * at.creepage.phi;
+  flexibility.L1 += weight * at.flexibility.L1;
+  flexibility.L2 += weight * at.flexibility.L2;
+  flexibility.L3 += weight * at.flexibility.L3;
+  forces.F1_N += weight * at.total.forces.F1_N;
+  forces.F2_N += weight * at.total.forces.F2_N;
+  forces.M3_Nm += weight * at.total.forces.M3_Nm;
+  normal_force_N += weight * at.normal_force_N;
+  conformal_weight += weight * at.surface_weight;
+}
+
+WheelsetPatch PatchSum::patch(WheelSide side) const {
+  const double g = 1.0 / present_weight;  // averages over the nodes present
+  WheelsetPatch patch;
+  patch.side = side;
+  InterpenetrationRegion& region = patch.region;
+  region.side = side;
+  for (std::size_t i = 0; i < 3; ++i) region.reference_point_track_m[i] = g * reference_point_track_m[i];
+  const auto unit = [](const Vector3& v) {
+    const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    return Vector3{v[0] / n, v[1] / n, v[2] / n};
+  };
+  region.x1_axis = unit(x1);
+  region.x2_axis = unit(x2);
+  region.x3_axis = unit(x3);
+  region.rail_profile_y_m = g * rail_y_sum_m;
+  region.wheel_profile_y_m = g * wheel_profile_y_m;
+  region.contact_angle_rad = g * contact_angle_rad;
+  region.rolling_radius_m = g * rolling_radius_m;
+  patch.creepage = Creepage{g * creepage.xi, g * creepage.eta, g * creepage.phi};
+  patch.normal_force_N = normal_force_N;
+  patch.pressure_force_track_N = pressure_force_track_N;
+  patch.conformal_weight = g * conformal_weight;
+  patch.surface = patch.conformal_weight > 0.0 ? ContactSurface::conformal : ContactSurface::planar;
+  patch.area_m2 = area_m2;
+  patch.elements_in_contact = static_cast<std::size_t>(std::lround(elements));
+  patch.max_pressure_Pa = max_pressure_Pa;
+  patch.pressure_centre_x1_m = g * centre_x1_m;
+  patch.pressure_centre_x2_m = g * centre_x2_m;
+  PatchSolverResult r;
+  r.solver = TangentialSolver::nh_fastsim;
+  r.forces = forces;
+  r.force_track_N = force_track_N;
+  r.flexibility = Flexibility{g * flexibility.L1, g * flexibility.L2, g * flexibility.L3};
+  patch.solvers.push_back(r);
+  return patch;
+}
+
+// The sum of the lookup's patch at nearly the same place on the rail profile that node n has not
+// contributed to yet, or a new one.
+PatchSum& matching_sum(std::vector<PatchSum>& sums, double rail_profile_y_m, std::size_t n) {
+  for (PatchSum& s : sums)
+    if (std::abs(s.rail_profile_y_m - rail_profile_y_m) <= kWheelsetTablePatchMatchDistance_m &&
+        std::find(s.nodes.begin(), s.nodes.end(), n) == s.nodes.end())
+      return s;
+  PatchSum& s = sums.emplace_back();
+  s.rail_profile_y_m = rail_profile_y_m;
+  return s;
+}
+
+// The grid cell around a lookup (per axis the grid indices below and above and the upper one's
+// weight), the state's yaw, motion and friction coefficient.
+struct LookupCell {
+  Bracket y, yaw, load;
+  double yaw_rad = 0.0;
+};
+struct Lookup {
+  LookupCell cell;
+  const WheelsetMotion& motion;
+  const WheelsetKinematics& kinematics;
+  double mu;
+};
+
+// One wheel from the table: each node of the cell around the lookup contributes its patches with
+// its weight; patches of different nodes at nearly the same place on the rail profile are one
+// patch. (RuntimeTable: WheelsetTable's private runtime copies, parallel to the nodes.)
+template <typename RuntimeTable>
+WheelResult evaluate_wheel(WheelSide side, const Lookup& lookup, const WheelsetTableGrid& grid_,
+                           const std::vector<WheelsetTableNode>& nodes_, const RuntimeTable& runtime_) {
+  const LookupCell& cell = lookup.cell;
+  const std::size_t w = side == WheelSide::right ? 0 : 1;
+  const double s2 = side == WheelSide::left ? -1.0 : 1.0;  // the solve frame mirrors a left wheel
+  WheelResult wheel;
+  wheel.side = side;
+  std::vector<PatchSum> sums;
+  for (int c = 0; c < 8; ++c) {  // the corners of the cell: bit 0 y, bit 1 yaw, bit 2 load
+    const bool upper_y = c & 1, upper_yaw = c & 2, upper_load = c & 4;
+    const double weight = (upper_y ? cell.y.upper_weight : 1.0 - cell.y.upper_weight) *
+                          (upper_yaw ? cell.yaw.upper_weight : 1.0 - cell.yaw.upper_weight) *
+                          (upper_load ? cell.load.upper_weight : 1.0 - cell.load.upper_weight);
+    if (weight <= 0.0) continue;
+    const std::size_t n = grid_.index(upper_y ? cell.y.upper : cell.y.lower, upper_yaw ? cell.yaw.upper : cell.yaw.lower,
+                                      upper_load ? cell.load.upper : cell.load.lower);
+    const WheelsetTableNode& node = nodes_[n];
+    if (node.status != WheelsetTableNodeStatus::solved)
+      throw Error(fmt::format("wheelset table: the node at y = {:.4g} mm, yaw {:.4g} mrad, load {:.4g} kN is a gap ({})",
+                              node.y_m / kMm, node.yaw_rad / 1e-3, node.wheel_load_N / 1e3, node.message));
+    // The node's contact points, turned by the yaw the node does not have.
+    const Turn turn(cell.yaw_rad - node.yaw_rad);
+    wheel.vertical_displacement_m += weight * node.vertical_displacement_m[w];
+    for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
+      const WheelsetTablePatch& p = node.wheels[w][k];
+      const PatchAtLookup at =
+          patch_at_lookup(runtime_[n][w][k], p, node.y_m, turn, side, s2, lookup.motion, lookup.kinematics, lookup.mu);
+      PatchSum& sum = matching_sum(sums, p.rail_profile_y_m, n);
+      sum.nodes.push_back(n);
+      sum.add(at, p, weight);
+    }
+  }
+  // The patches, gauge side first, each from its sums.
+  std::sort(sums.begin(), sums.end(), [](const PatchSum& a, const PatchSum& b) {
+    return a.rail_y_sum_m / a.present_weight < b.rail_y_sum_m / b.present_weight;
+  });
+  for (const PatchSum& s : sums) {
+    wheel.patches.push_back(s.patch(side));
+    for (int i = 0; i < 3; ++i) wheel.force_track_N[i] += s.force_track_N[i];
+  }
+  return wheel;
 }
 
 }  // namespace
@@ -508,31 +788,14 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
 WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state, const WheelLoads& loads,
                                                       double friction_coefficient) const {
   if (nodes_.empty()) throw Error("wheelset table: the table is empty");
-  // The nodes have zero roll; a roll would turn the contact points and frames the table does not
-  // have (its kinematic creepages alone moved Fx from -4482 N to 14 N at 10 mrad, where the wheelset
-  // solved at that roll gives 18320 N).
-  if (state.position.roll_rad != 0.0)
-    throw Error(fmt::format("wheelset table: the roll {:g} mrad must be zero: the table's nodes have zero roll (each "
-                            "wheel's height is solved for its load); evaluate a rolled wheelset on the fly",
-                            state.position.roll_rad * 1e3));
-  if (!(friction_coefficient > 0.0 && std::isfinite(friction_coefficient)))
-    throw Error(fmt::format("wheelset table: the friction coefficient {} must be positive and finite", friction_coefficient));
-  const WheelsetPosition& position = state.position;
-  if (!std::isfinite(position.lateral_displacement_m) || !std::isfinite(position.yaw_rad) ||
-      !(std::abs(position.yaw_rad) <= 0.1))
-    throw Error(fmt::format("wheelset table: the lateral displacement {} m and yaw {} rad must be finite, |yaw| <= 0.1 rad",
-                            position.lateral_displacement_m, position.yaw_rad));
-  validate(state.velocity);
-  if (state.velocity.free_rolling)
-    throw Error("wheelset table: free rolling is solved by Wheelset::evaluate only; from a table give the wheels' "
-                "angular velocity or the extra longitudinal creepage");
+  check_lookup_state(state, friction_coefficient);
   const WheelsetMotion motion = wheelset_motion(state, nominal_rolling_radius_m_);
   const WheelsetKinematics kinematics(motion);
+  const WheelsetPosition& position = state.position;
   const Bracket by = bracket(grid_.y_m, position.lateral_displacement_m, "the lateral displacement y", "mm", kMm);
   // One yaw node serves every yaw (the contact point turned); several are interpolated.
   const Bracket byaw = grid_.yaw_rad.size() == 1 ? Bracket{}
                                                  : bracket(grid_.yaw_rad, position.yaw_rad, "the yaw", "mrad", 1e-3);
-
   WheelsetResult result;
   result.state = state;
   for (int w = 0; w < 2; ++w) {
@@ -542,194 +805,9 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
       throw Error(fmt::format("wheelset table: the {} wheel's load {} N must be positive and finite", side_name(side), load));
     const Bracket bl =
         bracket(grid_.wheel_load_N, load, fmt::format("the {} wheel's load", side_name(side)).c_str(), "kN", 1e3);
-    const double s2 = side == WheelSide::left ? -1.0 : 1.0;  // the solve frame mirrors a left wheel
-    std::vector<PatchSum> sums;
-    WheelResult& wheel = result.wheels[w];
-    wheel.side = side;
-    for (int c = 0; c < 8; ++c) {  // the corners of the cell: bit 0 y, bit 1 yaw, bit 2 load
-      const bool upper_y = c & 1, upper_yaw = c & 2, upper_load = c & 4;
-      const double weight = (upper_y ? by.upper_weight : 1.0 - by.upper_weight) *
-                            (upper_yaw ? byaw.upper_weight : 1.0 - byaw.upper_weight) *
-                            (upper_load ? bl.upper_weight : 1.0 - bl.upper_weight);
-      if (weight <= 0.0) continue;
-      const std::size_t n = grid_.index(upper_y ? by.upper : by.lower, upper_yaw ? byaw.upper : byaw.lower,
-                                        upper_load ? bl.upper : bl.lower);
-      const WheelsetTableNode& node = nodes_[n];
-      // The contact point as the node has it, turned by the yaw the node does not have.
-      const double turn = position.yaw_rad - node.yaw_rad;
-      const double cos_turn = std::cos(turn), sin_turn = std::sin(turn);
-      if (node.status != WheelsetTableNodeStatus::solved)
-        throw Error(fmt::format("wheelset table: the node at y = {:.4g} mm, yaw {:.4g} mrad, load {:.4g} kN is a gap ({})",
-                                node.y_m / kMm, node.yaw_rad / 1e-3, node.wheel_load_N / 1e3, node.message));
-      wheel.vertical_displacement_m += weight * node.vertical_displacement_m[w];
-      for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
-        const WheelsetTablePatch& p = node.wheels[w][k];
-        // The contact frame stays the rail's.
-        const Vector3& r0 = p.point_from_wheelset_centre_m;
-        ContactFrame frame;
-        frame.point_from_wheelset_centre_m = {cos_turn * r0[0] - sin_turn * r0[1], sin_turn * r0[0] + cos_turn * r0[1], r0[2]};
-        frame.x1 = p.x1_axis;
-        frame.x2 = p.x2_axis;
-        frame.x3 = p.x3_axis;
-        const Creepage creepage = kinematics.at(frame).creepage;
-        check_kinematic_creepage(creepage, motion, frame, side);
-        TangentialForces forces{};
-        const RuntimePatch& runtime = runtime_[n][w][k];
-        if (runtime.whole) {
-          // In the solve frame (x2 -> −x2 for a left wheel), at the coarse patch's centre of pressure.
-          const Creepage c_solve{creepage.xi, s2 * creepage.eta, s2 * creepage.phi};
-          const double x1c = p.pressure_centre_x1_m, x2c = s2 * p.pressure_centre_x2_m;
-          const auto at = [&](double x1, double x2) {
-            return Creepage{c_solve.xi - c_solve.phi * x2, c_solve.eta + c_solve.phi * x1, c_solve.phi};
-          };
-          if (runtime.lobes.empty()) {
-            forces = runtime.whole->forces(at(x1c, x2c), p.flexibility, friction_coefficient);
-          } else {
-            // Each lobe with its flexibilities at its own centre; M3 about the patch's centre.
-            for (std::size_t j = 0; j < runtime.lobes.size(); ++j) {
-              const WheelsetTableLobe& lobe = p.lobes[j];
-              const double x1 = lobe.pressure_centre_x1_m, x2 = s2 * lobe.pressure_centre_x2_m;
-              const TangentialForces f = runtime.lobes[j].forces(at(x1, x2), lobe.flexibility, friction_coefficient);
-              forces.F1_N += f.F1_N;
-              forces.F2_N += f.F2_N;
-              forces.M3_Nm += f.M3_Nm + (x1 - x1c) * f.F2_N - (x2 - x2c) * f.F1_N;
-            }
-            if (const double blend = p.whole_patch_weight; blend > 0.0) {  // a widening neck: blended
-              const TangentialForces whole = runtime.whole->forces(at(x1c, x2c), p.flexibility, friction_coefficient);
-              forces.F1_N = (1.0 - blend) * forces.F1_N + blend * whole.F1_N;
-              forces.F2_N = (1.0 - blend) * forces.F2_N + blend * whole.F2_N;
-              forces.M3_Nm = (1.0 - blend) * forces.M3_Nm + blend * whole.M3_Nm;
-            }
-          }
-          forces.F2_N *= s2;
-          forces.M3_Nm *= s2;
-        }
-        // The patch's numbers: the planar surface's, or on the conformal surface, or their blend.
-        PatchForces total{forces, {}};
-        for (std::size_t i = 0; i < 3; ++i)
-          total.track_N[i] = forces.F1_N * p.x1_axis[i] + forces.F2_N * p.x2_axis[i] + p.normal_force_N * p.x3_axis[i];
-        double surface_weight = 0.0, normal_force_N = p.normal_force_N, area_m2 = p.area_m2, max_pressure_Pa = p.max_pressure_Pa;
-        double elements = static_cast<double>(p.elements_in_contact);
-        double centre_x1_m = p.pressure_centre_x1_m, centre_x2_m = p.pressure_centre_x2_m;
-        Flexibility flexibility = p.flexibility;
-        Vector3 pressure_force_track_N{};
-        for (std::size_t i = 0; i < 3; ++i) pressure_force_track_N[i] = p.normal_force_N * p.x3_axis[i];
-        if (p.conformal) {
-          const WheelsetTableConformalPatch& curved = *p.conformal;
-          surface_weight = curved.weight;
-          PatchForces on_curve{{}, curved.pressure_force_track_N};  // no element in contact yet: its pressure only
-          if (runtime.conformal)
-            on_curve = conformal_patch_forces(runtime, p, kinematics, cos_turn, sin_turn, s2, friction_coefficient);
-          const auto mix = [surface_weight](double a, double b) { return (1.0 - surface_weight) * a + surface_weight * b; };
-          total.forces = {mix(total.forces.F1_N, on_curve.forces.F1_N), mix(total.forces.F2_N, on_curve.forces.F2_N),
-                          mix(total.forces.M3_Nm, on_curve.forces.M3_Nm)};
-          for (std::size_t i = 0; i < 3; ++i) {
-            total.track_N[i] = mix(total.track_N[i], on_curve.track_N[i]);
-            pressure_force_track_N[i] = mix(pressure_force_track_N[i], curved.pressure_force_track_N[i]);
-          }
-          normal_force_N = mix(normal_force_N, curved.normal_force_N);
-          area_m2 = mix(area_m2, curved.area_m2);
-          max_pressure_Pa = mix(max_pressure_Pa, curved.max_pressure_Pa);
-          elements = mix(elements, static_cast<double>(curved.elements_in_contact));
-          centre_x1_m = mix(centre_x1_m, curved.pressure_centre_x1_m);
-          centre_x2_m = mix(centre_x2_m, curved.pressure_centre_x2_m);
-          flexibility = {mix(flexibility.L1, curved.flexibility.L1), mix(flexibility.L2, curved.flexibility.L2),
-                         mix(flexibility.L3, curved.flexibility.L3)};
-        }
-        // Match: the patch of another node at nearly the same place on the rail profile.
-        PatchSum* sum = nullptr;
-        for (PatchSum& s : sums) {
-          if (std::abs(s.rail_profile_y_m - p.rail_profile_y_m) <= kWheelsetTablePatchMatchDistance_m &&
-              std::find(s.nodes.begin(), s.nodes.end(), n) == s.nodes.end()) {
-            sum = &s;
-            break;
-          }
-        }
-        if (sum == nullptr) {
-          sums.emplace_back();
-          sum = &sums.back();
-          sum->rail_profile_y_m = p.rail_profile_y_m;
-        }
-        sum->nodes.push_back(n);
-        sum->present_weight += weight;
-        // The reference point turned about the wheelset centre (0, y_node, ·) likewise.
-        const Vector3 reference{node.y_m * sin_turn + cos_turn * p.reference_point_track_m[0] -
-                                    sin_turn * p.reference_point_track_m[1],
-                                node.y_m + sin_turn * p.reference_point_track_m[0] +
-                                    cos_turn * (p.reference_point_track_m[1] - node.y_m),
-                                p.reference_point_track_m[2]};
-        for (int i = 0; i < 3; ++i) {
-          sum->reference_point_track_m[i] += weight * reference[i];
-          sum->x1[i] += weight * p.x1_axis[i];
-          sum->x2[i] += weight * p.x2_axis[i];
-          sum->x3[i] += weight * p.x3_axis[i];
-          sum->force_track_N[i] += weight * total.track_N[i];
-          sum->pressure_force_track_N[i] += weight * pressure_force_track_N[i];
-        }
-        sum->contact_angle_rad += weight * p.contact_angle_rad;
-        sum->rolling_radius_m += weight * p.rolling_radius_m;
-        sum->wheel_profile_y_m += weight * p.wheel_profile_y_m;
-        sum->rail_y_sum_m += weight * p.rail_profile_y_m;
-        sum->area_m2 += weight * area_m2;
-        sum->elements += weight * elements;
-        sum->max_pressure_Pa += weight * max_pressure_Pa;
-        sum->centre_x1_m += weight * centre_x1_m;
-        sum->centre_x2_m += weight * centre_x2_m;
-        sum->creepage.xi += weight * creepage.xi;
-        sum->creepage.eta += weight * creepage.eta;
-        sum->creepage.phi += weight * creepage.phi;
-        sum->flexibility.L1 += weight * flexibility.L1;
-        sum->flexibility.L2 += weight * flexibility.L2;
-        sum->flexibility.L3 += weight * flexibility.L3;
-        sum->forces.F1_N += weight * total.forces.F1_N;
-        sum->forces.F2_N += weight * total.forces.F2_N;
-        sum->forces.M3_Nm += weight * total.forces.M3_Nm;
-        sum->normal_force_N += weight * normal_force_N;
-        sum->conformal_weight += weight * surface_weight;
-      }
-    }
-    // The patches, gauge side first, each from its sums.
-    std::sort(sums.begin(), sums.end(), [](const PatchSum& a, const PatchSum& b) {
-      return a.rail_y_sum_m / a.present_weight < b.rail_y_sum_m / b.present_weight;
-    });
-    for (const PatchSum& s : sums) {
-      const double g = 1.0 / s.present_weight;  // averages over the nodes present
-      WheelsetPatch patch;
-      patch.side = side;
-      InterpenetrationRegion& region = patch.region;
-      region.side = side;
-      for (int i = 0; i < 3; ++i) region.reference_point_track_m[i] = g * s.reference_point_track_m[i];
-      const auto unit = [](const Vector3& v) {
-        const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        return Vector3{v[0] / n, v[1] / n, v[2] / n};
-      };
-      region.x1_axis = unit(s.x1);
-      region.x2_axis = unit(s.x2);
-      region.x3_axis = unit(s.x3);
-      region.rail_profile_y_m = g * s.rail_y_sum_m;
-      region.wheel_profile_y_m = g * s.wheel_profile_y_m;
-      region.contact_angle_rad = g * s.contact_angle_rad;
-      region.rolling_radius_m = g * s.rolling_radius_m;
-      patch.creepage = Creepage{g * s.creepage.xi, g * s.creepage.eta, g * s.creepage.phi};
-      patch.normal_force_N = s.normal_force_N;
-      patch.pressure_force_track_N = s.pressure_force_track_N;
-      patch.conformal_weight = g * s.conformal_weight;
-      patch.surface = patch.conformal_weight > 0.0 ? ContactSurface::conformal : ContactSurface::planar;
-      patch.area_m2 = s.area_m2;
-      patch.elements_in_contact = static_cast<std::size_t>(std::lround(s.elements));
-      patch.max_pressure_Pa = s.max_pressure_Pa;
-      patch.pressure_centre_x1_m = g * s.centre_x1_m;
-      patch.pressure_centre_x2_m = g * s.centre_x2_m;
-      PatchSolverResult r;
-      r.solver = TangentialSolver::nh_fastsim;
-      r.forces = s.forces;
-      r.force_track_N = s.force_track_N;
-      r.flexibility = Flexibility{g * s.flexibility.L1, g * s.flexibility.L2, g * s.flexibility.L3};
-      patch.solvers.push_back(r);
-      for (int i = 0; i < 3; ++i) wheel.force_track_N[i] += s.force_track_N[i];
-      wheel.patches.push_back(std::move(patch));
-    }
-    for (int i = 0; i < 3; ++i) result.force_track_N[i] += wheel.force_track_N[i];
+    const Lookup lookup{{by, byaw, bl, position.yaw_rad}, motion, kinematics, friction_coefficient};
+    result.wheels[w] = evaluate_wheel(side, lookup, grid_, nodes_, runtime_);
+    for (int i = 0; i < 3; ++i) result.force_track_N[i] += result.wheels[w].force_track_N[i];
   }
   return result;
 }
