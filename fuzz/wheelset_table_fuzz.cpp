@@ -1,4 +1,4 @@
-// Fuzz target: wheelset-table files (JSON, src/flexibility_table/wheelset_table_file.cpp): the
+// Fuzz target: wheelset-table files (JSON, src/wheelset_table/wheelset_table_file.cpp): the
 // JSON parse, format and version, the metadata, grids and every node and patch (runtime meshes and
 // pressures included), the table's own checks, then what `railcontact wheelset --table` does with
 // it: lookups at and between the grid points, with yaw.

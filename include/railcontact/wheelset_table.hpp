@@ -1,5 +1,5 @@
 #pragma once
-// Stage: flexibility table, the wheelset level (docs/WHEELSET_TABLE.md). Everything a wheelset
+// Stage: wheelset table (docs/WHEELSET_TABLE.md). Everything a wheelset
 // time step needs from its contact, precomputed over the wheelset's lateral displacement y and the
 // wheel load: each wheel's patches (tread, flange, both) with their normal force, reference point,
 // contact angle, rolling radius, nH-FastSim flexibilities and a coarse copy of the patch for

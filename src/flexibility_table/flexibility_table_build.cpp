@@ -15,7 +15,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/text_file.hpp"
 #include "railcontact/flexibility_table.hpp"
-#include "flexibility_table/strict_json.hpp"
+#include "flexibility_table/table_json.hpp"
 #include "railcontact/version.h"
 
 namespace railcontact {

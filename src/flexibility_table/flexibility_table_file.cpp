@@ -14,7 +14,7 @@
 #include "railcontact/flexibility_table.hpp"
 #include "support/file_fingerprint.hpp"
 #include "flexibility_table/table_size.hpp"
-#include "flexibility_table/strict_json.hpp"
+#include "flexibility_table/table_json.hpp"
 
 namespace railcontact {
 namespace {

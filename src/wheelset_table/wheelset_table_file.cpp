@@ -7,7 +7,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "flexibility_table/strict_json.hpp"
+#include "flexibility_table/table_json.hpp"
+#include "wheelset_table/wheelset_table_json.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/text_file.hpp"
 #include "railcontact/wheelset_table.hpp"

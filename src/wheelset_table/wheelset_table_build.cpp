@@ -13,7 +13,8 @@
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset_table.hpp"
-#include "flexibility_table/strict_json.hpp"
+#include "flexibility_table/table_json.hpp"
+#include "wheelset_table/wheelset_table_json.hpp"
 #include "railcontact/version.h"
 
 namespace railcontact {

@@ -1,14 +1,12 @@
 #pragma once
-// Strict reading of the table files (flexibility table, wheelset table): JSON parsed with the line
-// of a syntax error, objects read key by key with the key's full path in every message, unknown
-// keys refused; and the parts both files share (profile fingerprints, track parameters).
+// Strict reading of JSON files (the flexibility and wheelset tables): JSON parsed with the line of a
+// syntax error, objects read key by key with the key's full path in every message, unknown keys
+// refused. What the table files share beyond it: flexibility_table/table_json.hpp.
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
-#include "railcontact/flexibility_table.hpp"
-#include "railcontact/wheelset_table.hpp"
 
 namespace railcontact::detail {
 
@@ -52,20 +50,5 @@ class StrictJsonReader {
 
 // The time now as ISO 8601 UTC, e.g. 2024-05-01T12:00:00Z (a table's created_utc).
 std::string utc_now();
-
-FileFingerprint read_fingerprint(StrictJsonReader& parent, const std::string& key);
-nlohmann::json fingerprint_json(const FileFingerprint& fingerprint);
-TrackWheelsetParameters read_track_parameters(StrictJsonReader& parent, const std::string& key);
-nlohmann::json track_parameters_json(const TrackWheelsetParameters& track);
-
-// One flexibility-table node as the table file writes it (JSON, an exact round trip), and back
-// (throws Error naming nodes[index] on malformed text): how a build's runner moves nodes.
-std::string flexibility_table_node_json(const FlexibilityTableNode& node);
-FlexibilityTableNode parse_flexibility_table_node(const std::string& text, std::size_t index);
-
-// Wheelset-table nodes as the table file writes them (a JSON list, an exact round trip), and back:
-// how a build's runner moves a block of nodes.
-std::string wheelset_table_nodes_json(const std::vector<WheelsetTableNode>& nodes);
-std::vector<WheelsetTableNode> parse_wheelset_table_nodes(const std::string& text);
 
 }  // namespace railcontact::detail
