@@ -3,6 +3,7 @@
 // docs/METHOD.md §5) and the connected contact regions of its solution.
 #include <cstddef>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
@@ -114,5 +115,26 @@ struct ContactRegion {
 // The regions sorted by decreasing normal force. pressure_Pa: one value per mesh element
 // (elements with p3 > 0 are in contact). Throws Error if the sizes differ.
 std::vector<ContactRegion> contact_regions(const Mesh& mesh, const std::vector<double>& pressure_Pa);
+
+// A region carrying less than this fraction of the load is a speck of the discretisation, not a
+// patch: a single-patch solve drops it (as the wheel-rail stage does).
+inline constexpr double kSpeckLoadFraction = 0.01;
+
+// The one contact patch of a body given by its undeformed distance on a grid (what a single-patch
+// tangential solve needs, e.g. the C API's grid patch): the normal problem by load (or by approach:
+// F3 follows), its regions found and specks dropped. `what` names the input in messages ("rc_patch
+// grid"). Throws Error: as solve_normal_contact; not_converged when the normal solver does not
+// converge; several_patches when more than one region carries over kSpeckLoadFraction of the load;
+// at an approach, no_contact where no element touches and invalid_input when the force found lies
+// outside the range of validate_normal_force.
+struct GridPatch {
+  ContactPatch patch;     // the region's elements and pressures (origin at its centre of pressure)
+  NormalSolution normal;  // the whole grid's solution (specks included)
+};
+GridPatch single_grid_patch(const Mesh& mesh, const std::vector<double>& undeformed_distance_m, double normal_force_N,
+                            const Material& material, const NormalOptions& options, std::string_view what);
+GridPatch single_grid_patch_at_approach(const Mesh& mesh, const std::vector<double>& undeformed_distance_m,
+                                        double approach_m, const Material& material, const NormalOptions& options,
+                                        std::string_view what);
 
 }  // namespace railcontact

@@ -272,35 +272,11 @@ std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare(const rc_setting
     NormalOptions options;
     options.tolerance = s.normal_tolerance;
     options.max_iterations = s.normal_max_iterations;
-    NormalSolution normal = approach_m != nullptr
-                                ? solve_normal_contact_at_approach(mesh, h, *approach_m, material, options)
-                                : solve_normal_contact(mesh, h, patch.normal_force_N, material, options);
-    if (approach_m != nullptr) {
-      if (normal.elements_in_contact == 0)
-        throw Error(ErrorKind::no_contact,
-                    fmt::format("rc_patch grid at approach {} m: no element comes into contact (h - approach > 0 "
-                                "everywhere)",
-                                *approach_m));
-      validate_normal_force(normal.normal_force_N,
-                            fmt::format("rc_patch grid at approach {} m: the normal force found", *approach_m));
-    }
-    if (!normal.converged)
-      throw Error(ErrorKind::not_converged,
-                  fmt::format("rc_patch grid: the normal solver did not converge in {} iterations (residual {:.3g}, "
-                              "tolerance {:.3g})",
-                              normal.iterations, normal.residual, options.tolerance));
-    const std::vector<ContactRegion> regions = contact_regions(mesh, normal.pressure_Pa);
-    const auto significant = std::count_if(regions.begin(), regions.end(),
-                                           [](const ContactRegion& r) { return r.load_fraction > 0.01; });
-    if (significant > 1)
-      throw Error(ErrorKind::several_patches,
-                  fmt::format("rc_patch grid: the normal solution has {} separate contact patches (loads {:.3g} and "
-                              "{:.3g} of F3); the single-patch API needs one",
-                              significant, regions[0].load_fraction, regions[1].load_fraction));
-    // Specks (regions under 1 % of the load) are dropped, as by the wheel-rail stage.
-    std::vector<double> pressure(mesh.size(), 0.0);
-    for (const std::size_t k : regions.front().elements) pressure[k] = normal.pressure_Pa[k];
-    p->patch = ContactPatch(mesh, pressure, material);
+    GridPatch grid = approach_m != nullptr
+                         ? single_grid_patch_at_approach(mesh, h, *approach_m, material, options, "rc_patch grid")
+                         : single_grid_patch(mesh, h, patch.normal_force_N, material, options, "rc_patch grid");
+    p->patch = std::move(grid.patch);
+    const NormalSolution& normal = grid.normal;
     describe_patch(p->patch, n, a_eq, b_eq);
     n.approach_m = normal.approach_m;
     p->a_m = a_eq;
