@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Pressure map of `railcontact patch --out DIR`: DIR/pressure.csv (x1_m, x2_m, pressure_Pa per
 contact element, contact frame, origin at the centre of pressure) and DIR/patch.json (element
-sizes, title data) -> DIR/pressure.png with the patch outline (element edges)."""
+sizes, title data) -> DIR/pressure.png with the patch outline (element edges). With
+--contact-surface conformal or auto, patch.json lists the wheel's patches, each with its
+pressure_K.csv (x2 along the developed surface): one map per patch."""
 import csv
 import json
 import sys
@@ -65,8 +67,33 @@ def draw_patch(ax, elements, dx1, dx2, vmax=None, colorbar=True):
     return image
 
 
+def main_patches(d, info):
+    """One map per patch of a wheelset's wheel (the developed surface of a conformal patch)."""
+    patches = [p for p in info["patches"] if (d / p["pressure_csv"]).exists()]
+    if not patches:
+        return
+    fig, axes = plt.subplots(1, len(patches), figsize=(6.5 * len(patches), 6), squeeze=False)
+    for ax, p in zip(axes[0], patches):
+        draw_patch(ax, read_elements(d / p["pressure_csv"]), p["mesh"]["dx1_m"], p["mesh"]["dx2_m"])
+        ax.set_xlabel("x1 (mm), rolling direction")
+        ax.set_ylabel("x2 (mm)" + (", developed along the surface" if p["contact_surface"] == "conformal" else ""))
+        ax.set_title(
+            f"{p['contact_surface']} (weight {p['conformal_weight']:.2f}): gamma = {p['contact_angle_rad']:.4f} rad, "
+            f"F3 = {p['normal_force_N'] / 1e3:.2f} kN\n"
+            f"area {p['area_m2'] * 1e6:.1f} mm2, {p['elements_in_contact']} elements, "
+            f"p max {p['max_pressure_Pa'] * 1e-6:.0f} MPa (+: centre of pressure)",
+            fontsize=10)
+        ax.grid(alpha=0.2)
+    fig.suptitle(f"right wheel at y = {info['y'] * 1e3:.2f} mm, contact surface {info['contact_surface']}")
+    fig.tight_layout()
+    fig.savefig(d / "pressure.png", dpi=120)
+
+
 def main(d):
     info = json.loads((d / "patch.json").read_text())
+    if info.get("contact_surface", "planar") != "planar":  # a wheelset wheel's patches
+        main_patches(d, info)
+        return
     elements = read_elements(d / "pressure.csv")
     dx1, dx2 = info["mesh"]["dx1_m"], info["mesh"]["dx2_m"]
     aspect = info["extent_x2_m"] / info["extent_x1_m"]  # the map's height / width

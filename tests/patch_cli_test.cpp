@@ -81,6 +81,41 @@ TEST(PatchCli, TextTableAndOutputFiles) {
   EXPECT_TRUE(std::filesystem::exists(dir / "pressure.png"));
 }
 
+// --contact-surface conformal / auto: the right wheel of `railcontact wheelset` (by load on the normal
+// forces alone) on that surface: the same patch numbers as the wheelset's, the load carried by the
+// pressure's vertical resultant, the developed patch in pressure_K.csv and a map.
+TEST(PatchCli, TheConformalSurfaceIsTheWheelsetsRightWheel) {
+  const ScratchDirectory dir("patch_conformal");
+  const CommandResult r =
+      run_cli("patch --y-m -0.0052 --contact-surface conformal --element-size-m 0.0004 --json --out " + dir.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["patches"].size(), 1u);
+  const nlohmann::json& p = j["patches"][0];
+  EXPECT_EQ(p["contact_surface"], "conformal");
+  EXPECT_TRUE(p.contains("strip_angle_range_rad"));
+  EXPECT_NEAR(p["pressure_force_track_N"][2].get<double>(), 98100.0, 1e-5 * 98100.0);
+  // The wheelset's right wheel, frictionless balance: the same patch to the last digit.
+  const CommandResult w = run_cli(
+      "wheelset --y-m -0.0052 --contact-surface conformal --element-size-m 0.0004 --frictionless-balance --json");
+  ASSERT_EQ(w.exit_code, 0) << w.err;
+  const nlohmann::json wheelset = nlohmann::json::parse(w.out);
+  const nlohmann::json& q = wheelset["wheels"][0]["patches"][0];
+  EXPECT_EQ(p["normal_force_N"], q["normal_force_N"]);
+  EXPECT_EQ(p["area_m2"], q["area_m2"]);
+  EXPECT_EQ(p["strip_angle_range_rad"], q["strip_angle_range_rad"]);
+  // The developed patch's pressures integrate to its normal force.
+  const auto rows = read_csv(dir / p["pressure_csv"].get<std::string>());
+  ASSERT_EQ(rows.size() - 1, p["elements_in_contact"].get<std::size_t>());
+  std::ifstream written_file(dir / "patch.json");
+  const nlohmann::json written = nlohmann::json::parse(written_file);
+  const double S = written["patches"][0]["mesh"]["dx1_m"].get<double>() * written["patches"][0]["mesh"]["dx2_m"].get<double>();
+  double force = 0.0;
+  for (std::size_t k = 1; k < rows.size(); ++k) force += std::stod(rows[k][2]) * S;
+  EXPECT_NEAR(force, p["normal_force_N"].get<double>(), 1e-6 * force);
+  EXPECT_TRUE(std::filesystem::exists(dir / "pressure.png"));
+}
+
 TEST(PatchCli, StudyWritesOneSinglePatchRowPerDisplacement) {
   const ScratchDirectory dir("patch_study");
   const CommandResult r = run_cli("study patches --out " + dir.string());
@@ -134,6 +169,11 @@ INSTANTIATE_TEST_SUITE_P(
                       std::pair{"patch --y-m nan", "--y-m"},
                       std::pair{"patch --elements 0", "--elements"},
                       std::pair{"patch --mesh hexagonal", "mesh"},
+                      std::pair{"patch --contact-surface curved", "--contact-surface"},
+                      std::pair{"patch --contact-surface conformal --elements 2000",
+                                "--elements applies to --contact-surface planar only"},
+                      std::pair{"patch --element-size-m 0.0001", "--element-size-m applies to --contact-surface conformal"},
+                      std::pair{"patch --contact-surface auto --element-size-m 1e-7", "--element-size-m 1e-07: wheelset: the element size"},
                       std::pair{"patch --load-N 1e9", "too large"},
                       std::pair{"patch --wheel " RAILCONTACT_DATA_DIR "/profiles/MBench_UIC60_v3.prr", "rail profile"},
                       std::pair{"study patches --out /nonexistent/railcontact --y-step-m 0", "step"},

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/commands.hpp"
+#include "study/patch_files.hpp"
 #include "cli/note_on_success.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/version.h"
@@ -54,57 +55,6 @@ struct WheelsetArguments {
   std::vector<std::string> table_overrides;  // --table-override: settings the table's values replace
   std::string out = "railcontact-out/wheelset";
 };
-
-nlohmann::json vector_json(const Vector3& v) { return nlohmann::json::array({v[0], v[1], v[2]}); }
-
-nlohmann::json patch_json(const WheelsetPatch& p) {
-  nlohmann::json j = {
-      {"reference_point_track_m", vector_json(p.region.reference_point_track_m)},
-      {"rail_profile_y_m", p.region.rail_profile_y_m},
-      {"wheel_profile_y_m", p.region.wheel_profile_y_m},
-      {"contact_angle_rad", p.region.contact_angle_rad},
-      {"creepage_point_track_m", vector_json(p.creepage_point_track_m)},
-      {"approach_m", p.approach_m},
-      {"rolling_radius_m", p.rolling_radius_m},
-      {"rolling_speed_m_per_s", p.rolling_speed_m_per_s},
-      {"x1_axis_track", vector_json(p.region.x1_axis)},
-      {"x2_axis_track", vector_json(p.region.x2_axis)},
-      {"x3_axis_track", vector_json(p.region.x3_axis)},
-      {"max_interpenetration_m", p.region.max_interpenetration_m},
-      {"area_m2", p.area_m2},
-      {"max_pressure_Pa", p.max_pressure_Pa},
-      {"elements_in_contact", p.elements_in_contact},
-      {"normal_force_N", p.normal_force_N},
-      {"creepage", {{"xi", p.creepage.xi}, {"eta", p.creepage.eta}, {"phi_per_m", p.creepage.phi}}},
-      {"pressure_centre_from_reference_m", {p.pressure_centre_x1_m, p.pressure_centre_x2_m}},
-      {"contact_surface", contact_surface_name(p.surface)},
-      {"conformal_weight", p.conformal_weight},
-      {"pressure_force_track_N", vector_json(p.pressure_force_track_N)},
-  };
-  // A conformal patch: the turn of its strips in contact from the contact frame (rad).
-  if (!p.strips.empty()) {
-    const auto [lowest, highest] = std::minmax_element(
-        p.strips.begin(), p.strips.end(),
-        [](const ConformalStrip& a, const ConformalStrip& b) { return a.angle_rad < b.angle_rad; });
-    j["strip_angle_range_rad"] = {lowest->angle_rad, highest->angle_rad};
-  }
-  // The rail normal angle's range over the overlap and its largest difference from the contact
-  // angle (absent for a patch from a wheelset table, which does not keep them).
-  const double variation = contact_angle_variation_rad(p.region);
-  if (std::isfinite(variation)) {
-    j["contact_angle_range_rad"] = {p.region.contact_angle_min_rad, p.region.contact_angle_max_rad};
-    j["contact_angle_variation_rad"] = variation;
-    j["large_angle_variation"] = variation > kLargeContactAngleVariation_rad;
-    j["contact_angle_spread_rad"] = p.region.contact_angle_spread_rad;
-  }
-  for (const PatchSolverResult& s : p.solvers) {
-    j[solver_name(s.solver)] = {{"F1_N", s.forces.F1_N},
-                                {"F2_N", s.forces.F2_N},
-                                {"M3_Nm", s.forces.M3_Nm},
-                                {"force_track_N", vector_json(s.force_track_N)}};
-  }
-  return j;
-}
 
 // The run's case: the file's, or the defaults; command-line options given explicitly override it.
 WheelsetCase wheelset_case(const WheelsetArguments& a, const CLI::App& sub) {
@@ -390,20 +340,20 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
     nlohmann::json wheels = nlohmann::json::array();
     for (const WheelResult& w : r.wheels) {
       nlohmann::json patches = nlohmann::json::array();
-      for (const WheelsetPatch& p : w.patches) patches.push_back(patch_json(p));
+      for (const WheelsetPatch& p : w.patches) patches.push_back(study::wheelset_patch_json(p));
       // Every solver's totals on the wheel (the table gives nh-fastsim only).
       nlohmann::json totals = nlohmann::json::object();
       for (std::size_t s = 0; s < w.solver_force_track_N.size() && s < options.solvers.size(); ++s)
-        totals[solver_name(options.solvers[s])] = vector_json(w.solver_force_track_N[s]);
+        totals[solver_name(options.solvers[s])] = study::vector_json(w.solver_force_track_N[s]);
       wheels.push_back({{"side", side_name(w.side)},
                         {"vertical_displacement_m", w.vertical_displacement_m},
                         {"patches", patches},
-                        {"force_track_N", vector_json(w.force_track_N)},
+                        {"force_track_N", study::vector_json(w.force_track_N)},
                         {"solver_force_track_N", totals}});
     }
     nlohmann::json totals = nlohmann::json::object();
     for (std::size_t s = 0; s < r.solver_force_track_N.size() && s < options.solvers.size(); ++s)
-      totals[solver_name(options.solvers[s])] = vector_json(r.solver_force_track_N[s]);
+      totals[solver_name(options.solvers[s])] = study::vector_json(r.solver_force_track_N[s]);
     const TangentialSolver balance = options.balance_solver.value_or(options.solvers.front());
     // How the wheels' heights were found: one rigid axle (height and roll), each wheel on its own
     // (the state's vertical displacement is then the mean of the two), or by position.
@@ -438,7 +388,7 @@ int run_wheelset(const WheelsetArguments& a, const CLI::App& sub) {
         {"wheelset_table", a.table.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.table)},
         {"wheelset_table_overrides", overrides},
         {"wheels", wheels},
-        {"force_track_N", vector_json(r.force_track_N)},
+        {"force_track_N", study::vector_json(r.force_track_N)},
         {"solver_force_track_N", totals},
     };
     fmt::print("{}\n", out.dump(2));

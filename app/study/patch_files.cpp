@@ -4,6 +4,7 @@
 #include <fmt/ostream.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -74,6 +75,57 @@ nlohmann::json patch_json(const WheelRailPatch& p) {
        {{"n1", mesh.n1}, {"n2", mesh.n2}, {"dx1_m", mesh.dx1_m}, {"dx2_m", mesh.dx2_m}, {"passes", p.mesh_passes}}},
       {"local_hertz", hertz},
   };
+}
+
+nlohmann::json vector_json(const Vector3& v) { return nlohmann::json::array({v[0], v[1], v[2]}); }
+
+nlohmann::json wheelset_patch_json(const WheelsetPatch& p) {
+  nlohmann::json j = {
+      {"reference_point_track_m", vector_json(p.region.reference_point_track_m)},
+      {"rail_profile_y_m", p.region.rail_profile_y_m},
+      {"wheel_profile_y_m", p.region.wheel_profile_y_m},
+      {"contact_angle_rad", p.region.contact_angle_rad},
+      {"creepage_point_track_m", vector_json(p.creepage_point_track_m)},
+      {"approach_m", p.approach_m},
+      {"rolling_radius_m", p.rolling_radius_m},
+      {"rolling_speed_m_per_s", p.rolling_speed_m_per_s},
+      {"x1_axis_track", vector_json(p.region.x1_axis)},
+      {"x2_axis_track", vector_json(p.region.x2_axis)},
+      {"x3_axis_track", vector_json(p.region.x3_axis)},
+      {"max_interpenetration_m", p.region.max_interpenetration_m},
+      {"area_m2", p.area_m2},
+      {"max_pressure_Pa", p.max_pressure_Pa},
+      {"elements_in_contact", p.elements_in_contact},
+      {"normal_force_N", p.normal_force_N},
+      {"creepage", {{"xi", p.creepage.xi}, {"eta", p.creepage.eta}, {"phi_per_m", p.creepage.phi}}},
+      {"pressure_centre_from_reference_m", {p.pressure_centre_x1_m, p.pressure_centre_x2_m}},
+      {"contact_surface", contact_surface_name(p.surface)},
+      {"conformal_weight", p.conformal_weight},
+      {"pressure_force_track_N", vector_json(p.pressure_force_track_N)},
+  };
+  // A conformal patch: the turn of its strips in contact from the contact frame (rad).
+  if (!p.strips.empty()) {
+    const auto [lowest, highest] = std::minmax_element(
+        p.strips.begin(), p.strips.end(),
+        [](const ConformalStrip& a, const ConformalStrip& b) { return a.angle_rad < b.angle_rad; });
+    j["strip_angle_range_rad"] = {lowest->angle_rad, highest->angle_rad};
+  }
+  // The rail normal angle's range over the overlap and its largest difference from the contact
+  // angle (absent for a patch from a wheelset table, which does not keep them).
+  const double variation = contact_angle_variation_rad(p.region);
+  if (std::isfinite(variation)) {
+    j["contact_angle_range_rad"] = {p.region.contact_angle_min_rad, p.region.contact_angle_max_rad};
+    j["contact_angle_variation_rad"] = variation;
+    j["large_angle_variation"] = variation > kLargeContactAngleVariation_rad;
+    j["contact_angle_spread_rad"] = p.region.contact_angle_spread_rad;
+  }
+  for (const PatchSolverResult& s : p.solvers) {
+    j[solver_name(s.solver)] = {{"F1_N", s.forces.F1_N},
+                                {"F2_N", s.forces.F2_N},
+                                {"M3_Nm", s.forces.M3_Nm},
+                                {"force_track_N", vector_json(s.force_track_N)}};
+  }
+  return j;
 }
 
 }  // namespace railcontact::study

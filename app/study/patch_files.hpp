@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "railcontact/wheel_rail.hpp"
+#include "railcontact/wheelset.hpp"
 
 namespace railcontact::study {
 
@@ -16,5 +17,10 @@ void write_pressure_csv(const std::filesystem::path& path, const ContactPatch& p
 // area_m2, elements_in_contact, extent_x1_m, extent_x2_m, max_pressure_Pa, approach_m,
 // iterations, and more (contact point, mesh, Hertz comparison).
 nlohmann::json patch_json(const WheelRailPatch& patch);
+
+// A wheelset's patch as `railcontact wheelset --json` and `railcontact patch --contact-surface
+// conformal|auto --json` write it: geometry, normal results, surface, and each solver's forces.
+nlohmann::json wheelset_patch_json(const WheelsetPatch& patch);
+nlohmann::json vector_json(const Vector3& v);
 
 }  // namespace railcontact::study
