@@ -298,29 +298,16 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
   r.regions = contact_regions(mesh, r.normal.pressure_Pa);
 }
 
-}  // namespace
-
-const char* contact_reference_name(ContactReference reference) {
-  return reference == ContactReference::smooth ? "smooth" : "first-touch";
-}
-
-ContactReference parse_contact_reference(const std::string& name) {
-  if (name == "smooth") return ContactReference::smooth;
-  if (name == "first-touch") return ContactReference::first_touch;
-  throw Error(fmt::format("contact reference \"{}\": expected \"smooth\" or \"first-touch\"", name));
-}
-
-WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options) {
-  validate(options);
-  require(std::isfinite(y_m), "wheel-rail patch: the lateral displacement y must be finite");
-  const std::string where = fmt::format("y = {:.3f} mm", y_m / kMm);
-
+// The contact of first touch at y: its point, angle, rolling radius and spin (Eq 24, signed: the
+// modelled pair is the right wheel, docs/WHEEL_RAIL.md §3), and the normal force F3 = Fz / cos γ of
+// the frictionless vertical equilibrium (METHOD.md §9).
+WheelRailPatch first_touch_contact(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options,
+                                   const std::string& where) {
   WheelRailPatch r;
   r.contact = pair.contact_point(y_m);
   r.lateral_displacement_m = y_m;
   r.contact_angle_rad = r.contact.contact_angle_rad;
   r.rolling_radius_m = r.contact.rolling_radius_m;
-  // Eq 24, signed: the modelled pair is the right wheel (docs/WHEEL_RAIL.md §3).
   r.spin_per_m = conicity_spin_per_m(r.contact_angle_rad, WheelSide::right,
                                      2.0 * pair.parameters().nominal_rolling_radius_m);
   r.vertical_load_N = options.vertical_load_N;
@@ -330,46 +317,49 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   });
   // Frictionless equilibrium of the vertical forces (METHOD.md §9): F3 cos γ = Fz.
   r.normal_force_N = options.vertical_load_N / cos_gamma;
-  const double F3 = r.normal_force_N;
-  validate_normal_force(F3, fmt::format("wheel-rail patch at {}: the normal force F3 = Fz / cos γ of Fz = {:g} N and "
+  validate_normal_force(r.normal_force_N, fmt::format("wheel-rail patch at {}: the normal force F3 = Fz / cos γ of Fz = {:g} N and "
                                         "γ = {:.3f} rad",
                                         where, options.vertical_load_N, r.contact_angle_rad));
+  return r;
+}
 
-  // First estimate: Hertz for the local curvatures. B <= 0 (laterally conformal or concave) has
-  // no Hertzian contact; a small positive B then only seeds the mesh passes.
-  const double A = r.contact.A_per_m, B = r.contact.B_per_m;
-  // Hertz's closed form without its physical ranges (hertz_estimate): a nearly conformal contact
-  // has B below kMinimumRelativeCurvature_per_m, and the estimate is only a seed.
-  if (B > 0.0) r.local_hertz = detail::hertz_estimate(A, B, F3, options.material);
-  const HertzContact estimate = B > 0.0 ? r.local_hertz : detail::hertz_estimate(A, 0.05 * A, F3, options.material);
+// A target too fine for the load, refused before the first-touch solves (seconds with 200000
+// elements): the smooth reference meshes the track's overlap with the first-touch element sizes, at
+// least kMinimumTangentPlaneElement_m.
+void require_elements_for_smooth_reference(const HertzContact& estimate, const WheelRailPatchOptions& options,
+                                           const std::string& where) {
+  const double element_area_m2 = M_PI * estimate.a_m * estimate.b_m / options.target_elements;
+  const auto target = static_cast<double>(options.target_elements);
+  const ElementSizes dx = element_sizes(element_area_m2, 2.0 * estimate.a_m, 2.0 * estimate.b_m, options.layout);
+  const double smallest = std::min(dx.dx1_m, dx.dx2_m);
+  if (smallest < kMinimumTangentPlaneElement_m) {
+    // The element area scales as 1 / target_elements: the target whose smallest side is the minimum.
+    const double fitting = target * (smallest / kMinimumTangentPlaneElement_m) * (smallest / kMinimumTangentPlaneElement_m);
+    const std::string advice =
+        fitting >= kMinimumWheelRailElements
+            ? fmt::format("about {:.0f} elements or fewer fit at this load, or give a larger load", std::floor(fitting))
+            : fmt::format("even the fewest, {}, are too small at this load: give a larger load",
+                          kMinimumWheelRailElements);
+    throw Error(fmt::format("{} elements of {:.2g} x {:.2g} mm at {} (target_elements = {} in a patch of about "
+                            "{:.3g} mm2 at Fz = {:g} N) are smaller than the {:g} mm the smooth contact reference "
+                            "takes: {}",
+                            kWheelRailElementsTooSmall, dx.dx1_m / kMm, dx.dx2_m / kMm, where,
+                            options.target_elements, M_PI * estimate.a_m * estimate.b_m / (kMm * kMm),
+                            options.vertical_load_N, kMinimumTangentPlaneElement_m / kMm, advice));
+  }
+}
 
+// The normal problem on potential areas meshed for the patch: re-meshed (at most max_mesh_passes)
+// until about target_elements are in contact, a wider margin when the patch touches the area's
+// border; the solve closest to the target.
+Solve solve_mesh_passes(const WheelRailPair& pair, const HertzContact& estimate, const WheelRailPatchOptions& options,
+                        const std::string& where, WheelRailPatch& r) {
+  const double F3 = r.normal_force_N;
   double approach_m = options.initial_approach_m.value_or(estimate.approach_m);
   double margin = PotentialAreaOptions{}.margin_factor;
   double element_area_m2 = M_PI * estimate.a_m * estimate.b_m / options.target_elements;
   double extent1 = 2.0 * estimate.a_m, extent2 = 2.0 * estimate.b_m;
   const auto target = static_cast<double>(options.target_elements);
-  if (options.reference == ContactReference::smooth) {
-    // The smooth reference meshes the track's overlap with the first-touch element sizes, at least
-    // kMinimumTangentPlaneElement_m: a target too fine for the load is refused here, before the
-    // first-touch solves (seconds with 200000 elements), from the same estimate.
-    const ElementSizes dx = element_sizes(element_area_m2, extent1, extent2, options.layout);
-    const double smallest = std::min(dx.dx1_m, dx.dx2_m);
-    if (smallest < kMinimumTangentPlaneElement_m) {
-      // The element area scales as 1 / target_elements: the target whose smallest side is the minimum.
-      const double fitting = target * (smallest / kMinimumTangentPlaneElement_m) * (smallest / kMinimumTangentPlaneElement_m);
-      const std::string advice =
-          fitting >= kMinimumWheelRailElements
-              ? fmt::format("about {:.0f} elements or fewer fit at this load, or give a larger load", std::floor(fitting))
-              : fmt::format("even the fewest, {}, are too small at this load: give a larger load",
-                            kMinimumWheelRailElements);
-      throw Error(fmt::format("{} elements of {:.2g} x {:.2g} mm at {} (target_elements = {} in a patch of about "
-                              "{:.3g} mm2 at Fz = {:g} N) are smaller than the {:g} mm the smooth contact reference "
-                              "takes: {}",
-                              kWheelRailElementsTooSmall, dx.dx1_m / kMm, dx.dx2_m / kMm, where,
-                              options.target_elements, M_PI * estimate.a_m * estimate.b_m / (kMm * kMm),
-                              options.vertical_load_N, kMinimumTangentPlaneElement_m / kMm, advice));
-    }
-  }
   std::optional<Solve> best;
   int enlargements = 0;
 
@@ -428,12 +418,14 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   }
 
   require(best.has_value(), [&] { return fmt::format("wheel-rail patch at {}: no normal solution", where); });
-  r.reference = options.reference;
-  if (options.reference == ContactReference::smooth) {
-    smooth_reference_patch(pair, y_m, options, *best, where, r);
-    return r;
-  }
-  Solve& s = *best;
+  return std::move(*best);
+}
+
+// The first-touch reference's patch: the main region of the solve (several significant regions
+// refused unless allowed), cropped, with its centre of pressure and extents.
+void first_touch_patch(const WheelRailPair& pair, const WheelRailPatchOptions& options, Solve& s,
+                       const std::string& where, WheelRailPatch& r) {
+  const double cos_gamma = std::cos(r.contact_angle_rad);
   const Mesh& mesh = s.area.mesh;
   const ContactRegion& main = s.regions.front();
   r.patches = static_cast<std::size_t>(std::count_if(s.regions.begin(), s.regions.end(), [&](const ContactRegion& g) {
@@ -465,6 +457,41 @@ WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, con
   r.potential_area = mesh;
   r.potential_h_m = std::move(s.area.h_m);
   r.regions = std::move(s.regions);
+}
+
+}  // namespace
+
+const char* contact_reference_name(ContactReference reference) {
+  return reference == ContactReference::smooth ? "smooth" : "first-touch";
+}
+
+ContactReference parse_contact_reference(const std::string& name) {
+  if (name == "smooth") return ContactReference::smooth;
+  if (name == "first-touch") return ContactReference::first_touch;
+  throw Error(fmt::format("contact reference \"{}\": expected \"smooth\" or \"first-touch\"", name));
+}
+
+WheelRailPatch solve_wheel_rail_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options) {
+  validate(options);
+  require(std::isfinite(y_m), "wheel-rail patch: the lateral displacement y must be finite");
+  const std::string where = fmt::format("y = {:.3f} mm", y_m / kMm);
+  WheelRailPatch r = first_touch_contact(pair, y_m, options, where);
+  const double F3 = r.normal_force_N;
+  // First estimate: Hertz for the local curvatures. B <= 0 (laterally conformal or concave) has
+  // no Hertzian contact; a small positive B then only seeds the mesh passes.
+  const double A = r.contact.A_per_m, B = r.contact.B_per_m;
+  // Hertz's closed form without its physical ranges (hertz_estimate): a nearly conformal contact
+  // has B below kMinimumRelativeCurvature_per_m, and the estimate is only a seed.
+  if (B > 0.0) r.local_hertz = detail::hertz_estimate(A, B, F3, options.material);
+  const HertzContact estimate = B > 0.0 ? r.local_hertz : detail::hertz_estimate(A, 0.05 * A, F3, options.material);
+
+  if (options.reference == ContactReference::smooth) require_elements_for_smooth_reference(estimate, options, where);
+  Solve best = solve_mesh_passes(pair, estimate, options, where, r);
+  r.reference = options.reference;
+  if (options.reference == ContactReference::smooth)
+    smooth_reference_patch(pair, y_m, options, best, where, r);
+  else
+    first_touch_patch(pair, options, best, where, r);
   return r;
 }
 
