@@ -75,6 +75,30 @@ TEST(Wheelset, WheelsAtMinusYAreTheMirrorImageOfWheelsAtY) {
 
 // By load: each wheel's total vertical force (normal and tangential) equals its load; forward
 // rolling on the tread gives a braking-free wheelset (ΣFx small against μ Fz) at y = 0.
+// Every solver reports its adhesion fraction on every patch (FastSim's were 0 on planar patches):
+// on the tread at a small yaw the patches partly slip, FastSim's adhesion areas larger than the exact
+// solver's (as on Hertzian ellipses, docs/FASTSIM.md); a flange patch at 6.5 mm slides entirely.
+TEST(Wheelset, EverySolverReportsItsAdhesionFraction) {
+  Wheelset wheelset(track(), coarse({TangentialSolver::nh_fastsim, TangentialSolver::fastsim, TangentialSolver::exact}));
+  const WheelsetResult tread = wheelset.evaluate(state_at(-3e-3, 2e-3));
+  for (const WheelResult& w : tread.wheels)
+    for (const WheelsetPatch& p : w.patches) {
+      const double exact = p.solvers[2].adhesion_fraction;
+      EXPECT_GT(exact, 0.3);
+      EXPECT_LT(exact, 0.8);
+      for (std::size_t s = 0; s < 2; ++s) {
+        EXPECT_GT(p.solvers[s].adhesion_fraction, exact) << solver_name(p.solvers[s].solver);
+        EXPECT_LT(p.solvers[s].adhesion_fraction, exact + 0.25) << solver_name(p.solvers[s].solver);
+      }
+    }
+  const WheelsetResult flange = wheelset.evaluate(state_at(-6.5e-3, 2e-3));
+  const WheelsetPatch& steepest = *std::max_element(
+      flange.wheels[0].patches.begin(), flange.wheels[0].patches.end(),
+      [](const WheelsetPatch& a, const WheelsetPatch& b) { return a.region.contact_angle_rad < b.region.contact_angle_rad; });
+  ASSERT_GT(steepest.region.contact_angle_rad, 0.5);
+  for (const PatchSolverResult& s : steepest.solvers) EXPECT_LT(s.adhesion_fraction, 0.02) << solver_name(s.solver);
+}
+
 TEST(Wheelset, MeetsTheWheelLoads) {
   WheelsetOptions o = coarse();
   o.loads = WheelLoads{80e3, 110e3, false};
