@@ -129,8 +129,8 @@ TEST(CApi, SlipDirectionReachesNhFastSim) {
   rc_settings s;
   rc_settings_default(&s);
   EXPECT_EQ(s.slip_direction, RC_SLIP_RADIAL);
-  rc_forces forces[2]{};
-  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED}) {
+  rc_forces forces[3]{};
+  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED, RC_SLIP_RIGID}) {
     Solver solver;
     rc_settings_default(&s);
     s.mesh_value = kElements;
@@ -140,19 +140,19 @@ TEST(CApi, SlipDirectionReachesNhFastSim) {
     rc_forces& f = forces[direction];
     ASSERT_EQ(rc_solver_solve(solver.h, &cc, &f), RC_OK) << solver.error();
     NhFastSimOptions options;
-    options.bound.slip_direction =
-        direction == RC_SLIP_RADIAL ? SlipDirection::radial : SlipDirection::flexibility_weighted;
+    options.bound.slip_direction = static_cast<SlipDirection>(direction);  // the same numbers
     const TangentialForces expected = NhFastSim(patch, options).forces(c, kMu);
     test::expect_forces_near(f, expected, kMu * kF3, kA, std::to_string(direction));
   }
   EXPECT_GT(std::fabs(forces[1].F1_N - forces[0].F1_N), 1e-3 * kMu * kF3);
+  EXPECT_GT(std::fabs(forces[2].F1_N - forces[1].F1_N), 1e-4 * kMu * kF3);
 
   Solver solver;
   rc_settings_default(&s);
-  s.slip_direction = 2;
+  s.slip_direction = 3;
   EXPECT_EQ(rc_solver_set_settings(solver.h, &s), RC_INVALID_INPUT);
-  EXPECT_NE(solver.error().find("rc_settings.slip_direction = 2 is not an rc_slip_direction (0 radial, 1 "
-                                "flexibility-weighted)"),
+  EXPECT_NE(solver.error().find("rc_settings.slip_direction = 3 is not an rc_slip_direction (0 radial, 1 "
+                                "flexibility-weighted, 2 rigid-slip)"),
             std::string::npos)
       << solver.error();
 }

@@ -355,22 +355,21 @@ TEST(CApiWheelset, TwoHandlesOnTwoThreadsEqualSerial) {
   }
 }
 
-// rc_wheelset_options.slip_direction: flexibility-weighted by default (the C++ wheelset's), radial
-// on request; each equals railcontact::Wheelset with that slip direction, and on the flange
-// (y = -7 mm, deep slip with spin) the two differ.
+// rc_wheelset_options.slip_direction: rigid-slip by default (the C++ wheelset's), the others on
+// request; each equals railcontact::Wheelset with that slip direction, and on the flange (y = -7 mm,
+// deep slip with spin) they differ.
 TEST(CApiWheelset, SlipDirectionEqualsTheCppWheelset) {
   rc_wheelset_options o;
   rc_wheelset_options_default(&o);
-  EXPECT_EQ(o.slip_direction, RC_SLIP_FLEXIBILITY_WEIGHTED);
-  double right[2][3] = {};  // the right wheel's force (track axes), per slip direction
-  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED}) {
+  EXPECT_EQ(o.slip_direction, RC_SLIP_RIGID);
+  double right[3][3] = {};  // the right wheel's force (track axes), per slip direction
+  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED, RC_SLIP_RIGID}) {
     CWheelset c(true, 0);
     ASSERT_EQ(rc_wheelset_get_options(c.h, &o), RC_OK);
     o.slip_direction = direction;
     ASSERT_EQ(rc_wheelset_set_options(c.h, &o), RC_OK) << c.error();
     WheelsetOptions options = coarse(true);
-    options.nh_fastsim.bound.slip_direction =
-        direction == RC_SLIP_RADIAL ? SlipDirection::radial : SlipDirection::flexibility_weighted;
+    options.nh_fastsim.bound.slip_direction = static_cast<SlipDirection>(direction);  // the same numbers
     Wheelset cpp(track(), options);
     const rc_wheelset_state s = c_state(-7e-3);
     rc_wheelset_result r;
@@ -380,6 +379,7 @@ TEST(CApiWheelset, SlipDirectionEqualsTheCppWheelset) {
     for (int i = 0; i < 3; ++i) right[direction][i] = r.wheel_force_track_N[RC_WHEEL_RIGHT][i];
   }
   EXPECT_GT(std::hypot(right[1][0] - right[0][0], right[1][1] - right[0][1]), 100.0);  // N
+  EXPECT_GT(std::hypot(right[2][0] - right[1][0], right[2][1] - right[1][1]), 100.0);  // N
 
   CWheelset c(true, 1);
   ASSERT_EQ(rc_wheelset_get_options(c.h, &o), RC_OK);

@@ -50,12 +50,16 @@ TEST(ConformalContact, StripCreepagesOfAPlanarPatchAreItsOneCreepage) {
     EXPECT_NEAR(per_strip.forces.F2_N, one.forces.F2_N, 1e-8 * scale);
     EXPECT_NEAR(per_strip.forces.M3_Nm, one.forces.M3_Nm, 1e-8 * scale * 6e-3);
   }
-  // FastSim marches the strips' ξ variation with L3 as Eq 2 marches −φ x2: the same numbers.
+  // FastSim marches the strips' ξ variation with L3 as Eq 2 marches −φ x2: the same numbers, with
+  // every slip direction (rigid_slip turns the strips' ξ variation to L1 as it turns −φ x2).
   const NhFastSim nh(p);
-  const FastSimResult a = nh.solve(c, kMu), b = nh.solve(strips, kMu);
-  EXPECT_NEAR(b.forces.F1_N, a.forces.F1_N, 1e-9 * kMu * kLoad);
-  EXPECT_NEAR(b.forces.F2_N, a.forces.F2_N, 1e-9 * kMu * kLoad);
-  EXPECT_NEAR(b.forces.M3_Nm, a.forces.M3_Nm, 1e-9 * kMu * kLoad * 6e-3);
+  for (const SlipDirection d : {SlipDirection::radial, SlipDirection::flexibility_weighted, SlipDirection::rigid_slip}) {
+    const NhFastSim with(p, nh.flexibilities(), NhFastSimOptions{.bound = {TractionBound{}.skew, d}});
+    const FastSimResult a = with.solve(c, kMu), b = with.solve(strips, kMu);
+    EXPECT_NEAR(b.forces.F1_N, a.forces.F1_N, 1e-9 * kMu * kLoad) << slip_direction_name(d);
+    EXPECT_NEAR(b.forces.F2_N, a.forces.F2_N, 1e-9 * kMu * kLoad) << slip_direction_name(d);
+    EXPECT_NEAR(b.forces.M3_Nm, a.forces.M3_Nm, 1e-9 * kMu * kLoad * 6e-3) << slip_direction_name(d);
+  }
   EXPECT_THROW((void)nh.solve(StripCreepages(3), kMu), Error);
   // FastSim::strip_forces: the same march, each strip's S Σ p1 and S Σ p2 (the table's conformal
   // lookups), to rounding of solve()'s tractions summed per column.

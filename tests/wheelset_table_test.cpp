@@ -329,7 +329,7 @@ TEST(WheelsetTable, MismatchesNameEverySettingItWasNotBuiltFor) {
   is(1, WheelsetTableSetting::element_size, "2 mm", "0.5 mm");
   is(2, WheelsetTableSetting::flexibility_coarsening, "1", "0 (automatic)");
   is(3, WheelsetTableSetting::collocation_offset, "0.5", "0");
-  is(4, WheelsetTableSetting::slip_direction, "radial", "flexibility-weighted");
+  is(4, WheelsetTableSetting::slip_direction, "radial", "rigid-slip");
   EXPECT_EQ(m[5].setting, WheelsetTableSetting::traction_bound_skew);
   // A table of an older recipe (format 3: not recorded) differs from this railcontact's.
   nlohmann::json old = before_format_6(nlohmann::json::parse(wheelset_table_json(table())));
@@ -490,7 +490,7 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").metadata().nh_fastsim_recipe, 0);
   EXPECT_EQ(slip["slip_direction"], slip_direction_name(table().bound().slip_direction));
   slip["slip_direction"] = "sideways";
-  EXPECT_NE(message(slip.dump()).find("slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted)"),
+  EXPECT_NE(message(slip.dump()).find("slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted, rigid-slip)"),
             std::string::npos)
       << message(slip.dump());
   slip.erase("slip_direction");

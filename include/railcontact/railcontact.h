@@ -113,9 +113,12 @@ typedef enum rc_mesh_mode {
 /* Where nH-FastSim puts the traction of a slipping element (docs/FASTSIM.md "The slip direction"). */
 typedef enum rc_slip_direction {
   RC_SLIP_RADIAL = 0,               /* scaled onto the bound (Eq 8, Kalker's and the paper's) */
-  RC_SLIP_FLEXIBILITY_WEIGHTED = 1  /* towards the slip of FastSim's elastic law: within 3 % of the
+  RC_SLIP_FLEXIBILITY_WEIGHTED = 1, /* towards the slip of FastSim's elastic law: within 3 % of the
                                        exact solver on flange patches, where Eq 8 misses F1 by up
                                        to 4 % of mu F3 */
+  RC_SLIP_RIGID = 2                 /* flexibility-weighted, turning to the rigid slip's own spin as
+                                       an element slides (the wheelset's default): flange patches
+                                       in full slip under spin within 3 % too */
 } rc_slip_direction;
 
 /* All settings of a solver handle. Fill with rc_settings_default, change fields, pass to

@@ -184,8 +184,21 @@ namespace railcontact {
 //    With nH-FastSim on the flange at y = -7 mm it takes the F1 error from -3.2 to -0.6 % of mu F3;
 //    it costs ~3x the march time in slip, and raises the paper's Fig 5 errors by 0.05-0.09 points
 //    on single patches, which keep radial (docs/FASTSIM.md "The slip direction").
-enum class SlipDirection { radial, flexibility_weighted };
-// "radial", "flexibility-weighted"; parse_slip_direction throws invalid_input for other names.
+//  - rigid_slip (the wheelset's default): flexibility_weighted, with the rigid slip's own spin
+//    taking over as an element slides. nH-FastSim's L3 (from K2's spin coupling) marches the spin
+//    (and on a conformal patch the strips' ξ variation) with a flexibility other than L1, L2: in
+//    adhesion that is the fit, but in deep slip the traction then follows (ξ − φ x2 L1/L3,
+//    η + φ x1 L2/L3), not the rigid slip (ξ − φ x2, η + φ x1) Coulomb's law asks for. Here the
+//    slipping traction's direction takes the step's spin part with L1, L2 instead of L3 in
+//    proportion A / (A + mu p3e), A the adhesion increments |dp| summed since the element's strip
+//    began to slip (the sliding so far, in traction units): FastSim's own law at the onset of slip,
+//    the rigid slip's where the strip has slid far beyond its elastic range. Without spin (and
+//    strips of one ξ) it is flexibility_weighted. On the shipped profile pairs' flange patches in
+//    full slip under spin it takes nH-FastSim from 30.5 % to 2.9 % of mu F3 of the exact solver
+//    (docs/FASTSIM.md "The slip direction").
+enum class SlipDirection { radial, flexibility_weighted, rigid_slip };
+// "radial", "flexibility-weighted", "rigid-slip"; parse_slip_direction throws invalid_input for
+// other names.
 const char* slip_direction_name(SlipDirection direction);
 SlipDirection parse_slip_direction(const std::string& name);
 struct TractionBound {

@@ -409,9 +409,11 @@ rc_status rc_wheelset_options_default(rc_wheelset_options* o) {
   o->tangential_in_balance = d.tangential_forces_in_vertical_balance ? 1 : 0;
   o->allow_wheel_lift = d.allow_wheel_lift ? 1 : 0;
   o->warm_start = 1;
-  o->slip_direction = d.nh_fastsim.bound.slip_direction == rc::SlipDirection::flexibility_weighted
-                          ? RC_SLIP_FLEXIBILITY_WEIGHTED
-                          : RC_SLIP_RADIAL;
+  switch (d.nh_fastsim.bound.slip_direction) {
+    case rc::SlipDirection::radial: o->slip_direction = RC_SLIP_RADIAL; break;
+    case rc::SlipDirection::flexibility_weighted: o->slip_direction = RC_SLIP_FLEXIBILITY_WEIGHTED; break;
+    case rc::SlipDirection::rigid_slip: o->slip_direction = RC_SLIP_RIGID; break;
+  }
   o->solver_count = 1;
   o->solvers[0] = RC_METHOD_NH_FASTSIM;
   o->balance_solver = -1;

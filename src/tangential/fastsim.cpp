@@ -96,15 +96,21 @@ struct MarchRecord {
 // the weights of the flexibility-weighted slip direction (limit_weighted): with L_min the
 // smaller and L_mean the mean of L1 and L2, sigma = L_min / L_mean, rho_i = L_min / L_i, all in
 // (0, 1].
+// SlipDirection::rigid_slip: the step's spin part taken with L1, L2 instead of L3 is
+// dp1 + rigid_d1 (−x2) step, dp2 + rigid_d2 step (x1 − step/2) (Eq 2-3), rigid_d1 = phi (1/L1 − 1/L3),
+// rigid_d2 = phi (1/L2 − 1/L3).
 struct MarchCoefficients {
   double xi_over_L1, eta_over_L2, phi_over_L3;
   double sigma, rho1, rho2;
+  double rigid_d1 = 0.0, rigid_d2 = 0.0;
 };
 
 // Per block and lane, the increments' coefficients of a march on strip creepages
 // (FastSim::solve(StripCreepages, ...)): dp1 = c1 step, dp2 = c2 step + c3 step (x1 − step/2).
+// With SlipDirection::rigid_slip, d1 and d3 the same increments' rigid-slip corrections per lane:
+// (xi − xi0) (1/L1 − 1/L3) and phi (1/L2 − 1/L3).
 struct StripLaneCoefficients {
-  AlignedVector<double> c1, c2, c3;
+  AlignedVector<double> c1, c2, c3, d1, d3;
 };
 
 // Eq 7-8: a trial traction h = (p1, p2) over the bound (lanes `slip`, |h| > limit) is brought
@@ -138,16 +144,33 @@ inline void limit_weighted(Native& p1, Native& p2, const Native& norm2, const Na
   stdx::where(slip, p2) = m2 * scale;
 }
 
+// SlipDirection::rigid_slip's trial traction for the limiting's direction: the trial h = (p1, p2) with
+// the step's spin part moved towards the rigid slip's by w = A / (A + limit), A the increments' sizes
+// summed since the lane began to slip (kept in `sliding`, zero where the lane adheres), the
+// increments' corrections (d1 step, d3 step (x1 − step/2)) from MarchCoefficients or per lane.
+template <typename L>
+void towards_rigid_slip(L& h1, L& h2, L& sliding, const L& increment, const L& limit,
+                        const typename L::mask_type& slip, const L& d1_step, const L& d3_step) {
+  L grown = sliding + increment;
+  sliding = 0.0;
+  stdx::where(slip, sliding) = grown;
+  const L w = sliding / (sliding + limit);
+  h1 += w * d1_step;
+  h2 += w * d3_step;
+}
+
 // The march of every run (Eq 2-3 increments, Eq 7-8 limit), forces summed per Eq 13:
 // F1 = S sum p1, F2 = S sum p2, M3 = S sum (x1 p2 - x2 p1).
 // kRecord: the tractions and slip flags of every element into record (and the slipping count);
 // kCount: only the count of slipping elements into record->slipping (the adhesion fraction).
-// kWeighted: the flexibility-weighted limiting (else radial).
+// kWeighted: the flexibility-weighted limiting (else radial); kRigid (with kWeighted): its direction
+// turned towards the rigid slip's as the lane slides (SlipDirection::rigid_slip).
 // kStrips: the coefficients per lane from `strips` (strip creepages; kSpin must be set).
 // strip_sums (with kStrips): S sum p1 and S sum p2 of each strip (mesh column) added to [0] and [1].
-template <bool kSpin, bool kWeighted, bool kRecord, bool kCount = kRecord, bool kStrips = false>
+template <bool kSpin, bool kWeighted, bool kRecord, bool kCount = kRecord, bool kStrips = false, bool kRigid = false>
 TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record,
                        const StripLaneCoefficients* strips = nullptr, std::array<double*, 2> strip_sums = {}) {
+  static_assert(!kRigid || (kWeighted && kSpin));
   Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
   const double* step_m = layout.step_m.data();
   const double* x1_m = layout.x1_m.data();
@@ -162,6 +185,12 @@ TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficie
       c1 = Lanes(&strips->c1[b * kLanes], stdx::vector_aligned);
       c2 = Lanes(&strips->c2[b * kLanes], stdx::vector_aligned);
       c3 = Lanes(&strips->c3[b * kLanes], stdx::vector_aligned);
+    }
+    // rigid_slip's corrections of the increments (zero unless kRigid) and the lanes' sliding.
+    Lanes d1 = -k.rigid_d1 * x2, d3 = k.rigid_d2, sliding = 0.0;
+    if constexpr (kStrips && kRigid) {
+      d1 = Lanes(&strips->d1[b * kLanes], stdx::vector_aligned);
+      d3 = Lanes(&strips->d3[b * kLanes], stdx::vector_aligned);
     }
     Lanes p1 = 0.0, p2 = 0.0, sum_p1 = 0.0, sum_p2 = 0.0, sum_x1p2 = 0.0;
     const std::size_t end = layout.block_first_slot[b] + layout.block_steps[b] * kLanes;
@@ -182,15 +211,24 @@ TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficie
       if constexpr (kWeighted) {
         static_assert(kLanes == 2 * Native::size());
         if (stdx::any_of(slip)) {
-          auto [p1a, p1b] = stdx::split<Native>(p1);
-          auto [p2a, p2b] = stdx::split<Native>(p2);
-          const auto [na, nb] = stdx::split<Native>(norm2);
+          Lanes h1 = p1, h2 = p2, h_norm2 = norm2;
+          if constexpr (kRigid) {
+            const Lanes d1_step = d1 * step, d3_step = d3 * (step * (x1 - 0.5 * step));
+            const Lanes i1 = c1 * step + d1_step, i2 = c2 * step + c3 * (step * (x1 - 0.5 * step)) + d3_step;
+            towards_rigid_slip(h1, h2, sliding, stdx::sqrt(i1 * i1 + i2 * i2), limit, slip, d1_step, d3_step);
+            h_norm2 = h1 * h1 + h2 * h2;
+          }
+          auto [p1a, p1b] = stdx::split<Native>(h1);
+          auto [p2a, p2b] = stdx::split<Native>(h2);
+          const auto [na, nb] = stdx::split<Native>(h_norm2);
           const auto [la, lb] = stdx::split<Native>(limit);
           const auto [sa, sb] = stdx::split<Native::mask_type>(slip);
           limit_weighted(p1a, p2a, na, la, sa, k);
           limit_weighted(p1b, p2b, nb, lb, sb, k);
-          p1 = stdx::concat(p1a, p1b);
-          p2 = stdx::concat(p2a, p2b);
+          stdx::where(slip, p1) = stdx::concat(p1a, p1b);
+          stdx::where(slip, p2) = stdx::concat(p2a, p2b);
+        } else if constexpr (kRigid) {
+          sliding = 0.0;
         }
       } else {
         const Lanes scale = limit / stdx::sqrt(norm2);  // used in the slipping lanes only
@@ -256,6 +294,8 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
     k.rho1 = L_min / flexibility.L1;
     k.rho2 = L_min / flexibility.L2;
   }
+  k.rigid_d1 = creepage.phi * (1.0 / flexibility.L1 - 1.0 / flexibility.L3);
+  k.rigid_d2 = creepage.phi * (1.0 / flexibility.L2 - 1.0 / flexibility.L3);
   return k;
 }
 
@@ -278,17 +318,30 @@ void require_marchable(const MarchCoefficients& k, double reach_m, const Creepag
   });
 }
 
-// The march for these creepages and this bound: with or without spin, radial or
-// flexibility-weighted limiting (the same when L1 = L2, then radial, which is cheaper).
+// Which limiting a march takes: flexibility-weighted (also rigid_slip's) unless L1 = L2, where it
+// is the radial one, which is cheaper; rigid_slip's turn towards the rigid slip where its
+// corrections are not zero (spin, or strips of several ξ, and L3 other than L1 or L2).
+struct Limiting {
+  bool weighted, rigid;
+};
+Limiting limiting(const detail::FastSimLayout& layout, const MarchCoefficients& k, bool rigid_corrections) {
+  const SlipDirection d = layout.bound.slip_direction;
+  const bool rigid = d == SlipDirection::rigid_slip && rigid_corrections;
+  return {rigid || (d != SlipDirection::radial && k.rho1 != k.rho2), rigid};
+}
+
+// The march for these creepages and this bound: with or without spin, radial or weighted limiting.
 template <bool kRecord, bool kCount = kRecord>
 TangentialForces march_for(const detail::FastSimLayout& layout, const Creepage& creepage, const MarchCoefficients& k,
                            double mu, MarchRecord* record) {
   const bool spin = creepage.phi != 0.0;
-  const bool weighted = layout.bound.slip_direction == SlipDirection::flexibility_weighted && k.rho1 != k.rho2;
+  const Limiting l = limiting(layout, k, spin && (k.rigid_d1 != 0.0 || k.rigid_d2 != 0.0));
   if (spin) {
-    return weighted ? march<true, true, kRecord, kCount>(layout, k, mu, record)
-                    : march<true, false, kRecord, kCount>(layout, k, mu, record);
+    if (l.rigid) return march<true, true, kRecord, kCount, false, true>(layout, k, mu, record);
+    return l.weighted ? march<true, true, kRecord, kCount>(layout, k, mu, record)
+                      : march<true, false, kRecord, kCount>(layout, k, mu, record);
   }
+  const bool weighted = l.weighted;
   return weighted ? march<false, true, kRecord, kCount>(layout, k, mu, record)
                   : march<false, false, kRecord, kCount>(layout, k, mu, record);
 }
@@ -358,22 +411,29 @@ FastSimResult recorded_result(const TangentialForces& forces, MarchRecord record
 }  // namespace
 
 const char* slip_direction_name(SlipDirection direction) {
-  return direction == SlipDirection::flexibility_weighted ? "flexibility-weighted" : "radial";
+  switch (direction) {
+    case SlipDirection::radial: return "radial";
+    case SlipDirection::flexibility_weighted: return "flexibility-weighted";
+    case SlipDirection::rigid_slip: return "rigid-slip";
+  }
+  return "?";
 }
 
 SlipDirection parse_slip_direction(const std::string& name) {
-  for (SlipDirection d : {SlipDirection::radial, SlipDirection::flexibility_weighted})
+  for (SlipDirection d : {SlipDirection::radial, SlipDirection::flexibility_weighted, SlipDirection::rigid_slip})
     if (name == slip_direction_name(d)) return d;
-  throw Error(fmt::format("unknown slip direction '{}' (radial, flexibility-weighted)", name));
+  throw Error(fmt::format("unknown slip direction '{}' (radial, flexibility-weighted, rigid-slip)", name));
 }
 
 FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   require(patch.elements().count() > 0, "fastsim: the contact patch has no element in contact");
   require(std::isfinite(bound.skew) && bound.skew >= 0.0 && bound.skew <= 1.0,
           [&] { return fmt::format("fastsim: the traction bound's skew = {} must lie in [0, 1]", bound.skew); });
-  require(bound.slip_direction == SlipDirection::radial || bound.slip_direction == SlipDirection::flexibility_weighted,
+  require(bound.slip_direction == SlipDirection::radial || bound.slip_direction == SlipDirection::flexibility_weighted ||
+              bound.slip_direction == SlipDirection::rigid_slip,
           [&] {
-            return fmt::format("fastsim: the slip direction {} is not one of radial (0), flexibility-weighted (1)",
+            return fmt::format("fastsim: the slip direction {} is not one of radial (0), flexibility-weighted (1), "
+                               "rigid-slip (2)",
                                static_cast<int>(bound.slip_direction));
           });
   const Mesh& mesh = patch.mesh();
@@ -502,11 +562,20 @@ StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layou
   lanes.c1.resize(layout.lane_strip.size());
   lanes.c2.resize(layout.lane_strip.size());
   lanes.c3.resize(layout.lane_strip.size());
+  const bool rigid = layout.bound.slip_direction == SlipDirection::rigid_slip;
+  if (rigid) {
+    lanes.d1.resize(layout.lane_strip.size());
+    lanes.d3.resize(layout.lane_strip.size());
+  }
   for (std::size_t l = 0; l < layout.lane_strip.size(); ++l) {
     const Creepage& c = creepages[static_cast<std::size_t>(layout.lane_strip[l])];
     lanes.c1[l] = xi0 / flexibility.L1 + (c.xi - xi0) / flexibility.L3;
     lanes.c2[l] = c.eta / flexibility.L2;
     lanes.c3[l] = c.phi / flexibility.L3;
+    if (rigid) {
+      lanes.d1[l] = (c.xi - xi0) * (1.0 / flexibility.L1 - 1.0 / flexibility.L3);
+      lanes.d3[l] = c.phi * (1.0 / flexibility.L2 - 1.0 / flexibility.L3);
+    }
   }
   return lanes;
 }
@@ -518,9 +587,10 @@ FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility&
   MarchCoefficients k{};
   const StripLaneCoefficients lanes = strip_lane_coefficients(layout, creepages, flexibility, mu, k);
   MarchRecord record = empty_record(layout.element_count);
-  const bool weighted = layout.bound.slip_direction == SlipDirection::flexibility_weighted && k.rho1 != k.rho2;
-  const TangentialForces forces = weighted ? march<true, true, true, true, true>(layout, k, mu, &record, &lanes)
-                                           : march<true, false, true, true, true>(layout, k, mu, &record, &lanes);
+  const Limiting l = limiting(layout, k, !lanes.d1.empty());
+  const TangentialForces forces = l.rigid      ? march<true, true, true, true, true, true>(layout, k, mu, &record, &lanes)
+                                  : l.weighted ? march<true, true, true, true, true>(layout, k, mu, &record, &lanes)
+                                               : march<true, false, true, true, true>(layout, k, mu, &record, &lanes);
   return recorded_result(forces, std::move(record));
 }
 
@@ -532,9 +602,10 @@ StripForces FastSim::strip_forces(const StripCreepages& creepages, const Flexibi
   out.F1_N.assign(creepages.size(), 0.0);
   out.F2_N.assign(creepages.size(), 0.0);
   const std::array<double*, 2> sums{out.F1_N.data(), out.F2_N.data()};
-  const bool weighted = layout.bound.slip_direction == SlipDirection::flexibility_weighted && k.rho1 != k.rho2;
-  out.forces = weighted ? march<true, true, false, false, true>(layout, k, mu, nullptr, &lanes, sums)
-                        : march<true, false, false, false, true>(layout, k, mu, nullptr, &lanes, sums);
+  const Limiting l = limiting(layout, k, !lanes.d1.empty());
+  out.forces = l.rigid      ? march<true, true, false, false, true, true>(layout, k, mu, nullptr, &lanes, sums)
+               : l.weighted ? march<true, true, false, false, true>(layout, k, mu, nullptr, &lanes, sums)
+                            : march<true, false, false, false, true>(layout, k, mu, nullptr, &lanes, sums);
   require_finite_forces(out.forces);
   return out;
 }

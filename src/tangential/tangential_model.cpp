@@ -226,7 +226,8 @@ void validate(const TangentialModelOptions& options) {
     return fmt::format("tangential model: nh_fastsim.bound.skew = {} must lie in [0, 1]", nh.bound.skew);
   });
   require(nh.bound.slip_direction == SlipDirection::radial ||
-              nh.bound.slip_direction == SlipDirection::flexibility_weighted,
+              nh.bound.slip_direction == SlipDirection::flexibility_weighted ||
+              nh.bound.slip_direction == SlipDirection::rigid_slip,
           "tangential model: nh_fastsim.bound.slip_direction is not a SlipDirection");
   require(nh.flexibility_coarsening >= 0 && nh.flexibility_coarsening <= kMaximumCoarsening, [&] {
     return fmt::format("tangential model: nh_fastsim.flexibility_coarsening = {} must lie in [0, {}] (0: automatic)",

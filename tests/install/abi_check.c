@@ -30,7 +30,7 @@ RC_STATIC_ASSERT(sizeof(rc_normal_result) == 12 * 8 + 4 * 4, "rc_normal_result")
 RC_STATIC_ASSERT(offsetof(rc_normal_result, n1) == 96, "rc_normal_result.n1");
 RC_STATIC_ASSERT(sizeof(rc_flextable_values) == 10 * 8, "rc_flextable_values");
 RC_STATIC_ASSERT(sizeof(rc_flextable_info) == 6 * 8 + 4 * 4, "rc_flextable_info");
-RC_STATIC_ASSERT(RC_SLIP_RADIAL == 0 && RC_SLIP_FLEXIBILITY_WEIGHTED == 1, "slip direction values");
+RC_STATIC_ASSERT(RC_SLIP_RADIAL == 0 && RC_SLIP_FLEXIBILITY_WEIGHTED == 1 && RC_SLIP_RIGID == 2, "slip direction values");
 RC_STATIC_ASSERT(RC_WHEEL_LEFT == 1 && RC_WHEELSET_BY_POSITION == 1 && RC_ROTATION_GIVEN == 1,
                  "wheelset enumeration values");
 RC_STATIC_ASSERT(sizeof(rc_track_parameters) == 6 * 8 + 4 + 4 + 8,
