@@ -58,6 +58,22 @@ void BM_FastSimSolve(benchmark::State& state, Creepage creepage) {
   set_counters(state, fastsim, adhesion);
 }
 
+// The slipping traction's direction (SlipDirection) on a patch in deep slip under spin, with a spin
+// flexibility of 0.4 L1 (nH-FastSim's on flange patches): the cost of the weighted limitings against
+// Eq 8's. Arg: the SlipDirection (0 radial, 1 flexibility-weighted, 2 rigid-slip), 2800 elements.
+void BM_FastSimSlipDirection(benchmark::State& state) {
+  const ContactPatch patch = bench_patch(2800);
+  const FastSim fastsim(patch, TractionBound{TractionBound{}.skew, static_cast<SlipDirection>(state.range(0))});
+  Flexibility L = fastsim_flexibility(kA_m, kB_m, patch.material());
+  L.L3 = 0.4 * L.L1;
+  const Creepage deep{2e-2, 2e-2, 3.0};
+  for (auto _ : state) {
+    TangentialForces f = fastsim.forces(deep, L, kMu);
+    benchmark::DoNotOptimize(f);
+  }
+  set_counters(state, fastsim, fastsim.solve(deep, L, kMu).adhesion_fraction);
+}
+
 // The per-patch preparation (parabolic bound, lane layout, S D B), paid once per patch.
 void BM_FastSimPrepare(benchmark::State& state) {
   const ContactPatch patch = bench_patch(state.range(0));
@@ -73,6 +89,7 @@ BENCHMARK_CAPTURE(BM_FastSimForces, with_spin, kWithSpin)->Arg(700)->Arg(2800)->
 BENCHMARK_CAPTURE(BM_FastSimSolve, pure_creepage, kPureCreepage)->Arg(700)->Arg(2800)->Arg(11000);
 BENCHMARK_CAPTURE(BM_FastSimSolve, with_spin, kWithSpin)->Arg(700)->Arg(2800)->Arg(11000);
 BENCHMARK(BM_FastSimPrepare)->Arg(700)->Arg(2800)->Arg(11000);
+BENCHMARK(BM_FastSimSlipDirection)->Arg(0)->Arg(1)->Arg(2);
 
 }  // namespace
 
