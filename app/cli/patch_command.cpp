@@ -79,6 +79,18 @@ void print_table(const WheelRailPatch& p, const std::string& wheel, const std::s
   fmt::print("  time                     {:.1f} ms\n", time_s * 1e3);
 }
 
+// --out: patch.json (the JSON object), the pressure map by scripts/plot_patch.py, the staged files
+// committed into the directory.
+void finish_output(output::OutputDirectory& output, const nlohmann::json& json) {
+  const std::filesystem::path path = output.staging() / "patch.json";
+  std::ofstream file(path);
+  if (!(file << json.dump(2) << '\n')) throw output::write_error(path, errno);
+  file.close();
+  if (!file) throw output::write_error(path, errno);
+  output::draw_figures("plot_patch.py", output.staging(), std::cerr);
+  output.commit();
+}
+
 // --contact-surface conformal or auto: the right wheel of the wheelset at y (by load, both wheels
 // carrying --load-N on their normal forces, no yaw, pure rolling), its patches on that surface
 // (docs/WHEELSET.md §4 "Conformal contact"): the single-wheel stage has one tangent plane per patch.
@@ -162,12 +174,7 @@ int run_curved_patch(const PatchArguments& args, const std::filesystem::path& wh
       json["patches"][k]["pressure_csv"] = name;
       json["patches"][k]["mesh"] = {{"dx1_m", p.patch.mesh().dx1_m}, {"dx2_m", p.patch.mesh().dx2_m}};
     }
-    std::ofstream file(dir / "patch.json");
-    if (!(file << json.dump(2) << '\n')) throw output::write_error(dir / "patch.json", errno);
-    file.close();
-    if (!file) throw output::write_error(dir / "patch.json", errno);
-    output::draw_figures("plot_patch.py", dir, std::cerr);
-    output->commit();
+    finish_output(*output, json);
   }
   if (args.json) {
     fmt::print("{}\n", json.dump(2));
@@ -228,13 +235,7 @@ int run_patch(const PatchArguments& args) {
   if (output) {
     const std::filesystem::path& dir = output->staging();
     study::write_pressure_csv(dir / "pressure.csv", patch.patch);
-    std::ofstream file(dir / "patch.json");
-    if (!(file << json.dump(2) << '\n'))
-      throw output::write_error(dir / "patch.json", errno);
-    file.close();
-    if (!file) throw output::write_error(dir / "patch.json", errno);
-    output::draw_figures("plot_patch.py", dir, std::cerr);
-    output->commit();
+    finish_output(*output, json);
   }
   if (args.json) {
     fmt::print("{}\n", json.dump(2));
