@@ -520,6 +520,14 @@ TEST(FastSimFullSlip, RigidSlipTractionOpposesTheRigidSlipWithASmallSpinFlexibil
     EXPECT_EQ(x.forces.F1_N, y.forces.F1_N);
     EXPECT_EQ(x.forces.F2_N, y.forces.F2_N);
   }
+  // The spin's increments with 1/L1 may be far beyond those with 1/L3: refused as input, as the march
+  // could not square them (not an internal error from an overflow).
+  try {
+    (void)FastSim(patch, TractionBound{0.45, SlipDirection::rigid_slip}).forces(Creepage{0.0, 0.0, 1.0}, Flexibility{1e-300, 1.0, 1.0}, kMu);
+    ADD_FAILURE() << "an L1 of 1e-300 m/Pa with spin";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input) << e.what();
+  }
   EXPECT_EQ(parse_slip_direction("rigid-slip"), SlipDirection::rigid_slip);
   EXPECT_STREQ(slip_direction_name(SlipDirection::rigid_slip), "rigid-slip");
 }

@@ -307,8 +307,11 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
 // non-physical magnitude (kind invalid_input).
 void require_marchable(const MarchCoefficients& k, double reach_m, const Creepage& creepage,
                        const Flexibility& flexibility) {
+  // The spin's increments with the largest of 1/L1, 1/L2, 1/L3: rigid_slip turns them from L3 to L1, L2.
+  const double phi_over_L = std::fabs(creepage.phi) *
+                            std::max({1.0 / flexibility.L1, 1.0 / flexibility.L2, 1.0 / flexibility.L3});
   const double bound_Pa =
-      (std::fabs(k.xi_over_L1) + std::fabs(k.eta_over_L2) + 2.0 * std::fabs(k.phi_over_L3) * reach_m) * 2.0 * reach_m;
+      (std::fabs(k.xi_over_L1) + std::fabs(k.eta_over_L2) + 2.0 * phi_over_L * reach_m) * 2.0 * reach_m;
   require(bound_Pa <= 1e150, [&] {
     return fmt::format("fastsim: the creepages xi = {:g}, eta = {:g}, phi = {:g} 1/m over the flexibilities L1 = {:g}, "
                        "L2 = {:g}, L3 = {:g} m/Pa give adhesion tractions up to {:g} Pa on this patch, beyond the "
