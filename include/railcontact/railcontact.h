@@ -149,7 +149,7 @@ typedef struct rc_settings {
                                    factor, 1..8; 0 automatic (default: f along the rolling
                                    direction, f + 1 across from f = 3) */
   int slip_direction;           /* nh-fastsim: rc_slip_direction; default RC_SLIP_RADIAL (Eq 8, as
-                                   the paper; RC_SLIP_FLEXIBILITY_WEIGHTED for flange patches) */
+                                   the paper; RC_SLIP_RIGID for flange patches) */
   int max_newton_iterations;    /* exact solvers, >= 1; default 100 */
   int max_krylov_iterations;    /* exact solvers, >= 1; default 300 */
   int normal_max_iterations;    /* grid geometry, >= 1; default 1000 */
@@ -443,8 +443,8 @@ typedef struct rc_wheelset_options {
                                   by load with the tangential forces in the balance 1e-5 of the
                                   load); 0: every evaluation from a cold start (its numbers depend
                                   on the state only, as in the batch) */
-  int slip_direction;          /* nh-fastsim: rc_slip_direction; default
-                                  RC_SLIP_FLEXIBILITY_WEIGHTED (the wheelset's, for its flange) */
+  int slip_direction;          /* nh-fastsim: rc_slip_direction; default RC_SLIP_RIGID (the
+                                  wheelset's, for its flange) */
   int solver_count;            /* 1 .. 4: the tangential solvers run on every patch */
   int solvers[4];              /* rc_method values, distinct; the first one's forces make the
                                   wheels' totals */
