@@ -25,6 +25,69 @@ constexpr double kMaximumDisplacement_m = 0.1;
 // flange climbing over the rail.
 constexpr double kFlangeRoundingAngle_rad = 5.0 * M_PI / 180.0;
 
+// A run of overlapping samples of a contact locus (vertical gap < 0), first..last.
+struct LocusRun {
+  std::size_t first, last;
+};
+
+// The runs of overlapping samples, each bounded by separated samples of the locus on both sides;
+// an overlap that reaches the end of the wheel profile, or a part of the wheel without a locus or
+// rail below it, is refused (`where` names the wheel and its position).
+std::vector<LocusRun> overlap_runs(const std::vector<ContactLocusSample>& locus, const std::vector<std::uint8_t>& valid,
+                                   const std::string& where) {
+  const std::size_t n = locus.size();
+  std::vector<LocusRun> runs;
+  for (std::size_t k = 0; k < n;) {
+    if (!(valid[k] && locus[k].vertical_gap_m < 0.0)) {
+      ++k;
+      continue;
+    }
+    std::size_t last = k;
+    while (last + 1 < n && valid[last + 1] && locus[last + 1].vertical_gap_m < 0.0) ++last;
+    const bool open_before = k == 0 || !valid[k - 1];
+    const bool open_after = last + 1 == n || !valid[last + 1];
+    if (open_before || open_after) {
+      const bool at_profile_end = (open_before && k == 0) || (open_after && last + 1 == n);
+      const ContactLocusSample& edge = locus[open_before ? k : last];
+      if (at_profile_end) {
+        throw Error(ErrorKind::invalid_input,
+                    fmt::format("contact search, {}: the overlap of wheel and rail reaches the end of the wheel "
+                                "profile at y_p = {:.2f} mm (the flange climbing over the rail, or the wheel "
+                                "beyond the rail head)",
+                                where, edge.wheel_profile_y_m / kMm));
+      }
+      throw Error(ErrorKind::no_contact,
+                  fmt::format("contact search, {}: the overlap of wheel and rail near the wheel profile's y_p = "
+                              "{:.2f} mm reaches a part of the wheel without a contact locus or without rail "
+                              "below it (a yaw too large for the flange, or the end of the rail profile)",
+                              where, edge.wheel_profile_y_m / kMm));
+    }
+    runs.push_back({k, last});
+    k = last + 1;
+  }
+  return runs;
+}
+
+// Neighbouring runs closer along the rail than the merge distance and closer in contact angle than
+// the merge angle (ContactSearchOptions) as one (docs/WHEELSET.md §3).
+std::vector<LocusRun> merged_runs(const std::vector<LocusRun>& runs, const std::vector<ContactLocusSample>& locus,
+                                  const ContactSearchOptions& options) {
+  std::vector<LocusRun> merged;
+  for (const LocusRun& r : runs) {
+    if (!merged.empty()) {
+      const ContactLocusSample& a = locus[merged.back().last];
+      const ContactLocusSample& b = locus[r.first];
+      if (std::abs(b.rail_profile_y_m - a.rail_profile_y_m) < options.merge_distance_m &&
+          std::abs(b.contact_angle_rad - a.contact_angle_rad) < options.merge_angle_rad) {
+        merged.back().last = r.last;
+        continue;
+      }
+    }
+    merged.push_back(r);
+  }
+  return merged;
+}
+
 // The contact locus of a wheel from one end of its profile to the other, and a flag per sample:
 // false where the sample has no locus point or no rail below it (geometry::WheelOnRail::locus_sample).
 void sample_locus(const geometry::WheelOnRail& w, double step_m, std::vector<ContactLocusSample>& locus,
@@ -196,58 +259,10 @@ WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetP
                 fmt::format("contact search, {}: the wheel and rail profiles do not overlap laterally", where));
   }
 
-  // Runs of overlapping samples (vertical gap < 0).
-  struct Run {
-    std::size_t first, last;
-  };
-  std::vector<Run> runs;
-  for (std::size_t k = 0; k < n;) {
-    if (!(valid[k] && search.locus[k].vertical_gap_m < 0.0)) {
-      ++k;
-      continue;
-    }
-    std::size_t last = k;
-    while (last + 1 < n && valid[last + 1] && search.locus[last + 1].vertical_gap_m < 0.0) ++last;
-    // An overlap must be bounded by separated samples of the locus on both sides.
-    const bool open_before = k == 0 || !valid[k - 1];
-    const bool open_after = last + 1 == n || !valid[last + 1];
-    if (open_before || open_after) {
-      const bool at_profile_end = (open_before && k == 0) || (open_after && last + 1 == n);
-      const ContactLocusSample& edge = search.locus[open_before ? k : last];
-      if (at_profile_end) {
-        throw Error(ErrorKind::invalid_input,
-                    fmt::format("contact search, {}: the overlap of wheel and rail reaches the end of the wheel "
-                                "profile at y_p = {:.2f} mm (the flange climbing over the rail, or the wheel "
-                                "beyond the rail head)",
-                                where, edge.wheel_profile_y_m / kMm));
-      }
-      throw Error(ErrorKind::no_contact,
-                  fmt::format("contact search, {}: the overlap of wheel and rail near the wheel profile's y_p = "
-                              "{:.2f} mm reaches a part of the wheel without a contact locus or without rail "
-                              "below it (a yaw too large for the flange, or the end of the rail profile)",
-                              where, edge.wheel_profile_y_m / kMm));
-    }
-    runs.push_back({k, last});
-    k = last + 1;
-  }
-
-  // Merge neighbouring runs that are close along the rail and similar in contact angle
-  // (docs/WHEELSET.md §3).
-  std::vector<Run> merged;
-  for (const Run& r : runs) {
-    if (!merged.empty()) {
-      const ContactLocusSample& a = search.locus[merged.back().last];
-      const ContactLocusSample& b = search.locus[r.first];
-      if (std::abs(b.rail_profile_y_m - a.rail_profile_y_m) < options.merge_distance_m &&
-          std::abs(b.contact_angle_rad - a.contact_angle_rad) < options.merge_angle_rad) {
-        merged.back().last = r.last;
-        continue;
-      }
-    }
-    merged.push_back(r);
-  }
-
-  for (const Run& r : merged) {
+  // Runs of overlapping samples (vertical gap < 0), neighbours close along the rail and similar in
+  // contact angle merged into one (docs/WHEELSET.md §3).
+  const std::vector<LocusRun> merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
+  for (const LocusRun& r : merged) {
     search.regions.push_back(w.region(search.locus, r.first, r.last, options.weighting));
     const InterpenetrationRegion& region = search.regions.back();
     // Beyond the flange's steepest part, where the flange rounds off towards its tip (its slope
