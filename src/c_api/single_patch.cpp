@@ -236,7 +236,8 @@ void SinglePatchSolver::set_settings(const rc_settings& s) {
       s.mesh_mode == o.mesh_mode && s.mesh_value == o.mesh_value && s.bound_skew == o.bound_skew &&
       s.slip_direction == o.slip_direction && s.flexibility_coarsening == o.flexibility_coarsening && s.collocation_offset == o.collocation_offset &&
       s.normal_tolerance == o.normal_tolerance && s.normal_max_iterations == o.normal_max_iterations;
-  // The exact solvers' options enter their model only: the prepared patch keeps its normal solution.
+  // The exact solvers' options enter their model only: the prepared patch keeps its normal solution
+  // and the exact model is prepared again (nH-FastSim's and FastSim's models do not use them).
   const bool same_rolling = s.tolerance == o.tolerance && s.max_newton_iterations == o.max_newton_iterations &&
                             s.krylov_tolerance == o.krylov_tolerance &&
                             s.max_krylov_iterations == o.max_krylov_iterations && s.regularisation == o.regularisation;
@@ -245,7 +246,7 @@ void SinglePatchSolver::set_settings(const rc_settings& s) {
     prepared_.reset();
     key_.reset();
     last_.reset();
-  } else if (!same_rolling && prepared_) {
+  } else if (!same_rolling && prepared_ && (s.method == RC_METHOD_EXACT || s.method == RC_METHOD_EXACT_REGULARISED)) {
     auto p = std::make_shared<PreparedPatch>(*prepared_);
     prepare_method(s, *p);
     prepared_ = std::move(p);
