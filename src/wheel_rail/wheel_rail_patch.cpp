@@ -191,17 +191,17 @@ std::string region_load_shares(const std::vector<RegionSolve>& solves, double to
   return text;
 }
 
-// The patch with the smooth reference, from the first-touch solution's element sizes and approach.
-void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options,
-                            const Solve& first_touch, const std::string& where, WheelRailPatch& r) {
-  const WheelsetTrack track(pair);
+// The wheel's height at which its patches carry the load (the vertical overlap below first touch,
+// started from the first-touch approach along its normal, then the steps of a wheelset's height by
+// load, wheel_rail/wheel_height.hpp): the solves of every region there. Sets the load iterations,
+// the solves made and the height in r.
+std::vector<RegionSolve> solve_height_by_load(const WheelsetTrack& track, double y_m, const WheelRailPatchOptions& options,
+                                              const Solve& first_touch, const std::string& where, WheelRailPatch& r) {
   WheelsetPosition position;
   position.lateral_displacement_m = y_m;
   const double touching = track.touching_vertical_displacement_m(WheelSide::right, position);
   const double target = options.vertical_load_N;
   const double dx1 = first_touch.area.mesh.dx1_m, dx2 = first_touch.area.mesh.dx2_m;
-  // The vertical overlap below first touch: from the first-touch approach along its normal, then
-  // the steps of a wheelset's height by load (wheel_rail/wheel_height.hpp).
   double delta = first_touch.normal.approach_m / std::cos(r.contact.contact_angle_rad);
   detail::HeightIteration height;
   std::vector<RegionSolve> solves, previous;
@@ -225,9 +225,14 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
   }
   r.mesh_passes += solves_done;
   r.vertical_displacement_m = position.vertical_displacement_m;
+  return solves;
+}
 
-  // The patches by decreasing vertical load; the most loaded one is `patch`.
-  const double total = vertical_force(solves);
+// The most loaded patch of the solves, sorted first by decreasing vertical load (several
+// significant ones refused unless allowed); one patch alone solved again to carry the load exactly.
+RegionSolve& main_patch(std::vector<RegionSolve>& solves, double total, const WheelRailPatchOptions& options,
+                        const std::string& where, WheelRailPatch& r) {
+  const double target = options.vertical_load_N;
   std::sort(solves.begin(), solves.end(), [](const RegionSolve& a, const RegionSolve& b) {
     return a.normal.normal_force_N * a.region.x3_axis[2] > b.normal.normal_force_N * b.region.x3_axis[2];
   });
@@ -249,6 +254,13 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
     ++r.mesh_passes;
     require_converged(main.normal, where);
   }
+  return main;
+}
+
+// The patch's numbers from the main region's solve: angle, spin, F3, the crop (in whole coarse
+// blocks), centre of pressure, extents, and h and the approach from h's lowest point.
+void describe_main_patch(const WheelRailPair& pair, RegionSolve& main, double total, std::size_t regions,
+                         const WheelRailPatchOptions& options, const std::string& where, WheelRailPatch& r) {
   r.region = main.region;
   r.contact_angle_rad = main.region.contact_angle_rad;
   r.rolling_radius_m = main.region.rolling_radius_m;
@@ -256,8 +268,7 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
                                      2.0 * pair.parameters().nominal_rolling_radius_m);
   r.normal_force_N = main.normal.normal_force_N;
   r.dropped_load_fraction =
-      solves.size() == 1 ? 0.0 : std::max(0.0, 1.0 - main.normal.normal_force_N * main.region.x3_axis[2] / total);
-
+      regions == 1 ? 0.0 : std::max(0.0, 1.0 - main.normal.normal_force_N * main.region.x3_axis[2] / total);
   const Mesh& mesh = main.area.mesh;
   std::vector<std::size_t> elements;
   double max_pressure = 0.0;
@@ -296,6 +307,16 @@ void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRa
   r.potential_h_m = std::move(main.area.h_m);
   for (double& h : r.potential_h_m) h -= lowest;
   r.regions = contact_regions(mesh, r.normal.pressure_Pa);
+}
+
+// The patch with the smooth reference, from the first-touch solution's element sizes and approach.
+void smooth_reference_patch(const WheelRailPair& pair, double y_m, const WheelRailPatchOptions& options,
+                            const Solve& first_touch, const std::string& where, WheelRailPatch& r) {
+  const WheelsetTrack track(pair);
+  std::vector<RegionSolve> solves = solve_height_by_load(track, y_m, options, first_touch, where, r);
+  const double total = vertical_force(solves);
+  RegionSolve& main = main_patch(solves, total, options, where, r);
+  describe_main_patch(pair, main, total, solves.size(), options, where, r);
 }
 
 // The contact of first touch at y: its point, angle, rolling radius and spin (Eq 24, signed: the
