@@ -66,10 +66,8 @@ void check_area_size(double n1, double n2, double dx1_m, double dx2_m) {
       bytes_text(kMaximumPotentialAreaElements * kNormalSolveBytesPerElement)));
 }
 
-}  // namespace
-
-PotentialContactArea potential_contact_area(const WheelRailPair& pair, const WheelRailContactPoint& contact,
-                                            double approach_m, const PotentialAreaOptions& options) {
+// The options' ranges and a positive approach (Error naming the option otherwise).
+void check_potential_area_input(double approach_m, const PotentialAreaOptions& options) {
   require(std::isfinite(approach_m) && approach_m > 0.0, "potential contact area: the approach must be positive");
   require(std::isfinite(options.margin_factor) && options.margin_factor >= 1.0,
           "potential contact area: the margin factor must be at least 1");
@@ -79,11 +77,16 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
   require(std::isfinite(options.dx1_m) && std::isfinite(options.dx2_m) && options.dx1_m >= 0.0 && options.dx2_m >= 0.0,
           "potential contact area: element sizes must be non-negative");
 
-  const geometry::TangentPlaneSection section(pair, contact);
-  const double level = options.margin_factor * approach_m;
-  const std::function<double(double)> h_x1 = [&](double x1) { return section.undeformed_distance_m(x1, 0.0); };
-  const std::function<double(double)> h_x2 = [&](double x2) { return section.undeformed_distance_m(0.0, x2); };
+}
 
+// Along x2 through the contact point: the interpenetration region h(0, x2) < approach (it sets the
+// element width) and the margin region h(0, x2) < level (every x2 of it is covered), from a scan of
+// h over the reach of the profiles at 0.05 mm and root finds at their ends.
+struct LateralExtent {
+  Interval patch, margin;
+};
+LateralExtent lateral_extent(const geometry::TangentPlaneSection& section, double approach_m, double level) {
+  const std::function<double(double)> h_x2 = [&](double x2) { return section.undeformed_distance_m(0.0, x2); };
   // Lateral scan of h(0, x2) over the reach of the profiles.
   const double reach_lo = section.x2_min_m(), reach_hi = section.x2_max_m();
   require(reach_lo < 0.0 && reach_hi > 0.0, "potential contact area: the contact point lies at the edge of a profile");
@@ -117,38 +120,36 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
         level * 1e3);
   });
   const Interval margin2{crossing(h_x2, level, xs[first], xs[first - 1]), crossing(h_x2, level, xs[last], xs[last + 1])};
+  return {patch, margin2};
 
-  const double first_step1 = 0.1 * std::sqrt(approach_m / std::max(contact.A_per_m, 1e-6));
-  const double a1 = x1_reach(h_x1, approach_m, first_step1);
-  const double m1 = x1_reach(h_x1, level, first_step1);
-  const double dx1 = options.dx1_m > 0.0 ? options.dx1_m : 2.0 * a1 / options.elements_across;
-  const double dx2 = options.dx2_m > 0.0 ? options.dx2_m : (patch.hi - patch.lo) / options.elements_across;
+}
 
-  require(std::isfinite(dx1) && std::isfinite(dx2) && dx1 > 0.0 && dx2 > 0.0, [&] {
-    return fmt::format("potential contact area: the element sizes must be positive and finite (got {} x {} m)", dx1, dx2);
-  });
-  const int border = options.border_elements;
-  const double x2_centre = 0.5 * (margin2.lo + margin2.hi);
-  // The counts in double first: tiny elements must be refused, not overflow an int.
-  const double n1_half = std::ceil(m1 / dx1) + border;
-  const double n2_low = std::ceil((x2_centre - margin2.lo) / dx2) + border;
-  const double n2_high = std::ceil((margin2.hi - x2_centre) / dx2) + border;
-  check_area_size(2.0 * n1_half, n2_low + n2_high, dx1, dx2);
-  int n1_lo = static_cast<int>(n1_half);  // elements below x1 = 0
-  int n1_hi = n1_lo;                      // and above
-  int n2_lo = static_cast<int>(n2_low);
-  int n2_hi = static_cast<int>(n2_high);
-
-  for (int step = 0;; ++step) {
+// A potential area's mesh as it grows: n1_lo elements below x1 = 0 and n1_hi above, n2_lo and n2_hi
+// on either side of x2_centre.
+struct GrowingMesh {
+  double dx1 = 0.0, dx2 = 0.0, x2_centre = 0.0;
+  int n1_lo = 0, n1_hi = 0, n2_lo = 0, n2_hi = 0;
+  [[nodiscard]] Mesh mesh() const {
     check_area_size(static_cast<double>(n1_lo) + n1_hi, static_cast<double>(n2_lo) + n2_hi, dx1, dx2);
-    Mesh mesh;
-    mesh.n1 = n1_lo + n1_hi;
-    mesh.n2 = n2_lo + n2_hi;
-    mesh.dx1_m = dx1;
-    mesh.dx2_m = dx2;
-    mesh.x1_first_m = -(n1_lo - 0.5) * dx1;
-    mesh.x2_first_m = x2_centre - (n2_lo - 0.5) * dx2;
-    validate(mesh);
+    Mesh m;
+    m.n1 = n1_lo + n1_hi;
+    m.n2 = n2_lo + n2_hi;
+    m.dx1_m = dx1;
+    m.dx2_m = dx2;
+    m.x1_first_m = -(n1_lo - 0.5) * dx1;
+    m.x2_first_m = x2_centre - (n2_lo - 0.5) * dx2;
+    validate(m);
+    return m;
+  }
+};
+
+// The mesh grown on each side where the margin region h < level reaches the border ring, until it
+// does not (at most options.max_growth_steps times): the potential area and h on it.
+PotentialContactArea area_holding_the_margin(const WheelRailPair& pair, const WheelRailContactPoint& contact,
+                                             double level, GrowingMesh grown, const PotentialAreaOptions& options) {
+  const int border = options.border_elements;
+  for (int step = 0;; ++step) {
+    const Mesh mesh = grown.mesh();
     std::vector<double> h = pair.undeformed_distance(contact, mesh);
 
     // Does the margin region reach into the border ring? Then grow that side.
@@ -173,11 +174,48 @@ PotentialContactArea potential_contact_area(const WheelRailPair& pair, const Whe
     });
     const int grow1 = std::max(border, mesh.n1 / 4);
     const int grow2 = std::max(border, mesh.n2 / 4);
-    if (low1) n1_lo += grow1;
-    if (high1) n1_hi += grow1;
-    if (low2) n2_lo += grow2;
-    if (high2) n2_hi += grow2;
+    if (low1) grown.n1_lo += grow1;
+    if (high1) grown.n1_hi += grow1;
+    if (low2) grown.n2_lo += grow2;
+    if (high2) grown.n2_hi += grow2;
   }
+}
+
+}  // namespace
+
+PotentialContactArea potential_contact_area(const WheelRailPair& pair, const WheelRailContactPoint& contact,
+                                            double approach_m, const PotentialAreaOptions& options) {
+  check_potential_area_input(approach_m, options);
+  const geometry::TangentPlaneSection section(pair, contact);
+  const double level = options.margin_factor * approach_m;
+  const std::function<double(double)> h_x1 = [&](double x1) { return section.undeformed_distance_m(x1, 0.0); };
+  const LateralExtent lateral = lateral_extent(section, approach_m, level);
+  const Interval& patch = lateral.patch;
+  const Interval& margin2 = lateral.margin;
+  const double first_step1 = 0.1 * std::sqrt(approach_m / std::max(contact.A_per_m, 1e-6));
+  const double a1 = x1_reach(h_x1, approach_m, first_step1);
+  const double m1 = x1_reach(h_x1, level, first_step1);
+  const double dx1 = options.dx1_m > 0.0 ? options.dx1_m : 2.0 * a1 / options.elements_across;
+  const double dx2 = options.dx2_m > 0.0 ? options.dx2_m : (patch.hi - patch.lo) / options.elements_across;
+
+  require(std::isfinite(dx1) && std::isfinite(dx2) && dx1 > 0.0 && dx2 > 0.0, [&] {
+    return fmt::format("potential contact area: the element sizes must be positive and finite (got {} x {} m)", dx1, dx2);
+  });
+  const int border = options.border_elements;
+  const double x2_centre = 0.5 * (margin2.lo + margin2.hi);
+  // The counts in double first: tiny elements must be refused, not overflow an int.
+  const double n1_half = std::ceil(m1 / dx1) + border;
+  const double n2_low = std::ceil((x2_centre - margin2.lo) / dx2) + border;
+  const double n2_high = std::ceil((margin2.hi - x2_centre) / dx2) + border;
+  check_area_size(2.0 * n1_half, n2_low + n2_high, dx1, dx2);
+  const GrowingMesh start{dx1,
+                          dx2,
+                          x2_centre,
+                          static_cast<int>(n1_half),
+                          static_cast<int>(n1_half),
+                          static_cast<int>(n2_low),
+                          static_cast<int>(n2_high)};
+  return area_holding_the_margin(pair, contact, level, start, options);
 }
 
 }  // namespace railcontact
