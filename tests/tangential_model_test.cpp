@@ -224,6 +224,9 @@ TEST(TangentialModel, BadOptionsAreRefusedByName) {
   EXPECT_NE(message_of(o, patch).find("nh_fastsim.collocation_offset = -1 must lie in [-0.95, 1]"),
             std::string::npos);
   o = {};
+  o.nh_fastsim.match = static_cast<FlexibilityMatch>(5);
+  EXPECT_NE(message_of(o, patch).find("nh_fastsim.match = 5 is not a FlexibilityMatch"), std::string::npos);
+  o = {};
   o.given_flexibilities = NhFastSimFlexibilities{{1e-10, -1e-10, 1e-10}, 1.0, 1.0, 1.0};
   EXPECT_NE(message_of(o, patch).find("given_flexibilities.flexibility.L2 = -1e-10 m/Pa must be positive"),
             std::string::npos);

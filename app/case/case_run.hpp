@@ -17,7 +17,9 @@ struct SolverRun {
   TangentialSolver kind = TangentialSolver::exact;
   TangentialForces forces;
   double time_s = 0.0;                 // the whole solver, flexibilities included
-  double flexibility_time_s = 0.0;     // part of time_s spent on the flexibilities (nh-fastsim: K2)
+  // Part of time_s spent preparing the model (TangentialModel): nh-fastsim its K2 (or the table's
+  // flexibilities) and FastSim's set-up, fastsim Eq 9 and FastSim's set-up; reported for these two.
+  double flexibility_time_s = 0.0;
   int iterations = 0;                  // Newton (exact solvers), GMRES for K2 (nh-fastsim), 0 (fastsim)
   int krylov_iterations = 0;
   std::optional<Flexibility> flexibility;  // FastSim solvers

@@ -229,6 +229,13 @@ void validate(const TangentialModelOptions& options) {
               nh.bound.slip_direction == SlipDirection::flexibility_weighted ||
               nh.bound.slip_direction == SlipDirection::rigid_slip,
           "tangential model: nh_fastsim.bound.slip_direction is not a SlipDirection");
+  require(nh.match == FlexibilityMatch::term_by_term || nh.match == FlexibilityMatch::full_matrix ||
+              nh.match == FlexibilityMatch::spin_from_moment,
+          [&] {
+            return fmt::format("tangential model: nh_fastsim.match = {} is not a FlexibilityMatch (0 term-by-term, 1 "
+                               "full-matrix, 2 spin-from-moment)",
+                               static_cast<int>(nh.match));
+          });
   require(nh.flexibility_coarsening >= 0 && nh.flexibility_coarsening <= kMaximumCoarsening, [&] {
     return fmt::format("tangential model: nh_fastsim.flexibility_coarsening = {} must lie in [0, {}] (0: automatic)",
                        nh.flexibility_coarsening, kMaximumCoarsening);

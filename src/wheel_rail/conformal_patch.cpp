@@ -1,13 +1,8 @@
 // The tangential problem of a conformal patch (see the header).
 #include "wheel_rail/conformal_patch.hpp"
 
-#include <array>
 #include <cmath>
-#include <cstdint>
-#include <optional>
 
-#include "railcontact/error.hpp"
-#include "railcontact/tangential.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "tangential/cropped_patch.hpp"
 #include "wheel_rail/patch_tangential_model.hpp"

@@ -152,6 +152,13 @@ struct PatchForces {
   Vector3 track_N{};
 };
 
+// The rotation about the vertical by the yaw a node does not have.
+struct Turn {
+  explicit Turn(double angle_rad) : cos(std::cos(angle_rad)), sin(std::sin(angle_rad)) {}
+  [[nodiscard]] Vector3 operator()(const Vector3& r) const { return {cos * r[0] - sin * r[1], sin * r[0] + cos * r[1], r[2]}; }
+  double cos, sin;
+};
+
 // The tractions of FastSim on one runtime copy of a conformal patch (the whole patch's or a lobe's,
 // in the solve frame, its origin at its centre x1c_m along X1 from the reference point): each
 // strip's creepages in its own frame (X1, t, n) at its creepage point (turned by the yaw the node
@@ -164,16 +171,13 @@ struct CopyTractions {
 // (Copy: WheelsetTable's private RuntimePatch::CurvedCopy.)
 template <typename Copy>
 CopyTractions copy_tractions(const Copy& copy, const Flexibility& flexibility, double x1c_m,
-                             const WheelsetKinematics& kinematics, double patch_speed, double cos_turn, double sin_turn,
+                             const WheelsetKinematics& kinematics, double patch_speed, const Turn& turn,
                              double s2, double mu) {
-  const auto turned = [&](const Vector3& r) {
-    return Vector3{cos_turn * r[0] - sin_turn * r[1], sin_turn * r[0] + cos_turn * r[1], r[2]};
-  };
   const std::vector<double>&cos_angle = copy.cos_angle, &sin_angle = copy.sin_angle;
   StripCreepages creepages(copy.frames.size());
   for (std::size_t j = 0; j < creepages.size(); ++j) {
     ContactFrame frame = copy.frames[j];
-    frame.point_from_wheelset_centre_m = turned(frame.point_from_wheelset_centre_m);
+    frame.point_from_wheelset_centre_m = turn(frame.point_from_wheelset_centre_m);
     const WheelsetKinematics::AtContact at = kinematics.at(frame);
     const double scale = at.rolling_speed_m_per_s / patch_speed;
     const Creepage& k = at.creepage;
@@ -199,15 +203,15 @@ CopyTractions copy_tractions(const Copy& copy, const Flexibility& flexibility, d
 // (Runtime: WheelsetTable's private RuntimePatch of the patch.)
 template <typename Runtime>
 PatchForces conformal_patch_forces(const Runtime& runtime, const WheelsetTablePatch& p,
-                                   const WheelsetKinematics& kinematics, double cos_turn, double sin_turn, double s2,
+                                   const WheelsetKinematics& kinematics, const Turn& turn, double s2,
                                    double mu) {
   const WheelsetTableConformalPatch& c = *p.conformal;
   const Vector3& r = p.point_from_wheelset_centre_m;
-  const ContactFrame patch_frame{{cos_turn * r[0] - sin_turn * r[1], sin_turn * r[0] + cos_turn * r[1], r[2]},
+  const ContactFrame patch_frame{turn(r),
                                  p.x1_axis, p.x2_axis, p.x3_axis};
   const double patch_speed = kinematics.rolling_speed_m_per_s(patch_frame);
   const auto on = [&](const auto& copy, const Flexibility& flexibility, double x1c_m) {
-    return copy_tractions(copy, flexibility, x1c_m, kinematics, patch_speed, cos_turn, sin_turn, s2, mu);
+    return copy_tractions(copy, flexibility, x1c_m, kinematics, patch_speed, turn, s2, mu);
   };
   CopyTractions sum;
   double M3 = 0.0;  // solve frame, about the copy's centre
@@ -340,13 +344,6 @@ struct PatchSum {
   [[nodiscard]] WheelsetPatch patch(WheelSide side) const;
 };
 
-// The rotation about the vertical by the yaw a node does not have.
-struct Turn {
-  explicit Turn(double angle_rad) : cos(std::cos(angle_rad)), sin(std::sin(angle_rad)) {}
-  [[nodiscard]] Vector3 operator()(const Vector3& r) const { return {cos * r[0] - sin * r[1], sin * r[0] + cos * r[1], r[2]}; }
-  double cos, sin;
-};
-
 template <typename Runtime>
 PatchAtLookup patch_at_lookup(const Runtime& runtime, const WheelsetTablePatch& p, double node_y_m, const Turn& turn,
                               WheelSide side, double s2, const WheelsetMotion& motion,
@@ -373,7 +370,7 @@ PatchAtLookup patch_at_lookup(const Runtime& runtime, const WheelsetTablePatch& 
     const WheelsetTableConformalPatch& curved = *p.conformal;
     const double weight = at.surface_weight = curved.weight;
     PatchForces on_curve{{}, curved.pressure_force_track_N};  // no element in contact yet: its pressure only
-    if (runtime.conformal) on_curve = conformal_patch_forces(runtime, p, kinematics, turn.cos, turn.sin, s2, mu);
+    if (runtime.conformal) on_curve = conformal_patch_forces(runtime, p, kinematics, turn, s2, mu);
     const auto mix = [weight](double a, double b) { return (1.0 - weight) * a + weight * b; };
     at.total.forces = {mix(forces.F1_N, on_curve.forces.F1_N), mix(forces.F2_N, on_curve.forces.F2_N),
                        mix(forces.M3_Nm, on_curve.forces.M3_Nm)};
