@@ -196,6 +196,132 @@ TEST(TangentialModel, TheEquivalentEllipseOfAnEllipseIsNearlyItself) {
   EXPECT_THROW((void)equivalent_ellipse_semi_axes(ContactPatch{}), Error);
 }
 
+// The table-driven model: a StoredPatch of the lobes NhFastSimPerLobe cut, with their flexibilities
+// and centres, is NhFastSimPerLobe's solution (each lobe's FastSim with its stored flexibilities).
+StoredPatch stored_lobes_of(const NhFastSimPerLobe& per_lobe) {
+  StoredPatch stored;
+  for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
+    const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);
+    stored.lobes.push_back({lobe.patch, lobe.flexibility, lobe.x1_centre_m, lobe.x2_centre_m});
+  }
+  return stored;
+}
+
+TEST(TangentialModel, AStoredPatchIsSolvedAsPerLobe) {
+  const ContactPatch patch = two_lobe_patch();
+  const double muF3 = kMu * patch.normal_force_N();
+  const NhFastSimPerLobe per_lobe(patch);
+  ASSERT_EQ(per_lobe.lobe_count(), 2u);
+  const TangentialModel stored(stored_lobes_of(per_lobe), options_for(TangentialSolver::nh_fastsim));
+  EXPECT_EQ(stored.flexibility_source(), "given for each of its 2 lobes");
+  EXPECT_EQ(stored.flexibility()->L1, per_lobe.flexibility().L1);
+  for (const Creepage& c : {kCreepage, Creepage{-2e-3, 1e-3, -0.5}, Creepage{1e-5, 0.0, 0.0}}) {
+    const TangentialSolution a = stored.solve(c, kMu, TangentialOutput::forces);
+    const FastSimResult b = per_lobe.solve(c, kMu);
+    expect_same_forces(a.forces, b.forces, muF3);
+    EXPECT_NEAR(a.adhesion_fraction, b.adhesion_fraction, 1e-12);
+  }
+  // Several lobes are separate copies: no fields, no strip creepages.
+  EXPECT_THROW((void)stored.solve(kCreepage, kMu, TangentialOutput::fields), Error);
+  EXPECT_THROW((void)stored.solve(StripCreepages(3, kCreepage), kMu), Error);
+
+  // Blended with the whole patch (weight w): (1 − w) per lobe + w whole, the whole patch's
+  // flexibilities those of nH-FastSim on it.
+  StoredPatch blended = stored_lobes_of(per_lobe);
+  const NhFastSim whole(patch);
+  blended.whole = StoredLobe{patch, whole.flexibility(), 0.0, 0.0};
+  blended.whole_patch_weight = 0.25;
+  const TangentialForces f = TangentialModel(blended, options_for(TangentialSolver::nh_fastsim)).solve(kCreepage, kMu, TangentialOutput::forces).forces;
+  const TangentialForces lobes = per_lobe.solve(kCreepage, kMu).forces, one = whole.solve(kCreepage, kMu).forces;
+  EXPECT_NEAR(f.F2_N, 0.75 * lobes.F2_N + 0.25 * one.F2_N, 1e-12 * muF3);
+  EXPECT_NEAR(f.M3_Nm, 0.75 * lobes.M3_Nm + 0.25 * one.M3_Nm, 1e-14 * muF3);
+}
+
+TEST(TangentialModel, AStoredPatchOfOneLobeIsFastSimWithItsFlexibilities) {
+  const ContactPatch patch = ellipse_patch();
+  const double muF3 = kMu * patch.normal_force_N();
+  const NhFastSim nh(patch);
+  StoredPatch one;
+  one.lobes.push_back({patch, nh.flexibility(), 0.0, 0.0});
+  const TangentialModel stored(one, options_for(TangentialSolver::nh_fastsim));
+  EXPECT_EQ(stored.flexibility_source(), "given");
+  const TangentialSolution fields = stored.solve(kCreepage, kMu, TangentialOutput::fields);
+  expect_same_forces(fields.forces, nh.solve(kCreepage, kMu).forces, muF3);
+  ASSERT_EQ(fields.p1_Pa.size(), patch.elements().count());
+}
+
+TEST(TangentialModel, StripForcesSumToTheForcesOnEveryPath) {
+  // Each strip's sums of traction (TangentialOutput::strip_forces): FastSim's own march (fastsim,
+  // a stored patch) or the fields summed per column (nh-fastsim, exact) add up to F1, F2.
+  const ContactPatch patch = ellipse_patch(800);
+  const Mesh& m = patch.mesh();
+  const double muF3 = kMu * patch.normal_force_N();
+  StripCreepages strips(static_cast<std::size_t>(m.n2));
+  for (int i2 = 0; i2 < m.n2; ++i2)
+    strips[static_cast<std::size_t>(i2)] = {kCreepage.xi - kCreepage.phi * m.x2(i2) + 1e-4 * m.x2(i2) / 4e-3,
+                                            kCreepage.eta, kCreepage.phi};
+  StoredPatch one;
+  one.lobes.push_back({patch, NhFastSim(patch).flexibility(), 0.0, 0.0});
+  const std::vector<TangentialModel> models{TangentialModel(patch, options_for(TangentialSolver::fastsim)),
+                                            TangentialModel(one, options_for(TangentialSolver::nh_fastsim)),
+                                            TangentialModel(patch, options_for(TangentialSolver::nh_fastsim)),
+                                            TangentialModel(patch, options_for(TangentialSolver::exact))};
+  for (const TangentialModel& model : models) {
+    const TangentialSolution s = model.solve(strips, kMu, TangentialOutput::strip_forces);
+    const TangentialSolution fields = model.solve(strips, kMu, TangentialOutput::fields);
+    ASSERT_EQ(s.strip_F1_N.size(), strips.size()) << solver_name(model.solver());
+    EXPECT_TRUE(s.p1_Pa.empty());
+    double F1 = 0.0, F2 = 0.0;
+    for (std::size_t j = 0; j < strips.size(); ++j) {
+      F1 += s.strip_F1_N[j];
+      F2 += s.strip_F2_N[j];
+    }
+    const double tolerance = (model.solver() == TangentialSolver::exact ? 1e-6 : 1e-9) * muF3;
+    EXPECT_NEAR(F1, fields.forces.F1_N, tolerance) << solver_name(model.solver());
+    EXPECT_NEAR(F2, fields.forces.F2_N, tolerance) << solver_name(model.solver());
+    EXPECT_NEAR(s.adhesion_fraction, fields.adhesion_fraction, 1e-12) << solver_name(model.solver());
+    EXPECT_GT(s.adhesion_fraction, 0.0);
+  }
+  // The stored patch and nh-fastsim have the same flexibilities: the same strips' sums.
+  const TangentialSolution a = models[1].solve(strips, kMu, TangentialOutput::strip_forces);
+  const TangentialSolution b = models[2].solve(strips, kMu, TangentialOutput::strip_forces);
+  for (std::size_t j = 0; j < strips.size(); ++j) EXPECT_NEAR(a.strip_F2_N[j], b.strip_F2_N[j], 1e-9 * muF3);
+}
+
+std::string message_of(const StoredPatch& stored, const TangentialModelOptions& o) {
+  try {
+    (void)TangentialModel(stored, o);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::invalid_input) << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TangentialModel, BadStoredPatchesAreRefusedByName) {
+  const ContactPatch patch = ellipse_patch(400);
+  const Flexibility L = NhFastSim(patch).flexibility();
+  StoredPatch stored;
+  EXPECT_EQ(message_of(stored, options_for(TangentialSolver::nh_fastsim)),
+            "tangential model: a stored patch needs at least one lobe");
+  stored.lobes.push_back({patch, L, 0.0, 0.0});
+  EXPECT_EQ(message_of(stored, options_for(TangentialSolver::exact)),
+            "tangential model: a stored patch is solved by nh-fastsim, not exact");
+  stored.whole_patch_weight = 1.5;
+  EXPECT_EQ(message_of(stored, options_for(TangentialSolver::nh_fastsim)),
+            "tangential model: a stored patch's whole_patch_weight = 1.5 must lie in [0, 1]");
+  stored.whole_patch_weight = 0.5;
+  EXPECT_EQ(message_of(stored, options_for(TangentialSolver::nh_fastsim)),
+            "tangential model: a stored patch with a whole_patch_weight above 0 needs its whole patch");
+  stored.whole_patch_weight = 0.0;
+  stored.lobes.front().flexibility.L2 = NAN;
+  EXPECT_NE(message_of(stored, options_for(TangentialSolver::nh_fastsim)).find("must be positive and finite"),
+            std::string::npos);
+  stored.lobes.front() = StoredLobe{ContactPatch{}, L, 0.0, 0.0};
+  EXPECT_EQ(message_of(stored, options_for(TangentialSolver::nh_fastsim)),
+            "tangential model: a stored lobe has no element in contact");
+}
+
 std::string message_of(const TangentialModelOptions& o, const ContactPatch& patch) {
   try {
     (void)TangentialModel(patch, o);

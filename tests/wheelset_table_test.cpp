@@ -102,6 +102,14 @@ TEST(WheelsetTable, AtANodeWithTheFullPatchItIsTheWheelsetSolvedOnTheFly) {
         EXPECT_NEAR(p.forces().M3_Nm, q.forces().M3_Nm, 1e-9 * load);
         EXPECT_NEAR(p.region.contact_angle_rad, q.region.contact_angle_rad, 1e-12);
         EXPECT_NEAR(got.wheels[w].vertical_displacement_m, expected.wheels[w].vertical_displacement_m, 1e-12);
+        // The same assembly: the forces per solver (the table's one, nH-FastSim) as on the fly.
+        ASSERT_EQ(got.wheels[w].solver_force_track_N.size(), 1u);
+        EXPECT_EQ(got.wheels[w].solver_force_track_N[0], got.wheels[w].force_track_N);
+      }
+      ASSERT_EQ(got.solver_force_track_N.size(), 1u);
+      for (int i = 0; i < 3; ++i) {
+        EXPECT_EQ(got.solver_force_track_N[0][i], got.force_track_N[i]);
+        EXPECT_NEAR(got.force_track_N[i], expected.force_track_N[i], 2e-7 * load);
       }
     }
   }

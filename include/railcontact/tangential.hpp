@@ -212,7 +212,8 @@ struct TractionBound {
 // elements' tractions.
 struct StripForces {
   TangentialForces forces;
-  std::vector<double> F1_N, F2_N;
+  std::vector<double> F1_N, F2_N;  // per strip: its tractions times the element area (N)
+  double adhesion_fraction = 0.0;  // elements in adhesion / elements in contact
 };
 
 struct FastSimResult {

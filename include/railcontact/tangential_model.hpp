@@ -52,6 +52,27 @@ std::array<double, 2> equivalent_ellipse_semi_axes(const ContactPatch& patch);
 enum class TangentialOutput {
   forces,  // forces, spin moment and adhesion fraction (FastSim marches without per-element output)
   fields,  // also the tractions and slip flags per contact element
+  // forces and, from strip creepages, each strip's sums of traction (what a conformal patch turns
+  // strip by strip into its own frame): strip_F1_N, strip_F2_N
+  strip_forces,
+};
+
+// The table-driven model's patch (WheelsetTable, docs/WHEELSET_TABLE.md): nH-FastSim as a table
+// stores a patch, each lobe a coarse copy with the flexibilities solved when the table was built,
+// so that a lookup solves no adhesion problem. As NhFastSimPerLobe: each lobe takes the creepages at
+// its own centre; forces summed, the spin moment about the patch's origin; blended with the whole
+// patch's where a neck widens.
+struct StoredLobe {
+  ContactPatch patch;  // the lobe's coarse copy (its origin its centre of pressure)
+  Flexibility flexibility;
+  double x1_centre_m = 0.0, x2_centre_m = 0.0;  // its centre of pressure in the patch's coordinates
+};
+struct StoredPatch {
+  std::vector<StoredLobe> lobes;  // one for a patch of one lobe (its centre the patch's origin)
+  // Where a neck widens (NhFastSimPerLobe::whole_patch_weight): the whole patch, blended with the
+  // lobes' sum with this weight.
+  std::optional<StoredLobe> whole;
+  double whole_patch_weight = 0.0;
 };
 
 struct TangentialSolution {
@@ -63,6 +84,9 @@ struct TangentialSolution {
   std::vector<std::uint8_t> slip;  // 1 where the element slips
   int newton_iterations = 0;       // exact solvers
   int krylov_iterations = 0;       // exact solvers: all inner GMRES iterations
+  // TangentialOutput::strip_forces from strip creepages: per column of the patch's mesh, the
+  // tractions of its elements in contact times their area (N), along X1 and along the strip.
+  std::vector<double> strip_F1_N, strip_F2_N;
 };
 
 namespace detail {
@@ -78,6 +102,12 @@ class TangentialModel {
   // exact solvers keep the patch. Throws Error (invalid_input) for bad options (validate) or a patch
   // without elements in contact, and what NhFastSim throws (not_converged).
   TangentialModel(const ContactPatch& patch, const TangentialModelOptions& options);
+  // The table-driven model: nH-FastSim (options.solver must be it; its bound applies) on a stored
+  // patch with its stored flexibilities. It gives forces for the creepages at the patch's origin;
+  // fields and strip creepages only on a patch of one lobe (the lobe's copy is then the patch).
+  // Throws Error (invalid_input) for another solver, bad options, no lobe, a lobe without elements in
+  // contact or flexibilities that are not positive and finite.
+  TangentialModel(const StoredPatch& patch, const TangentialModelOptions& options);
 
   // Forces (and fields on request) for the creepages at the patch's origin. Throws Error
   // (invalid_input) unless mu > 0 and the creepages are finite; the exact solvers' not_converged.

@@ -41,6 +41,7 @@
 
 #include "railcontact/flexibility_table.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/tangential_model.hpp"
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_geometry.hpp"
 
@@ -320,15 +321,14 @@ class WheelsetTable {
   TractionBound bound_{};
   WheelsetTableMetadata metadata_;
   std::string source_;
-  // Per node and wheel, FastSim prepared on each patch's coarse copy (parallel to the patches;
-  // `whole` empty for a patch without elements), or on each of its lobes' coarse copies.
+  // Per node and wheel, the table-driven tangential model (TangentialModel on a StoredPatch) of each
+  // patch: on its coarse copy or its lobes' (empty for a patch without elements); on its conformal
+  // copy and its lobes', each with its strips' frames (creepage points at the node's yaw) and the
+  // cosine and sine of their turn.
   struct RuntimePatch {
-    std::optional<FastSim> whole;
-    std::vector<FastSim> lobes;  // parallel to WheelsetTablePatch::lobes
-    // On WheelsetTablePatch::conformal's runtime copy and its lobes' (parallel to its lobes), with
-    // each strip's frame (its creepage point at the node's yaw) and the cosine and sine of its turn.
+    std::optional<TangentialModel> planar;
     struct CurvedCopy {
-      FastSim fastsim;
+      TangentialModel model;
       std::vector<ContactFrame> frames;
       std::vector<double> cos_angle, sin_angle;
     };

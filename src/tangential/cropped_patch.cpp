@@ -43,9 +43,12 @@ ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pr
                                  const std::vector<std::size_t>& elements, const Material& material,
                                  CoarseBlocks blocks) {
   const IndexBox box = bounding_box(mesh, elements);
-  // Global element indices: centres at k dx from the reference point.
-  const auto global1 = [&](int i1) { return static_cast<long>(std::lround(mesh.x1(i1) / mesh.dx1_m)); };
-  const auto global2 = [&](int i2) { return static_cast<long>(std::lround(mesh.x2(i2) / mesh.dx2_m)); };
+  // Global element indices: centres at k dx from the reference point (the nearest k for the mesh's
+  // first element, the others counted from it: a mesh whose centres lie half-way, at (k + 1/2) dx,
+  // keeps every element).
+  const long base1 = std::lround(mesh.x1_first_m / mesh.dx1_m), base2 = std::lround(mesh.x2_first_m / mesh.dx2_m);
+  const auto global1 = [&](int i1) { return base1 + i1; };
+  const auto global2 = [&](int i2) { return base2 + i2; };
   const auto floor_to = [](long k, long block) { return k >= 0 ? k - k % block : k - ((k % block) + block) % block; };
   const long b1 = blocks.along, b2 = blocks.across;
   const long first1 = floor_to(global1(box.lo1), b1), first2 = floor_to(global2(box.lo2), b2);

@@ -24,8 +24,9 @@ IndexBox bounding_box(const Mesh& mesh, const std::vector<std::size_t>& elements
 ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure_Pa,
                            const std::vector<std::size_t>& elements, const Material& material);
 
-// The same with the crop aligned to a block grid: the mesh's element centres must lie at integer
-// multiples of the element size from a reference point (as a wheelset patch's mesh does), and the
+// The same with the crop aligned to a block grid: the mesh's element centres lie at integer
+// multiples of the element size from a reference point (as a wheelset patch's mesh does; another
+// mesh is counted from its first element's nearest multiple, every element kept), and the
 // crop starts at a multiple of the block's length from it along each axis and spans whole blocks. A
 // patch coarsened in these blocks (coarsened()) then has its blocks fixed to the reference point, not
 // to the patch's corner, so the coarse patch changes continuously as elements enter

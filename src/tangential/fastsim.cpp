@@ -606,10 +606,13 @@ StripForces FastSim::strip_forces(const StripCreepages& creepages, const Flexibi
   out.F2_N.assign(creepages.size(), 0.0);
   const std::array<double*, 2> sums{out.F1_N.data(), out.F2_N.data()};
   const Limiting l = limiting(layout, k, !lanes.d1.empty());
-  out.forces = l.rigid      ? march<true, true, false, false, true, true>(layout, k, mu, nullptr, &lanes, sums)
-               : l.weighted ? march<true, true, false, false, true>(layout, k, mu, nullptr, &lanes, sums)
-                            : march<true, false, false, false, true>(layout, k, mu, nullptr, &lanes, sums);
+  MarchRecord count;
+  out.forces = l.rigid      ? march<true, true, false, true, true, true>(layout, k, mu, &count, &lanes, sums)
+               : l.weighted ? march<true, true, false, true, true>(layout, k, mu, &count, &lanes, sums)
+                            : march<true, false, false, true, true>(layout, k, mu, &count, &lanes, sums);
   require_finite_forces(out.forces);
+  const std::size_t n = layout.element_count;
+  out.adhesion_fraction = static_cast<double>(n - count.slipping) / static_cast<double>(n);
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/tangential_model.hpp"
 #include "tangential/cropped_patch.hpp"
+#include "tangential/lobe_sum.hpp"
 
 namespace railcontact {
 
@@ -116,11 +117,8 @@ FastSimResult NhFastSimPerLobe::solve_lobes(const CreepagesAtLobe& at_lobe, doub
   r.slip.assign(patch_elements_, 0);
   double adhesion_elements = 0.0;
   for (const Lobe& lobe : lobes_) {
-    const double x1 = lobe.x1_centre_m, x2 = lobe.x2_centre_m;
     const FastSimResult s = lobe.solve(at_lobe(lobe), mu);
-    r.forces.F1_N += s.forces.F1_N;
-    r.forces.F2_N += s.forces.F2_N;
-    r.forces.M3_Nm += s.forces.M3_Nm + x1 * s.forces.F2_N - x2 * s.forces.F1_N;
+    detail::add_lobe(r.forces, s.forces, lobe.x1_centre_m, lobe.x2_centre_m);
     for (std::size_t e = 0; e < lobe.to_patch.size(); ++e) {
       const std::size_t to = lobe.to_patch[e];
       if (to == patch_elements_) continue;  // a zero-pressure element of a block-aligned crop
@@ -138,11 +136,7 @@ FastSimResult NhFastSimPerLobe::solve(const Creepage& creepage, double mu) const
   if (lobes_.size() == 1) return lobes_.front().solve(creepage, mu);
   // The rigid slip (ξ − φ x2, η + φ x1) gives the creepages at a lobe's centre of pressure.
   FastSimResult r = solve_lobes(
-      [&](const Lobe& lobe) {
-        return Creepage{creepage.xi - creepage.phi * lobe.x2_centre_m, creepage.eta + creepage.phi * lobe.x1_centre_m,
-                        creepage.phi};
-      },
-      mu);
+      [&](const Lobe& lobe) { return detail::creepage_at(creepage, lobe.x1_centre_m, lobe.x2_centre_m); }, mu);
   if (whole_.empty()) return r;
   return blended_with_whole(std::move(r), whole_.front().solve(creepage, mu));
 }
@@ -176,15 +170,13 @@ FastSimResult NhFastSimPerLobe::blended_with_whole(FastSimResult r, const FastSi
   // A neck between kNeckWidthFraction and kNeckBlendEnd: the per-lobe and the whole-patch
   // solutions blended (slip flags: the heavier one's).
   const double w = whole_weight_;
-  r.forces.F1_N = (1.0 - w) * r.forces.F1_N + w * whole.forces.F1_N;
-  r.forces.F2_N = (1.0 - w) * r.forces.F2_N + w * whole.forces.F2_N;
-  r.forces.M3_Nm = (1.0 - w) * r.forces.M3_Nm + w * whole.forces.M3_Nm;
+  r.forces = detail::blend(r.forces, whole.forces, w);
   for (std::size_t e = 0; e < patch_elements_; ++e) {
-    r.p1_Pa[e] = (1.0 - w) * r.p1_Pa[e] + w * whole.p1_Pa[e];
-    r.p2_Pa[e] = (1.0 - w) * r.p2_Pa[e] + w * whole.p2_Pa[e];
+    r.p1_Pa[e] = detail::blend(r.p1_Pa[e], whole.p1_Pa[e], w);
+    r.p2_Pa[e] = detail::blend(r.p2_Pa[e], whole.p2_Pa[e], w);
     if (w >= 0.5) r.slip[e] = whole.slip[e];
   }
-  r.adhesion_fraction = (1.0 - w) * r.adhesion_fraction + w * whole.adhesion_fraction;
+  r.adhesion_fraction = detail::blend(r.adhesion_fraction, whole.adhesion_fraction, w);
   return r;
 }
 

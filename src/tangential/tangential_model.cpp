@@ -11,6 +11,7 @@
 
 #include "railcontact/error.hpp"
 #include "tangential/cropped_patch.hpp"
+#include "tangential/lobe_sum.hpp"
 
 namespace railcontact {
 
@@ -27,6 +28,11 @@ class TangentialModelImpl {
                                                  TangentialOutput output) const = 0;
 
   TangentialSolver solver = TangentialSolver::nh_fastsim;
+  // The column of the patch's mesh of each element in contact (TangentialOutput::strip_forces from
+  // the fields), and the count of columns.
+  std::vector<std::uint32_t> element_column;
+  std::size_t columns = 0;
+  double element_area_m2 = 0.0;
   std::optional<Flexibility> flexibility;
   std::string flexibility_source;
   int preparation_krylov_iterations = 0;
@@ -44,7 +50,7 @@ TangentialSolution from_fastsim(FastSimResult r, TangentialOutput output) {
   TangentialSolution s;
   s.forces = r.forces;
   s.adhesion_fraction = r.adhesion_fraction;
-  if (output == TangentialOutput::fields) {
+  if (output != TangentialOutput::forces) {
     s.p1_Pa = std::move(r.p1_Pa);
     s.p2_Pa = std::move(r.p2_Pa);
     s.slip = std::move(r.slip);
@@ -64,17 +70,27 @@ TangentialSolution from_rolling(RollingSolution r) {
   return s;
 }
 
+TangentialSolution from_strip_forces(StripForces f) {
+  TangentialSolution s;
+  s.forces = f.forces;
+  s.adhesion_fraction = f.adhesion_fraction;
+  s.strip_F1_N = std::move(f.F1_N);
+  s.strip_F2_N = std::move(f.F2_N);
+  return s;
+}
+
 // FastSim with fixed flexibilities: classic FastSim (Eq 9, the parabolic bound of Eq 1) and
 // nH-FastSim's fallback on a patch too small for K2 (Eq 9 with nH-FastSim's bound).
 class FastSimModel final : public TangentialModelImpl {
  public:
   FastSimModel(FastSim fastsim, Flexibility L) : fastsim_(std::move(fastsim)), L_(L) { flexibility = L; }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
-    return from_fastsim(output == TangentialOutput::fields ? fastsim_.solve(c, L_, mu)
-                                                           : fastsim_.forces_and_adhesion(c, L_, mu),
+    return from_fastsim(output == TangentialOutput::forces ? fastsim_.forces_and_adhesion(c, L_, mu)
+                                                           : fastsim_.solve(c, L_, mu),
                         output);
   }
   TangentialSolution solve(const StripCreepages& c, double mu, TangentialOutput output) const override {
+    if (output == TangentialOutput::strip_forces) return from_strip_forces(fastsim_.strip_forces(c, L_, mu));
     return from_fastsim(fastsim_.solve(c, L_, mu), output);
   }
 
@@ -91,7 +107,7 @@ class NhFastSimModel final : public TangentialModelImpl {
     flexibility = nh_.flexibility();
   }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
-    return from_fastsim(output == TangentialOutput::fields ? nh_.solve(c, mu) : nh_.forces_and_adhesion(c, mu),
+    return from_fastsim(output == TangentialOutput::forces ? nh_.forces_and_adhesion(c, mu) : nh_.solve(c, mu),
                         output);
   }
   TangentialSolution solve(const StripCreepages& c, double mu, TangentialOutput output) const override {
@@ -138,6 +154,77 @@ class RollingModel final : public TangentialModelImpl {
   ContactPatch patch_;
   RollingOptions options_;
   bool regularised_;
+};
+
+// The table-driven model (StoredPatch): FastSim on each stored lobe's copy with its stored
+// flexibilities, summed and blended as NhFastSimPerLobe does (tangential/lobe_sum.hpp).
+class StoredPatchModel final : public TangentialModelImpl {
+ public:
+  StoredPatchModel(const StoredPatch& patch, const TractionBound& bound) : whole_weight_(patch.whole_patch_weight) {
+    for (const StoredLobe& lobe : patch.lobes) lobes_.push_back(prepared(lobe, bound));
+    if (patch.whole && whole_weight_ > 0.0) whole_.push_back(prepared(*patch.whole, bound));
+    flexibility = patch.lobes.front().flexibility;
+  }
+  TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
+    if (lobes_.size() == 1 && whole_.empty()) return one_lobe(lobes_.front(), c, mu, output);
+    require(output == TangentialOutput::forces,
+            "tangential model: a stored patch of several lobes gives forces only (its lobes are separate copies)");
+    TangentialSolution sum;
+    double adhesion_elements = 0.0, elements = 0.0;
+    for (const Lobe& lobe : lobes_) {
+      const TangentialSolution s = one_lobe(lobe, c, mu, output);
+      sum.forces.F1_N += s.forces.F1_N;
+      sum.forces.F2_N += s.forces.F2_N;
+      sum.forces.M3_Nm += s.forces.M3_Nm;
+      const auto n = static_cast<double>(lobe.fastsim.element_count());
+      adhesion_elements += s.adhesion_fraction * n;
+      elements += n;
+    }
+    sum.adhesion_fraction = adhesion_elements / elements;
+    if (whole_.empty()) return sum;
+    const TangentialSolution whole = one_lobe(whole_.front(), c, mu, output);
+    sum.forces = detail::blend(sum.forces, whole.forces, whole_weight_);
+    sum.adhesion_fraction = detail::blend(sum.adhesion_fraction, whole.adhesion_fraction, whole_weight_);
+    return sum;
+  }
+  TangentialSolution solve(const StripCreepages& c, double mu, TangentialOutput output) const override {
+    require(lobes_.size() == 1 && whole_.empty(),
+            "tangential model: a stored patch of several lobes takes the creepages at its origin, not per strip");
+    const Lobe& lobe = lobes_.front();
+    if (output == TangentialOutput::strip_forces) return from_strip_forces(lobe.fastsim.strip_forces(c, lobe.L, mu));
+    return from_fastsim(lobe.fastsim.solve(c, lobe.L, mu), output);
+  }
+
+ private:
+  struct Lobe {
+    FastSim fastsim;
+    Flexibility L;
+    double x1_m, x2_m;  // its centre in the patch's coordinates
+  };
+  static Lobe prepared(const StoredLobe& lobe, const TractionBound& bound) {
+    const Flexibility& L = lobe.flexibility;
+    require(std::isfinite(L.L1) && L.L1 > 0.0 && std::isfinite(L.L2) && L.L2 > 0.0 && std::isfinite(L.L3) && L.L3 > 0.0,
+            [&] {
+              return fmt::format("tangential model: a stored lobe's flexibilities ({}, {}, {}) m/Pa must be positive "
+                                 "and finite",
+                                 L.L1, L.L2, L.L3);
+            });
+    require(std::isfinite(lobe.x1_centre_m) && std::isfinite(lobe.x2_centre_m),
+            "tangential model: a stored lobe's centre must be finite");
+    require(lobe.patch.elements().count() > 0, "tangential model: a stored lobe has no element in contact");
+    return {FastSim(lobe.patch, bound), L, lobe.x1_centre_m, lobe.x2_centre_m};
+  }
+  // One lobe's solution for the creepages at the patch's origin: at its centre, M3 moved back.
+  static TangentialSolution one_lobe(const Lobe& lobe, const Creepage& c, double mu, TangentialOutput output) {
+    const Creepage at = detail::creepage_at(c, lobe.x1_m, lobe.x2_m);
+    TangentialSolution s = from_fastsim(output == TangentialOutput::forces ? lobe.fastsim.forces_and_adhesion(at, lobe.L, mu)
+                                                                           : lobe.fastsim.solve(at, lobe.L, mu),
+                                        output);
+    s.forces.M3_Nm = detail::moment_about_origin_Nm(s.forces, lobe.x1_m, lobe.x2_m);
+    return s;
+  }
+  std::vector<Lobe> lobes_, whole_;
+  double whole_weight_;
 };
 
 std::string coarse_blocks_source(CoarseBlocks blocks) {
@@ -263,15 +350,69 @@ TangentialModel::TangentialModel(const ContactPatch& patch, const TangentialMode
   validate(options);
   std::unique_ptr<detail::TangentialModelImpl> model = make_model(patch, options);
   model->solver = options.solver;
+  const std::vector<std::size_t>& indices = patch.elements().indices();
+  const auto n1 = static_cast<std::size_t>(patch.mesh().n1);
+  model->element_column.reserve(indices.size());
+  for (std::size_t k : indices) model->element_column.push_back(static_cast<std::uint32_t>(k / n1));
+  model->columns = static_cast<std::size_t>(patch.mesh().n2);
+  model->element_area_m2 = patch.mesh().element_area_m2();
   impl_ = std::move(model);
 }
 
+TangentialModel::TangentialModel(const StoredPatch& patch, const TangentialModelOptions& options) {
+  validate(options);
+  require(options.solver == TangentialSolver::nh_fastsim, [&] {
+    return fmt::format("tangential model: a stored patch is solved by nh-fastsim, not {}", solver_name(options.solver));
+  });
+  require(!patch.lobes.empty(), "tangential model: a stored patch needs at least one lobe");
+  require(std::isfinite(patch.whole_patch_weight) && patch.whole_patch_weight >= 0.0 && patch.whole_patch_weight <= 1.0,
+          [&] {
+            return fmt::format("tangential model: a stored patch's whole_patch_weight = {} must lie in [0, 1]",
+                               patch.whole_patch_weight);
+          });
+  require(patch.whole_patch_weight == 0.0 || patch.whole,
+          "tangential model: a stored patch with a whole_patch_weight above 0 needs its whole patch");
+  auto model = std::make_unique<StoredPatchModel>(patch, options.nh_fastsim.bound);
+  model->solver = options.solver;
+  model->flexibility_source = patch.lobes.size() == 1 ? "given" : fmt::format("given for each of its {} lobes", patch.lobes.size());
+  if (patch.lobes.size() == 1 && patch.whole_patch_weight == 0.0) {
+    const ContactPatch& one = patch.lobes.front().patch;
+    const auto n1 = static_cast<std::size_t>(one.mesh().n1);
+    for (std::size_t k : one.elements().indices()) model->element_column.push_back(static_cast<std::uint32_t>(k / n1));
+    model->columns = static_cast<std::size_t>(one.mesh().n2);
+    model->element_area_m2 = one.mesh().element_area_m2();
+  }
+  impl_ = std::move(model);
+}
+
+namespace {
+
+// TangentialOutput::strip_forces from a model that gave the fields: each column's sums.
+void strip_sums_from_fields(const detail::TangentialModelImpl& model, TangentialSolution& s) {
+  if (!s.strip_F1_N.empty() || s.p1_Pa.size() != model.element_column.size()) return;
+  s.strip_F1_N.assign(model.columns, 0.0);
+  s.strip_F2_N.assign(model.columns, 0.0);
+  for (std::size_t e = 0; e < s.p1_Pa.size(); ++e) {
+    s.strip_F1_N[model.element_column[e]] += s.p1_Pa[e] * model.element_area_m2;
+    s.strip_F2_N[model.element_column[e]] += s.p2_Pa[e] * model.element_area_m2;
+  }
+  s.p1_Pa.clear();
+  s.p2_Pa.clear();
+  s.slip.clear();
+}
+
+}  // namespace
+
 TangentialSolution TangentialModel::solve(const Creepage& creepage, double mu, TangentialOutput output) const {
-  return impl_->solve(creepage, mu, output);
+  TangentialSolution s = impl_->solve(creepage, mu, output);
+  if (output == TangentialOutput::strip_forces) strip_sums_from_fields(*impl_, s);
+  return s;
 }
 
 TangentialSolution TangentialModel::solve(const StripCreepages& creepages, double mu, TangentialOutput output) const {
-  return impl_->solve(creepages, mu, output);
+  TangentialSolution s = impl_->solve(creepages, mu, output);
+  if (output == TangentialOutput::strip_forces) strip_sums_from_fields(*impl_, s);
+  return s;
 }
 
 TangentialSolver TangentialModel::solver() const { return impl_->solver; }

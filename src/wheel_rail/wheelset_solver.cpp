@@ -19,6 +19,7 @@
 #include "wheel_rail/conformal_patch.hpp"
 #include "wheel_rail/contact_window.hpp"
 #include "wheel_rail/patch_tangential_model.hpp"
+#include "wheel_rail/wheelset_assembly.hpp"
 #include "tangential/cropped_patch.hpp"
 #include "wheel_rail/wheel_height.hpp"
 
@@ -522,12 +523,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
     }
     wheel.patches.push_back(std::move(patch));
   }
-  wheel.solver_force_track_N.assign(options.solvers.size(), Vector3{});
-  for (const WheelsetPatch& p : wheel.patches)
-    for (std::size_t s = 0; s < p.solvers.size(); ++s)
-      for (std::size_t i = 0; i < 3; ++i) wheel.solver_force_track_N[s][i] += p.solvers[s].force_track_N[i];
-  wheel.force_track_N = wheel.solver_force_track_N.front();
-  // A patch without elements carries only its (zero) normal force: nothing to add.
+  detail::sum_wheel_forces(wheel, options.solvers.size());
   return wheel;
 }
 
@@ -576,20 +572,6 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
   throw Error(ErrorKind::not_converged,
               fmt::format("wheelset: the vertical load {:g} N of the {} wheel was not met in {} iterations",
                           target_N, side_name(side), kMaximumLoadIterations));
-}
-
-void require_finite(const WheelsetResult& r) {
-  bool ok = true;
-  for (const WheelResult& w : r.wheels) {
-    for (double f : w.force_track_N) ok = ok && std::isfinite(f);
-    for (const WheelsetPatch& p : w.patches) {
-      ok = ok && std::isfinite(p.normal_force_N) && std::isfinite(p.creepage.xi) && std::isfinite(p.creepage.eta) &&
-           std::isfinite(p.creepage.phi);
-      for (const PatchSolverResult& s : p.solvers)
-        ok = ok && std::isfinite(s.forces.F1_N) && std::isfinite(s.forces.F2_N) && std::isfinite(s.forces.M3_Nm);
-    }
-  }
-  if (!ok) throw Error(ErrorKind::internal, "wheelset: a result is not finite (a solver invariant broken)");
 }
 
 }  // namespace
@@ -933,13 +915,8 @@ void assemble_totals(const WheelsetOptions& options, const WheelsetState& input,
                               side_name(kSides[k]), input.position.lateral_displacement_m / kMm,
                               input.position.vertical_displacement_m / kMm));
     }
-    for (std::size_t i = 0; i < 3; ++i) result.force_track_N[i] += result.wheels[k].force_track_N[i];
   }
-  result.solver_force_track_N.assign(options.solvers.size(), Vector3{});
-  for (const WheelResult& w : result.wheels)
-    for (std::size_t s = 0; s < w.solver_force_track_N.size(); ++s)
-      for (std::size_t i = 0; i < 3; ++i) result.solver_force_track_N[s][i] += w.solver_force_track_N[s][i];
-  require_finite(result);
+  detail::sum_wheelset_forces(result, options.solvers.size());
 }
 
 }  // namespace

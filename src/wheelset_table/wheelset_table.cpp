@@ -11,6 +11,8 @@
 
 #include "railcontact/error.hpp"
 #include "railcontact/text_file.hpp"
+#include "tangential/lobe_sum.hpp"
+#include "wheel_rail/wheelset_assembly.hpp"
 
 namespace railcontact {
 namespace {
@@ -170,9 +172,8 @@ struct CopyTractions {
 };
 // (Copy: WheelsetTable's private RuntimePatch::CurvedCopy.)
 template <typename Copy>
-CopyTractions copy_tractions(const Copy& copy, const Flexibility& flexibility, double x1c_m,
-                             const WheelsetKinematics& kinematics, double patch_speed, const Turn& turn,
-                             double s2, double mu) {
+CopyTractions copy_tractions(const Copy& copy, double x1c_m, const WheelsetKinematics& kinematics, double patch_speed,
+                             const Turn& turn, double s2, double mu) {
   const std::vector<double>&cos_angle = copy.cos_angle, &sin_angle = copy.sin_angle;
   StripCreepages creepages(copy.frames.size());
   for (std::size_t j = 0; j < creepages.size(); ++j) {
@@ -185,12 +186,12 @@ CopyTractions copy_tractions(const Copy& copy, const Flexibility& flexibility, d
     const double phi = s2 * k.phi * scale;
     creepages[j] = {k.xi * scale, s2 * k.eta * scale + phi * x1c_m, phi};
   }
-  const StripForces f = copy.fastsim.strip_forces(creepages, flexibility, mu);
+  const TangentialSolution f = copy.model.solve(creepages, mu, TangentialOutput::strip_forces);
   CopyTractions out;
   for (std::size_t j = 0; j < creepages.size(); ++j) {
-    out.t1 += f.F1_N[j];
-    out.t2 += f.F2_N[j] * cos_angle[j];
-    out.t3 += f.F2_N[j] * sin_angle[j];
+    out.t1 += f.strip_F1_N[j];
+    out.t2 += f.strip_F2_N[j] * cos_angle[j];
+    out.t3 += f.strip_F2_N[j] * sin_angle[j];
   }
   out.fastsim = f.forces;
   return out;
@@ -210,31 +211,31 @@ PatchForces conformal_patch_forces(const Runtime& runtime, const WheelsetTablePa
   const ContactFrame patch_frame{turn(r),
                                  p.x1_axis, p.x2_axis, p.x3_axis};
   const double patch_speed = kinematics.rolling_speed_m_per_s(patch_frame);
-  const auto on = [&](const auto& copy, const Flexibility& flexibility, double x1c_m) {
-    return copy_tractions(copy, flexibility, x1c_m, kinematics, patch_speed, turn, s2, mu);
+  const auto on = [&](const auto& copy, double x1c_m) {
+    return copy_tractions(copy, x1c_m, kinematics, patch_speed, turn, s2, mu);
   };
   CopyTractions sum;
   double M3 = 0.0;  // solve frame, about the copy's centre
   if (c.lobes.empty()) {
-    sum = on(*runtime.conformal, c.flexibility, c.pressure_centre_x1_m);
+    sum = on(*runtime.conformal, c.pressure_centre_x1_m);
     M3 = sum.fastsim.M3_Nm;
   } else {
     // Each lobe at its own centre (solve frame: x2 mirrored); M3 about the patch's centre.
     for (std::size_t k = 0; k < c.lobes.size(); ++k) {
       const WheelsetTableLobe& lobe = c.lobes[k];
-      const CopyTractions t = on(runtime.conformal_lobes[k], lobe.flexibility, lobe.pressure_centre_x1_m);
+      const CopyTractions t = on(runtime.conformal_lobes[k], lobe.pressure_centre_x1_m);
       sum.t1 += t.t1;
       sum.t2 += t.t2;
       sum.t3 += t.t3;
-      M3 += t.fastsim.M3_Nm + (lobe.pressure_centre_x1_m - c.pressure_centre_x1_m) * t.fastsim.F2_N -
-            s2 * (lobe.pressure_centre_x2_m - c.pressure_centre_x2_m) * t.fastsim.F1_N;
+      M3 += detail::moment_about_origin_Nm(t.fastsim, lobe.pressure_centre_x1_m - c.pressure_centre_x1_m,
+                                           s2 * (lobe.pressure_centre_x2_m - c.pressure_centre_x2_m));
     }
-    if (const double blend = c.whole_patch_weight; blend > 0.0) {
-      const CopyTractions whole = on(*runtime.conformal, c.flexibility, c.pressure_centre_x1_m);
-      sum.t1 = (1.0 - blend) * sum.t1 + blend * whole.t1;
-      sum.t2 = (1.0 - blend) * sum.t2 + blend * whole.t2;
-      sum.t3 = (1.0 - blend) * sum.t3 + blend * whole.t3;
-      M3 = (1.0 - blend) * M3 + blend * whole.fastsim.M3_Nm;
+    if (const double w = c.whole_patch_weight; w > 0.0) {
+      const CopyTractions whole = on(*runtime.conformal, c.pressure_centre_x1_m);
+      sum.t1 = detail::blend(sum.t1, whole.t1, w);
+      sum.t2 = detail::blend(sum.t2, whole.t2, w);
+      sum.t3 = detail::blend(sum.t3, whole.t3, w);
+      M3 = detail::blend(M3, whole.fastsim.M3_Nm, w);
     }
   }
   PatchForces out;
@@ -270,42 +271,75 @@ void check_lookup_state(const WheelsetState& state, double friction_coefficient)
 }
 
 // A planar patch's tangential forces at a lookup (on the wheel, contact frame, M3 about its centre
-// of pressure): FastSim on its runtime copy with its flexibilities, or on each lobe's with the
-// lobe's (the creepages at the lobe's centre, M3 moved to the patch's centre), blended with the
-// whole copy's where a neck widens (WheelsetTablePatch::whole_patch_weight), as NhFastSimPerLobe
-// solves a patch on the fly. (Runtime: WheelsetTable's private RuntimePatch of the patch.)
+// of pressure): the table-driven model on its runtime copy or its lobes' (TangentialModel on a
+// StoredPatch), as NhFastSimPerLobe solves a patch on the fly. (Runtime: WheelsetTable's private
+// RuntimePatch of the patch.)
 template <typename Runtime>
 TangentialForces planar_patch_forces(const Runtime& runtime, const WheelsetTablePatch& p, const Creepage& creepage,
                                      double s2, double mu) {
-  if (!runtime.whole) return {};  // no element in contact yet
+  if (!runtime.planar) return {};  // no element in contact yet
   // In the solve frame (x2 -> −x2 for a left wheel), at the coarse patch's centre of pressure.
   const Creepage c_solve{creepage.xi, s2 * creepage.eta, s2 * creepage.phi};
-  const double x1c = p.pressure_centre_x1_m, x2c = s2 * p.pressure_centre_x2_m;
-  const auto at = [&](double x1, double x2) {
-    return Creepage{c_solve.xi - c_solve.phi * x2, c_solve.eta + c_solve.phi * x1, c_solve.phi};
-  };
-  TangentialForces forces{};
-  if (runtime.lobes.empty()) {
-    forces = runtime.whole->forces(at(x1c, x2c), p.flexibility, mu);
-  } else {
-    for (std::size_t j = 0; j < runtime.lobes.size(); ++j) {
-      const WheelsetTableLobe& lobe = p.lobes[j];
-      const double x1 = lobe.pressure_centre_x1_m, x2 = s2 * lobe.pressure_centre_x2_m;
-      const TangentialForces f = runtime.lobes[j].forces(at(x1, x2), lobe.flexibility, mu);
-      forces.F1_N += f.F1_N;
-      forces.F2_N += f.F2_N;
-      forces.M3_Nm += f.M3_Nm + (x1 - x1c) * f.F2_N - (x2 - x2c) * f.F1_N;
-    }
-    if (const double blend = p.whole_patch_weight; blend > 0.0) {
-      const TangentialForces whole = runtime.whole->forces(at(x1c, x2c), p.flexibility, mu);
-      forces.F1_N = (1.0 - blend) * forces.F1_N + blend * whole.F1_N;
-      forces.F2_N = (1.0 - blend) * forces.F2_N + blend * whole.F2_N;
-      forces.M3_Nm = (1.0 - blend) * forces.M3_Nm + blend * whole.M3_Nm;
-    }
-  }
+  const Creepage at_centre = detail::creepage_at(c_solve, p.pressure_centre_x1_m, s2 * p.pressure_centre_x2_m);
+  TangentialForces forces = runtime.planar->solve(at_centre, mu, TangentialOutput::forces).forces;
   forces.F2_N *= s2;
   forces.M3_Nm *= s2;
   return forces;
+}
+
+// A patch's table-driven tangential models (WheelsetTable's private RuntimePatch): its runtime copy
+// and its lobes' as a StoredPatch (solve frame, s2 = −1 for a left wheel; the lobes' centres from
+// the patch's centre of pressure), and its conformal copy and lobes' each with its strips' frames.
+template <typename Runtime>
+Runtime runtime_patch(const WheelsetTablePatch& p, double s2, const Material& material, const TractionBound& bound) {
+  TangentialModelOptions options;
+  options.nh_fastsim.bound = bound;
+  Runtime runtime;
+  const auto lobe = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa, const Flexibility& flexibility,
+                        double x1_m, double x2_m) {
+    return StoredLobe{ContactPatch(mesh, pressure_Pa, material), flexibility, x1_m, s2 * x2_m};
+  };
+  if (!p.runtime_pressure_Pa.empty()) {
+    StoredPatch stored;
+    const StoredLobe whole = lobe(p.runtime_mesh, p.runtime_pressure_Pa, p.flexibility, 0.0, 0.0);
+    for (const WheelsetTableLobe& l : p.lobes)
+      stored.lobes.push_back(lobe(l.runtime_mesh, l.runtime_pressure_Pa, l.flexibility,
+                                  l.pressure_centre_x1_m - p.pressure_centre_x1_m,
+                                  l.pressure_centre_x2_m - p.pressure_centre_x2_m));
+    if (stored.lobes.empty()) {
+      stored.lobes.push_back(whole);
+    } else if (p.whole_patch_weight > 0.0) {
+      stored.whole = whole;
+      stored.whole_patch_weight = p.whole_patch_weight;
+    }
+    runtime.planar.emplace(stored, options);
+  }
+  if (p.conformal && !p.conformal->runtime_pressure_Pa.empty()) {
+    const auto curved = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa, const Flexibility& flexibility,
+                            const std::vector<WheelsetTableStrip>& strips) {
+      StoredPatch stored;
+      stored.lobes.push_back(lobe(mesh, pressure_Pa, flexibility, 0.0, 0.0));
+      typename Runtime::CurvedCopy c{TangentialModel(stored, options), {}, {}, {}};
+      for (const WheelsetTableStrip& strip : strips) {
+        const double cos_angle = std::cos(strip.angle_rad), sin_angle = std::sin(strip.angle_rad);
+        ContactFrame& frame = c.frames.emplace_back();
+        frame.point_from_wheelset_centre_m = strip.point_from_wheelset_centre_m;
+        frame.x1 = p.x1_axis;
+        for (std::size_t i = 0; i < 3; ++i) {
+          frame.x2[i] = cos_angle * p.x2_axis[i] + sin_angle * p.x3_axis[i];
+          frame.x3[i] = cos_angle * p.x3_axis[i] - sin_angle * p.x2_axis[i];
+        }
+        c.cos_angle.push_back(cos_angle);
+        c.sin_angle.push_back(sin_angle);
+      }
+      return c;
+    };
+    const WheelsetTableConformalPatch& c = *p.conformal;
+    runtime.conformal.emplace(curved(c.runtime_mesh, c.runtime_pressure_Pa, c.flexibility, c.strips));
+    for (const WheelsetTableLobe& l : c.lobes)
+      runtime.conformal_lobes.push_back(curved(l.runtime_mesh, l.runtime_pressure_Pa, l.flexibility, l.strips));
+  }
+  return runtime;
 }
 
 // A node's patch at a lookup: its creepages, forces and numbers on its surface (the planar one,
@@ -528,10 +562,8 @@ WheelResult evaluate_wheel(WheelSide side, const Lookup& lookup, const WheelsetT
   std::sort(sums.begin(), sums.end(), [](const PatchSum& a, const PatchSum& b) {
     return a.rail_y_sum_m / a.present_weight < b.rail_y_sum_m / b.present_weight;
   });
-  for (const PatchSum& s : sums) {
-    wheel.patches.push_back(s.patch(side));
-    for (int i = 0; i < 3; ++i) wheel.force_track_N[i] += s.force_track_N[i];
-  }
+  for (const PatchSum& s : sums) wheel.patches.push_back(s.patch(side));
+  detail::sum_wheel_forces(wheel, 1);  // nH-FastSim's
   return wheel;
 }
 
@@ -579,33 +611,7 @@ WheelsetTable::WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNo
       for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
         const WheelsetTablePatch& p = node.wheels[w][k];
         check_patch(p, n, w, k);
-        RuntimePatch& runtime = runtime_[n][w].emplace_back();
-        if (!p.runtime_pressure_Pa.empty())
-          runtime.whole.emplace(ContactPatch(p.runtime_mesh, p.runtime_pressure_Pa, material_), bound_);
-        for (const WheelsetTableLobe& l : p.lobes)
-          runtime.lobes.emplace_back(ContactPatch(l.runtime_mesh, l.runtime_pressure_Pa, material_), bound_);
-        if (p.conformal && !p.conformal->runtime_pressure_Pa.empty()) {
-          const auto curved = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa,
-                                  const std::vector<WheelsetTableStrip>& strips) {
-            RuntimePatch::CurvedCopy c{FastSim(ContactPatch(mesh, pressure_Pa, material_), bound_), {}, {}, {}};
-            for (const WheelsetTableStrip& strip : strips) {
-              const double cos_angle = std::cos(strip.angle_rad), sin_angle = std::sin(strip.angle_rad);
-              ContactFrame& frame = c.frames.emplace_back();
-              frame.point_from_wheelset_centre_m = strip.point_from_wheelset_centre_m;
-              frame.x1 = p.x1_axis;
-              for (std::size_t i = 0; i < 3; ++i) {
-                frame.x2[i] = cos_angle * p.x2_axis[i] + sin_angle * p.x3_axis[i];
-                frame.x3[i] = cos_angle * p.x3_axis[i] - sin_angle * p.x2_axis[i];
-              }
-              c.cos_angle.push_back(cos_angle);
-              c.sin_angle.push_back(sin_angle);
-            }
-            return c;
-          };
-          runtime.conformal.emplace(curved(p.conformal->runtime_mesh, p.conformal->runtime_pressure_Pa, p.conformal->strips));
-          for (const WheelsetTableLobe& l : p.conformal->lobes)
-            runtime.conformal_lobes.push_back(curved(l.runtime_mesh, l.runtime_pressure_Pa, l.strips));
-        }
+        runtime_[n][w].push_back(runtime_patch<RuntimePatch>(p, w == 1 ? -1.0 : 1.0, material_, bound_));
       }
     }
   }
@@ -804,8 +810,8 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
         bracket(grid_.wheel_load_N, load, fmt::format("the {} wheel's load", side_name(side)).c_str(), "kN", 1e3);
     const Lookup lookup{{by, byaw, bl, position.yaw_rad}, motion, kinematics, friction_coefficient};
     result.wheels[w] = evaluate_wheel(side, lookup, grid_, nodes_, runtime_);
-    for (int i = 0; i < 3; ++i) result.force_track_N[i] += result.wheels[w].force_track_N[i];
   }
+  detail::sum_wheelset_forces(result, 1);
   return result;
 }
 
