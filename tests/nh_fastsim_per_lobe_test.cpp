@@ -127,8 +127,8 @@ TEST(NhFastSimPerLobe, TwoLobesAreEachLobesNhFastSimSummed) {
 
 // With K2's automatic blocks each lobe is cropped on a block grid counted from the reference point;
 // on a mesh whose centres lie half-way between multiples of the element size (not a wheelset's
-// layout) every element must still land in a lobe (block_aligned_patch once dropped 155 of 1068:
-// the lobes then carried 86 % of the load and reported 86 % adhesion at vanishing creepage).
+// layout) every element must still land in a lobe (block_aligned_patch once dropped 147 of 1068:
+// the lobes then reported 86 % adhesion at vanishing creepage).
 TEST(NhFastSimPerLobe, EveryElementIsInALobeOnAnyMesh) {
   for (bool aligned : {false, true}) {
     SCOPED_TRACE(aligned ? "aligned mesh" : "centres half-way");
