@@ -105,6 +105,9 @@ TEST(TangentialModel, ForcesAloneAreTheForcesOfTheFields) {
     const TangentialSolution fields = model.solve(kCreepage, kMu, TangentialOutput::fields);
     expect_same_forces(forces.forces, fields.forces, muF3);
     EXPECT_EQ(forces.adhesion_fraction, fields.adhesion_fraction);
+    const TangentialSolution only = model.solve(kCreepage, kMu, TangentialOutput::forces_only);
+    expect_same_forces(only.forces, fields.forces, muF3);
+    EXPECT_EQ(only.adhesion_fraction, 0.0);
     EXPECT_TRUE(forces.p1_Pa.empty());
     ASSERT_EQ(fields.p1_Pa.size(), patch.elements().count());
     // The fields sum to the forces (F = S sum p).
@@ -219,6 +222,7 @@ TEST(TangentialModel, AStoredPatchIsSolvedAsPerLobe) {
     const TangentialSolution a = stored.solve(c, kMu, TangentialOutput::forces);
     const FastSimResult b = per_lobe.solve(c, kMu);
     expect_same_forces(a.forces, b.forces, muF3);
+    expect_same_forces(stored.solve(c, kMu, TangentialOutput::forces_only).forces, b.forces, muF3);
     EXPECT_NEAR(a.adhesion_fraction, b.adhesion_fraction, 1e-12);
   }
   // Several lobes are separate copies: no fields, no strip creepages.

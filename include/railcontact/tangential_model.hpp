@@ -51,6 +51,9 @@ std::array<double, 2> equivalent_ellipse_semi_axes(const ContactPatch& patch);
 // What a solve returns.
 enum class TangentialOutput {
   forces,  // forces, spin moment and adhesion fraction (FastSim marches without per-element output)
+  // forces and spin moment only, the adhesion fraction left 0: FastSim's cheapest march (a table
+  // lookup's); the exact solvers give their adhesion fraction all the same
+  forces_only,
   fields,  // also the tractions and slip flags per contact element
   // forces and, from strip creepages, each strip's sums of traction (what a conformal patch turns
   // strip by strip into its own frame): strip_F1_N, strip_F2_N

@@ -46,11 +46,22 @@ namespace {
 
 using detail::TangentialModelImpl;
 
+// Whether the output asks for nothing beyond the forces (and the adhesion fraction).
+bool forces_alone(TangentialOutput output) {
+  return output == TangentialOutput::forces || output == TangentialOutput::forces_only;
+}
+
+TangentialSolution only_forces(const TangentialForces& forces) {
+  TangentialSolution s;
+  s.forces = forces;
+  return s;
+}
+
 TangentialSolution from_fastsim(FastSimResult r, TangentialOutput output) {
   TangentialSolution s;
   s.forces = r.forces;
   s.adhesion_fraction = r.adhesion_fraction;
-  if (output != TangentialOutput::forces) {
+  if (!forces_alone(output)) {
     s.p1_Pa = std::move(r.p1_Pa);
     s.p2_Pa = std::move(r.p2_Pa);
     s.slip = std::move(r.slip);
@@ -85,6 +96,7 @@ class FastSimModel final : public TangentialModelImpl {
  public:
   FastSimModel(FastSim fastsim, Flexibility L) : fastsim_(std::move(fastsim)), L_(L) { flexibility = L; }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
+    if (output == TangentialOutput::forces_only) return only_forces(fastsim_.forces(c, L_, mu));
     return from_fastsim(output == TangentialOutput::forces ? fastsim_.forces_and_adhesion(c, L_, mu)
                                                            : fastsim_.solve(c, L_, mu),
                         output);
@@ -107,6 +119,7 @@ class NhFastSimModel final : public TangentialModelImpl {
     flexibility = nh_.flexibility();
   }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
+    if (output == TangentialOutput::forces_only) return only_forces(nh_.forces(c, mu));
     return from_fastsim(output == TangentialOutput::forces ? nh_.forces_and_adhesion(c, mu) : nh_.solve(c, mu),
                         output);
   }
@@ -167,7 +180,7 @@ class StoredPatchModel final : public TangentialModelImpl {
   }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
     if (lobes_.size() == 1 && whole_.empty()) return one_lobe(lobes_.front(), c, mu, output);
-    require(output == TangentialOutput::forces,
+    require(forces_alone(output),
             "tangential model: a stored patch of several lobes gives forces only (its lobes are separate copies)");
     TangentialSolution sum;
     double adhesion_elements = 0.0, elements = 0.0;
@@ -217,9 +230,13 @@ class StoredPatchModel final : public TangentialModelImpl {
   // One lobe's solution for the creepages at the patch's origin: at its centre, M3 moved back.
   static TangentialSolution one_lobe(const Lobe& lobe, const Creepage& c, double mu, TangentialOutput output) {
     const Creepage at = detail::creepage_at(c, lobe.x1_m, lobe.x2_m);
-    TangentialSolution s = from_fastsim(output == TangentialOutput::forces ? lobe.fastsim.forces_and_adhesion(at, lobe.L, mu)
-                                                                           : lobe.fastsim.solve(at, lobe.L, mu),
-                                        output);
+    TangentialSolution s;
+    if (output == TangentialOutput::forces_only)
+      s = only_forces(lobe.fastsim.forces(at, lobe.L, mu));
+    else if (output == TangentialOutput::forces)
+      s = from_fastsim(lobe.fastsim.forces_and_adhesion(at, lobe.L, mu), output);
+    else
+      s = from_fastsim(lobe.fastsim.solve(at, lobe.L, mu), output);
     s.forces.M3_Nm = detail::moment_about_origin_Nm(s.forces, lobe.x1_m, lobe.x2_m);
     return s;
   }

@@ -281,7 +281,7 @@ TangentialForces planar_patch_forces(const Runtime& runtime, const WheelsetTable
   // In the solve frame (x2 -> −x2 for a left wheel), at the coarse patch's centre of pressure.
   const Creepage c_solve{creepage.xi, s2 * creepage.eta, s2 * creepage.phi};
   const Creepage at_centre = detail::creepage_at(c_solve, p.pressure_centre_x1_m, s2 * p.pressure_centre_x2_m);
-  TangentialForces forces = runtime.planar->solve(at_centre, mu, TangentialOutput::forces).forces;
+  TangentialForces forces = runtime.planar->solve(at_centre, mu, TangentialOutput::forces_only).forces;
   forces.F2_N *= s2;
   forces.M3_Nm *= s2;
   return forces;
