@@ -110,16 +110,8 @@ void print_nodes(const FlexibilityTable& table) {
   }
 }
 
-int run_build(const BuildArguments& args, const std::map<std::size_t, study::CaseResult>* merged = nullptr) {
-  // Every core by default (one thread per rank under mpirun); the table does not depend on it.
-  const int threads = args.threads.empty() ? (study::MpiWorld::several() ? 1 : study::available_cores())
-                                           : study::parse_threads(args.threads);
-  require(!args.out.empty(), "--out must name the table file to write");
-  require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
-    return fmt::format("--elements {} must lie in [{}, {}] (with fewer, the elements are too large for the patch and "
-                       "the profiles)",
-                       args.elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
-  });
+// --load-N checked (each a wheel load, the values different, not too many) and sorted.
+std::vector<double> checked_loads(const BuildArguments& args) {
   for (double load : args.loads_N) {
     require(std::isfinite(load) && load > 0.0, [&] { return fmt::format("--load-N must be positive (got {} N)", load); });
     validate_normal_force(load, "--load-N");
@@ -130,21 +122,22 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
   require(loads.size() <= kMaximumFlexibilityTableLoads, [&] {
     return fmt::format("--load-N: {} loads; a table holds at most {}", loads.size(), kMaximumFlexibilityTableLoads);
   });
+  return loads;
+}
+
+// --y-from-m and --y-to-m within the lateral displacements a wheel stays on its rail.
+void check_y_range(const BuildArguments& args) {
   for (const auto& [option, value] : {std::pair{"--y-from-m", args.y_from_m}, std::pair{"--y-to-m", args.y_to_m}})
     require(std::abs(value) <= kMaximumWheelRailLateralDisplacement_m, [&] {
       return fmt::format("{} {:g} m must lie in [{:g}, {:g}] m (a lateral displacement in metres: beyond it the wheel "
                          "is off its rail)",
                          option, value, -kMaximumWheelRailLateralDisplacement_m, kMaximumWheelRailLateralDisplacement_m);
     });
-  const std::vector<double> y = flexibility_table_y_grid(args.y_from_m, args.y_to_m, args.y_step_m);
-  // The work of the build (nodes × elements), refused before the profiles are read.
-  check_flexibility_table_work(y.size(), loads.size(), args.elements);
-  const WheelRailPair pair = pair_of(args.wheel, args.rail);
-  // Fail on an unwritable output before the work: create (and remove) a file next to it.
-  const std::filesystem::path out(args.out);
-  const bool rank0 = study::MpiWorld::rank() == 0;
-  if (rank0) check_table_writable(out, "flexibility table");
+}
 
+// The build's options: the patches' mesh, nH-FastSim's coarsening, the nodes on threads (and
+// ranks), the table's date.
+FlexibilityTableOptions build_options(const BuildArguments& args, int threads) {
   FlexibilityTableOptions options;
   options.patch.target_elements = args.elements;
   require(args.flexibility_coarsening >= 0 && args.flexibility_coarsening <= kMaximumCoarsening, [&] {
@@ -154,91 +147,84 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
   options.nh_fastsim.flexibility_coarsening = args.flexibility_coarsening;
   options.runner = study::table_node_runner(threads);
   options.created_utc = args.created_utc ? *args.created_utc : source_date_epoch_utc();
-  const study::Shard shard = args.shard.empty() ? study::Shard{} : study::parse_shard(args.shard);
-  if (merged != nullptr) {
-    // merge: the nodes come from the shards' journals.
-    options.runner = study::merged_node_runner(*merged);
-  } else if (!shard.whole()) {
-    // A shard: its nodes (on threads or ranks) into its journal, resumed when it exists.
-    const std::string recipe = build_recipe(args, pair);
-    const std::filesystem::path journal =
-        fmt::format("{}.shard-{}-of-{}.journal", args.out, shard.index, shard.count);
-    options.runner = [=, &args](std::size_t count, const TableNodeSolver& solve, const TableNodeStore&) {
-      study::SweepJournalHeader header{RC_VERSION_STRING, study::hash_hex(recipe), count, shard, recipe, ""};
-      std::map<std::size_t, study::CaseResult> done;
-      bool exists = false;
-      std::uintmax_t valid = 0;
-      if (study::MpiWorld::rank() == 0) {
-        if (args.restart) std::filesystem::remove(journal);
-        if (std::filesystem::exists(journal)) {
-          study::SweepJournal j = study::read_sweep_journal(journal, study::kResumeAdvice);
-          require(j.header.recipe == header.recipe && j.header.cases == count && j.header.shard.index == shard.index &&
-                      j.header.shard.count == shard.count && j.header.version == header.version,
-                  [&] {
-                    return fmt::format("{} holds {} nodes of another build (the arguments, profiles or railcontact "
-                                       "changed); rerun with --restart to discard them",
-                                       journal.string(), j.done.size());
-                  });
-          done = std::move(j.done);
-          exists = true;
-          valid = j.valid_bytes;
-        }
-      }
-      std::vector<std::size_t> todo;
-      for (std::size_t k = shard.index; k < count; k += shard.count)
-        if (!done.contains(k)) todo.push_back(k);
-      std::optional<study::SweepJournalWriter> writer;
-      if (study::MpiWorld::rank() == 0) writer.emplace(journal, header, exists, valid);
-      const study::CaseWorkerFactory factory = [&solve]() -> study::CaseWorker {
-        return [&solve](std::size_t k) { return study::CaseResult{solve(k), false}; };
-      };
-      study::ProgressLine line(std::cerr, "nodes", todo.size());
-      std::size_t computed = 0;
-      study::run_cases_on_ranks(todo, threads, factory, [&](std::size_t k, study::CaseResult&& r) {
-        writer->append(k, r);
-        line.done(++computed);
-      });
-      if (study::MpiWorld::rank() != 0) throw study::WorkerRankDone{};
-      writer->close();
-      throw ShardDone{journal, computed, done.size()};
-    };
-  }
-  if (rank0)
-    fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact, {} thread(s){}\n",
-               y.size(), loads.size(), args.elements, threads,
-               study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
-  const auto start = std::chrono::steady_clock::now();
-  // One progress line per node with the estimated time left (from the mean time per node so far).
-  const auto report = [&](const FlexibilityTableProgress& p) {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double left = elapsed / static_cast<double>(p.nodes_done) * static_cast<double>(p.nodes_total - p.nodes_done);
-    const FlexibilityTableNode& n = *p.node;
-    if (n.status == FlexibilityNodeStatus::solved)
-      fmt::print(std::cerr, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} elements, {:.2f} s; {:.1f} s left\n",
-                 p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, n.elements_in_contact, p.node_seconds, left);
-    else
-      fmt::print(std::cerr, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} ({}), a gap in the table; {:.1f} s left\n",
-                 p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, flexibility_node_status_name(n.status),
-                 n.message, left);
-  };
-  FlexibilityTable table;
-  try {
-    table = build_flexibility_table(pair, y, loads, options, report);
-  } catch (const study::WorkerRankDone&) {
-    return 0;  // an MPI rank other than 0: its share is computed, rank 0 writes the table
-  } catch (const ShardDone& done) {
-    fmt::print("Wrote {} (shard {}/{}: {} nodes computed, {} from an earlier run); combine the shards with "
-               "`railcontact merge`\n",
-               done.journal.string(), shard.index, shard.count, done.computed, done.resumed);
-    return 0;
-  }
-  for (const ContactJump& j : table.contact_jumps())
-    fmt::print(std::cerr, "  contact jump between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
-               table.y_m()[j.interval] / kMm, table.y_m()[j.interval + 1] / kMm, j.y_rail_left_m / kMm,
-               j.y_rail_right_m / kMm);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_table_atomically(out, "flexibility table", [&](const std::filesystem::path& path) { save_flexibility_table(table, path); });
+  return options;
+}
 
+// The nodes a shard's journal holds from an earlier run (read on rank 0 only; --restart discards
+// them first). A journal of another build is refused.
+struct ShardResume {
+  std::map<std::size_t, study::CaseResult> done;
+  bool exists = false;
+  std::uintmax_t valid_bytes = 0;  // where the journal's complete records end: appended from there
+};
+
+ShardResume resume_shard(const std::filesystem::path& journal, const study::SweepJournalHeader& header,
+                         std::size_t count, const study::Shard& shard, bool restart) {
+  ShardResume resume;
+  if (study::MpiWorld::rank() != 0) return resume;
+  if (restart) std::filesystem::remove(journal);
+  if (!std::filesystem::exists(journal)) return resume;
+  study::SweepJournal j = study::read_sweep_journal(journal, study::kResumeAdvice);
+  require(j.header.recipe == header.recipe && j.header.cases == count && j.header.shard.index == shard.index &&
+              j.header.shard.count == shard.count && j.header.version == header.version,
+          [&] {
+            return fmt::format("{} holds {} nodes of another build (the arguments, profiles or railcontact "
+                               "changed); rerun with --restart to discard them",
+                               journal.string(), j.done.size());
+          });
+  resume.done = std::move(j.done);
+  resume.exists = true;
+  resume.valid_bytes = j.valid_bytes;
+  return resume;
+}
+
+// A shard's runner: its nodes (on threads or ranks) into its journal, resumed when it exists; it
+// ends the build with ShardDone (WorkerRankDone on the ranks other than 0).
+TableNodeRunner shard_runner(const BuildArguments& args, const study::Shard& shard, const WheelRailPair& pair,
+                             int threads) {
+  const std::string recipe = build_recipe(args, pair);
+  const std::filesystem::path journal = fmt::format("{}.shard-{}-of-{}.journal", args.out, shard.index, shard.count);
+  return [=, &args](std::size_t count, const TableNodeSolver& solve, const TableNodeStore&) {
+    study::SweepJournalHeader header{RC_VERSION_STRING, study::hash_hex(recipe), count, shard, recipe, ""};
+    const ShardResume resume = resume_shard(journal, header, count, shard, args.restart);
+    std::vector<std::size_t> todo;
+    for (std::size_t k = shard.index; k < count; k += shard.count)
+      if (!resume.done.contains(k)) todo.push_back(k);
+    std::optional<study::SweepJournalWriter> writer;
+    if (study::MpiWorld::rank() == 0) writer.emplace(journal, header, resume.exists, resume.valid_bytes);
+    const study::CaseWorkerFactory factory = [&solve]() -> study::CaseWorker {
+      return [&solve](std::size_t k) { return study::CaseResult{solve(k), false}; };
+    };
+    study::ProgressLine line(std::cerr, "nodes", todo.size());
+    std::size_t computed = 0;
+    study::run_cases_on_ranks(todo, threads, factory, [&](std::size_t k, study::CaseResult&& r) {
+      writer->append(k, r);
+      line.done(++computed);
+    });
+    if (study::MpiWorld::rank() != 0) throw study::WorkerRankDone{};
+    writer->close();
+    throw ShardDone{journal, computed, resume.done.size()};
+  };
+}
+
+// One progress line per node with the estimated time left (from the mean time per node so far).
+void report_node(const FlexibilityTableProgress& p, std::chrono::steady_clock::time_point start) {
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double left = elapsed / static_cast<double>(p.nodes_done) * static_cast<double>(p.nodes_total - p.nodes_done);
+  const FlexibilityTableNode& n = *p.node;
+  if (n.status == FlexibilityNodeStatus::solved)
+    fmt::print(std::cerr, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} elements, {:.2f} s; {:.1f} s left\n",
+               p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, n.elements_in_contact, p.node_seconds, left);
+  else
+    fmt::print(std::cerr, "  node {}/{}: y = {:+.4f} mm, Fz = {:g} N: {} ({}), a gap in the table; {:.1f} s left\n",
+               p.nodes_done, p.nodes_total, n.y_m / kMm, n.vertical_load_N, flexibility_node_status_name(n.status),
+               n.message, left);
+}
+
+// What the table written holds: the profiles, the y values (the grid's and those bracketing a
+// contact jump), the loads, the nodes by status, the material; then every node.
+void print_build_summary(const BuildArguments& args, const FlexibilityTable& table, const std::vector<double>& y,
+                         const std::vector<double>& loads, double seconds) {
   const FlexibilityTableMetadata& m = table.metadata();
   std::size_t solved = 0, several = 0, failed = 0;
   for (const FlexibilityTableNode& n : table.nodes()) {
@@ -263,6 +249,64 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
   fmt::print("  material E = {:g} Pa, nu = {:g}; about {} elements in contact; built in {:.1f} s\n",
              m.material.youngs_modulus_Pa, m.material.poisson_ratio, m.target_elements, seconds);
   print_nodes(table);
+}
+
+// `railcontact flextable build` (and `merge`, with the shards' nodes): the arguments and the output
+// checked before the work, the nodes solved here, in a shard or taken from the shards, the table
+// written by rank 0.
+int run_build(const BuildArguments& args, const std::map<std::size_t, study::CaseResult>* merged = nullptr) {
+  // Every core by default (one thread per rank under mpirun); the table does not depend on it.
+  const int threads = args.threads.empty() ? (study::MpiWorld::several() ? 1 : study::available_cores())
+                                           : study::parse_threads(args.threads);
+  require(!args.out.empty(), "--out must name the table file to write");
+  require(args.elements >= kMinimumWheelRailElements && args.elements <= kMaximumWheelRailElements, [&] {
+    return fmt::format("--elements {} must lie in [{}, {}] (with fewer, the elements are too large for the patch and "
+                       "the profiles)",
+                       args.elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
+  });
+  const std::vector<double> loads = checked_loads(args);
+  check_y_range(args);
+  const std::vector<double> y = flexibility_table_y_grid(args.y_from_m, args.y_to_m, args.y_step_m);
+  // The work of the build (nodes × elements), refused before the profiles are read.
+  check_flexibility_table_work(y.size(), loads.size(), args.elements);
+  const WheelRailPair pair = pair_of(args.wheel, args.rail);
+  // Fail on an unwritable output before the work: create (and remove) a file next to it.
+  const std::filesystem::path out(args.out);
+  const bool rank0 = study::MpiWorld::rank() == 0;
+  if (rank0) check_table_writable(out, "flexibility table");
+
+  FlexibilityTableOptions options = build_options(args, threads);
+  const study::Shard shard = args.shard.empty() ? study::Shard{} : study::parse_shard(args.shard);
+  if (merged != nullptr) {
+    // merge: the nodes come from the shards' journals.
+    options.runner = study::merged_node_runner(*merged);
+  } else if (!shard.whole()) {
+    options.runner = shard_runner(args, shard, pair, threads);
+  }
+  if (rank0)
+    fmt::print(std::cerr, "flextable build: {} y values x {} load(s), about {} elements in contact, {} thread(s){}\n",
+               y.size(), loads.size(), args.elements, threads,
+               study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
+  const auto start = std::chrono::steady_clock::now();
+  const auto report = [&](const FlexibilityTableProgress& p) { report_node(p, start); };
+  FlexibilityTable table;
+  try {
+    table = build_flexibility_table(pair, y, loads, options, report);
+  } catch (const study::WorkerRankDone&) {
+    return 0;  // an MPI rank other than 0: its share is computed, rank 0 writes the table
+  } catch (const ShardDone& done) {
+    fmt::print("Wrote {} (shard {}/{}: {} nodes computed, {} from an earlier run); combine the shards with "
+               "`railcontact merge`\n",
+               done.journal.string(), shard.index, shard.count, done.computed, done.resumed);
+    return 0;
+  }
+  for (const ContactJump& j : table.contact_jumps())
+    fmt::print(std::cerr, "  contact jump between y = {:.4f} and {:.4f} mm (first touch on the rail {:.2f} -> {:.2f} mm)\n",
+               table.y_m()[j.interval] / kMm, table.y_m()[j.interval + 1] / kMm, j.y_rail_left_m / kMm,
+               j.y_rail_right_m / kMm);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_table_atomically(out, "flexibility table", [&](const std::filesystem::path& path) { save_flexibility_table(table, path); });
+  print_build_summary(args, table, y, loads, seconds);
   return 0;
 }
 

@@ -13,6 +13,7 @@
 
 #include "case/wheelset_case.hpp"
 #include "cli/commands.hpp"
+#include "cli/option_value.hpp"
 #include "case/count_text.hpp"
 #include "cli/table_file_output.hpp"
 #include "railcontact/error.hpp"
@@ -58,14 +59,15 @@ std::vector<double> range_values(const std::string& text, const char* option) {
   return values;
 }
 
-int run_build(const BuildArguments& a, const CLI::App& sub) {
-  require(!a.out.empty(), "wheelset-table build: --out must name the table file to write");
-  // Every core by default (one thread per rank under mpirun); the table does not depend on it.
-  const int threads = a.threads.empty() ? (study::MpiWorld::several() ? 1 : study::available_cores())
-                                        : study::parse_threads(a.threads);
-  const bool rank0 = study::MpiWorld::rank() == 0;
-  WheelsetCase c;
-  if (!a.case_file.empty()) c = read_wheelset_case(a.case_file);
+// The build's threads: every core by default (one thread per rank under mpirun); the table does
+// not depend on it.
+int build_threads(const BuildArguments& a) {
+  return a.threads.empty() ? (study::MpiWorld::several() ? 1 : study::available_cores())
+                           : study::parse_threads(a.threads);
+}
+
+// The table's axes: y, yaw and the wheel loads (sorted).
+WheelsetTableGrid table_grid(const BuildArguments& a) {
   WheelsetTableGrid grid;
   grid.y_m = range_values(a.y_m, "--y-m");
   grid.yaw_rad = range_values(a.yaw_rad, "--yaw-rad");
@@ -76,23 +78,26 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
   }
   std::sort(grid.wheel_load_N.begin(), grid.wheel_load_N.end());
   validate(grid);
+  return grid;
+}
+
+// The nodes' wheelset: the case's, with the mesh and patch geometry given on the command line
+// (the element size also by default without a case).
+WheelsetOptions node_wheelset_options(const BuildArguments& a, const CLI::App& sub, const WheelsetCase& c) {
+  WheelsetOptions wheelset = c.options;
+  if (sub.count("--element-size-m") > 0 || a.case_file.empty()) wheelset.element_size_m = a.element_size_m;
+  if (sub.count("--reference-weighting") > 0)
+    wheelset.search.weighting = parse_option_value("--reference-weighting", a.reference_weighting, parse_reference_weighting);
+  if (sub.count("--contact-surface") > 0)
+    wheelset.contact_surface = parse_option_value("--contact-surface", a.contact_surface, parse_contact_surface);
+  return wheelset;
+}
+
+// The build's options but its runner and date: the nodes' wheelset, the refinement in y and the
+// size of the coarse patches a lookup runs on.
+WheelsetTableOptions table_options(const BuildArguments& a, const CLI::App& sub, const WheelsetCase& c) {
   WheelsetTableOptions options;
-  options.wheelset = c.options;
-  if (sub.count("--element-size-m") > 0 || a.case_file.empty()) options.wheelset.element_size_m = a.element_size_m;
-  if (sub.count("--reference-weighting") > 0) {
-    try {
-      options.wheelset.search.weighting = parse_reference_weighting(a.reference_weighting);
-    } catch (const Error& e) {
-      throw Error(fmt::format("--reference-weighting: {}", e.what()));
-    }
-  }
-  if (sub.count("--contact-surface") > 0) {
-    try {
-      options.wheelset.contact_surface = parse_contact_surface(a.contact_surface);
-    } catch (const Error& e) {
-      throw Error(fmt::format("--contact-surface: {}", e.what()));
-    }
-  }
+  options.wheelset = node_wheelset_options(a, sub, c);
   require(a.refine_lateral_force >= 0.0 && a.refine_lateral_force <= 1.0, [&] {
     return fmt::format("--refine-lateral-force-fraction {:g} must lie in [0, 1] (a fraction of the wheel load; 0: no refinement)",
                        a.refine_lateral_force);
@@ -108,45 +113,29 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
                        a.runtime_elements);
   });
   options.runtime_elements = a.runtime_elements;
-  const WheelsetTrack track = wheelset_track(c);
-  const std::filesystem::path out(a.out);
-  if (rank0) check_table_writable(out, "wheelset table");  // before the work
-  options.runner = study::table_node_runner(threads);
-  options.created_utc = source_date_epoch_utc();
+  return options;
+}
 
-  if (rank0)
-    fmt::print(std::cerr,
-               "wheelset-table build: {} y values x {} yaw(s) x {} load(s) = {} nodes, elements {:g} mm, {} surface, {} "
-               "thread(s){}\n",
-               grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
-               options.wheelset.element_size_m * 1e3, contact_surface_name(options.wheelset.contact_surface), threads,
-               study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
-  const auto start = std::chrono::steady_clock::now();
-  std::size_t next_report = 0;
-  // A progress line at every tenth of the nodes and for every gap, with the time left.
-  const auto report = [&](const WheelsetTableProgress& p) {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double left = elapsed / static_cast<double>(p.nodes_done) * static_cast<double>(p.nodes_total - p.nodes_done);
-    const WheelsetTableNode& n = *p.node;
-    if (n.status != WheelsetTableNodeStatus::solved)
-      fmt::print(std::cerr, "  node {}/{} at y = {:+.3f} mm, yaw {:g} mrad, {:g} kN is a gap: {}\n", p.nodes_done,
-                 p.nodes_total, n.y_m * 1e3, n.yaw_rad * 1e3, n.wheel_load_N * 1e-3, n.message);
-    if (p.nodes_done >= next_report || p.nodes_done == p.nodes_total) {
-      fmt::print(std::cerr, "  [{:>3.0f} %] {}/{} nodes, {:.0f} s, about {:.0f} s left\n",
-                 100.0 * static_cast<double>(p.nodes_done) / static_cast<double>(p.nodes_total), p.nodes_done,
-                 p.nodes_total, elapsed, left);
-      next_report = p.nodes_done + std::max<std::size_t>(1, p.nodes_total / 10);
-    }
-  };
-  WheelsetTable table;
-  try {
-    table = build_wheelset_table(track, grid, options, report);
-  } catch (const study::WorkerRankDone&) {
-    return 0;  // an MPI rank other than 0: its share is computed, rank 0 writes the table
+// A progress line at every tenth of the nodes and for every gap, with the time left.
+void report_progress(const WheelsetTableProgress& p, std::chrono::steady_clock::time_point start,
+                     std::size_t& next_report) {
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double left = elapsed / static_cast<double>(p.nodes_done) * static_cast<double>(p.nodes_total - p.nodes_done);
+  const WheelsetTableNode& n = *p.node;
+  if (n.status != WheelsetTableNodeStatus::solved)
+    fmt::print(std::cerr, "  node {}/{} at y = {:+.3f} mm, yaw {:g} mrad, {:g} kN is a gap: {}\n", p.nodes_done,
+               p.nodes_total, n.y_m * 1e3, n.yaw_rad * 1e3, n.wheel_load_N * 1e-3, n.message);
+  if (p.nodes_done >= next_report || p.nodes_done == p.nodes_total) {
+    fmt::print(std::cerr, "  [{:>3.0f} %] {}/{} nodes, {:.0f} s, about {:.0f} s left\n",
+               100.0 * static_cast<double>(p.nodes_done) / static_cast<double>(p.nodes_total), p.nodes_done,
+               p.nodes_total, elapsed, left);
+    next_report = p.nodes_done + std::max<std::size_t>(1, p.nodes_total / 10);
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_table_atomically(out, "wheelset table", [&](const std::filesystem::path& path) { save_wheelset_table(table, path); });
+}
 
+// What the table written holds: profiles, axes, nodes, gaps and patches, the build's time.
+void print_table_summary(const BuildArguments& a, const WheelsetCase& c, const WheelsetTableGrid& grid,
+                         const WheelsetTable& table, double seconds) {
   std::size_t gaps = 0, patches = 0;
   for (const WheelsetTableNode& n : table.nodes()) {
     gaps += n.status != WheelsetTableNodeStatus::solved;
@@ -162,6 +151,43 @@ int run_build(const BuildArguments& a, const CLI::App& sub) {
   fmt::print("  loads     {} kN per wheel\n", loads);
   fmt::print("  nodes     {} ({} gaps), {} patches, built in {:.1f} s ({:.3f} s per node)\n", table.nodes().size(), gaps,
              patches, seconds, seconds / static_cast<double>(table.nodes().size()));
+}
+
+// `railcontact wheelset-table build`: the grid and options checked, the output checked before the
+// work, the nodes solved (shared among MPI ranks), the table written by rank 0.
+int run_build(const BuildArguments& a, const CLI::App& sub) {
+  require(!a.out.empty(), "wheelset-table build: --out must name the table file to write");
+  const int threads = build_threads(a);
+  const bool rank0 = study::MpiWorld::rank() == 0;
+  WheelsetCase c;
+  if (!a.case_file.empty()) c = read_wheelset_case(a.case_file);
+  const WheelsetTableGrid grid = table_grid(a);
+  WheelsetTableOptions options = table_options(a, sub, c);
+  const WheelsetTrack track = wheelset_track(c);
+  const std::filesystem::path out(a.out);
+  if (rank0) check_table_writable(out, "wheelset table");  // before the work
+  options.runner = study::table_node_runner(threads);
+  options.created_utc = source_date_epoch_utc();
+
+  if (rank0)
+    fmt::print(std::cerr,
+               "wheelset-table build: {} y values x {} yaw(s) x {} load(s) = {} nodes, elements {:g} mm, {} surface, {} "
+               "thread(s){}\n",
+               grid.y_m.size(), grid.yaw_rad.size(), grid.wheel_load_N.size(), grid.size(),
+               options.wheelset.element_size_m * 1e3, contact_surface_name(options.wheelset.contact_surface), threads,
+               study::MpiWorld::several() ? fmt::format(" on each of {} MPI ranks", study::MpiWorld::size()) : "");
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t next_report = 0;
+  const auto report = [&](const WheelsetTableProgress& p) { report_progress(p, start, next_report); };
+  WheelsetTable table;
+  try {
+    table = build_wheelset_table(track, grid, options, report);
+  } catch (const study::WorkerRankDone&) {
+    return 0;  // an MPI rank other than 0: its share is computed, rank 0 writes the table
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  write_table_atomically(out, "wheelset table", [&](const std::filesystem::path& path) { save_wheelset_table(table, path); });
+  print_table_summary(a, c, grid, table, seconds);
   return 0;
 }
 

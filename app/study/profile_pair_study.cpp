@@ -185,111 +185,124 @@ void compare_with_table(const WheelsetTable& table, const WheelsetState& state, 
 
 std::string percent(double v) { return std::isfinite(v) ? fmt::format("{:+.2f} %", v) : "–"; }
 
-}  // namespace
+// The CSV files written during the sweeps: one row per patch, and one per state and wheel of the
+// table check (with a table only).
+struct SweepRows {
+  std::ofstream patches;
+  std::ofstream table_check;
+};
 
-void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log) {
-  validate_sweep(o.element_size_m, o.y_step_m, 1e-3, o.yaws_rad);
-  const std::vector<std::filesystem::path> files = wheel_rail_setup_files(o.setups);
-  require(!files.empty(), "study profiles: no wheel-rail set-up files");
-
-  output::OutputDirectory out(o.output_directory, &log);
-  std::ofstream rows = output::open_output_file(out.path("profile_pairs.csv"));
-  fmt::print(rows,
+SweepRows open_sweep_rows(const output::OutputDirectory& out, bool table) {
+  SweepRows rows;
+  rows.patches = output::open_output_file(out.path("profile_pairs.csv"));
+  fmt::print(rows.patches,
              "setup,yaw_mrad,y_mm,side,patch,patches,contact_angle_rad,rail_profile_y_mm,normal_force_N,xi,eta,"
              "phi_per_m,exact_F1_N,exact_F2_N,nh_fastsim_F1_N,nh_fastsim_F2_N,dF1_percent_mu_F3,dF2_percent_mu_F3,"
              "wheel_Fx_N,wheel_Fy_N,wheel_Fz_N,contact_angle_variation_rad\n");
-  std::ofstream table_rows;
-  if (o.table) {
-    table_rows = output::open_output_file(out.path("table_check.csv"));
-    fmt::print(table_rows, "setup,yaw_mrad,y_mm,side,patches,on_the_fly_Fx_N,on_the_fly_Fy_N,on_the_fly_Fz_N,table_Fx_N,"
-                           "table_Fy_N,table_Fz_N,dFx_percent_mu_Fz,dFy_percent_mu_Fz,dFz_percent_mu_Fz\n");
+  if (table) {
+    rows.table_check = output::open_output_file(out.path("table_check.csv"));
+    fmt::print(rows.table_check, "setup,yaw_mrad,y_mm,side,patches,on_the_fly_Fx_N,on_the_fly_Fy_N,on_the_fly_Fz_N,table_Fx_N,"
+                                 "table_Fy_N,table_Fz_N,dFx_percent_mu_Fz,dFy_percent_mu_Fz,dFz_percent_mu_Fz\n");
   }
-  std::vector<SweepSummary> summaries;
-  const auto start = std::chrono::steady_clock::now();
-  const std::size_t sweeps = files.size() * o.yaws_rad.size();
-  std::size_t done = 0;
-  for (const std::filesystem::path& file : files) {
-    const WheelRailSetup setup = read_wheel_rail_setup(file);
-    const WheelsetTrack track = wheelset_track_of(setup);
-    const PairGeometry geometry = pair_geometry(track, 0.1e-3);  // EN 15302 resolution, whatever the sweep step
-    const std::string name = file.stem().string();
-    fmt::print(log, "{}: the flange climbs beyond y = {:.2f} mm; tan γe(3 mm) = {:.4f}\n", name,
-               geometry.climb_y_m / kMm, geometry.tan_gamma_e);
-    // The wheelset: the exact solver and nH-FastSim on every patch, balanced with nH-FastSim's
-    // forces (the wheelset a user of nH-FastSim gets, which the table is compared with).
-    WheelsetOptions options;
-    options.element_size_m = o.element_size_m;
-    options.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
-    options.balance_solver = TangentialSolver::nh_fastsim;
-    options.contact_surface = o.contact_surface;
-    const int steps = static_cast<int>(std::floor(-geometry.climb_y_m / o.y_step_m + 1e-9));
-    std::optional<WheelsetTable> table;
-    if (o.table) table = build_table(track, options, steps, o, log);  // on the sweeps' contact surface
-    for (const double yaw : o.yaws_rad) {
-      Wheelset wheelset(track, options);
-      SweepSummary s;
-      s.setup = name;
-      s.yaw_rad = yaw;
-      s.tan_gamma_e = geometry.tan_gamma_e;
-      const double mu = options.friction_coefficient;
-      std::vector<std::array<double, 3>> right_force;
-      std::vector<std::size_t> right_patches;
-      std::vector<double> ys;
-      for (int k = 0; k <= steps; ++k) {
-        WheelsetState state;
-        state.position.lateral_displacement_m = -k * o.y_step_m;
-        state.position.yaw_rad = yaw;
-        WheelsetResult r;
-        try {
-          r = wheelset.evaluate(state);
-        } catch (const Error& e) {
-          if (k == 0) throw Error(e.kind(), fmt::format("study profiles: {} at y = 0, yaw {:g} rad: {}", name, yaw, e.what()));
-          s.stop = fmt::format("y = {:.2f} mm: {}", state.position.lateral_displacement_m / kMm, e.what());
-          break;
-        }
-        ++s.states;
-        s.last_y_m = state.position.lateral_displacement_m;
-        for (const WheelResult& w : r.wheels) {
-          s.most_patches = std::max(s.most_patches, w.patches.size());
-          for (std::size_t p = 0; p < w.patches.size(); ++p) {
-            const WheelsetPatch& patch = w.patches[p];
-            const TangentialForces& exact = patch.solvers[0].forces;
-            const TangentialForces& fast = patch.solvers[1].forces;
-            const double scale = 100.0 / (mu * patch.normal_force_N);
-            const double d1 = (fast.F1_N - exact.F1_N) * scale, d2 = (fast.F2_N - exact.F2_N) * scale;
-            if (std::abs(d1) > std::abs(s.worst_dF1_percent)) s.worst_dF1_percent = d1, s.worst_dF1_y_m = s.last_y_m;
-            if (std::abs(d2) > std::abs(s.worst_dF2_percent)) s.worst_dF2_percent = d2, s.worst_dF2_y_m = s.last_y_m;
-            fmt::print(rows, "{},{:.3f},{:.4f},{},{},{},{:.8f},{:.6f},{:.3f},{:.8e},{:.8e},{:.8e},{:.3f},{:.3f},{:.3f},{:.3f},"
-                             "{:.4f},{:.4f},{:.3f},{:.3f},{:.3f},{:.5f}\n",
-                       name, yaw * 1e3, s.last_y_m / kMm, side_name(w.side), p, w.patches.size(),
-                       patch.region.contact_angle_rad, patch.region.rail_profile_y_m / kMm, patch.normal_force_N,
-                       patch.creepage.xi, patch.creepage.eta, patch.creepage.phi, exact.F1_N, exact.F2_N, fast.F1_N,
-                       fast.F2_N, d1, d2, w.force_track_N[0], w.force_track_N[1], w.force_track_N[2],
-                       contact_angle_variation_rad(patch.region));
-            s.largest_angle_variation_rad = std::max(s.largest_angle_variation_rad, contact_angle_variation_rad(patch.region));
-          }
-        }
-        if (table) compare_with_table(*table, state, r, mu, name, table_rows, s);
-        const WheelResult& right = r.wheels[0];
-        right_force.push_back({right.force_track_N[0], right.force_track_N[1], right.force_track_N[2]});
-        right_patches.push_back(right.patches.size());
-        ys.push_back(s.last_y_m);
-      }
-      count_jumps(right_force, right_patches, ys, kWheelLoad_N, s);
-      summaries.push_back(s);
-      ++done;
-      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fmt::print(log, "  yaw {:+.0f} mrad: {} states to y = {:.2f} mm ({}/{}), {:.0f} s left\n", yaw * 1e3, s.states,
-                 s.last_y_m / kMm, done, sweeps, elapsed / static_cast<double>(done) * static_cast<double>(sweeps - done));
+  return rows;
+}
+
+void close_sweep_rows(SweepRows& rows, const output::OutputDirectory& out, bool table) {
+  rows.patches.close();
+  if (rows.patches.fail()) throw output::write_error(out.path("profile_pairs.csv"), errno);
+  if (table) {
+    rows.table_check.close();
+    if (rows.table_check.fail()) throw output::write_error(out.path("table_check.csv"), errno);
+  }
+}
+
+// The sweeps' wheelset: the exact solver and nH-FastSim on every patch, balanced with nH-FastSim's
+// forces (the wheelset a user of nH-FastSim gets, which the table is compared with).
+WheelsetOptions sweep_wheelset_options(const ProfilePairStudyOptions& o) {
+  WheelsetOptions options;
+  options.element_size_m = o.element_size_m;
+  options.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
+  options.balance_solver = TangentialSolver::nh_fastsim;
+  options.contact_surface = o.contact_surface;
+  return options;
+}
+
+// One set-up's sweeps: the same track, wheelset and table at every yaw.
+struct SetupSweeps {
+  std::string name;
+  const WheelsetTrack& track;
+  WheelsetOptions options;
+  const WheelsetTable* table = nullptr;  // with ProfilePairStudyOptions::table
+  int steps = 0;                         // states y = −k y_step, k = 0 … steps (to the flange climb)
+  double tan_gamma_e = kNaN;
+};
+
+// One state's patches: nH-FastSim against the exact solver (as % of μ F3), the worst kept; a row
+// per patch.
+void record_patches(const WheelsetResult& r, const std::string& name, double yaw, double mu, std::ostream& rows,
+                    SweepSummary& s) {
+  for (const WheelResult& w : r.wheels) {
+    s.most_patches = std::max(s.most_patches, w.patches.size());
+    for (std::size_t p = 0; p < w.patches.size(); ++p) {
+      const WheelsetPatch& patch = w.patches[p];
+      const TangentialForces& exact = patch.solvers[0].forces;
+      const TangentialForces& fast = patch.solvers[1].forces;
+      const double scale = 100.0 / (mu * patch.normal_force_N);
+      const double d1 = (fast.F1_N - exact.F1_N) * scale, d2 = (fast.F2_N - exact.F2_N) * scale;
+      if (std::abs(d1) > std::abs(s.worst_dF1_percent)) s.worst_dF1_percent = d1, s.worst_dF1_y_m = s.last_y_m;
+      if (std::abs(d2) > std::abs(s.worst_dF2_percent)) s.worst_dF2_percent = d2, s.worst_dF2_y_m = s.last_y_m;
+      fmt::print(rows, "{},{:.3f},{:.4f},{},{},{},{:.8f},{:.6f},{:.3f},{:.8e},{:.8e},{:.8e},{:.3f},{:.3f},{:.3f},{:.3f},"
+                       "{:.4f},{:.4f},{:.3f},{:.3f},{:.3f},{:.5f}\n",
+                 name, yaw * 1e3, s.last_y_m / kMm, side_name(w.side), p, w.patches.size(),
+                 patch.region.contact_angle_rad, patch.region.rail_profile_y_m / kMm, patch.normal_force_N,
+                 patch.creepage.xi, patch.creepage.eta, patch.creepage.phi, exact.F1_N, exact.F2_N, fast.F1_N,
+                 fast.F2_N, d1, d2, w.force_track_N[0], w.force_track_N[1], w.force_track_N[2],
+                 contact_angle_variation_rad(patch.region));
+      s.largest_angle_variation_rad = std::max(s.largest_angle_variation_rad, contact_angle_variation_rad(patch.region));
     }
   }
-  rows.close();
-  if (rows.fail()) throw output::write_error(out.path("profile_pairs.csv"), errno);
-  if (o.table) {
-    table_rows.close();
-    if (table_rows.fail()) throw output::write_error(out.path("table_check.csv"), errno);
-  }
+}
 
+// The sweep at one yaw from y = 0 towards the right wheel's flange, until the flange climbs or a
+// state cannot be evaluated (at y = 0 an error); each state recorded and checked against the table.
+SweepSummary sweep_at_yaw(const SetupSweeps& setup, double yaw, double y_step_m, SweepRows& rows) {
+  Wheelset wheelset(setup.track, setup.options);
+  SweepSummary s;
+  s.setup = setup.name;
+  s.yaw_rad = yaw;
+  s.tan_gamma_e = setup.tan_gamma_e;
+  const double mu = setup.options.friction_coefficient;
+  std::vector<std::array<double, 3>> right_force;
+  std::vector<std::size_t> right_patches;
+  std::vector<double> ys;
+  for (int k = 0; k <= setup.steps; ++k) {
+    WheelsetState state;
+    state.position.lateral_displacement_m = -k * y_step_m;
+    state.position.yaw_rad = yaw;
+    WheelsetResult r;
+    try {
+      r = wheelset.evaluate(state);
+    } catch (const Error& e) {
+      if (k == 0)
+        throw Error(e.kind(), fmt::format("study profiles: {} at y = 0, yaw {:g} rad: {}", setup.name, yaw, e.what()));
+      s.stop = fmt::format("y = {:.2f} mm: {}", state.position.lateral_displacement_m / kMm, e.what());
+      break;
+    }
+    ++s.states;
+    s.last_y_m = state.position.lateral_displacement_m;
+    record_patches(r, setup.name, yaw, mu, rows.patches, s);
+    if (setup.table) compare_with_table(*setup.table, state, r, mu, setup.name, rows.table_check, s);
+    const WheelResult& right = r.wheels[0];
+    right_force.push_back({right.force_track_N[0], right.force_track_N[1], right.force_track_N[2]});
+    right_patches.push_back(right.patches.size());
+    ys.push_back(s.last_y_m);
+  }
+  count_jumps(right_force, right_patches, ys, kWheelLoad_N, s);
+  return s;
+}
+
+// pairs.csv: one row per set-up and yaw.
+void write_pairs_csv(const output::OutputDirectory& out, const std::vector<SweepSummary>& summaries) {
   std::ofstream pairs = output::open_output_file(out.path("pairs.csv"));
   fmt::print(pairs, "setup,yaw_mrad,tan_gamma_e_3mm,states,last_y_mm,most_patches,worst_dF1_percent,worst_dF1_y_mm,"
                     "worst_dF2_percent,worst_dF2_y_mm,worst_step_N,worst_step_y_mm,jumps,largest_angle_variation_rad,stop,"
@@ -306,8 +319,10 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
                s.worst_table_y_m[1] / kMm, s.worst_table_percent[2], s.worst_table_y_m[2] / kMm);
   pairs.close();
   if (pairs.fail()) throw output::write_error(out.path("pairs.csv"), errno);
+}
 
-  std::ofstream md = output::open_output_file(out.path("summary.md"));
+// summary.md's first part: nH-FastSim against the exact solver, the steps and jumps, per sweep.
+void print_sweeps_md(std::ostream& md, const ProfilePairStudyOptions& o, const std::vector<SweepSummary>& summaries) {
   fmt::print(md, "# Profile pairs end to end\n\n");
   fmt::print(md,
              "Each wheel–rail set-up: the wheelset by load (98.1 kN per wheel, μ = 0.3, 20 m/s, pure rolling) from y = 0 "
@@ -334,37 +349,84 @@ void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log)
   for (const SweepSummary& s : summaries)
     if (!s.stop.empty()) fmt::print(md, "\n- {} at yaw {:+.0f} mrad stopped before the flange-climb limit: {}\n", s.setup,
                                     s.yaw_rad * 1e3, s.stop);
-  if (o.table) {
-    fmt::print(md,
-               "\n## The wheelset table against the wheelset on the fly\n\n"
-               "Per set-up a wheelset table (docs/WHEELSET_TABLE.md) over the sweeps' yaws, its lateral nodes midway "
-               "between the sweep's positions ({:g} mm apart, {:g} mm over the last {:g} mm before the flange climbs; the "
-               "last position itself a node; refined where a wheel's lateral normal force leaves the line between "
-               "neighbouring nodes by more than {:g} % of the load), wheel loads of {:g}, {:g} and {:g} kN; looked up at "
-               "every state with the tangential forces in the vertical balance, against nH-FastSim on the fly. The "
-               "largest difference of a wheel's force per track-frame component, over both wheels, as a share of μ Fz "
-               "(target {:g} %).\n\n",
-               o.y_step_m / kMm, 0.5 * o.y_step_m / kMm, kTableFineStretch_m / kMm, 100.0 * kTableRefinement,
-               kTableLoads[0] * kWheelLoad_N / 1e3, kTableLoads[1] * kWheelLoad_N / 1e3, kTableLoads[2] * kWheelLoad_N / 1e3,
-               kTableTarget_percent);
-    fmt::print(md, "| set-up | yaw (mrad) | states | Fx (at y mm) | Fy (at y mm) | Fz (at y mm) | within target |\n"
-                   "|---|---|---|---|---|---|---|\n");
-    for (const SweepSummary& s : summaries) {
-      bool ok = s.table_refused == 0;
-      for (const double d : s.worst_table_percent) ok = ok && std::abs(d) <= kTableTarget_percent;
-      fmt::print(md, "| {} | {:+.0f} | {}{} | {} ({:.2f}) | {} ({:.2f}) | {} ({:.2f}) | {} |\n", s.setup, s.yaw_rad * 1e3,
-                 s.table_states, s.table_refused ? fmt::format(" ({} refused)", s.table_refused) : "",
-                 percent(s.worst_table_percent[0]), s.worst_table_y_m[0] / kMm, percent(s.worst_table_percent[1]),
-                 s.worst_table_y_m[1] / kMm, percent(s.worst_table_percent[2]), s.worst_table_y_m[2] / kMm,
-                 ok ? "yes" : "**no**");
-    }
-    for (const SweepSummary& s : summaries)
-      if (s.table_refused)
-        fmt::print(md, "\n- {} at yaw {:+.0f} mrad: the table refused {} states, the first: {}\n", s.setup,
-                   s.yaw_rad * 1e3, s.table_refused, s.table_refusal);
+}
+
+// summary.md's second part (with a table): the table against the wheelset on the fly, per sweep.
+void print_table_check_md(std::ostream& md, const ProfilePairStudyOptions& o, const std::vector<SweepSummary>& summaries) {
+  fmt::print(md,
+             "\n## The wheelset table against the wheelset on the fly\n\n"
+             "Per set-up a wheelset table (docs/WHEELSET_TABLE.md) over the sweeps' yaws, its lateral nodes midway "
+             "between the sweep's positions ({:g} mm apart, {:g} mm over the last {:g} mm before the flange climbs; the "
+             "last position itself a node; refined where a wheel's lateral normal force leaves the line between "
+             "neighbouring nodes by more than {:g} % of the load), wheel loads of {:g}, {:g} and {:g} kN; looked up at "
+             "every state with the tangential forces in the vertical balance, against nH-FastSim on the fly. The "
+             "largest difference of a wheel's force per track-frame component, over both wheels, as a share of μ Fz "
+             "(target {:g} %).\n\n",
+             o.y_step_m / kMm, 0.5 * o.y_step_m / kMm, kTableFineStretch_m / kMm, 100.0 * kTableRefinement,
+             kTableLoads[0] * kWheelLoad_N / 1e3, kTableLoads[1] * kWheelLoad_N / 1e3, kTableLoads[2] * kWheelLoad_N / 1e3,
+             kTableTarget_percent);
+  fmt::print(md, "| set-up | yaw (mrad) | states | Fx (at y mm) | Fy (at y mm) | Fz (at y mm) | within target |\n"
+                 "|---|---|---|---|---|---|---|\n");
+  for (const SweepSummary& s : summaries) {
+    bool ok = s.table_refused == 0;
+    for (const double d : s.worst_table_percent) ok = ok && std::abs(d) <= kTableTarget_percent;
+    fmt::print(md, "| {} | {:+.0f} | {}{} | {} ({:.2f}) | {} ({:.2f}) | {} ({:.2f}) | {} |\n", s.setup, s.yaw_rad * 1e3,
+               s.table_states, s.table_refused ? fmt::format(" ({} refused)", s.table_refused) : "",
+               percent(s.worst_table_percent[0]), s.worst_table_y_m[0] / kMm, percent(s.worst_table_percent[1]),
+               s.worst_table_y_m[1] / kMm, percent(s.worst_table_percent[2]), s.worst_table_y_m[2] / kMm,
+               ok ? "yes" : "**no**");
   }
+  for (const SweepSummary& s : summaries)
+    if (s.table_refused)
+      fmt::print(md, "\n- {} at yaw {:+.0f} mrad: the table refused {} states, the first: {}\n", s.setup,
+                 s.yaw_rad * 1e3, s.table_refused, s.table_refusal);
+}
+
+void write_summary_md(const output::OutputDirectory& out, const ProfilePairStudyOptions& o,
+                      const std::vector<SweepSummary>& summaries) {
+  std::ofstream md = output::open_output_file(out.path("summary.md"));
+  print_sweeps_md(md, o, summaries);
+  if (o.table) print_table_check_md(md, o, summaries);
   md.close();
   if (md.fail()) throw output::write_error(out.path("summary.md"), errno);
+}
+
+}  // namespace
+
+void run_profile_pair_study(const ProfilePairStudyOptions& o, std::ostream& log) {
+  validate_sweep(o.element_size_m, o.y_step_m, 1e-3, o.yaws_rad);
+  const std::vector<std::filesystem::path> files = wheel_rail_setup_files(o.setups);
+  require(!files.empty(), "study profiles: no wheel-rail set-up files");
+
+  output::OutputDirectory out(o.output_directory, &log);
+  SweepRows rows = open_sweep_rows(out, o.table);
+  std::vector<SweepSummary> summaries;
+  const auto start = std::chrono::steady_clock::now();
+  const std::size_t sweeps = files.size() * o.yaws_rad.size();
+  std::size_t done = 0;
+  for (const std::filesystem::path& file : files) {
+    const WheelRailSetup setup = read_wheel_rail_setup(file);
+    const WheelsetTrack track = wheelset_track_of(setup);
+    const PairGeometry geometry = pair_geometry(track, 0.1e-3);  // EN 15302 resolution, whatever the sweep step
+    SetupSweeps sweeps_of{file.stem().string(), track, sweep_wheelset_options(o)};
+    fmt::print(log, "{}: the flange climbs beyond y = {:.2f} mm; tan γe(3 mm) = {:.4f}\n", sweeps_of.name,
+               geometry.climb_y_m / kMm, geometry.tan_gamma_e);
+    sweeps_of.steps = static_cast<int>(std::floor(-geometry.climb_y_m / o.y_step_m + 1e-9));
+    sweeps_of.tan_gamma_e = geometry.tan_gamma_e;
+    std::optional<WheelsetTable> table;
+    if (o.table) table = build_table(track, sweeps_of.options, sweeps_of.steps, o, log);  // on the sweeps' contact surface
+    sweeps_of.table = table ? &*table : nullptr;
+    for (const double yaw : o.yaws_rad) {
+      const SweepSummary& s = summaries.emplace_back(sweep_at_yaw(sweeps_of, yaw, o.y_step_m, rows));
+      ++done;
+      const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      fmt::print(log, "  yaw {:+.0f} mrad: {} states to y = {:.2f} mm ({}/{}), {:.0f} s left\n", yaw * 1e3, s.states,
+                 s.last_y_m / kMm, done, sweeps, elapsed / static_cast<double>(done) * static_cast<double>(sweeps - done));
+    }
+  }
+  close_sweep_rows(rows, out, o.table);
+  write_pairs_csv(out, summaries);
+  write_summary_md(out, o, summaries);
   if (o.figures) output::draw_figures("plot_profile_pairs.py", out.staging(), log);
   out.commit();
 }
