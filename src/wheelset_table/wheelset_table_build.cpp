@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <mutex>
 #include <optional>
 
@@ -208,6 +209,67 @@ WheelsetTablePatch table_patch(const WheelsetPatch& patch, const Vector3& centre
   return t;
 }
 
+// The nodes in blocks of kWheelsetTableBlock consecutive y values at one yaw and load: along a
+// block the wheelset's warm start carries over from node to node, each block starts cold. The
+// blocks are independent, so a runner may compute them in any order and anywhere, and the table
+// does not depend on it. A block travels as the JSON list of its nodes.
+struct NodeBlock {
+  std::size_t iyaw, il, iy_begin, iy_end;
+};
+std::vector<NodeBlock> node_blocks(const WheelsetTableGrid& grid) {
+  std::vector<NodeBlock> blocks;
+  for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw)
+    for (std::size_t il = 0; il < grid.wheel_load_N.size(); ++il)
+      for (std::size_t iy = 0; iy < grid.y_m.size(); iy += kWheelsetTableBlock)
+        blocks.push_back({iyaw, il, iy, std::min(iy + kWheelsetTableBlock, grid.y_m.size())});
+  return blocks;
+}
+
+// One node: the wheelset at (y, yaw) by its load, each wheel's height and patches kept; a failed
+// solve is a gap with its message.
+WheelsetTableNode solve_node(Wheelset& wheelset, const WheelsetTrack& track, double y_m, double yaw_rad, double load_N,
+                             int runtime_elements, const NhFastSimOptions& nh_fastsim) {
+  WheelsetTableNode node;
+  node.y_m = y_m;
+  node.yaw_rad = yaw_rad;
+  node.wheel_load_N = load_N;
+  WheelsetState state;
+  state.position.lateral_displacement_m = y_m;
+  state.position.yaw_rad = yaw_rad;
+  try {
+    const WheelsetResult r = wheelset.evaluate(state);
+    for (int w = 0; w < 2; ++w) {
+      const WheelResult& wheel = r.wheels[w];
+      node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
+      const Vector3 centre{0.0, y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
+      for (const WheelsetPatch& p : wheel.patches)
+        node.wheels[w].push_back(table_patch(p, centre, wheel.side, runtime_elements, nh_fastsim));
+    }
+  } catch (const Error& e) {
+    node.status = WheelsetTableNodeStatus::failed;
+    node.message = e.what();
+    node.wheels = {};
+  }
+  return node;
+}
+
+// A block's nodes, solved in y order on one warm wheelset, as the runner carries them: the seconds
+// it took on the first line, then the nodes' JSON.
+std::string solve_block(const WheelsetTrack& track, const WheelsetTableGrid& grid, const NodeBlock& block,
+                        const WheelsetOptions& wheelset_options, const WheelsetTableOptions& options) {
+  WheelsetOptions o = wheelset_options;
+  const double load_N = grid.wheel_load_N[block.il];
+  o.loads = WheelLoads{load_N, load_N, false};
+  Wheelset wheelset(track, o);
+  std::vector<WheelsetTableNode> solved_nodes;
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t iy = block.iy_begin; iy < block.iy_end; ++iy)
+    solved_nodes.push_back(solve_node(wheelset, track, grid.y_m[iy], grid.yaw_rad[block.iyaw], load_N,
+                                      options.runtime_elements, wheelset_options.nh_fastsim));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return fmt::format("{:.17g}\n{}", seconds, detail::wheelset_table_nodes_json(solved_nodes));
+}
+
 // The nodes of a grid (Wheelset::evaluate at each, its patches kept), computed by the options'
 // runner; the progress counts them from done_before of total.
 struct SolvedNodes {
@@ -215,99 +277,81 @@ struct SolvedNodes {
   std::size_t solved = 0;
   std::string first_failure;  // the message of the first gap
 };
-SolvedNodes solve_nodes(const WheelsetTrack& track, const WheelsetTableGrid& grid, const WheelsetOptions& wheelset_options,
-                        const WheelsetTableOptions& options, const WheelsetTableProgressCallback& progress,
-                        std::size_t done_before, std::size_t total) {
-  // The nodes in blocks of kWheelsetTableBlock consecutive y values at one yaw and load: along a
-  // block the wheelset's warm start carries over from node to node, each block starts cold. The
-  // blocks are independent, so the runner may compute them in any order and anywhere, and the
-  // table does not depend on it. A block travels as the JSON list of its nodes.
-  struct Block {
-    std::size_t iyaw, il, iy_begin, iy_end;
-  };
-  std::vector<Block> blocks;
-  for (std::size_t iyaw = 0; iyaw < grid.yaw_rad.size(); ++iyaw)
-    for (std::size_t il = 0; il < grid.wheel_load_N.size(); ++il)
-      for (std::size_t iy = 0; iy < grid.y_m.size(); iy += kWheelsetTableBlock)
-        blocks.push_back({iyaw, il, iy, std::min(iy + kWheelsetTableBlock, grid.y_m.size())});
-  const TableNodeSolver solve = [&](std::size_t b) {
-    const Block& block = blocks.at(b);
-    WheelsetOptions o = wheelset_options;
-    o.loads = WheelLoads{grid.wheel_load_N[block.il], grid.wheel_load_N[block.il], false};
-    Wheelset wheelset(track, o);
-    std::vector<WheelsetTableNode> solved_nodes;
-    const auto start = std::chrono::steady_clock::now();
-    for (std::size_t iy = block.iy_begin; iy < block.iy_end; ++iy) {
-      WheelsetTableNode node;
-      node.y_m = grid.y_m[iy];
-      node.yaw_rad = grid.yaw_rad[block.iyaw];
-      node.wheel_load_N = grid.wheel_load_N[block.il];
-      WheelsetState state;
-      state.position.lateral_displacement_m = node.y_m;
-      state.position.yaw_rad = node.yaw_rad;
-      try {
-        const WheelsetResult r = wheelset.evaluate(state);
-        for (int w = 0; w < 2; ++w) {
-          const WheelResult& wheel = r.wheels[w];
-          node.vertical_displacement_m[w] = wheel.vertical_displacement_m;
-          const Vector3 centre{0.0, node.y_m, track.nominal_axle_height_m() + wheel.vertical_displacement_m};
-          for (const WheelsetPatch& p : wheel.patches)
-            node.wheels[w].push_back(
-                table_patch(p, centre, wheel.side, options.runtime_elements, wheelset_options.nh_fastsim));
-        }
-      } catch (const Error& e) {
-        node.status = WheelsetTableNodeStatus::failed;
-        node.message = e.what();
-        node.wheels = {};
-      }
-      solved_nodes.push_back(std::move(node));
-    }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return fmt::format("{:.17g}\n{}", seconds, detail::wheelset_table_nodes_json(solved_nodes));
-  };
-  SolvedNodes out;
-  std::vector<WheelsetTableNode>& nodes = out.nodes;
-  nodes.resize(grid.size());
-  std::mutex store_lock;
-  std::size_t done = 0, blocks_stored = 0;
-  std::size_t first_failure_index = grid.size();
-  const TableNodeStore store = [&](std::size_t b, const std::string& text) {
-    const Block& block = blocks.at(b);
+
+// Where the runner's blocks come back (from any thread, in any order): each node in its place
+// in the grid, the solved ones and the first gap (in grid order) counted, the progress reported.
+class NodeStore {
+ public:
+  NodeStore(const WheelsetTableGrid& grid, const std::vector<NodeBlock>& blocks,
+            const WheelsetTableProgressCallback& progress, std::size_t done_before, std::size_t total)
+      : grid_(grid), blocks_(blocks), progress_(progress), done_before_(done_before), total_(total) {
+    out_.nodes.resize(grid.size());
+  }
+
+  void store(std::size_t b, const std::string& text) {
+    const NodeBlock& block = blocks_.at(b);
     const std::size_t newline = text.find('\n');
     const double seconds = std::stod(text.substr(0, newline));
     std::vector<WheelsetTableNode> block_nodes = detail::parse_wheelset_table_nodes(text.substr(newline + 1));
     require(block_nodes.size() == block.iy_end - block.iy_begin, "wheelset table: a block came back incomplete");
-    const std::lock_guard<std::mutex> guard(store_lock);
-    ++blocks_stored;
+    const std::lock_guard<std::mutex> guard(lock_);
+    ++blocks_stored_;
     for (std::size_t i = 0; i < block_nodes.size(); ++i) {
-      const std::size_t index = grid.index(block.iy_begin + i, block.iyaw, block.il);
-      WheelsetTableNode& node = nodes[index];
+      const std::size_t index = grid_.index(block.iy_begin + i, block.iyaw, block.il);
+      WheelsetTableNode& node = out_.nodes[index];
       node = std::move(block_nodes[i]);
-      if (node.status == WheelsetTableNodeStatus::solved) ++out.solved;
-      else if (index < first_failure_index) {
-        first_failure_index = index;
-        out.first_failure = node.message;
+      if (node.status == WheelsetTableNodeStatus::solved) {
+        ++out_.solved;
+      } else if (index < first_failure_index_) {
+        first_failure_index_ = index;
+        out_.first_failure = node.message;
       }
-      ++done;
-      if (progress) {
+      ++done_;
+      if (progress_) {
         WheelsetTableProgress p;
-        p.nodes_done = done_before + done;
-        p.nodes_total = total;
+        p.nodes_done = done_before_ + done_;
+        p.nodes_total = total_;
         p.node = &node;
         p.node_seconds = seconds / static_cast<double>(block_nodes.size());
-        progress(p);
+        progress_(p);
       }
     }
+  }
+
+  // The nodes, once every block is stored.
+  SolvedNodes finished() {
+    require(blocks_stored_ == blocks_.size() && done_ == out_.nodes.size(), [&] {
+      return fmt::format("wheelset table: the runner stored {} of the {} blocks", blocks_stored_, blocks_.size());
+    });
+    return std::move(out_);
+  }
+
+ private:
+  const WheelsetTableGrid& grid_;
+  const std::vector<NodeBlock>& blocks_;
+  const WheelsetTableProgressCallback& progress_;
+  std::size_t done_before_, total_;
+  std::mutex lock_;
+  SolvedNodes out_;
+  std::size_t done_ = 0, blocks_stored_ = 0;
+  std::size_t first_failure_index_ = std::numeric_limits<std::size_t>::max();
+};
+
+SolvedNodes solve_nodes(const WheelsetTrack& track, const WheelsetTableGrid& grid, const WheelsetOptions& wheelset_options,
+                        const WheelsetTableOptions& options, const WheelsetTableProgressCallback& progress,
+                        std::size_t done_before, std::size_t total) {
+  const std::vector<NodeBlock> blocks = node_blocks(grid);
+  const TableNodeSolver solve = [&](std::size_t b) {
+    return solve_block(track, grid, blocks.at(b), wheelset_options, options);
   };
+  NodeStore nodes(grid, blocks, progress, done_before, total);
+  const TableNodeStore store = [&](std::size_t b, const std::string& text) { nodes.store(b, text); };
   if (options.runner) {
     options.runner(blocks.size(), solve, store);
   } else {
     for (std::size_t b = 0; b < blocks.size(); ++b) store(b, solve(b));
   }
-  require(blocks_stored == blocks.size() && done == nodes.size(), [&] {
-    return fmt::format("wheelset table: the runner stored {} of the {} blocks", blocks_stored, blocks.size());
-  });
-  return out;
+  return nodes.finished();
 }
 
 // A wheel's lateral normal force at a node: its patches' pressure resultants along y (the
