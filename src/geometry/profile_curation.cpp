@@ -62,12 +62,27 @@ double z_on(const Profile& p, const Segment& s, double y) {
   return p.z_m[a] + t * (p.z_m[b] - p.z_m[a]);
 }
 
-// The envelope of the polyline seen from the side `sign` (+1: from +z, the largest z; −1: from −z),
-// with y increasing: at every point's y the nearest branch, from the left and from the right (two
-// points, a vertical step, where they differ). Points of the envelope that lie inside one of its
-// straight pieces are not kept.
-Profile envelope(const Profile& p, double sign, std::size_t& hidden_points, double& hidden_from_y_m,
-                 double& hidden_to_y_m) {
+// The envelope's points, each marked when it is a point of the profile (not a value interpolated
+// on a segment at another branch's y).
+struct EnvelopePoints {
+  std::vector<double> y_m, z_m;
+  std::vector<bool> vertex;
+
+  void push(double y, double z, bool is_vertex) {
+    if (!y_m.empty() && y_m.back() == y && std::abs(z_m.back() - z) <= 1e-12) {
+      vertex.back() = vertex.back() || is_vertex;
+      return;
+    }
+    y_m.push_back(y);
+    z_m.push_back(z);
+    vertex.push_back(is_vertex);
+  }
+};
+
+// The polyline seen from the side `sign` (+1: from +z, the largest z; −1: from −z), with y
+// increasing: at every point's y the nearest branch, from the left and from the right (two points,
+// a vertical step, where they differ). A sweep over y with the segments active at each.
+EnvelopePoints envelope_points(const Profile& p, double sign) {
   std::vector<Segment> segments;
   for (std::size_t i = 0; i + 1 < p.size(); ++i)
     if (p.y_m[i] != p.y_m[i + 1])
@@ -77,21 +92,9 @@ Profile envelope(const Profile& p, double sign, std::size_t& hidden_points, doub
   std::sort(ys.begin(), ys.end());
   ys.erase(std::unique(ys.begin(), ys.end()), ys.end());
 
-  // The envelope's points, each marked when it is a point of the profile (not a value interpolated
-  // on a segment at another branch's y).
-  std::vector<double> ey, ez;
-  std::vector<bool> vertex;
+  EnvelopePoints e;
   std::vector<std::size_t> active;
   std::size_t next = 0;
-  const auto push = [&](double y, double z, bool is_vertex) {
-    if (!ey.empty() && ey.back() == y && std::abs(ez.back() - z) <= 1e-12) {
-      vertex.back() = vertex.back() || is_vertex;
-      return;
-    }
-    ey.push_back(y);
-    ez.push_back(z);
-    vertex.push_back(is_vertex);
-  };
   const auto ends_at = [&](const Segment& s, double y) { return p.y_m[s.i] == y || p.y_m[s.i + 1] == y; };
   for (const double y : ys) {
     while (next < segments.size() && segments[next].y_lo <= y) active.push_back(next++);
@@ -106,18 +109,24 @@ Profile envelope(const Profile& p, double sign, std::size_t& hidden_points, doub
       if (s.y_lo < y && (left == nullptr || sign * (z - z_left) > 0.0)) left = &s, z_left = z;
       if (s.y_hi > y && (right == nullptr || sign * (z - z_right) > 0.0)) right = &s, z_right = z;
     }
-    if (left != nullptr) push(y, z_left, ends_at(*left, y));
-    if (right != nullptr) push(y, z_right, ends_at(*right, y));
+    if (left != nullptr) e.push(y, z_left, ends_at(*left, y));
+    if (right != nullptr) e.push(y, z_right, ends_at(*right, y));
   }
-  // Kept: the profile's points on the envelope, its ends and the two points of each step.
+  return e;
+}
+
+// The envelope as a profile: the profile's points on it, its ends and the two points of each step
+// (a step longer than 1 mm sampled every millimetre: the checks bound the gap between points).
+// Points inside one of its straight pieces are not kept.
+Profile kept_envelope(const Profile& p, const EnvelopePoints& e) {
   Profile kept;
   kept.kind = p.kind;
   kept.source = p.source;
+  const std::vector<double>&ey = e.y_m, &ez = e.z_m;
   for (std::size_t j = 0; j < ey.size(); ++j) {
     const bool end = j == 0 || j + 1 == ey.size();
     const bool step = (j > 0 && ey[j - 1] == ey[j]) || (j + 1 < ey.size() && ey[j + 1] == ey[j]);
-    if (!(end || step || vertex[j])) continue;
-    // A step longer than 1 mm is sampled every millimetre (the checks bound the gap between points).
+    if (!(end || step || e.vertex[j])) continue;
     if (!kept.y_m.empty() && kept.y_m.back() == ey[j]) {
       const double z0 = kept.z_m.back(), rise = ez[j] - z0;
       const int pieces = static_cast<int>(std::ceil(std::abs(rise) / kMm));
@@ -129,10 +138,18 @@ Profile envelope(const Profile& p, double sign, std::size_t& hidden_points, doub
     kept.y_m.push_back(ey[j]);
     kept.z_m.push_back(ez[j]);
   }
-  // The hidden points: those further from the viewer than the envelope at their y.
-  hidden_points = 0;
-  hidden_from_y_m = std::numeric_limits<double>::infinity();
-  hidden_to_y_m = -std::numeric_limits<double>::infinity();
+  return kept;
+}
+
+// The profile's points hidden behind the envelope (further from the viewer than it at their y),
+// and the y range they span.
+struct HiddenPoints {
+  std::size_t count = 0;
+  double from_y_m = std::numeric_limits<double>::infinity();
+  double to_y_m = -std::numeric_limits<double>::infinity();
+};
+HiddenPoints hidden_points(const Profile& p, const Profile& kept, double sign) {
+  HiddenPoints hidden;
   std::size_t j = 0;
   std::vector<std::size_t> order(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) order[i] = i;
@@ -151,11 +168,22 @@ Profile envelope(const Profile& p, double sign, std::size_t& hidden_points, doub
       }
     }
     if (sign * (nearest - p.z_m[i]) > 1e-9) {
-      ++hidden_points;
-      hidden_from_y_m = std::min(hidden_from_y_m, y);
-      hidden_to_y_m = std::max(hidden_to_y_m, y);
+      ++hidden.count;
+      hidden.from_y_m = std::min(hidden.from_y_m, y);
+      hidden.to_y_m = std::max(hidden.to_y_m, y);
     }
   }
+  return hidden;
+}
+
+// The envelope of the polyline seen from the side `sign`, and the points it hides.
+Profile envelope(const Profile& p, double sign, std::size_t& hidden_count, double& hidden_from_y_m,
+                 double& hidden_to_y_m) {
+  Profile kept = kept_envelope(p, envelope_points(p, sign));
+  const HiddenPoints hidden = hidden_points(p, kept, sign);
+  hidden_count = hidden.count;
+  hidden_from_y_m = hidden.from_y_m;
+  hidden_to_y_m = hidden.to_y_m;
   return kept;
 }
 
