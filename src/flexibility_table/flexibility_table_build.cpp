@@ -156,9 +156,10 @@ std::vector<double> flexibility_table_y_grid(double y_from_m, double y_to_m, dou
   return y;
 }
 
-FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::vector<double>& y_grid_m,
-                                         const std::vector<double>& load_grid_N, const FlexibilityTableOptions& options,
-                                         const FlexibilityTableProgressCallback& progress) {
+namespace {
+
+void validate_build_inputs(const std::vector<double>& y_grid_m, const std::vector<double>& load_grid_N,
+                           const FlexibilityTableOptions& options) {
   validate(options);
   validate_grid(y_grid_m, "y", kMaxYValues);
   validate_grid(load_grid_N, "vertical load", kMaxLoads);
@@ -171,7 +172,10 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
             return fmt::format("flexibility table: the target elements in contact {} must lie in [{}, {}]",
                                options.patch.target_elements, kMinimumWheelRailElements, kMaximumWheelRailElements);
           });
+}
 
+// What the table was built from and with.
+FlexibilityTableMetadata table_metadata(const WheelRailPair& pair, const FlexibilityTableOptions& options) {
   FlexibilityTableMetadata metadata;
   metadata.wheel_profile = file_fingerprint(pair.wheel().source());
   metadata.rail_profile = file_fingerprint(pair.rail().source());
@@ -183,9 +187,20 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   metadata.flexibility_coarsening = options.nh_fastsim.flexibility_coarsening;
   metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
+  return metadata;
+}
 
-  // Contact jumps: on the geometry alone (the first-touch point does not depend on the load). The
-  // smooth reference moves continuously: it has none.
+// The table's y values: the grid with both ends of every contact jump added, and the jumps by
+// their left node.
+struct YGridWithJumps {
+  std::vector<double> y_m;
+  std::vector<ContactJump> jumps;
+};
+
+// Contact jumps: on the geometry alone (the first-touch point does not depend on the load). The
+// smooth reference moves continuously: it has none.
+YGridWithJumps y_grid_with_jumps(const WheelRailPair& pair, const std::vector<double>& y_grid_m,
+                                 const FlexibilityTableOptions& options) {
   std::vector<JumpBracket> brackets;
   if (options.locate_contact_jumps && options.patch.reference == ContactReference::first_touch) {
     std::vector<std::optional<WheelRailContactPoint>> points;
@@ -194,18 +209,45 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
       if (points[k] && points[k + 1])
         find_jumps(pair, y_grid_m[k], *points[k], y_grid_m[k + 1], *points[k + 1], options, brackets);
   }
-  std::vector<double> y = y_grid_m;
+  YGridWithJumps grid{y_grid_m, {}};
+  std::vector<double>& y = grid.y_m;
   for (const JumpBracket& j : brackets) {
     y.push_back(j.y_left_m);
     y.push_back(j.y_right_m);
   }
   std::sort(y.begin(), y.end());
   y.erase(std::unique(y.begin(), y.end()), y.end());
-  std::vector<ContactJump> jumps;
   for (const JumpBracket& j : brackets) {
     const auto left = static_cast<std::size_t>(std::lower_bound(y.begin(), y.end(), j.y_left_m) - y.begin());
-    jumps.push_back({left, j.y_rail_left_m, j.y_rail_right_m});
+    grid.jumps.push_back({left, j.y_rail_left_m, j.y_rail_right_m});
   }
+  return grid;
+}
+
+// The solve time at the head of node k's text ("seconds\nnode JSON"). The text may come from a
+// shard's journal (railcontact merge): checked, not trusted.
+double node_seconds(std::size_t k, const std::string& text, std::size_t newline) {
+  const std::string time = text.substr(0, newline);
+  char* end = nullptr;
+  const double seconds = std::strtod(time.c_str(), &end);
+  require(newline != std::string::npos && !time.empty() && end == time.c_str() + time.size() && std::isfinite(seconds),
+          [&] {
+            return fmt::format("flexibility table: node {} does not begin with its solve time in seconds (got '{}'; a "
+                               "damaged shard journal?)",
+                               k, printable_excerpt(time));
+          });
+  return seconds;
+}
+
+}  // namespace
+
+FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::vector<double>& y_grid_m,
+                                         const std::vector<double>& load_grid_N, const FlexibilityTableOptions& options,
+                                         const FlexibilityTableProgressCallback& progress) {
+  validate_build_inputs(y_grid_m, load_grid_N, options);
+  FlexibilityTableMetadata metadata = table_metadata(pair, options);
+  YGridWithJumps grid = y_grid_with_jumps(pair, y_grid_m, options);
+  const std::vector<double>& y = grid.y_m;
 
   // Every node on its own (no state carries over from one to the next), so that the runner may
   // compute them in any order and anywhere; encoded for the runner as "seconds\nnode JSON".
@@ -222,17 +264,8 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   std::size_t solved = 0, stored = 0;
   const TableNodeStore store = [&](std::size_t k, const std::string& text) {
     require(k < total, [&] { return fmt::format("flexibility table: the runner stored node {} of {}", k, total); });
-    // The text may come from a shard's journal (railcontact merge): checked, not trusted.
     const std::size_t newline = text.find('\n');
-    const std::string time = text.substr(0, newline);
-    char* end = nullptr;
-    const double seconds = std::strtod(time.c_str(), &end);
-    require(newline != std::string::npos && !time.empty() && end == time.c_str() + time.size() && std::isfinite(seconds),
-            [&] {
-              return fmt::format("flexibility table: node {} does not begin with its solve time in seconds (got '{}'; a "
-                                 "damaged shard journal?)",
-                                 k, printable_excerpt(time));
-            });
+    const double seconds = node_seconds(k, text, newline);
     FlexibilityTableNode n = detail::parse_flexibility_table_node(text.substr(newline + 1), k);
     const std::lock_guard<std::mutex> guard(store_lock);
     nodes[k] = std::move(n);
@@ -250,7 +283,8 @@ FlexibilityTable build_flexibility_table(const WheelRailPair& pair, const std::v
   });
   require(solved > 0,
           [&] { return fmt::format("flexibility table: no node could be solved (first: {})", nodes.front().message); });
-  return FlexibilityTable(std::move(metadata), std::move(y), load_grid_N, std::move(nodes), std::move(jumps));
+  return FlexibilityTable(std::move(metadata), std::move(grid.y_m), load_grid_N, std::move(nodes),
+                          std::move(grid.jumps));
 }
 
 }  // namespace railcontact

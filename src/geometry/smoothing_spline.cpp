@@ -90,24 +90,31 @@ std::string name_of(const Profile& profile) {
   return profile.source.empty() ? std::string("(unnamed)") : profile.source;
 }
 
-}  // namespace
-
-SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& options) {
-  validate(profile);
+void validate(const SmoothingOptions& options) {
   require(std::isfinite(options.smoothing_length_m) && options.smoothing_length_m >= 0.0,
           "smoothing: the smoothing length must be non-negative");
   require(std::isfinite(options.knot_spacing_m) && options.knot_spacing_m > 0.0,
           "smoothing: the knot spacing must be positive");
   require(options.penalty_derivative >= 1 && options.penalty_derivative <= kDegree,
           "smoothing: the penalised derivative must be of order 1, 2 or 3");
+}
 
-  // Points ordered so that y grows along the curve; coincident points dropped.
+// The profile's points with their chord length s from the first.
+struct ChordPoints {
+  std::vector<double> y, z, s;
+};
+
+// Points ordered so that y grows along the curve; coincident points dropped.
+ChordPoints chord_length_points(const Profile& profile) {
   std::vector<double> py = profile.y_m, pz = profile.z_m;
   if (py.front() > py.back()) {
     std::reverse(py.begin(), py.end());
     std::reverse(pz.begin(), pz.end());
   }
-  std::vector<double> y{py.front()}, z{pz.front()}, s{0.0};
+  ChordPoints points{{py.front()}, {pz.front()}, {0.0}};
+  std::vector<double>& y = points.y;
+  std::vector<double>& z = points.z;
+  std::vector<double>& s = points.s;
   for (std::size_t i = 1; i < py.size(); ++i) {
     const double ds = std::hypot(py[i] - y.back(), pz[i] - z.back());
     if (ds <= 1e-12) continue;
@@ -115,67 +122,104 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
     z.push_back(pz[i]);
     s.push_back(s.back() + ds);
   }
-  const std::size_t n = s.size();
-  require(n >= 4, [&] { return fmt::format("profile {}: fewer than 4 distinct points", name_of(profile)); });
-  const double length = s.back();
+  require(s.size() >= 4, [&] { return fmt::format("profile {}: fewer than 4 distinct points", name_of(profile)); });
+  return points;
+}
 
-  // Clamped uniform knot vector on [0, length]. The number of knot intervals is computed in
-  // double and bounded before it becomes an int (memory grows with it: about 1 kB per interval).
-  const double wanted_intervals = std::ceil(length / options.knot_spacing_m);
+// Clamped uniform knot vector on [0, length]: `intervals` knot intervals h long, and
+// intervals + 3 control points.
+struct KnotGrid {
+  int intervals = 0;
+  double h = 0.0;
+  Curve::KnotVectorType knots;
+  [[nodiscard]] int control_points() const { return intervals + kDegree; }
+};
+
+// The number of knot intervals is computed in double and bounded before it becomes an int
+// (memory grows with it: about 1 kB per interval).
+KnotGrid clamped_knot_grid(const Profile& profile, double length, double knot_spacing_m) {
+  const double wanted_intervals = std::ceil(length / knot_spacing_m);
   require(wanted_intervals <= kMaximumKnotIntervals, [&] {
     return fmt::format(
         "profile {}: a curve {:.4g} mm long with knots every {:.4g} mm needs {:.4g} knot intervals; at most {} "
         "(increase the knot spacing)",
-        name_of(profile), length * 1e3, options.knot_spacing_m * 1e3, wanted_intervals, kMaximumKnotIntervals);
+        name_of(profile), length * 1e3, knot_spacing_m * 1e3, wanted_intervals, kMaximumKnotIntervals);
   });
-  const int intervals = std::max(4, static_cast<int>(wanted_intervals));
-  const double h = length / intervals;
-  const int n_ctrl = intervals + kDegree;
-  Curve::KnotVectorType knots(intervals + 2 * kDegree + 1);
-  for (int j = 0; j < knots.size(); ++j) {
+  KnotGrid grid;
+  grid.intervals = std::max(4, static_cast<int>(wanted_intervals));
+  const int intervals = grid.intervals;
+  grid.h = length / intervals;
+  grid.knots.resize(intervals + 2 * kDegree + 1);
+  for (int j = 0; j < grid.knots.size(); ++j) {
     const int b = std::clamp(j - kDegree, 0, intervals);
-    knots(j) = b == intervals ? length : b * h;
+    grid.knots(j) = b == intervals ? length : b * grid.h;
   }
+  return grid;
+}
 
-  // Normal equations (B' W B + L^(2m) P) c = B' W p, with two right-hand sides (y, z).
+// Normal equations (B' W B + L^(2m) P) c = B' W p, with two right-hand sides (y, z): the matrix
+// as entries summed on assembly.
+struct NormalEquations {
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(static_cast<std::size_t>(16) * (n + static_cast<std::size_t>(intervals)));
-  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n_ctrl, 2);
+  Eigen::MatrixX2d rhs;
+};
+
+// The least-squares part B' W B and B' W p, w_i = arc length per point.
+void add_data_terms(const ChordPoints& points, const KnotGrid& grid, NormalEquations& equations) {
+  const std::vector<double>& y = points.y;
+  const std::vector<double>& z = points.z;
+  const std::vector<double>& s = points.s;
+  const std::size_t n = s.size();
   for (std::size_t i = 0; i < n; ++i) {
     const double w = 0.5 * (s[std::min(i + 1, n - 1)] - s[i == 0 ? 0 : i - 1]);
-    const auto span = Curve::Span(s[i], kDegree, knots);
-    const auto basis = Curve::BasisFunctions(s[i], kDegree, knots);
+    const auto span = Curve::Span(s[i], kDegree, grid.knots);
+    const auto basis = Curve::BasisFunctions(s[i], kDegree, grid.knots);
     for (int a = 0; a <= kDegree; ++a) {
       const auto ia = static_cast<int>(span) - kDegree + a;
-      rhs(ia, 0) += w * basis(a) * y[i];
-      rhs(ia, 1) += w * basis(a) * z[i];
+      equations.rhs(ia, 0) += w * basis(a) * y[i];
+      equations.rhs(ia, 1) += w * basis(a) * z[i];
       for (int b = 0; b <= kDegree; ++b) {
-        triplets.emplace_back(ia, static_cast<int>(span) - kDegree + b, w * basis(a) * basis(b));
+        equations.triplets.emplace_back(ia, static_cast<int>(span) - kDegree + b, w * basis(a) * basis(b));
       }
     }
   }
-  // Penalty L^(2m) ∫ |C^(m)|^2 ds, integrated exactly on every knot interval by 2-point Gauss
-  // quadrature (C^(m) is a polynomial of degree 3 - m there).
-  const int m = options.penalty_derivative;
-  const double lambda = std::pow(options.smoothing_length_m, 2 * m);
-  if (lambda > 0.0) {
-    const double gauss = 0.5 / std::sqrt(3.0);
-    for (int k = 0; k < intervals; ++k) {
-      for (const double offset : {0.5 - gauss, 0.5 + gauss}) {
-        const double u = (k + offset) * h;
-        const auto span = Curve::Span(u, kDegree, knots);
-        const auto derivatives = Curve::BasisFunctionDerivatives(u, m, kDegree, knots);
-        for (int a = 0; a <= kDegree; ++a) {
-          for (int b = 0; b <= kDegree; ++b) {
-            triplets.emplace_back(static_cast<int>(span) - kDegree + a, static_cast<int>(span) - kDegree + b,
-                                  lambda * 0.5 * h * derivatives(m, a) * derivatives(m, b));
-          }
+}
+
+// Penalty L^(2m) ∫ |C^(m)|^2 ds (lambda = L^(2m)), integrated exactly on every knot interval by
+// 2-point Gauss quadrature (C^(m) is a polynomial of degree 3 - m there).
+void add_penalty(const KnotGrid& grid, int m, double lambda, NormalEquations& equations) {
+  const double gauss = 0.5 / std::sqrt(3.0);
+  const double h = grid.h;
+  for (int k = 0; k < grid.intervals; ++k) {
+    for (const double offset : {0.5 - gauss, 0.5 + gauss}) {
+      const double u = (k + offset) * h;
+      const auto span = Curve::Span(u, kDegree, grid.knots);
+      const auto derivatives = Curve::BasisFunctionDerivatives(u, m, kDegree, grid.knots);
+      for (int a = 0; a <= kDegree; ++a) {
+        for (int b = 0; b <= kDegree; ++b) {
+          equations.triplets.emplace_back(static_cast<int>(span) - kDegree + a, static_cast<int>(span) - kDegree + b,
+                                          lambda * 0.5 * h * derivatives(m, a) * derivatives(m, b));
         }
       }
     }
   }
+}
+
+// The control points of the penalised least-squares curve (one column per coordinate).
+Eigen::MatrixX2d fitted_coefficients(const Profile& profile, const ChordPoints& points, const KnotGrid& grid,
+                                     const SmoothingOptions& options) {
+  const std::size_t n = points.s.size();
+  const int n_ctrl = grid.control_points();
+  NormalEquations equations;
+  equations.triplets.reserve(static_cast<std::size_t>(16) * (n + static_cast<std::size_t>(grid.intervals)));
+  equations.rhs = Eigen::MatrixX2d::Zero(n_ctrl, 2);
+  add_data_terms(points, grid, equations);
+  const int m = options.penalty_derivative;
+  const double lambda = std::pow(options.smoothing_length_m, 2 * m);
+  if (lambda > 0.0) add_penalty(grid, m, lambda, equations);
+
   Eigen::SparseMatrix<double> normal(n_ctrl, n_ctrl);
-  normal.setFromTriplets(triplets.begin(), triplets.end());
+  normal.setFromTriplets(equations.triplets.begin(), equations.triplets.end());
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(normal);
   require(solver.info() == Eigen::Success, [&] {
     return fmt::format(
@@ -183,21 +227,20 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
         "spacing; increase the smoothing length)",
         name_of(profile));
   });
-  const Eigen::MatrixX2d coefficients = solver.solve(rhs);
+  Eigen::MatrixX2d coefficients = solver.solve(equations.rhs);
   require(solver.info() == Eigen::Success && coefficients.allFinite(),
           [&] { return fmt::format("profile {}: the smoothing spline could not be computed", name_of(profile)); });
+  return coefficients;
+}
 
-  auto impl = std::make_shared<Impl>();
-  const Curve curve(knots, coefficients.transpose());
-  impl->s_begin_m = 0.0;
-  impl->s_end_m = length;
-  impl->source = profile.source;
-  impl->kind = profile.kind;
-  impl->knot_spacing_m = h;
-  impl->intervals.resize(static_cast<std::size_t>(intervals));
-  for (int k = 0; k < intervals; ++k) {
+// The impl's intervals and its table of y's running maximum from the fitted curve on its knot
+// vector (s_end_m set).
+void tabulate(const Curve& curve, const Curve::KnotVectorType& knots, int interval_count, SmoothProfile::Impl& impl) {
+  // The Taylor coefficients at every knot interval's middle.
+  impl.intervals.resize(static_cast<std::size_t>(interval_count));
+  for (int k = 0; k < interval_count; ++k) {
     const double lower = knots(k + kDegree), upper = knots(k + kDegree + 1);
-    Impl::Interval& interval = impl->intervals[static_cast<std::size_t>(k)];
+    SmoothProfile::Impl::Interval& interval = impl.intervals[static_cast<std::size_t>(k)];
     interval.middle_m = 0.5 * (lower + upper);
     const auto d = curve.derivatives<kDegree>(interval.middle_m);
     for (int order = 0; order <= kDegree; ++order) {
@@ -205,16 +248,37 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
       interval.z[static_cast<std::size_t>(order)] = d(1, order);
     }
   }
-  const int samples = 4 * intervals;
-  impl->table_s_m.resize(static_cast<std::size_t>(samples) + 1);
-  impl->table_y_max_m.resize(static_cast<std::size_t>(samples) + 1);
+  // The running maximum of y on four samples per interval.
+  const double length = impl.s_end_m;
+  const int samples = 4 * interval_count;
+  impl.table_s_m.resize(static_cast<std::size_t>(samples) + 1);
+  impl.table_y_max_m.resize(static_cast<std::size_t>(samples) + 1);
   double y_max = -std::numeric_limits<double>::infinity();
   for (int k = 0; k <= samples; ++k) {
     const double sk = k == samples ? length : k * (length / samples);
-    y_max = std::max(y_max, impl->y_at(sk));
-    impl->table_s_m[static_cast<std::size_t>(k)] = sk;
-    impl->table_y_max_m[static_cast<std::size_t>(k)] = y_max;
+    y_max = std::max(y_max, impl.y_at(sk));
+    impl.table_s_m[static_cast<std::size_t>(k)] = sk;
+    impl.table_y_max_m[static_cast<std::size_t>(k)] = y_max;
   }
+}
+
+}  // namespace
+
+SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& options) {
+  validate(profile);
+  validate(options);
+  const ChordPoints points = chord_length_points(profile);
+  const double length = points.s.back();
+  const KnotGrid grid = clamped_knot_grid(profile, length, options.knot_spacing_m);
+  const Eigen::MatrixX2d coefficients = fitted_coefficients(profile, points, grid, options);
+
+  auto impl = std::make_shared<Impl>();
+  impl->s_begin_m = 0.0;
+  impl->s_end_m = length;
+  impl->source = profile.source;
+  impl->kind = profile.kind;
+  impl->knot_spacing_m = grid.h;
+  tabulate(Curve(grid.knots, coefficients.transpose()), grid.knots, grid.intervals, *impl);
   impl_ = std::move(impl);
 }
 

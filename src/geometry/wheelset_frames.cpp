@@ -19,6 +19,93 @@ Vector3 add(const Vector3& a, const Vector3& b, double scale = 1.0) {
   return {a[0] + scale * b[0], a[1] + scale * b[1], a[2] + scale * b[2]};
 }
 
+// Each locus sample stands for a lateral strip of the overlap, |Δy| wide (half the distance between
+// its neighbours on the rail profile), in which the wheel dips below the rail by e = −g (the
+// vertical gap g < 0 at the locus point) and rises as x²/2r along the track (r: the nominal radius
+// r0, as Kalker's CONTACT takes it). Its weight in the region's averages (docs/WHEELSET.md §4):
+//   depth:        e |Δy|;
+//   squared gap:  |Δy| ∫ (e − x²/2r)² dx over the strip's overlap |x| < sqrt(2 r e)
+//                 = |Δy| (16/15) e² sqrt(2 r e).
+// Both fall to zero continuously at the region's ends, so the averages move continuously with
+// the position.
+double sample_width_m(const std::vector<ContactLocusSample>& locus, std::size_t k) {
+  return 0.5 * std::abs(locus[std::min(k + 1, locus.size() - 1)].rail_profile_y_m -
+                        locus[k > 0 ? k - 1 : 0].rail_profile_y_m);
+}
+
+double sample_weight(const std::vector<ContactLocusSample>& locus, std::size_t k, ReferenceWeighting weighting,
+                     double nominal_radius_m) {
+  const double e = -locus[k].vertical_gap_m, width = sample_width_m(locus, k);
+  return weighting == ReferenceWeighting::depth ? e * width
+                                                : width * (16.0 / 15.0) * e * e * std::sqrt(2.0 * nominal_radius_m * e);
+}
+
+// The overlap's extent along the locus samples first..last: the lateral range on the rail profile,
+// the deepest normal interpenetration, and the rail normal angle's range over the part of the
+// overlap at least half as deep as its deepest point: for a Hertzian contact that part is as wide
+// as the contact area (the rigid overlap is √2 wider), so the range is the contact's, not the
+// overlap's.
+void set_overlap_extent(const std::vector<ContactLocusSample>& locus, std::size_t first, std::size_t last,
+                        InterpenetrationRegion& r) {
+  r.max_interpenetration_m = 0.0;
+  r.rail_profile_y_min_m = std::numeric_limits<double>::infinity();
+  r.rail_profile_y_max_m = -std::numeric_limits<double>::infinity();
+  r.contact_angle_min_rad = std::numeric_limits<double>::infinity();
+  r.contact_angle_max_rad = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = first; k <= last; ++k) {
+    const ContactLocusSample& s = locus[k];
+    r.rail_profile_y_min_m = std::min(r.rail_profile_y_min_m, s.rail_profile_y_m);
+    r.rail_profile_y_max_m = std::max(r.rail_profile_y_max_m, s.rail_profile_y_m);
+    if (!(s.vertical_gap_m < 0.0)) continue;
+    r.max_interpenetration_m = std::max(r.max_interpenetration_m, -s.vertical_gap_m * std::cos(s.contact_angle_rad));
+  }
+  double deepest = 0.0;
+  for (std::size_t k = first; k <= last; ++k) deepest = std::max(deepest, -locus[k].vertical_gap_m);
+  for (std::size_t k = first; k <= last; ++k) {
+    if (!(-locus[k].vertical_gap_m >= 0.5 * deepest)) continue;
+    r.contact_angle_min_rad = std::min(r.contact_angle_min_rad, locus[k].contact_angle_rad);
+    r.contact_angle_max_rad = std::max(r.contact_angle_max_rad, locus[k].contact_angle_rad);
+  }
+}
+
+// The averages over the overlapping samples with the reference weighting (profile positions,
+// contact angle and its spread, rolling radius) and the depth weighting's total; returns the
+// average x of the locus points, the reference point's.
+double set_weighted_averages(const std::vector<ContactLocusSample>& locus, std::size_t first, std::size_t last,
+                             ReferenceWeighting weighting, double nominal_radius_m, InterpenetrationRegion& r) {
+  double sum_w = 0.0, sum_y = 0.0, sum_yw = 0.0, sum_angle = 0.0, sum_radius = 0.0, sum_x = 0.0, sum_depth = 0.0;
+  for (std::size_t k = first; k <= last; ++k) {
+    const ContactLocusSample& s = locus[k];
+    if (!(s.vertical_gap_m < 0.0)) continue;
+    const double e = -s.vertical_gap_m;
+    const double w = sample_weight(locus, k, weighting, nominal_radius_m);
+    sum_depth += e * sample_width_m(locus, k);
+    sum_w += w;
+    sum_y += w * s.rail_profile_y_m;
+    sum_yw += w * s.wheel_profile_y_m;
+    sum_angle += w * s.contact_angle_rad;
+    sum_radius += w * s.rolling_radius_m;
+    sum_x += w * s.point_track_m[0];
+  }
+  require(sum_w > 0.0, "contact search: an interpenetration region without overlap");
+  r.interpenetration_area_m2 = sum_depth;
+  r.rail_profile_y_m = sum_y / sum_w;
+  r.wheel_profile_y_m = sum_yw / sum_w;
+  r.contact_angle_rad = sum_angle / sum_w;
+  // The angle's spread about it, with the same weights: it grows continuously as a second hump of
+  // the overlap deepens (the half-depth range above jumps when one crosses half the depth).
+  double sum_square = 0.0;
+  for (std::size_t k = first; k <= last; ++k) {
+    const ContactLocusSample& s = locus[k];
+    if (!(s.vertical_gap_m < 0.0)) continue;
+    const double d = s.contact_angle_rad - r.contact_angle_rad;
+    sum_square += sample_weight(locus, k, weighting, nominal_radius_m) * d * d;
+  }
+  r.contact_angle_spread_rad = std::sqrt(sum_square / sum_w);
+  r.rolling_radius_m = sum_radius / sum_w;
+  return sum_x / sum_w;
+}
+
 }  // namespace
 
 WheelOnRail::WheelOnRail(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position)
@@ -78,79 +165,30 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
   r.side = side_;
   r.first_sample = first;
   r.last_sample = last;
-  // Each sample stands for a lateral strip of the overlap, |Δy| wide, in which the wheel dips below
-  // the rail by e = −g (the vertical gap g < 0 at the locus point) and rises as x²/2r along the
-  // track (r: the nominal radius r0, as Kalker's CONTACT takes it). Its weight (docs/WHEELSET.md §4):
-  //   depth:        e |Δy|;
-  //   squared gap:  |Δy| ∫ (e − x²/2r)² dx over the strip's overlap |x| < sqrt(2 r e)
-  //                 = |Δy| (16/15) e² sqrt(2 r e).
-  // Both fall to zero continuously at the region's ends, so the averages move continuously with
-  // the position.
-  const auto sample_width = [&](std::size_t k) {
-    return 0.5 * std::abs(locus[std::min(k + 1, locus.size() - 1)].rail_profile_y_m -
-                          locus[k > 0 ? k - 1 : 0].rail_profile_y_m);
-  };
-  const auto sample_weight = [&](std::size_t k) {
-    const double e = -locus[k].vertical_gap_m, width = sample_width(k);
-    return weighting == ReferenceWeighting::depth ? e * width
-                                                  : width * (16.0 / 15.0) * e * e * std::sqrt(2.0 * nominal_radius_m_ * e);
-  };
-  double sum_w = 0.0, sum_y = 0.0, sum_yw = 0.0, sum_angle = 0.0, sum_radius = 0.0, sum_x = 0.0, sum_depth = 0.0;
-  r.max_interpenetration_m = 0.0;
-  r.rail_profile_y_min_m = std::numeric_limits<double>::infinity();
-  r.rail_profile_y_max_m = -std::numeric_limits<double>::infinity();
-  r.contact_angle_min_rad = std::numeric_limits<double>::infinity();
-  r.contact_angle_max_rad = -std::numeric_limits<double>::infinity();
-  for (std::size_t k = first; k <= last; ++k) {
-    const ContactLocusSample& s = locus[k];
-    r.rail_profile_y_min_m = std::min(r.rail_profile_y_min_m, s.rail_profile_y_m);
-    r.rail_profile_y_max_m = std::max(r.rail_profile_y_max_m, s.rail_profile_y_m);
-    if (!(s.vertical_gap_m < 0.0)) continue;
-    const double e = -s.vertical_gap_m;
-    const double w = sample_weight(k);
-    sum_depth += e * sample_width(k);
-    sum_w += w;
-    sum_y += w * s.rail_profile_y_m;
-    sum_yw += w * s.wheel_profile_y_m;
-    sum_angle += w * s.contact_angle_rad;
-    sum_radius += w * s.rolling_radius_m;
-    sum_x += w * s.point_track_m[0];
-    r.max_interpenetration_m = std::max(r.max_interpenetration_m, -s.vertical_gap_m * std::cos(s.contact_angle_rad));
-  }
-  require(sum_w > 0.0, "contact search: an interpenetration region without overlap");
-  // The rail normal angle's range over the part of the overlap at least half as deep as its
-  // deepest point: for a Hertzian contact that part is as wide as the contact area (the rigid
-  // overlap is √2 wider), so the range is the contact's, not the overlap's.
-  double deepest = 0.0;
-  for (std::size_t k = first; k <= last; ++k) deepest = std::max(deepest, -locus[k].vertical_gap_m);
-  for (std::size_t k = first; k <= last; ++k) {
-    if (!(-locus[k].vertical_gap_m >= 0.5 * deepest)) continue;
-    r.contact_angle_min_rad = std::min(r.contact_angle_min_rad, locus[k].contact_angle_rad);
-    r.contact_angle_max_rad = std::max(r.contact_angle_max_rad, locus[k].contact_angle_rad);
-  }
-  r.interpenetration_area_m2 = sum_depth;
-  r.rail_profile_y_m = sum_y / sum_w;
-  r.wheel_profile_y_m = sum_yw / sum_w;
-  r.contact_angle_rad = sum_angle / sum_w;
-  // The angle's spread about it, with the same weights: it grows continuously as a second hump of
-  // the overlap deepens (the half-depth range above jumps when one crosses half the depth).
-  double sum_square = 0.0;
-  for (std::size_t k = first; k <= last; ++k) {
-    const ContactLocusSample& s = locus[k];
-    if (!(s.vertical_gap_m < 0.0)) continue;
-    const double d = s.contact_angle_rad - r.contact_angle_rad;
-    sum_square += sample_weight(k) * d * d;
-  }
-  r.contact_angle_spread_rad = std::sqrt(sum_square / sum_w);
-  r.rolling_radius_m = sum_radius / sum_w;
-  const double x_reference = sum_x / sum_w;
-  const ProfileCurvePoint o = rail_->at(rail_->parameter_at(r.rail_profile_y_m));
-  r.reference_point_track_m = {x_reference, sign_ * (rail_offset_m_ + o.y_m), -o.z_m};
+  set_overlap_extent(locus, first, last, r);
+  const double x_reference_m = set_weighted_averages(locus, first, last, weighting, nominal_radius_m_, r);
+  set_contact_frame(x_reference_m, r);
+  set_tangent_plane_box(locus, first, last, x_reference_m, r);
+  return r;
+}
+
+Vector3 WheelOnRail::rail_point_track_m(double x_m, double rail_profile_y_m) const {
+  const ProfileCurvePoint q = rail_->at(rail_->parameter_at(rail_profile_y_m));
+  return {x_m, sign_ * (rail_offset_m_ + q.y_m), -q.z_m};
+}
+
+void WheelOnRail::set_contact_frame(double x_reference_m, InterpenetrationRegion& r) const {
+  // The reference point on the rail surface below the average rail profile position; X3 the rail
+  // normal at the average angle, X1 along the track.
+  r.reference_point_track_m = rail_point_track_m(x_reference_m, r.rail_profile_y_m);
   const double sg = std::sin(r.contact_angle_rad), cg = std::cos(r.contact_angle_rad);
   r.x1_axis = {1.0, 0.0, 0.0};
   r.x3_axis = {0.0, -sign_ * sg, cg};
   r.x2_axis = cross(r.x3_axis, r.x1_axis);
+}
 
+void WheelOnRail::set_tangent_plane_box(const std::vector<ContactLocusSample>& locus, std::size_t first,
+                                        std::size_t last, double x_reference_m, InterpenetrationRegion& r) const {
   // Bounding box of the overlap in the tangent plane: laterally from the separated samples on
   // both sides, along x1 from each overlapping locus point ± sqrt(2 r e / cos γ).
   r.x1_min_m = std::numeric_limits<double>::infinity();
@@ -160,19 +198,17 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
   const std::size_t lo = first > 0 ? first - 1 : first, hi = std::min(last + 1, locus.size() - 1);
   for (std::size_t k = lo; k <= hi; ++k) {
     const ContactLocusSample& s = locus[k];
-    const ProfileCurvePoint q = rail_->at(rail_->parameter_at(s.rail_profile_y_m));
-    const Vector3 rail_point{x_reference, sign_ * (rail_offset_m_ + q.y_m), -q.z_m};
+    const Vector3 rail_point = rail_point_track_m(x_reference_m, s.rail_profile_y_m);
     const double x2 = dot(add(rail_point, r.reference_point_track_m, -1.0), r.x2_axis);
     r.x2_min_m = std::min(r.x2_min_m, x2);
     r.x2_max_m = std::max(r.x2_max_m, x2);
     if (!(s.vertical_gap_m < 0.0)) continue;
     const double e = -s.vertical_gap_m * std::cos(s.contact_angle_rad);
     const double half = std::sqrt(2.0 * s.rolling_radius_m * e / std::max(std::cos(s.contact_angle_rad), 0.05));
-    const double x1 = s.point_track_m[0] - x_reference;
+    const double x1 = s.point_track_m[0] - x_reference_m;
     r.x1_min_m = std::min(r.x1_min_m, x1 - half);
     r.x1_max_m = std::max(r.x1_max_m, x1 + half);
   }
-  return r;
 }
 
 double WheelOnRail::rail_normal_m(const InterpenetrationRegion& region, double x2_m, double& rail_parameter) const {

@@ -54,6 +54,49 @@ class ConstrainedConjugateGradient {
   ConstrainedCgReport iterate(InfluenceOperator& A, std::span<const double> h, double pressure_sum,
                               std::optional<double> fixed_approach, std::span<double> p, double tolerance,
                               int max_iterations);
+
+  // The steps of one iteration (see the top of this header), on the work vectors below.
+  struct ContactSet {
+    std::size_t count = 0;  // elements in Ic
+    double gap_sum = 0.0;   // sum over Ic of h + A p
+  };
+  struct GapResidual {
+    double violation = 0.0;  // |g| where p > 0, max(0, -g) where p = 0: its largest value
+    double u_max = 0.0;      // max(A p)
+  };
+  struct PressureStep {
+    double pressure_sum = 0.0;  // sum p after the step, before the load scaling
+    bool set_changed = false;   // an element left or entered Ic
+    bool recursive = true;      // A p may follow by recursion (few elements moved)
+  };
+  // Ic = {p > 0} into in_contact_ (PK step 1).
+  ContactSet mark_contact_set(std::span<const double> p, std::span<const double> h);
+  // r = g = h - delta + A p into r_ (PK step 2) and the complementarity violation.
+  GapResidual gap_residual(std::span<const double> h, double delta);
+  // An empty set with the approach given: p = -r / (4 A(0,0)) where r < 0, and A p recomputed.
+  // True when an element entered.
+  bool enter_overlap(InfluenceOperator& A, std::span<double> p, double entry_step);
+  // Preconditioned residual z = M r into z_, projected on sum z = 0 with the load given (the
+  // load is kept by the step); returns G = r.z > 0 (M is positive definite on Ic).
+  double preconditioned_residual(std::size_t contact_count, bool load_given);
+  // t = z + beta t on Ic, 0 elsewhere (PK step 3).
+  void conjugate_direction(double beta);
+  // q = A t into q_ (PK step 4) and the step length tau = sum_Ic r t / sum_Ic (q - mean_Ic q) t
+  // (PK step 5).
+  double step_length(InfluenceOperator& A, std::size_t contact_count, bool load_given);
+  // p <- max(0, p - tau t) on Ic (PK step 6) and p <- -entry_step r outside Ic where
+  // r < entry_threshold (PK step 7). The elements whose new pressure differs from p - tau t
+  // (clamped to zero, or entered) go to moved_ with the difference.
+  PressureStep project_pressure(std::span<double> p, double tau, double entry_threshold, double entry_step);
+  // p <- p P / sum p (PK step 8), after a restart from the deepest point if sum p is not positive;
+  // returns the scale.
+  double restore_load(std::span<double> p, double pressure_sum, PressureStep& step) const;
+  // A p after the step: with few moved elements by the recursion's (u - tau q) plus their
+  // products by the kernel table, times the load scale, instead of a product on the whole grid.
+  // True when recomputed on the whole grid (u_ fresh).
+  bool update_pressure_product(InfluenceOperator& A, std::span<const double> p, const PressureStep& step,
+                               double tau, double scale);
+
   ContactLaplacianPreconditioner preconditioner_;
   std::vector<double> u_;  // A p
   std::vector<double> r_;  // h + A p - delta
