@@ -310,11 +310,8 @@ int run_build(const BuildArguments& args, const std::map<std::size_t, study::Cas
   return 0;
 }
 
-int run_check(const CheckArguments& args) {
-  const FlexibilityTable table = load_flexibility_table(args.table);
-  const std::string recipe_note = older_nh_fastsim_recipe_note(table.metadata().nh_fastsim_recipe);
-  const NoteOnSuccess note(recipe_note.empty() ? recipe_note : args.table + ": " + recipe_note);
-  const WheelRailPair pair = pair_of(args.wheel, args.rail);
+// The check's options from the arguments (checked by the check itself).
+study::FlexibilityTableCheckOptions check_options(const CheckArguments& args) {
   study::FlexibilityTableCheckOptions options;
   options.y_m = args.y_m;
   options.vertical_loads_N = args.loads_N;
@@ -323,62 +320,65 @@ int run_check(const CheckArguments& args) {
   options.interpolation =
       args.interpolation == "plain" ? FlexibilityInterpolation::plain : FlexibilityInterpolation::area_scaled;
   options.against_exact = args.exact;
-  const auto start = std::chrono::steady_clock::now();
-  const study::FlexibilityTableCheck check =
-      study::check_flexibility_table(table, pair, options, args.json ? nullptr : &std::cerr);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  const study::FlexibilityTableCheckPoint& worst = check.points[check.max_point];
+  return options;
+}
 
-  if (args.json) {
-    nlohmann::json points = nlohmann::json::array();
-    for (const auto& p : check.points) {
-      points.push_back({{"y_m", p.y_m},
-                        {"vertical_load_N", p.vertical_load_N},
-                        {"elements_in_contact", p.elements_in_contact},
-                        {"flexibility_on_the_fly", {p.on_the_fly.L1, p.on_the_fly.L2, p.on_the_fly.L3}},
-                        {"flexibility_table", {p.table.L1, p.table.L2, p.table.L3}},
-                        {"f11_on_the_fly_N", p.f11_on_the_fly_N},
-                        {"f22_on_the_fly_N", p.f22_on_the_fly_N},
-                        {"f11_table_N", p.f11_table_N},
-                        {"f22_table_N", p.f22_table_N},
-                        {"force_difference", p.force_difference},
-                        {"force_difference_table_normalised", p.force_difference_table_normalised}});
-      if (args.exact) {
-        points.back()["table_error_against_exact"] = p.table_error_against_exact;
-        points.back()["on_the_fly_error_against_exact"] = p.on_the_fly_error_against_exact;
-      }
+// --json: per point both flexibilities and the families' force differences (with --exact also
+// against the exact solver).
+nlohmann::json check_points_json(const study::FlexibilityTableCheck& check, bool exact) {
+  nlohmann::json points = nlohmann::json::array();
+  for (const auto& p : check.points) {
+    points.push_back({{"y_m", p.y_m},
+                      {"vertical_load_N", p.vertical_load_N},
+                      {"elements_in_contact", p.elements_in_contact},
+                      {"flexibility_on_the_fly", {p.on_the_fly.L1, p.on_the_fly.L2, p.on_the_fly.L3}},
+                      {"flexibility_table", {p.table.L1, p.table.L2, p.table.L3}},
+                      {"f11_on_the_fly_N", p.f11_on_the_fly_N},
+                      {"f22_on_the_fly_N", p.f22_on_the_fly_N},
+                      {"f11_table_N", p.f11_table_N},
+                      {"f22_table_N", p.f22_table_N},
+                      {"force_difference", p.force_difference},
+                      {"force_difference_table_normalised", p.force_difference_table_normalised}});
+    if (exact) {
+      points.back()["table_error_against_exact"] = p.table_error_against_exact;
+      points.back()["on_the_fly_error_against_exact"] = p.on_the_fly_error_against_exact;
     }
-    nlohmann::json families = nlohmann::json::array();
-    for (const auto& f : check.families) families.push_back(f.name);
-    nlohmann::json out = {{"railcontact_version", RC_VERSION_STRING},
-                          {"table", args.table},
-                                {"interpolation", args.interpolation},
-                                {"mu", args.mu},
-                                {"families", families},
-                                {"points", points},
-                                {"skipped", check.skipped},
-                                {"max_force_difference", check.max_force_difference},
-                                {"max_at", {{"y_m", worst.y_m},
-                                            {"vertical_load_N", worst.vertical_load_N},
-                                            {"family", check.families[check.max_family].name}}},
-                                {"mean_force_difference", check.mean_force_difference},
-                                {"max_force_difference_table_normalised", check.max_force_difference_table_normalised},
-                                {"mean_force_difference_table_normalised", check.mean_force_difference_table_normalised},
-                                {"time_s", seconds}};
-    if (args.exact) {
-      out["max_table_error_against_exact"] = check.max_table_error_against_exact;
-      out["mean_table_error_against_exact"] = check.mean_table_error_against_exact;
-      out["max_on_the_fly_error_against_exact"] = check.max_on_the_fly_error_against_exact;
-      out["mean_on_the_fly_error_against_exact"] = check.mean_on_the_fly_error_against_exact;
-    }
-    fmt::print("{}\n", out.dump(2));
-    return 0;
   }
-  fmt::print("Flexibility table {}: nH-FastSim forces with the table's flexibilities against on-the-fly (K2) ones\n",
-             args.table);
-  fmt::print("  the same patch per point; the same raw creepages (xi, eta from the on-the-fly f11, f22); mu = {:g}; "
-             "interpolation {}\n\n",
-             args.mu, args.interpolation);
+  return points;
+}
+
+// --json: one object with the points, the skipped ones and the statistics.
+void print_check_json(const CheckArguments& args, const study::FlexibilityTableCheck& check, double seconds) {
+  const study::FlexibilityTableCheckPoint& worst = check.points[check.max_point];
+  nlohmann::json families = nlohmann::json::array();
+  for (const auto& f : check.families) families.push_back(f.name);
+  nlohmann::json out = {{"railcontact_version", RC_VERSION_STRING},
+                        {"table", args.table},
+                        {"interpolation", args.interpolation},
+                        {"mu", args.mu},
+                        {"families", families},
+                        {"points", check_points_json(check, args.exact)},
+                        {"skipped", check.skipped},
+                        {"max_force_difference", check.max_force_difference},
+                        {"max_at", {{"y_m", worst.y_m},
+                                    {"vertical_load_N", worst.vertical_load_N},
+                                    {"family", check.families[check.max_family].name}}},
+                        {"mean_force_difference", check.mean_force_difference},
+                        {"max_force_difference_table_normalised", check.max_force_difference_table_normalised},
+                        {"mean_force_difference_table_normalised", check.mean_force_difference_table_normalised},
+                        {"time_s", seconds}};
+  if (args.exact) {
+    out["max_table_error_against_exact"] = check.max_table_error_against_exact;
+    out["mean_table_error_against_exact"] = check.mean_table_error_against_exact;
+    out["max_on_the_fly_error_against_exact"] = check.max_on_the_fly_error_against_exact;
+    out["mean_on_the_fly_error_against_exact"] = check.mean_on_the_fly_error_against_exact;
+  }
+  fmt::print("{}\n", out.dump(2));
+}
+
+// One line per point: the table's flexibilities against on-the-fly ones and the families' force
+// differences (%); then the points skipped.
+void print_check_points(const study::FlexibilityTableCheck& check) {
   fmt::print("{:>43}  |F_table - F_onthefly| / |F_onthefly| (%)\n", "");
   fmt::print("{:>9} {:>8} {:>8} {:>7} {:>7} {:>7} ", "y (mm)", "Fz (kN)", "elements", "dL1 %", "dL2 %", "dL3 %");
   for (const auto& f : check.families) fmt::print(" {:>17}", f.name);
@@ -391,6 +391,17 @@ int run_check(const CheckArguments& args) {
     fmt::print("\n");
   }
   for (const std::string& s : check.skipped) fmt::print("skipped: {}\n", s);
+}
+
+// The check as text: the heading, the points, the largest and mean differences and the target.
+void print_check_text(const CheckArguments& args, const study::FlexibilityTableCheck& check, double seconds) {
+  const study::FlexibilityTableCheckPoint& worst = check.points[check.max_point];
+  fmt::print("Flexibility table {}: nH-FastSim forces with the table's flexibilities against on-the-fly (K2) ones\n",
+             args.table);
+  fmt::print("  the same patch per point; the same raw creepages (xi, eta from the on-the-fly f11, f22); mu = {:g}; "
+             "interpolation {}\n\n",
+             args.mu, args.interpolation);
+  print_check_points(check);
   fmt::print("\nmax |F_table - F_onthefly| / |F_onthefly| = {:.3f} % at y = {:+.4f} mm, Fz = {:g} N, {}; mean {:.3f} % "
              "({} points x {} families)\n",
              100 * check.max_force_difference, worst.y_m / kMm, worst.vertical_load_N,
@@ -404,6 +415,24 @@ int run_check(const CheckArguments& args) {
                100 * check.max_table_error_against_exact, 100 * check.mean_table_error_against_exact,
                100 * check.max_on_the_fly_error_against_exact, 100 * check.mean_on_the_fly_error_against_exact);
   fmt::print("target < 0.5 %: {}; checked in {:.1f} s\n", check.max_force_difference < 0.005 ? "met" : "NOT met", seconds);
+}
+
+// `railcontact flextable check`: the table against on-the-fly nH-FastSim on the profiles (progress
+// on stderr unless --json), printed as text or one JSON object.
+int run_check(const CheckArguments& args) {
+  const FlexibilityTable table = load_flexibility_table(args.table);
+  const std::string recipe_note = older_nh_fastsim_recipe_note(table.metadata().nh_fastsim_recipe);
+  const NoteOnSuccess note(recipe_note.empty() ? recipe_note : args.table + ": " + recipe_note);
+  const WheelRailPair pair = pair_of(args.wheel, args.rail);
+  const study::FlexibilityTableCheckOptions options = check_options(args);
+  const auto start = std::chrono::steady_clock::now();
+  const study::FlexibilityTableCheck check =
+      study::check_flexibility_table(table, pair, options, args.json ? nullptr : &std::cerr);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (args.json)
+    print_check_json(args, check, seconds);
+  else
+    print_check_text(args, check, seconds);
   return 0;
 }
 

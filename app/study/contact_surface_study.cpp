@@ -127,9 +127,118 @@ WindowSummary sweep_window(const WheelsetTrack& track, const ContactSurfaceStudy
   return w;
 }
 
-void write_summary(const ContactSurfaceStudyOptions& o, const std::array<Bin, kBinEdges.size() - 1>& bins,
-                   const std::vector<WindowSummary>& windows, std::size_t states, std::size_t mismatched,
-                   const std::vector<std::string>& stops, std::ostream& md) {
+// What summary.md gathers over all sweeps.
+struct SurfaceTally {
+  std::array<Bin, kBinEdges.size() - 1> bins{};
+  std::vector<WindowSummary> windows;  // per set-up: its fine window at the first yaw
+  std::size_t states = 0, mismatched = 0;
+  std::vector<std::string> stops;  // per sweep: where and why it ended
+};
+
+// The CSV files written during the sweeps: one row per patch and state, and one per state of the
+// fine windows.
+struct SurfaceRows {
+  std::ofstream surfaces;
+  std::ofstream smoothness;
+};
+
+SurfaceRows open_surface_rows(const output::OutputDirectory& out) {
+  SurfaceRows rows;
+  rows.surfaces = output::open_output_file(out.path("surfaces.csv"));
+  fmt::print(rows.surfaces, "setup,yaw_mrad,y_mm,side,patch,contact_angle_rad,contact_angle_spread_rad,measure,"
+                            "conformal_weight,planar_Fx_N,planar_Fy_N,planar_Fz_N,conformal_Fx_N,conformal_Fy_N,"
+                            "conformal_Fz_N,automatic_Fx_N,automatic_Fy_N,automatic_Fz_N\n");
+  rows.smoothness = output::open_output_file(out.path("smoothness.csv"));
+  fmt::print(rows.smoothness, "setup,y_mm,conformal_weight,planar_Fx_N,planar_Fy_N,planar_Fz_N,conformal_Fx_N,"
+                              "conformal_Fy_N,conformal_Fz_N,automatic_Fx_N,automatic_Fy_N,automatic_Fz_N\n");
+  return rows;
+}
+
+void close_surface_rows(SurfaceRows& rows, const output::OutputDirectory& out) {
+  rows.surfaces.close();
+  if (rows.surfaces.fail()) throw output::write_error(out.path("surfaces.csv"), errno);
+  rows.smoothness.close();
+  if (rows.smoothness.fail()) throw output::write_error(out.path("smoothness.csv"), errno);
+}
+
+// One state's patches on both wheels, a row each and into the bins of their measure; a wheel whose
+// surfaces found different numbers of patches is left out (counted).
+void record_patches(const ThreeSurfaces& r, const std::string& name, double yaw, double y, double mu,
+                    std::ostream& rows, SurfaceTally& tally) {
+  for (std::size_t w = 0; w < 2; ++w) {
+    const std::vector<WheelsetPatch>& p = r.planar.wheels[w].patches;
+    const std::vector<WheelsetPatch>& c = r.conformal.wheels[w].patches;
+    const std::vector<WheelsetPatch>& a = r.automatic.wheels[w].patches;
+    if (p.size() != c.size() || p.size() != a.size()) {
+      ++tally.mismatched;
+      continue;
+    }
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      const double measure = measure_of(a[j].region);
+      fmt::print(rows, "{},{:.3f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.4f}", name, yaw * 1e3, y / kMm,
+                 side_name(a[j].side), j, a[j].region.contact_angle_rad, a[j].region.contact_angle_spread_rad, measure,
+                 a[j].conformal_weight);
+      for (const WheelsetPatch* q : {&p[j], &c[j], &a[j]}) {
+        const Vector3& f = q->solvers[0].force_track_N;
+        fmt::print(rows, ",{:.3f},{:.3f},{:.3f}", f[0], f[1], f[2]);
+      }
+      fmt::print(rows, "\n");
+      const std::size_t b = static_cast<std::size_t>(
+          std::upper_bound(kBinEdges.begin() + 1, kBinEdges.end() - 1, measure) - (kBinEdges.begin() + 1));
+      Bin& bin = tally.bins[b];
+      ++bin.patches;
+      widen(bin.planar_from_conformal, c[j].solvers[0].force_track_N, p[j].solvers[0].force_track_N, mu);
+      widen(bin.automatic_from_conformal, c[j].solvers[0].force_track_N, a[j].solvers[0].force_track_N, mu);
+    }
+  }
+}
+
+// The positions of a sweep and the right wheel's conformal weight (automatic surface) at each.
+struct SweepTrace {
+  std::vector<double> ys, weights;
+};
+
+// The sweep at one yaw from y = 0 towards the right wheel's flange until a state cannot be
+// evaluated (at y = 0 an error; else the sweep's end, said where and why in tally.stops and `log`).
+SweepTrace sweep_at_yaw(const WheelsetTrack& track, const ContactSurfaceStudyOptions& o, const std::string& name,
+                        double yaw, std::ostream& rows, SurfaceTally& tally, std::ostream& log) {
+  Solvers solvers(track, o);
+  const double mu = Solvers::options(o, ContactSurface::planar).friction_coefficient;
+  SweepTrace trace;
+  for (int k = 0;; ++k) {
+    const double y = -k * o.y_step_m;
+    ThreeSurfaces r;
+    try {
+      r = solvers.evaluate(rolling_at(y, yaw));
+    } catch (const Error& e) {
+      if (k == 0) throw Error(e.kind(), fmt::format("study surfaces: {} at y = 0, yaw {:g} rad: {}", name, yaw, e.what()));
+      // The sweep's end: the flange climbs (or the contact is lost); said where and why.
+      tally.stops.push_back(fmt::format("{} at yaw {:+.0f} mrad: y = {:.2f} mm: {}", name, yaw * 1e3, y / kMm, e.what()));
+      fmt::print(log, "{}\n", tally.stops.back());
+      break;
+    }
+    ++tally.states;
+    trace.ys.push_back(y);
+    trace.weights.push_back(right_wheel_weight(r.automatic));
+    record_patches(r, name, yaw, y, mu, rows, tally);
+  }
+  return trace;
+}
+
+// The fine window of a sweep: the step where the right wheel's weight changes most (the first of
+// equals), swept again in fine steps; none where the weight does not change.
+void add_fine_window(const WheelsetTrack& track, const ContactSurfaceStudyOptions& o, const std::string& name,
+                     double yaw, const SweepTrace& trace, std::ostream& smoothness, std::vector<WindowSummary>& windows) {
+  const std::vector<double>& ys = trace.ys;
+  const std::vector<double>& weights = trace.weights;
+  std::size_t at = 0;
+  for (std::size_t k = 1; k + 1 < ys.size(); ++k)
+    if (std::abs(weights[k + 1] - weights[k]) > std::abs(weights[at + 1] - weights[at])) at = k;
+  if (weights[at + 1] != weights[at]) windows.push_back(sweep_window(track, o, name, ys[at], ys[at + 1], yaw, smoothness));
+}
+
+void write_summary(const ContactSurfaceStudyOptions& o, const SurfaceTally& tally, std::ostream& md) {
+  const std::array<Bin, kBinEdges.size() - 1>& bins = tally.bins;
   const ContactSurfaceSwitch& band = o.surface_switch;
   fmt::print(md, "# The planar and the conformal contact surface\n\n");
   fmt::print(md,
@@ -139,7 +248,7 @@ void write_summary(const ContactSurfaceStudyOptions& o, const std::array<Bin, kB
              "from {:g}, blended between); {} states. Per patch the measure is its contact angle spread over cos γ. "
              "Largest difference per track-frame component of a patch's force, as a share of μ Fz (Fz = {:g} kN), per "
              "range of the measure:\n\n",
-             o.y_step_m / kMm, o.element_size_m / kMm, band.planar_up_to, band.conformal_from, states,
+             o.y_step_m / kMm, o.element_size_m / kMm, band.planar_up_to, band.conformal_from, tally.states,
              kWheelLoad_N / 1e3);
   fmt::print(md, "| measure | patches | conformal − planar Fx | Fy | Fz | automatic − conformal Fx | Fy | Fz |\n"
                  "|---|---|---|---|---|---|---|---|\n");
@@ -151,12 +260,12 @@ void write_summary(const ContactSurfaceStudyOptions& o, const std::array<Bin, kB
                x.planar_from_conformal[2], x.automatic_from_conformal[0], x.automatic_from_conformal[1],
                x.automatic_from_conformal[2]);
   }
-  if (mismatched > 0)
+  if (tally.mismatched > 0)
     fmt::print(md, "\n{} wheel states are left out: the surfaces found different numbers of patches there (a patch "
                    "appearing at slightly different heights).\n",
-               mismatched);
+               tally.mismatched);
   fmt::print(md, "\nWhere each sweep ended (the flange climbing, as a rule):\n\n");
-  for (const std::string& stop : stops) fmt::print(md, "- {}\n", stop);
+  for (const std::string& stop : tally.stops) fmt::print(md, "- {}\n", stop);
   fmt::print(md,
              "\n## Smoothness where the automatic surface blends\n\n"
              "Per set-up at yaw {:+.0f} mrad, the step of the sweep where the right wheel's conformal weight changes most, "
@@ -165,38 +274,32 @@ void write_summary(const ContactSurfaceStudyOptions& o, const std::array<Bin, kB
              o.yaws_rad.front() * 1e3, o.fine_y_step_m / kMm);
   fmt::print(md, "| set-up | window y (mm) | weight | planar step (at y mm) | conformal step | automatic step |\n"
                  "|---|---|---|---|---|---|\n");
-  for (const WindowSummary& w : windows)
+  for (const WindowSummary& w : tally.windows)
     fmt::print(md, "| {} | {:.2f} to {:.2f} | {:.3f} to {:.3f} | {:.3f} % ({:.3f}) | {:.3f} % ({:.3f}) | {:.3f} % ({:.3f}) |\n",
                w.setup, w.from_y_m / kMm, w.to_y_m / kMm, w.weight_from, w.weight_to, w.largest_step_percent[0],
                w.largest_step_y_m[0] / kMm, w.largest_step_percent[1], w.largest_step_y_m[1] / kMm,
                w.largest_step_percent[2], w.largest_step_y_m[2] / kMm);
 }
 
-}  // namespace
-
-void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream& log) {
+void check_options(const ContactSurfaceStudyOptions& o) {
   validate_sweep(o.element_size_m, o.y_step_m, 2e-3, o.yaws_rad);
   require(std::isfinite(o.fine_y_step_m) && o.fine_y_step_m >= 1e-6 && o.fine_y_step_m <= o.y_step_m, [&] {
     return fmt::format("--fine-y-step-m {:g} m must lie in [1e-06, {:g}] m (the sweep's step)", o.fine_y_step_m,
                        o.y_step_m);
   });
   validate(o.surface_switch);
+}
+
+}  // namespace
+
+void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream& log) {
+  check_options(o);
   const std::vector<std::filesystem::path> files = wheel_rail_setup_files(o.setups);
   require(!files.empty(), "study surfaces: no wheel-rail set-up files");
 
   output::OutputDirectory out(o.output_directory, &log);
-  std::ofstream rows = output::open_output_file(out.path("surfaces.csv"));
-  fmt::print(rows, "setup,yaw_mrad,y_mm,side,patch,contact_angle_rad,contact_angle_spread_rad,measure,conformal_weight,"
-                   "planar_Fx_N,planar_Fy_N,planar_Fz_N,conformal_Fx_N,conformal_Fy_N,conformal_Fz_N,automatic_Fx_N,"
-                   "automatic_Fy_N,automatic_Fz_N\n");
-  std::ofstream fine = output::open_output_file(out.path("smoothness.csv"));
-  fmt::print(fine, "setup,y_mm,conformal_weight,planar_Fx_N,planar_Fy_N,planar_Fz_N,conformal_Fx_N,conformal_Fy_N,"
-                   "conformal_Fz_N,automatic_Fx_N,automatic_Fy_N,automatic_Fz_N\n");
-  std::array<Bin, kBinEdges.size() - 1> bins{};
-  std::vector<WindowSummary> windows;
-  std::size_t states = 0, mismatched = 0;
-  std::vector<std::string> stops;  // per sweep: where and why it ended
-  const double mu = Solvers::options(o, ContactSurface::planar).friction_coefficient;
+  SurfaceRows rows = open_surface_rows(out);
+  SurfaceTally tally;
   const auto start = std::chrono::steady_clock::now();
   const std::size_t sweeps = files.size() * o.yaws_rad.size();
   std::size_t done = 0;
@@ -204,69 +307,20 @@ void run_contact_surface_study(const ContactSurfaceStudyOptions& o, std::ostream
     const WheelsetTrack track = wheelset_track_of(read_wheel_rail_setup(file));
     const std::string name = file.stem().string();
     for (const double yaw : o.yaws_rad) {
-      Solvers solvers(track, o);
-      std::vector<double> ys, weights;
-      for (int k = 0;; ++k) {
-        const double y = -k * o.y_step_m;
-        ThreeSurfaces r;
-        try {
-          r = solvers.evaluate(rolling_at(y, yaw));
-        } catch (const Error& e) {
-          if (k == 0) throw Error(e.kind(), fmt::format("study surfaces: {} at y = 0, yaw {:g} rad: {}", name, yaw, e.what()));
-          // The sweep's end: the flange climbs (or the contact is lost); said where and why.
-          stops.push_back(fmt::format("{} at yaw {:+.0f} mrad: y = {:.2f} mm: {}", name, yaw * 1e3, y / kMm, e.what()));
-          fmt::print(log, "{}\n", stops.back());
-          break;
-        }
-        ++states;
-        ys.push_back(y);
-        weights.push_back(right_wheel_weight(r.automatic));
-        for (std::size_t w = 0; w < 2; ++w) {
-          const std::vector<WheelsetPatch>& p = r.planar.wheels[w].patches;
-          const std::vector<WheelsetPatch>& c = r.conformal.wheels[w].patches;
-          const std::vector<WheelsetPatch>& a = r.automatic.wheels[w].patches;
-          if (p.size() != c.size() || p.size() != a.size()) {
-            ++mismatched;
-            continue;
-          }
-          for (std::size_t j = 0; j < p.size(); ++j) {
-            const double measure = measure_of(a[j].region);
-            fmt::print(rows, "{},{:.3f},{:.4f},{},{},{:.6f},{:.6f},{:.6f},{:.4f}", name, yaw * 1e3, y / kMm,
-                       side_name(a[j].side), j, a[j].region.contact_angle_rad, a[j].region.contact_angle_spread_rad,
-                       measure, a[j].conformal_weight);
-            for (const WheelsetPatch* q : {&p[j], &c[j], &a[j]}) {
-              const Vector3& f = q->solvers[0].force_track_N;
-              fmt::print(rows, ",{:.3f},{:.3f},{:.3f}", f[0], f[1], f[2]);
-            }
-            fmt::print(rows, "\n");
-            const std::size_t b = static_cast<std::size_t>(
-                std::upper_bound(kBinEdges.begin() + 1, kBinEdges.end() - 1, measure) - (kBinEdges.begin() + 1));
-            ++bins[b].patches;
-            widen(bins[b].planar_from_conformal, c[j].solvers[0].force_track_N, p[j].solvers[0].force_track_N, mu);
-            widen(bins[b].automatic_from_conformal, c[j].solvers[0].force_track_N, a[j].solvers[0].force_track_N, mu);
-          }
-        }
-      }
-      // The fine window at the first yaw: the step where the right wheel's weight changes most.
-      if (yaw == o.yaws_rad.front() && ys.size() > 1) {
-        std::size_t at = 0;
-        for (std::size_t k = 1; k + 1 < ys.size(); ++k)
-          if (std::abs(weights[k + 1] - weights[k]) > std::abs(weights[at + 1] - weights[at])) at = k;
-        if (weights[at + 1] != weights[at]) windows.push_back(sweep_window(track, o, name, ys[at], ys[at + 1], yaw, fine));
-      }
+      const SweepTrace trace = sweep_at_yaw(track, o, name, yaw, rows.surfaces, tally, log);
+      // The fine window at the first yaw.
+      if (yaw == o.yaws_rad.front() && trace.ys.size() > 1)
+        add_fine_window(track, o, name, yaw, trace, rows.smoothness, tally.windows);
       ++done;
       const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       fmt::print(log, "{} yaw {:+.0f} mrad: {} states to y = {:.2f} mm ({}/{}), {:.0f} s left\n", name, yaw * 1e3,
-                 ys.size(), ys.back() / kMm, done, sweeps,
+                 trace.ys.size(), trace.ys.back() / kMm, done, sweeps,
                  elapsed / static_cast<double>(done) * static_cast<double>(sweeps - done));
     }
   }
-  rows.close();
-  if (rows.fail()) throw output::write_error(out.path("surfaces.csv"), errno);
-  fine.close();
-  if (fine.fail()) throw output::write_error(out.path("smoothness.csv"), errno);
+  close_surface_rows(rows, out);
   std::ofstream md = output::open_output_file(out.path("summary.md"));
-  write_summary(o, bins, windows, states, mismatched, stops, md);
+  write_summary(o, tally, md);
   md.close();
   if (md.fail()) throw output::write_error(out.path("summary.md"), errno);
   if (o.figures) output::draw_figures("plot_contact_surfaces.py", out.staging(), log);

@@ -150,8 +150,6 @@ void check_options(const PaperStudyOptions& options) {
   require(options.timing_samples >= 1 && options.timing_samples <= 50, "study paper: --samples must lie in [1, 50]");
 }
 
-// Fig 5 at one y: every family, level and solver against `exact` (Eq 25), one fig5.csv row each.
-// Returns the worst nh-fastsim error at this y.
 // The errors of one y in the order they were computed ("family/solver", error): merged into the
 // study's statistics in the order of y, so the means are the same sums on any number of threads.
 using ErrorRecords = std::vector<std::pair<std::string, double>>;
@@ -166,6 +164,8 @@ void add_error(Fig5Errors& errors, const std::string& key, double error, double 
   ++s.count;
 }
 
+// Fig 5 at one y: every family, level and solver against `exact` (Eq 25), one fig5.csv row each.
+// Returns the worst nh-fastsim error at this y.
 double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, ErrorRecords& errors) {
   const WheelRailPatch& wr = p.wheel_rail;
   double worst = 0;
@@ -193,83 +193,79 @@ double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, 
 }
 
 // ---- Fig 5: relative total-force error vs y, three families, nh-fastsim and fastsim.
-Fig5Errors write_fig5_error_sweep(const WheelRailPair& pair, const PaperStudyOptions& options, std::ostream& progress) {
-  const auto& dir = options.output_directory;
-  Fig5Errors errors;
-  const int y_count = static_cast<int>(std::lround(9e-3 / options.y_step_m)) + 1;
-  // Each y on its own (threads: options.threads; under mpirun over the ranks), its rows and errors
-  // sent back as text (an exact round trip), kept by index and written in the order of y: the files
-  // are the same bytes on any number of threads or ranks.
-  struct AtY {
-    std::string patch_row, fig5_rows, progress;
-    ErrorRecords errors;
-    bool skipped = false;
-  };
-  const auto encode = [](const AtY& r) {
-    std::string t = fmt::format("{} {} {} {} {}\n", r.skipped ? 1 : 0, r.patch_row.size(), r.fig5_rows.size(),
-                                r.progress.size(), r.errors.size());
-    t += r.patch_row + r.fig5_rows + r.progress;
-    for (const auto& [key, error] : r.errors) t += fmt::format("{}\t{:.17g}\n", key, error);
-    return t;
-  };
-  const auto decode = [](const std::string& t) {
-    AtY r;
-    std::istringstream in(t);
-    int skipped = 0;
-    std::size_t a = 0, b = 0, c = 0, n = 0;
-    in >> skipped >> a >> b >> c >> n;
-    in.get();
-    r.skipped = skipped != 0;
-    std::size_t at = static_cast<std::size_t>(in.tellg());
-    r.patch_row = t.substr(at, a);
-    r.fig5_rows = t.substr(at + a, b);
-    r.progress = t.substr(at + a + b, c);
-    std::istringstream rest(t.substr(at + a + b + c));
-    for (std::string line; n-- > 0 && std::getline(rest, line);) {
-      const std::size_t tab = line.find('\t');
-      r.errors.emplace_back(line.substr(0, tab), std::strtod(line.c_str() + tab + 1, nullptr));
-    }
+
+// Fig 5's y values: y = -4.5 mm + k --y-step-m, k = 0 ... y_count - 1 (to about 4.5 mm).
+int fig5_y_count(double y_step_m) { return static_cast<int>(std::lround(9e-3 / y_step_m)) + 1; }
+double fig5_y(std::size_t k, double y_step_m) { return -4.5e-3 + static_cast<double>(k) * y_step_m; }
+
+// Fig 5 at one y, computed on its own (a thread or an MPI rank): its fig5_patches.csv row, its
+// fig5.csv rows, its progress line and its errors.
+struct Fig5AtY {
+  std::string patch_row, fig5_rows, progress;
+  ErrorRecords errors;
+  bool skipped = false;  // several contact patches
+};
+
+// A y's results as text (an exact round trip), as they are sent back from a thread or rank: the
+// sizes of its parts on the first line, then the parts, then one "key<TAB>error" line per error.
+std::string encode_at_y(const Fig5AtY& r) {
+  std::string t = fmt::format("{} {} {} {} {}\n", r.skipped ? 1 : 0, r.patch_row.size(), r.fig5_rows.size(),
+                              r.progress.size(), r.errors.size());
+  t += r.patch_row + r.fig5_rows + r.progress;
+  for (const auto& [key, error] : r.errors) t += fmt::format("{}\t{:.17g}\n", key, error);
+  return t;
+}
+
+Fig5AtY decode_at_y(const std::string& t) {
+  Fig5AtY r;
+  std::istringstream in(t);
+  int skipped = 0;
+  std::size_t a = 0, b = 0, c = 0, n = 0;
+  in >> skipped >> a >> b >> c >> n;
+  in.get();
+  r.skipped = skipped != 0;
+  std::size_t at = static_cast<std::size_t>(in.tellg());
+  r.patch_row = t.substr(at, a);
+  r.fig5_rows = t.substr(at + a, b);
+  r.progress = t.substr(at + a + b, c);
+  std::istringstream rest(t.substr(at + a + b + c));
+  for (std::string line; n-- > 0 && std::getline(rest, line);) {
+    const std::size_t tab = line.find('\t');
+    r.errors.emplace_back(line.substr(0, tab), std::strtod(line.c_str() + tab + 1, nullptr));
+  }
+  return r;
+}
+
+// Fig 5 at the k-th of y_count values y: the patch and the solvers compared on it; a y with
+// several contact patches is skipped (out of scope), its message in the patch row.
+Fig5AtY fig5_at_y(const WheelRailPair& pair, int elements, std::size_t k, double y, int y_count) {
+  Fig5AtY r;
+  std::optional<PreparedPatch> p;
+  try {
+    p = prepare(pair, y, elements);
+  } catch (const Error& e) {  // several contact patches: out of scope
+    if (e.kind() != ErrorKind::several_patches) throw;
+    r.patch_row = fmt::format("{:.6f},\"{}\",,,,,,,,,,,\n", y, e.what());
+    r.progress = fmt::format("  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
+    r.skipped = true;
     return r;
-  };
-  std::vector<AtY> at(static_cast<std::size_t>(y_count));
-  const auto y_of = [&](std::size_t k) { return -4.5e-3 + static_cast<double>(k) * options.y_step_m; };
-  std::vector<std::size_t> todo(at.size());
-  for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = k;
-  const CaseWorkerFactory factory = [&]() -> CaseWorker {
-    return [&](std::size_t k) {
-      const double y = y_of(k);
-      AtY r;
-      std::optional<PreparedPatch> p;
-      try {
-        p = prepare(pair, y, options.elements);
-      } catch (const Error& e) {  // several contact patches: out of scope
-        if (e.kind() != ErrorKind::several_patches) throw;
-        r.patch_row = fmt::format("{:.6f},\"{}\",,,,,,,,,,,\n", y, e.what());
-        r.progress = fmt::format("  y = {:+.2f} mm: skipped ({})\n", 1e3 * y, e.what());
-        r.skipped = true;
-        return CaseResult{encode(r), false};
-      }
-      const WheelRailPatch& wr = p->wheel_rail;
-      r.patch_row = fmt::format("{:.6f},ok,{:.6f},{:.6f},{:.3f},{:.6e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", y,
-                                wr.contact_angle_rad, wr.spin_per_m, wr.normal_force_N, wr.area_m2, wr.elements_in_contact,
-                                p->nh->flexibility().L1, p->nh->flexibility().L2, p->nh->flexibility().L3,
-                                p->equivalent_ellipse.L1, p->equivalent_ellipse.L2, p->equivalent_ellipse.L3);
-      std::ostringstream rows;
-      const double worst = compare_solvers_at(*p, y, rows, r.errors);
-      r.fig5_rows = rows.str();
-      r.progress = fmt::format("  [{:2}/{}] y = {:+.2f} mm: {} elements, gamma {:.4f} rad, worst nh-fastsim error {:.2f}%\n",
-                               k + 1, y_count, 1e3 * y, wr.elements_in_contact, wr.contact_angle_rad, 100 * worst);
-      return CaseResult{encode(r), false};
-    };
-  };
-  ProgressLine line(progress, "y values", at.size());
-  std::size_t done = 0;
-  run_cases_on_ranks(todo, options.threads, factory, [&](std::size_t k, CaseResult&& result) {
-    at[k] = decode(result.text);
-    progress << at[k].progress;
-    line.done(++done);
-  });
-  if (MpiWorld::rank() != 0) return errors;  // another rank: its share is computed
+  }
+  const WheelRailPatch& wr = p->wheel_rail;
+  r.patch_row = fmt::format("{:.6f},ok,{:.6f},{:.6f},{:.3f},{:.6e},{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e}\n", y,
+                            wr.contact_angle_rad, wr.spin_per_m, wr.normal_force_N, wr.area_m2, wr.elements_in_contact,
+                            p->nh->flexibility().L1, p->nh->flexibility().L2, p->nh->flexibility().L3,
+                            p->equivalent_ellipse.L1, p->equivalent_ellipse.L2, p->equivalent_ellipse.L3);
+  std::ostringstream rows;
+  const double worst = compare_solvers_at(*p, y, rows, r.errors);
+  r.fig5_rows = rows.str();
+  r.progress = fmt::format("  [{:2}/{}] y = {:+.2f} mm: {} elements, gamma {:.4f} rad, worst nh-fastsim error {:.2f}%\n",
+                           k + 1, y_count, 1e3 * y, wr.elements_in_contact, wr.contact_angle_rad, 100 * worst);
+  return r;
+}
+
+// fig5.csv and fig5_patches.csv in the order of y, and the errors merged in that order.
+void write_fig5_files(const std::filesystem::path& dir, const std::vector<Fig5AtY>& at, double y_step_m,
+                      Fig5Errors& errors) {
   std::ofstream fig5 = open_csv(dir / "fig5.csv", "family,y,xi_n,eta_n,phi,solver,F,F_exact,rel_error\n");
   std::ofstream patches = open_csv(dir / "fig5_patches.csv",
                                    "y,status,contact_angle_rad,spin_per_m,normal_force_N,area_m2,elements,"
@@ -277,9 +273,35 @@ Fig5Errors write_fig5_error_sweep(const WheelRailPair& pair, const PaperStudyOpt
   for (std::size_t k = 0; k < at.size(); ++k) {
     patches << at[k].patch_row;
     fig5 << at[k].fig5_rows;
-    if (at[k].skipped) errors.skipped.push_back(y_of(k));
-    for (const auto& [key, error] : at[k].errors) add_error(errors, key, error, y_of(k));
+    if (at[k].skipped) errors.skipped.push_back(fig5_y(k, y_step_m));
+    for (const auto& [key, error] : at[k].errors) add_error(errors, key, error, fig5_y(k, y_step_m));
   }
+}
+
+// Fig 5 over every y. Each y on its own (threads: options.threads; under mpirun over the ranks),
+// its results sent back as text, kept by index and written in the order of y: the files are the
+// same bytes on any number of threads or ranks. On ranks other than 0 nothing is written (and no
+// errors returned).
+Fig5Errors write_fig5_error_sweep(const WheelRailPair& pair, const PaperStudyOptions& options, std::ostream& progress) {
+  Fig5Errors errors;
+  const int y_count = fig5_y_count(options.y_step_m);
+  std::vector<Fig5AtY> at(static_cast<std::size_t>(y_count));
+  std::vector<std::size_t> todo(at.size());
+  for (std::size_t k = 0; k < todo.size(); ++k) todo[k] = k;
+  const CaseWorkerFactory factory = [&]() -> CaseWorker {
+    return [&](std::size_t k) {
+      return CaseResult{encode_at_y(fig5_at_y(pair, options.elements, k, fig5_y(k, options.y_step_m), y_count)), false};
+    };
+  };
+  ProgressLine line(progress, "y values", at.size());
+  std::size_t done = 0;
+  run_cases_on_ranks(todo, options.threads, factory, [&](std::size_t k, CaseResult&& result) {
+    at[k] = decode_at_y(result.text);
+    progress << at[k].progress;
+    line.done(++done);
+  });
+  if (MpiWorld::rank() != 0) return errors;  // another rank: its share is computed
+  write_fig5_files(options.output_directory, at, options.y_step_m, errors);
   return errors;
 }
 
