@@ -126,9 +126,12 @@ class Progress:
         """One more item done."""
         self.update(self.done + 1, note)
 
-    def update(self, done, note=""):
-        """`done` items done in all (a table build's progress(done, total))."""
+    def update(self, done, note="", total=None):
+        """`done` items done in all (a table build's progress(done, total): its total grows as the build
+        refines its y grid where the contact jumps)."""
         self.done = done
+        if total is not None:
+            self.total = total
         elapsed = time.perf_counter() - self.start
         left = elapsed / max(done, 1) * (self.total - done)
         note = f" {note}" if note else ""
@@ -160,6 +163,7 @@ def main():
                                   tangential_in_balance=False)
     table_file = os.path.join(args.out, f"wheelset_table_{element_size * 1e3:g}mm{'_quick' if quick else ''}.json")
     start = time.perf_counter()
+    table_nodes_built = None  # with the y values the build adds where the contact jumps
     if os.path.exists(table_file):
         tabled.load_table(table_file)
         print(f"hunting: the wheelset table {table_file} (loaded)", file=sys.stderr)
@@ -170,9 +174,10 @@ def main():
         progress = Progress(nodes, "table nodes")
         every = max(1, nodes // 10)  # about ten lines, the last at the end
         tabled.build_table(y_grid, yaw_grid, (WHEEL_LOAD_N,),
-                           progress=lambda done, total: progress.update(done) if done % every == 0 or done == total
-                           else None)
+                           progress=lambda done, total: progress.update(done, total=total)
+                           if done % every == 0 or done == total else None)
         tabled.save_table(table_file)
+        table_nodes_built = progress.total
     table_seconds = time.perf_counter() - start
 
     # The critical speed, with the table.
@@ -242,6 +247,7 @@ def main():
                          "half_box_spacing_m": HALF_BOX_SPACING_M, "lateral_damping_N_s_per_m": LATERAL_DAMPING_N_S_PER_M,
                          "wheel_load_N": WHEEL_LOAD_N, "friction_coefficient": MU, "element_size_m": element_size},
                "table": {"file": table_file, "y_values": len(y_grid), "yaw_values": len(yaw_grid),
+                         "nodes_built": table_nodes_built,
                          "seconds_to_build_or_load": table_seconds},
                "duration_s": duration, "speeds_m_per_s": speeds,
                "critical_speed_small_start_m_per_s": linear_critical,

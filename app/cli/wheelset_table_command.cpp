@@ -24,16 +24,21 @@
 namespace railcontact::cli {
 namespace {
 
+// --refine-lateral-force-fraction's default (docs/WHEELSET_TABLE.md §3 "Where the contact jumps").
+constexpr double kDefaultRefinement = 0.01;
+
 struct BuildArguments {
   std::string case_file;
   std::string out;
   std::string y_m = "-0.007:0.007:0.0001";
   std::string yaw_rad = "0:0:0.001";
-  std::vector<double> loads_N{80e3, 100e3, 120e3};
+  // Loads in 5 kN steps: a lookup that balances the tangential forces vertically looks the wheel up
+  // at another table load, interpolated linearly (docs/WHEELSET_TABLE.md §3 "The load grid").
+  std::vector<double> loads_N{80e3, 85e3, 90e3, 95e3, 100e3, 105e3, 110e3, 115e3, 120e3};
   double element_size_m = 0.2e-3;
   std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
   std::string contact_surface;      // --contact-surface (planar, conformal, auto)
-  double refine_lateral_force = 0.0;  // --refine-lateral-force-fraction (0: no refinement)
+  double refine_lateral_force = kDefaultRefinement;  // --refine-lateral-force-fraction (0: no refinement)
   std::string threads;
   int runtime_elements = kWheelsetTableRuntimeElements;
 };
@@ -103,10 +108,17 @@ WheelsetTableOptions table_options(const BuildArguments& a, const CLI::App& sub,
                        a.refine_lateral_force);
   });
   // The refinement decides from the nodes which to add: over MPI the other ranks would not know.
-  require(a.refine_lateral_force == 0.0 || !study::MpiWorld::several(),
+  // Asked for, it is refused there; by default it is left out (and the build says so).
+  const bool asked = sub.count("--refine-lateral-force-fraction") > 0;
+  require(a.refine_lateral_force == 0.0 || !asked || !study::MpiWorld::several(),
           "--refine-lateral-force-fraction is not available over MPI ranks: run the build on one rank (with --threads), or "
           "give the finer y steps in --y-m");
-  options.refinement.lateral_force_fraction = a.refine_lateral_force;
+  options.refinement.lateral_force_fraction = study::MpiWorld::several() && !asked ? 0.0 : a.refine_lateral_force;
+  if (study::MpiWorld::several() && !asked && study::MpiWorld::rank() == 0)
+    fmt::print(stderr, "wheelset-table build: over MPI ranks the y grid is not refined where the contact jumps (the "
+                       "default --refine-lateral-force-fraction {:g} needs one rank): give finer y steps in --y-m where "
+                       "the flange snaps in\n",
+               kDefaultRefinement);
   require(a.runtime_elements >= 20 && a.runtime_elements <= 100000, [&] {
     return fmt::format("--runtime-elements {} must lie in [20, 100000] (elements of the coarse patch FastSim runs on at "
                        "lookup)",
@@ -222,7 +234,7 @@ void add_wheelset_table_command(CLI::App& app, Action& action) {
   build->add_option("--refine-lateral-force-fraction", args->refine_lateral_force,
                     "halve the y steps (up to three times, to 0.0125 mm) around a node whose wheel's lateral normal "
                     "force lies further than this fraction of its load from the line between its neighbours: a flange "
-                    "snapping in, a second contact appearing (docs/WHEELSET_TABLE.md §3; 0: off, 0.01 recommended)")
+                    "snapping in, a second contact appearing (docs/WHEELSET_TABLE.md §3; 0: off; not over MPI ranks)")
       ->capture_default_str();
   build->add_option("--threads", args->threads,
                     "threads (a whole number >= 1; default: all cores, 1 per MPI rank); the table is the same on any "

@@ -621,8 +621,8 @@ RC_API rc_status rc_wheelset_table_build(rc_wheelset* wheelset, const double* y_
 /* The y refinement of the wheelset's next table builds (docs/WHEELSET_TABLE.md §3 "Where the
    contact jumps"): y nodes are added, halving the steps up to three times, around a node whose
    wheel's lateral normal force lies further than lateral_force_fraction of its load from the line
-   between its neighbours (a flange snapping in, a second contact appearing). 0 (the default): none;
-   0.01 for a table that runs into the flange; in [0, 1]. The progress callback's total grows as
+   between its neighbours (a flange snapping in, a second contact appearing). 0.01 (the default, for
+   a table that runs into the flange); 0: none; in [0, 1]. The progress callback's total grows as
    nodes are added. */
 RC_API rc_status rc_wheelset_table_set_refinement(rc_wheelset* wheelset, double lateral_force_fraction);
 /* Loads a table file (`railcontact wheelset-table build`, rc_wheelset_table_save) and checks that it

@@ -706,13 +706,15 @@ class Wheelset:
 
     # ---- The wheelset table (docs/WHEELSET_TABLE.md) ---------------------------------------------
 
-    def build_table(self, y, yaw=(0.0,), loads=(80e3, 100e3, 120e3), *, progress=None,
-                    refine_lateral_force_fraction: float = 0.0) -> None:
+    def build_table(self, y, yaw=(0.0,), loads=tuple(80e3 + 5e3 * k for k in range(9)), *, progress=None,
+                    refine_lateral_force_fraction: float = 0.01) -> None:
         """Builds this wheelset's table (its track, material, element size and contact surface) over
         the grid y (m), yaw (rad; one value serves every yaw by turning the contact point) and loads
         (N per wheel), each strictly increasing; about 0.02-0.5 s per node. progress(done, total) is
-        called after each node; returning False cancels (CancelledError). refine_lateral_force_fraction
-        [0: none; 0.01 for a table that runs into the flange] adds y nodes where the contact jumps
+        called after each node; returning False cancels (CancelledError). The default loads, 80-120 kN
+        in 5 kN steps, keep the lookups that balance the tangential forces vertically within 2 % of
+        muFz of the wheelset on the fly near the flange (docs/WHEELSET_TABLE.md §3 "The load grid").
+        refine_lateral_force_fraction [0.01 by default; 0: none] adds y nodes where the contact jumps
         (docs/WHEELSET_TABLE.md §3; the total of progress grows as they are added). Replaces a table
         the wheelset had."""
         grids = [_check.grid(name, value) for name, value in (("y", y), ("yaw", yaw), ("loads", loads))]
