@@ -27,7 +27,7 @@ def test_hunting_example_quick(tmp_path):
     # The table build's progress: its last line is the last node, with nothing left (the nodes of the
     # grid and those the build added where the contact jumps).
     nodes = summary["table"]["nodes_built"]
-    assert nodes > summary["table"]["y_values"] * summary["table"]["yaw_values"]
+    assert nodes == summary["table"]["y_values"] * summary["table"]["yaw_values"]  # not refined
     table_lines = [line for line in r.stderr.splitlines() if "table nodes" in line]
     assert table_lines and f"table nodes {nodes}/{nodes};" in table_lines[-1], table_lines[-3:]
     assert table_lines[-1].endswith("about 0 s left"), table_lines[-1]

@@ -45,7 +45,7 @@ $mpi "$cli" $flex --out "$work/f3.json" > /dev/null 2> "$work/err" || { cat "$wo
 cmp "$work/f1.json" "$work/f3.json"
 
 step wheelset-table build
-wheelset="wheelset-table build --y-m=-0.003:0.003:0.0005 --load-N 100000 --element-size-m 0.001"
+wheelset="wheelset-table build --y-m=-0.003:0.003:0.0005 --load-N 100000 --element-size-m 0.001 --refine-lateral-force-fraction 0"
 "$cli" $wheelset --threads 1 --out "$work/w1.json" > /dev/null 2>&1
 $mpi "$cli" $wheelset --out "$work/w3.json" > /dev/null 2> "$work/err" || { cat "$work/err"; exit 1; }
 cmp "$work/w1.json" "$work/w3.json"
