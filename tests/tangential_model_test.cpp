@@ -292,9 +292,12 @@ TEST(TangentialModel, StripForcesSumToTheForcesOnEveryPath) {
   for (std::size_t j = 0; j < strips.size(); ++j) EXPECT_NEAR(a.strip_F2_N[j], b.strip_F2_N[j], 1e-9 * muF3);
 }
 
-std::string message_of(const StoredPatch& stored, const TangentialModelOptions& o) {
+// The message of the Error (invalid_input) a model's preparation throws on `from` (a patch or a
+// stored patch) with the options o; empty when it prepares.
+template <typename From>
+std::string message_of(const From& from, const TangentialModelOptions& o) {
   try {
-    (void)TangentialModel(stored, o);
+    (void)TangentialModel(from, o);
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::invalid_input) << e.what();
     return e.what();
@@ -319,55 +322,46 @@ TEST(TangentialModel, BadStoredPatchesAreRefusedByName) {
             "tangential model: a stored patch with a whole_patch_weight above 0 needs its whole patch");
   stored.whole_patch_weight = 0.0;
   stored.lobes.front().flexibility.L2 = NAN;
-  EXPECT_NE(message_of(stored, options_for(TangentialSolver::nh_fastsim)).find("must be positive and finite"),
+  EXPECT_NE(message_of(stored, options_for(TangentialSolver::nh_fastsim))
+                .find("a stored lobe's flexibility.L2 = nan m/Pa must be positive and finite"),
             std::string::npos);
   stored.lobes.front() = StoredLobe{ContactPatch{}, L, 0.0, 0.0};
   EXPECT_EQ(message_of(stored, options_for(TangentialSolver::nh_fastsim)),
             "tangential model: a stored lobe has no element in contact");
 }
 
-std::string message_of(const TangentialModelOptions& o, const ContactPatch& patch) {
-  try {
-    (void)TangentialModel(patch, o);
-  } catch (const Error& e) {
-    EXPECT_EQ(e.kind(), ErrorKind::invalid_input) << e.what();
-    return e.what();
-  }
-  return "";
-}
-
 TEST(TangentialModel, BadOptionsAreRefusedByName) {
   const ContactPatch patch = ellipse_patch(400);
   TangentialModelOptions o;
   o.solver = static_cast<TangentialSolver>(7);
-  EXPECT_EQ(message_of(o, patch),
+  EXPECT_EQ(message_of(patch, o),
             "tangential model: solver = 7 is not a TangentialSolver (0 nh-fastsim, 1 fastsim, 2 exact, 3 "
             "exact-regularised)");
   o = {};
   o.nh_fastsim.bound.skew = 1.5;
-  EXPECT_NE(message_of(o, patch).find("nh_fastsim.bound.skew = 1.5 must lie in [0, 1]"), std::string::npos);
+  EXPECT_NE(message_of(patch, o).find("nh_fastsim.bound.skew = 1.5 must lie in [0, 1]"), std::string::npos);
   o = {};
   o.nh_fastsim.flexibility_coarsening = -1;
-  EXPECT_NE(message_of(o, patch).find("nh_fastsim.flexibility_coarsening = -1"), std::string::npos);
+  EXPECT_NE(message_of(patch, o).find("nh_fastsim.flexibility_coarsening = -1"), std::string::npos);
   o = {};
   o.nh_fastsim.collocation_offset = -1.0;
-  EXPECT_NE(message_of(o, patch).find("nh_fastsim.collocation_offset = -1 must lie in [-0.95, 1]"),
+  EXPECT_NE(message_of(patch, o).find("nh_fastsim.collocation_offset = -1 must lie in [-0.95, 1]"),
             std::string::npos);
   o = {};
   o.nh_fastsim.match = static_cast<FlexibilityMatch>(5);
-  EXPECT_NE(message_of(o, patch).find("nh_fastsim.match = 5 is not a FlexibilityMatch"), std::string::npos);
+  EXPECT_NE(message_of(patch, o).find("nh_fastsim.match = 5 is not a FlexibilityMatch"), std::string::npos);
   o = {};
   o.given_flexibilities = NhFastSimFlexibilities{{1e-10, -1e-10, 1e-10}, 1.0, 1.0, 1.0};
-  EXPECT_NE(message_of(o, patch).find("given_flexibilities.flexibility.L2 = -1e-10 m/Pa must be positive"),
+  EXPECT_NE(message_of(patch, o).find("given_flexibilities.flexibility.L2 = -1e-10 m/Pa must be positive"),
             std::string::npos);
   o = options_for(TangentialSolver::fastsim);
   o.ellipse_semi_axes_m = std::array<double, 2>{0.0, 1e-3};
-  EXPECT_NE(message_of(o, patch).find("ellipse_semi_axes_m[0] = 0 m must be positive"), std::string::npos);
+  EXPECT_NE(message_of(patch, o).find("ellipse_semi_axes_m[0] = 0 m must be positive"), std::string::npos);
   o = options_for(TangentialSolver::exact);
   o.rolling.tolerance = 1.0;
-  EXPECT_NE(message_of(o, patch).find("tolerance"), std::string::npos);
+  EXPECT_NE(message_of(patch, o).find("tolerance"), std::string::npos);
   for (TangentialSolver s : kTangentialSolvers)
-    EXPECT_NE(message_of(options_for(s), ContactPatch{}), "") << "a patch without contact: " << solver_name(s);
+    EXPECT_NE(message_of(ContactPatch{}, options_for(s)), "") << "a patch without contact: " << solver_name(s);
 
   const TangentialModel model(patch, options_for(TangentialSolver::nh_fastsim));
   EXPECT_THROW((void)model.solve(kCreepage, 0.0), Error);

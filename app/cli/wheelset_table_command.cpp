@@ -24,9 +24,6 @@
 namespace railcontact::cli {
 namespace {
 
-// --refine-lateral-force-fraction's default (docs/WHEELSET_TABLE.md §3 "Where the contact jumps").
-constexpr double kDefaultRefinement = 0.01;
-
 struct BuildArguments {
   std::string case_file;
   std::string out;
@@ -38,7 +35,7 @@ struct BuildArguments {
   double element_size_m = 0.2e-3;
   std::string reference_weighting;  // --reference-weighting (squared-gap, depth)
   std::string contact_surface;      // --contact-surface (planar, conformal, auto)
-  double refine_lateral_force = kDefaultRefinement;  // --refine-lateral-force-fraction (0: no refinement)
+  double refine_lateral_force = kWheelsetTableRefinementDefault;  // --refine-lateral-force-fraction (0: no refinement)
   std::string threads;
   int runtime_elements = kWheelsetTableRuntimeElements;
 };
@@ -118,7 +115,7 @@ WheelsetTableOptions table_options(const BuildArguments& a, const CLI::App& sub,
     fmt::print(stderr, "wheelset-table build: over MPI ranks the y grid is not refined where the contact jumps (the "
                        "default --refine-lateral-force-fraction {:g} needs one rank): give finer y steps in --y-m where "
                        "the flange snaps in\n",
-               kDefaultRefinement);
+               kWheelsetTableRefinementDefault);
   require(a.runtime_elements >= 20 && a.runtime_elements <= 100000, [&] {
     return fmt::format("--runtime-elements {} must lie in [20, 100000] (elements of the coarse patch FastSim runs on at "
                        "lookup)",

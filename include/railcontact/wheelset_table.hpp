@@ -203,6 +203,11 @@ struct WheelsetTableMetadata {
 // resultants along y) lies further than lateral_force_fraction of its load from the straight line
 // between its two neighbours along y has the intervals on both sides halved, at every yaw and load,
 // for at most `rounds` halvings; intervals of smallest_step_m or less are kept.
+// The lateral_force_fraction the command line, the C API and Python build with by default
+// (docs/WHEELSET_TABLE.md §3 "Where the contact jumps"); WheelsetTableRefinement's own is 0, since a
+// refined build needs its nodes on one process (not a runner over MPI ranks).
+inline constexpr double kWheelsetTableRefinementDefault = 0.01;
+
 struct WheelsetTableRefinement {
   double lateral_force_fraction = 0.0;  // 0: no refinement; else in (0, 1]
   double smallest_step_m = 0.0125e-3;

@@ -707,7 +707,7 @@ class Wheelset:
     # ---- The wheelset table (docs/WHEELSET_TABLE.md) ---------------------------------------------
 
     def build_table(self, y, yaw=(0.0,), loads=tuple(80e3 + 5e3 * k for k in range(9)), *, progress=None,
-                    refine_lateral_force_fraction: float = 0.01) -> None:
+                    refine_lateral_force_fraction: float = 0.01) -> None:  # kWheelsetTableRefinementDefault
         """Builds this wheelset's table (its track, material, element size and contact surface) over
         the grid y (m), yaw (rad; one value serves every yaw by turning the contact point) and loads
         (N per wheel), each strictly increasing; about 0.02-0.5 s per node. progress(done, total) is

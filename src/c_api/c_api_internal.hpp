@@ -204,7 +204,7 @@ struct rc_wheelset {
   std::string table_dropped;
   // rc_wheelset_table_set_refinement: WheelsetTableRefinement::lateral_force_fraction of the next
   // builds (0: none).
-  double table_refinement = 0.01;  // rc_wheelset_table_set_refinement's default
+  double table_refinement = railcontact::kWheelsetTableRefinementDefault;  // rc_wheelset_table_set_refinement's default
   mutable railcontact::c_api::LastError error;  // set by const calls too
   rc_wheelset();
 };

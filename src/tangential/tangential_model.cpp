@@ -169,6 +169,12 @@ class RollingModel final : public TangentialModelImpl {
   bool regularised_;
 };
 
+void require_positive(double value, const char* field, const char* unit) {
+  require(std::isfinite(value) && value > 0.0, [&] {
+    return fmt::format("tangential model: {} = {}{} must be positive and finite", field, value, unit);
+  });
+}
+
 // The table-driven model (StoredPatch): FastSim on each stored lobe's copy with its stored
 // flexibilities, summed and blended as NhFastSimPerLobe does (tangential/lobe_sum.hpp).
 class StoredPatchModel final : public TangentialModelImpl {
@@ -216,12 +222,9 @@ class StoredPatchModel final : public TangentialModelImpl {
   };
   static Lobe prepared(const StoredLobe& lobe, const TractionBound& bound) {
     const Flexibility& L = lobe.flexibility;
-    require(std::isfinite(L.L1) && L.L1 > 0.0 && std::isfinite(L.L2) && L.L2 > 0.0 && std::isfinite(L.L3) && L.L3 > 0.0,
-            [&] {
-              return fmt::format("tangential model: a stored lobe's flexibilities ({}, {}, {}) m/Pa must be positive "
-                                 "and finite",
-                                 L.L1, L.L2, L.L3);
-            });
+    require_positive(L.L1, "a stored lobe's flexibility.L1", " m/Pa");
+    require_positive(L.L2, "a stored lobe's flexibility.L2", " m/Pa");
+    require_positive(L.L3, "a stored lobe's flexibility.L3", " m/Pa");
     require(std::isfinite(lobe.x1_centre_m) && std::isfinite(lobe.x2_centre_m),
             "tangential model: a stored lobe's centre must be finite");
     require(lobe.patch.elements().count() > 0, "tangential model: a stored lobe has no element in contact");
@@ -304,11 +307,6 @@ std::unique_ptr<TangentialModelImpl> make_model(const ContactPatch& patch, const
   return model;
 }
 
-void require_positive(double value, const char* field, const char* unit) {
-  require(std::isfinite(value) && value > 0.0, [&] {
-    return fmt::format("tangential model: {} = {}{} must be positive and finite", field, value, unit);
-  });
-}
 
 }  // namespace
 
