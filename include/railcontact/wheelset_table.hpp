@@ -48,8 +48,11 @@
 namespace railcontact {
 
 // FastSim at lookup runs on patches of about this many elements (fewer when the fine patch has
-// fewer): the cost of a lookup against the error of FastSim's discretisation.
-inline constexpr int kWheelsetTableRuntimeElements = 400;
+// fewer; the coarsening is by whole blocks, so a copy has between this many and four times as
+// many): the cost of a lookup against the error of FastSim's discretisation. With 400 the hollow
+// wheel's 1800-element tread patch went to 2 × 2 blocks, and the table missed the wheelset on the
+// fly by 2.5 % of μFz; with 600 it is kept whole, 0.9 % (docs/WHEELSET_TABLE.md §1).
+inline constexpr int kWheelsetTableRuntimeElements = 600;
 // Patches of neighbouring nodes are one patch when their reference points lie at most this far
 // apart on the rail profile (tread and flange contacts lie 10 mm and more apart).
 inline constexpr double kWheelsetTablePatchMatchDistance_m = 4e-3;
