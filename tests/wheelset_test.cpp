@@ -199,6 +199,55 @@ TEST(Wheelset, AWindowedTimeStepGivesTheWholeAreasSolution) {
   }
 }
 
+// By position a time step starts each patch's normal solve from the linear prediction of its last
+// two solutions (docs/WHEELSET.md §8 "The prediction"): along a drift of 1 µm per step the third
+// step, predicted, takes fewer conjugate-gradient iterations than the second, started from the
+// first step's pressure alone (0.2 mm elements, both wheels' patches: 5 against 20 at y = 0, 6
+// against 11 at −6.5 mm), and gives a fresh Wheelset's solution to the solver's tolerance. A step that turns back is not
+// predicted (the plain warm start), and gives the fresh solution too.
+TEST(Wheelset, APredictedTimeStepTakesFewerIterationsAndGivesTheSameSolution) {
+  WheelsetOptions o = coarse();
+  o.element_size_m = 0.2e-3;
+  o.loads.reset();
+  o.allow_wheel_lift = true;
+  const double agree = o.normal.tolerance;
+  const auto iterations = [](const WheelsetResult& r) {
+    int n = 0;
+    for (const WheelResult& w : r.wheels)
+      for (const WheelsetPatch& p : w.patches) n += p.normal_iterations;
+    return n;
+  };
+  const auto expect_fresh = [&](const WheelsetResult& warm, const WheelsetState& s, double y) {
+    const WheelsetResult fresh = Wheelset(track(), o).evaluate(s);
+    for (int side = 0; side < 2; ++side) {
+      ASSERT_EQ(warm.wheels[side].patches.size(), fresh.wheels[side].patches.size()) << "y = " << y;
+      for (std::size_t j = 0; j < fresh.wheels[side].patches.size(); ++j) {
+        const WheelsetPatch& p = warm.wheels[side].patches[j];
+        const WheelsetPatch& q = fresh.wheels[side].patches[j];
+        const double muF3 = o.friction_coefficient * q.normal_force_N;
+        EXPECT_EQ(p.elements_in_contact, q.elements_in_contact) << "y = " << y;
+        EXPECT_NEAR(p.normal_force_N, q.normal_force_N, agree * q.normal_force_N) << "y = " << y;
+        EXPECT_NEAR(p.forces().F1_N, q.forces().F1_N, agree * muF3) << "y = " << y;
+        EXPECT_NEAR(p.forces().F2_N, q.forces().F2_N, agree * muF3) << "y = " << y;
+      }
+    }
+  };
+  for (const double y : {0.0, -6.5e-3}) {
+    WheelsetState s = state_at(y);
+    s.position.vertical_displacement_m = track().touching_vertical_displacement_m(WheelSide::right, s.position) - 60e-6;
+    Wheelset stepping(track(), o);
+    (void)stepping.evaluate(s);
+    s.position.lateral_displacement_m += 1e-6;
+    const int plain = iterations(stepping.evaluate(s));
+    s.position.lateral_displacement_m += 1e-6;
+    const WheelsetResult predicted = stepping.evaluate(s);
+    EXPECT_LE(iterations(predicted), 0.7 * plain) << "y = " << y << ": " << iterations(predicted) << " against " << plain;
+    expect_fresh(predicted, s, y);
+    s.position.lateral_displacement_m -= 1e-6;  // back: no prediction
+    expect_fresh(stepping.evaluate(s), s, y);
+  }
+}
+
 // After reset_warm_start() an evaluation gives a fresh Wheelset's numbers to the last digit, while
 // the warm step before it started from the previous state's pressures.
 TEST(Wheelset, ResetWarmStartGivesAFreshWheelsetsNumbers) {

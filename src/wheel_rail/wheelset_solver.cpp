@@ -109,10 +109,17 @@ struct WheelsetWarmStart {
     std::uint64_t last_use;
     NormalContactSolver solver;
   };
-  struct Previous {
-    double rail_profile_y_m;
+  // A patch's solution and the position it was solved at; `older` the same patch's solution a
+  // step before (by position, for the linear prediction of initial_pressure).
+  struct Solved {
     Mesh mesh;
     std::vector<double> pressure_Pa;
+    WheelsetPosition position;
+  };
+  struct Previous {
+    double rail_profile_y_m;
+    Solved last;
+    std::optional<Solved> older;
   };
   std::vector<Plan> plans;
   std::array<std::vector<Previous>, 2> previous;  // right, left
@@ -151,37 +158,82 @@ struct WheelsetWarmStart {
     return plans.back().solver;
   }
 
-  // The previous pressure of the nearest earlier patch of this wheel (within 2 mm along the rail),
-  // moved onto the new mesh element by element (both meshes have their element centres at integer
-  // multiples of the element size from their reference points); empty when there is none.
-  std::vector<double> initial_pressure(WheelSide side, double rail_profile_y_m, const Mesh& mesh) const {
-    const auto& list = previous[side == WheelSide::right ? 0 : 1];
+  // The earlier patch of this wheel nearest to rail_profile_y_m (within 2 mm along the rail).
+  [[nodiscard]] const Previous* nearest(WheelSide side, double rail_profile_y_m) const {
     const Previous* best = nullptr;
-    for (const Previous& p : list) {
-      if (std::abs(p.rail_profile_y_m - rail_profile_y_m) < 2e-3 &&
-          (!best || std::abs(p.rail_profile_y_m - rail_profile_y_m) < std::abs(best->rail_profile_y_m - rail_profile_y_m)))
-        best = &p;
+    for (const Previous& p : previous[side == WheelSide::right ? 0 : 1]) {
+      const double d = std::abs(p.rail_profile_y_m - rail_profile_y_m);
+      if (d < 2e-3 && (!best || d < std::abs(best->rail_profile_y_m - rail_profile_y_m))) best = &p;
     }
-    if (!best || best->mesh.dx1_m != mesh.dx1_m) return {};
-    const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - best->mesh.x1_first_m) / mesh.dx1_m));
-    const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - best->mesh.x2_first_m) / mesh.dx2_m));
+    return best;
+  }
+
+  // The start of a patch's normal solve on `mesh`: the previous pressure of the nearest earlier
+  // patch of this wheel, moved onto the new mesh element by element (both meshes have their element
+  // centres at integer multiples of the element size from their reference points); empty when
+  // there is none. By position (`at` given) and with the same patch solved a step before too, the
+  // linear prediction p + r (p − p_older), r the new step's length along the last one's (in
+  // [0, kLargestPredictionRatio]; 0 when the steps turn back), floored at zero: along a 1 µm drift
+  // it halves the conjugate-gradient iterations (docs/WHEELSET.md §8 "The prediction").
+  std::vector<double> initial_pressure(WheelSide side, double rail_profile_y_m, const Mesh& mesh,
+                                       const WheelsetPosition* at) const {
+    const Previous* best = nearest(side, rail_profile_y_m);
+    if (!best || best->last.mesh.dx1_m != mesh.dx1_m) return {};
+    std::vector<double> p = moved_onto(best->last, mesh);
+    if (at == nullptr || !best->older || best->older->mesh.dx1_m != mesh.dx1_m) return p;
+    const double r = step_ratio(best->older->position, best->last.position, *at);
+    if (r <= 0.0) return p;
+    const std::vector<double> older = moved_onto(*best->older, mesh);
+    for (std::size_t k = 0; k < p.size(); ++k) p[k] = std::max(0.0, p[k] + r * (p[k] - older[k]));
+    return p;
+  }
+
+  // A solution's pressure on another mesh of the same element size, zero where it did not reach.
+  static std::vector<double> moved_onto(const Solved& from, const Mesh& mesh) {
+    const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - from.mesh.x1_first_m) / mesh.dx1_m));
+    const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - from.mesh.x2_first_m) / mesh.dx2_m));
     std::vector<double> p(mesh.size(), 0.0);
     for (int i2 = 0; i2 < mesh.n2; ++i2) {
       const int j2 = i2 + shift2;
-      if (j2 < 0 || j2 >= best->mesh.n2) continue;
+      if (j2 < 0 || j2 >= from.mesh.n2) continue;
       for (int i1 = 0; i1 < mesh.n1; ++i1) {
         const int j1 = i1 + shift1;
-        if (j1 >= 0 && j1 < best->mesh.n1) p[mesh.index(i1, i2)] = best->pressure_Pa[best->mesh.index(j1, j2)];
+        if (j1 >= 0 && j1 < from.mesh.n1) p[mesh.index(i1, i2)] = from.pressure_Pa[from.mesh.index(j1, j2)];
       }
     }
     return p;
   }
 
-  void remember(WheelSide side, const std::vector<NormalPatch>& patches) {
-    auto& list = previous[side == WheelSide::right ? 0 : 1];
-    list.clear();
-    for (const NormalPatch& p : patches)
-      list.push_back(Previous{p.region.rail_profile_y_m, p.area.mesh, p.normal.pressure_Pa});
+  // The step from `last` to `now` projected on the step from `older` to `last`, as a multiple of
+  // that step: positions as (y, z, roll, yaw) with the angles times 1 m (about a wheel's distance
+  // from the wheelset centre). Clamped to [0, kLargestPredictionRatio]; 0 when the last step is
+  // nil.
+  static constexpr double kLargestPredictionRatio = 2.0;
+  static double step_ratio(const WheelsetPosition& older, const WheelsetPosition& last, const WheelsetPosition& now) {
+    const auto coordinates = [](const WheelsetPosition& p) {
+      return std::array<double, 4>{p.lateral_displacement_m, p.vertical_displacement_m, p.roll_rad * 1.0,
+                                   p.yaw_rad * 1.0};
+    };
+    const std::array<double, 4> a = coordinates(older), b = coordinates(last), c = coordinates(now);
+    double along = 0.0, length2 = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      along += (c[i] - b[i]) * (b[i] - a[i]);
+      length2 += (b[i] - a[i]) * (b[i] - a[i]);
+    }
+    if (!(length2 > 0.0)) return 0.0;
+    return std::clamp(along / length2, 0.0, kLargestPredictionRatio);
+  }
+
+  // A wheel's patches solved at `position`; each keeps the nearest earlier patch's solution as its
+  // older one.
+  void remember(WheelSide side, const WheelsetPosition& position, const std::vector<NormalPatch>& patches) {
+    std::vector<Previous> list;
+    for (const NormalPatch& p : patches) {
+      Previous n{p.region.rail_profile_y_m, Solved{p.area.mesh, p.normal.pressure_Pa, position}, std::nullopt};
+      if (const Previous* earlier = nearest(side, p.region.rail_profile_y_m)) n.older = earlier->last;
+      list.push_back(std::move(n));
+    }
+    previous[side == WheelSide::right ? 0 : 1] = std::move(list);
   }
 };
 
@@ -242,11 +294,12 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
 // (negative where the bodies overlap): the approach is zero. In a time step (warm_start) first on
 // the previous contact's window; else (or if the check fails) on the whole potential area.
 SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const InterpenetrationRegion& region,
-                              const WheelsetOptions& options, detail::WheelsetWarmStart& warm, bool warm_start) {
+                              const WheelsetOptions& options, detail::WheelsetWarmStart& warm, bool warm_start,
+                              const WheelsetPosition* predict_at = nullptr) {
   SurfaceSolution p;
   p.area = std::move(area);
   const std::vector<double> initial =
-      warm_start ? warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh) : std::vector<double>{};
+      warm_start ? warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh, predict_at) : std::vector<double>{};
   std::optional<WindowedSolution> windowed = solve_in_contact_window(p.area, initial, options, warm);
   p.normal = windowed ? std::move(windowed->normal)
                       : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, initial);
@@ -260,8 +313,12 @@ SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const Inter
   return p;
 }
 
+// predict: start each patch from the linear prediction of its last two solutions (by position,
+// where consecutive evaluations are steps of one motion; by load the evaluation's own height
+// iterates come in between, and the prediction from them was measured to cost iterations).
 std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
-                                      const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
+                                      const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
+                                      bool predict = false) {
   const WheelContactSearch search = track.contact_search(side, position, options.search);
   std::vector<NormalPatch> patches;
   for (const InterpenetrationRegion& region : search.regions) {
@@ -283,13 +340,13 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     static_cast<SurfaceSolution&>(p) = solve_surface(
         conformal ? track.conformal_contact_area(position, region, options.element_size_m)
                   : track.potential_contact_area(position, region, options.element_size_m),
-        side, region, options, warm, true);
+        side, region, options, warm, true, predict ? &position : nullptr);
     if (conformal && p.conformal_weight < 1.0)
       p.planar = solve_surface(track.potential_contact_area(position, region, options.element_size_m), side, region,
                                options, warm, false);
     patches.push_back(std::move(p));
   }
-  warm.remember(side, patches);
+  warm.remember(side, position, patches);
   return patches;
 }
 
@@ -825,7 +882,7 @@ constexpr std::array<WheelSide, 2> kSides{WheelSide::right, WheelSide::left};
 void evaluate_by_position(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
                           WheelsetResult& result) {
   for (std::size_t k = 0; k < 2; ++k) {
-    std::vector<NormalPatch> normal = solve_normal(track, kSides[k], result.state.position, options, warm);
+    std::vector<NormalPatch> normal = solve_normal(track, kSides[k], result.state.position, options, warm, true);
     result.wheels[k] = finish_wheel(track, kSides[k], result.state, normal, options);
   }
 }
