@@ -109,12 +109,15 @@ struct WheelsetWarmStart {
     std::uint64_t last_use;
     NormalContactSolver solver;
   };
-  // A patch's solution and the position it was solved at; `older` the same patch's solution a
-  // step before (by position, for the linear prediction of initial_pressure).
+  // A patch's solution, the position it was solved at and the evaluation it was solved in;
+  // `older` the same patch's last solution in an earlier evaluation (the step before, for the
+  // linear prediction of initial_pressure; by load the heights' iterates of one evaluation do not
+  // count as steps).
   struct Solved {
     Mesh mesh;
     std::vector<double> pressure_Pa;
     WheelsetPosition position;
+    std::uint64_t evaluation = 0;
   };
   struct Previous {
     double rail_profile_y_m;
@@ -124,6 +127,7 @@ struct WheelsetWarmStart {
   std::vector<Plan> plans;
   std::array<std::vector<Previous>, 2> previous;  // right, left
   std::uint64_t clock = 0;
+  std::uint64_t evaluation = 0;  // counts Wheelset::evaluate_rolling calls
   // By load: each wheel's last overlap below its first touch, its contact stiffness dF/dδ and the
   // tangential forces' vertical part its last balance settled on, the first guesses of the next
   // evaluation's height iteration and balance when that evaluation is a time step away
@@ -171,7 +175,7 @@ struct WheelsetWarmStart {
   // The start of a patch's normal solve on `mesh`: the previous pressure of the nearest earlier
   // patch of this wheel, moved onto the new mesh element by element (both meshes have their element
   // centres at integer multiples of the element size from their reference points); empty when
-  // there is none. By position (`at` given) and with the same patch solved a step before too, the
+  // there is none. With `at` given and the same patch solved in an earlier evaluation too, the
   // linear prediction p + r (p − p_older), r the new step's length along the last one's (in
   // [0, kLargestPredictionRatio]; 0 when the steps turn back), floored at zero: along a 1 µm drift
   // it halves the conjugate-gradient iterations (docs/WHEELSET.md §8 "The prediction").
@@ -224,13 +228,15 @@ struct WheelsetWarmStart {
     return std::clamp(along / length2, 0.0, kLargestPredictionRatio);
   }
 
-  // A wheel's patches solved at `position`; each keeps the nearest earlier patch's solution as its
-  // older one.
+  // A wheel's patches solved at `position`; each keeps, as its older solution, the nearest earlier
+  // patch's last solution of an earlier evaluation.
   void remember(WheelSide side, const WheelsetPosition& position, const std::vector<NormalPatch>& patches) {
     std::vector<Previous> list;
     for (const NormalPatch& p : patches) {
-      Previous n{p.region.rail_profile_y_m, Solved{p.area.mesh, p.normal.pressure_Pa, position}, std::nullopt};
-      if (const Previous* earlier = nearest(side, p.region.rail_profile_y_m)) n.older = earlier->last;
+      Previous n{p.region.rail_profile_y_m, Solved{p.area.mesh, p.normal.pressure_Pa, position, evaluation},
+                 std::nullopt};
+      if (const Previous* earlier = nearest(side, p.region.rail_profile_y_m))
+        n.older = earlier->last.evaluation == evaluation ? earlier->older : std::optional<Solved>(earlier->last);
       list.push_back(std::move(n));
     }
     previous[side == WheelSide::right ? 0 : 1] = std::move(list);
@@ -313,12 +319,9 @@ SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const Inter
   return p;
 }
 
-// predict: start each patch from the linear prediction of its last two solutions (by position,
-// where consecutive evaluations are steps of one motion; by load the evaluation's own height
-// iterates come in between, and the prediction from them was measured to cost iterations).
+// Each patch starts from the linear prediction of its last solutions (initial_pressure).
 std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
-                                      const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
-                                      bool predict = false) {
+                                      const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
   const WheelContactSearch search = track.contact_search(side, position, options.search);
   std::vector<NormalPatch> patches;
   for (const InterpenetrationRegion& region : search.regions) {
@@ -340,7 +343,7 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     static_cast<SurfaceSolution&>(p) = solve_surface(
         conformal ? track.conformal_contact_area(position, region, options.element_size_m)
                   : track.potential_contact_area(position, region, options.element_size_m),
-        side, region, options, warm, true, predict ? &position : nullptr);
+        side, region, options, warm, true, &position);
     if (conformal && p.conformal_weight < 1.0)
       p.planar = solve_surface(track.potential_contact_area(position, region, options.element_size_m), side, region,
                                options, warm, false);
@@ -882,7 +885,7 @@ constexpr std::array<WheelSide, 2> kSides{WheelSide::right, WheelSide::left};
 void evaluate_by_position(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
                           WheelsetResult& result) {
   for (std::size_t k = 0; k < 2; ++k) {
-    std::vector<NormalPatch> normal = solve_normal(track, kSides[k], result.state.position, options, warm, true);
+    std::vector<NormalPatch> normal = solve_normal(track, kSides[k], result.state.position, options, warm);
     result.wheels[k] = finish_wheel(track, kSides[k], result.state, normal, options);
   }
 }
@@ -981,6 +984,7 @@ void assemble_totals(const WheelsetOptions& options, const WheelsetState& input,
 WheelsetResult Wheelset::evaluate_rolling(const WheelsetState& input) {
   WheelsetResult result;
   result.state = input;
+  ++warm_->evaluation;
   if (options_.loads)
     evaluate_by_load(track_, options_, *warm_, result);
   else
