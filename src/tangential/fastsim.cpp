@@ -40,6 +40,20 @@ namespace stdx = std::experimental;
 // Two native vectors per lane group (16 doubles with AVX-512): two independent dependency
 // chains per step hide the latency of the sqrt/div of the limiting (Eq 8).
 constexpr std::size_t kLanes = 2 * stdx::native_simd<double>::size();
+
+// The march with everything it calls inlined (see march); not in an AddressSanitizer build, where
+// inlining every instrumented call made this file take 3.8 minutes and 2 GB to compile (24 s
+// without), for a speed nobody measures there.
+#if defined(__has_feature)
+#define RAILCONTACT_ASAN_FEATURE __has_feature(address_sanitizer)
+#else
+#define RAILCONTACT_ASAN_FEATURE 0
+#endif
+#if defined(__SANITIZE_ADDRESS__) || RAILCONTACT_ASAN_FEATURE
+#define RAILCONTACT_MARCH_INLINED
+#else
+#define RAILCONTACT_MARCH_INLINED [[gnu::flatten]]
+#endif
 using Lanes = stdx::fixed_size_simd<double, kLanes>;
 constexpr std::size_t kAlignment = 64;  // bytes: one cache line, one AVX-512 vector
 
@@ -167,11 +181,11 @@ void towards_rigid_slip(L& h1, L& h2, L& sliding, const L& increment, const L& l
 // turned towards the rigid slip's as the lane slides (SlipDirection::rigid_slip).
 // kStrips: the coefficients per lane from `strips` (strip creepages; kSpin must be set).
 // strip_sums (with kStrips): S sum p1 and S sum p2 of each strip (mesh column) added to [0] and [1].
-// flatten: GCC leaves the 16-lane group's arithmetic (fixed_size_simd) as out-of-line calls
-// otherwise; inlined, the rigid-slip march is 3.7 times as fast (docs/BENCHMARKS.md "FastSim's march
-// inlined").
+// kMarchInlined (flatten): GCC leaves the 16-lane group's arithmetic (fixed_size_simd) as
+// out-of-line calls otherwise; inlined, the rigid-slip march is 3.7 times as fast
+// (docs/BENCHMARKS.md "FastSim's march inlined").
 template <bool kSpin, bool kWeighted, bool kRecord, bool kCount = kRecord, bool kStrips = false, bool kRigid = false>
-[[gnu::flatten]] TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record,
+RAILCONTACT_MARCH_INLINED TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record,
                        const StripLaneCoefficients* strips = nullptr, std::array<double*, 2> strip_sums = {}) {
   static_assert(!kRigid || (kWeighted && kSpin));
   Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
