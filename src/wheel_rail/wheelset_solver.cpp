@@ -209,14 +209,15 @@ struct WheelsetWarmStart {
   }
 
   // The step from `last` to `now` projected on the step from `older` to `last`, as a multiple of
-  // that step: positions as (y, z, roll, yaw) with the angles times 1 m (about a wheel's distance
-  // from the wheelset centre). Clamped to [0, kLargestPredictionRatio]; 0 when the last step is
+  // that step: positions as (y, z, roll, yaw) with the angles times kAngleLever_m (about a wheel's
+  // distance from the wheelset centre). Clamped to [0, kLargestPredictionRatio]; 0 when the last step is
   // nil.
   static constexpr double kLargestPredictionRatio = 2.0;
+  static constexpr double kAngleLever_m = 1.0;
   static double step_ratio(const WheelsetPosition& older, const WheelsetPosition& last, const WheelsetPosition& now) {
     const auto coordinates = [](const WheelsetPosition& p) {
-      return std::array<double, 4>{p.lateral_displacement_m, p.vertical_displacement_m, p.roll_rad * 1.0,
-                                   p.yaw_rad * 1.0};
+      return std::array<double, 4>{p.lateral_displacement_m, p.vertical_displacement_m, p.roll_rad * kAngleLever_m,
+                                   p.yaw_rad * kAngleLever_m};
     };
     const std::array<double, 4> a = coordinates(older), b = coordinates(last), c = coordinates(now);
     double along = 0.0, length2 = 0.0;
