@@ -320,8 +320,11 @@ class WheelsetTable {
                                         bool tangential_forces_in_vertical_balance = false) const;
 
  private:
+  // The patches' FastSim results of one state at the nodes looked up so far (wheelset_table.cpp):
+  // the vertical balance looks the same state up at several table loads.
+  struct LookupCache;
   [[nodiscard]] WheelsetResult evaluate_at_table_loads(const WheelsetState& state, const WheelLoads& loads,
-                                                       double friction_coefficient) const;
+                                                       double friction_coefficient, LookupCache& cache) const;
   WheelsetTableGrid grid_;
   std::vector<WheelsetTableNode> nodes_;
   double nominal_rolling_radius_m_ = 0.0;

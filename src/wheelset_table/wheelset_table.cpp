@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 
 #include "railcontact/error.hpp"
 #include "railcontact/text_file.hpp"
@@ -525,9 +526,13 @@ struct Lookup {
 // One wheel from the table: each node of the cell around the lookup contributes its patches with
 // its weight; patches of different nodes at nearly the same place on the rail profile are one
 // patch. (RuntimeTable: WheelsetTable's private runtime copies, parallel to the nodes.)
+// A patch's results at one state, by (node, wheel, patch): they do not depend on the load weights.
+using PatchResults = std::map<std::array<std::size_t, 3>, PatchAtLookup>;
+
 template <typename RuntimeTable>
 WheelResult evaluate_wheel(WheelSide side, const Lookup& lookup, const WheelsetTableGrid& grid_,
-                           const std::vector<WheelsetTableNode>& nodes_, const RuntimeTable& runtime_) {
+                           const std::vector<WheelsetTableNode>& nodes_, const RuntimeTable& runtime_,
+                           PatchResults& known) {
   const LookupCell& cell = lookup.cell;
   const std::size_t w = side == WheelSide::right ? 0 : 1;
   const double s2 = side == WheelSide::left ? -1.0 : 1.0;  // the solve frame mirrors a left wheel
@@ -551,8 +556,14 @@ WheelResult evaluate_wheel(WheelSide side, const Lookup& lookup, const WheelsetT
     wheel.vertical_displacement_m += weight * node.vertical_displacement_m[w];
     for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
       const WheelsetTablePatch& p = node.wheels[w][k];
-      const PatchAtLookup at =
-          patch_at_lookup(runtime_[n][w][k], p, node.y_m, turn, side, s2, lookup.motion, lookup.kinematics, lookup.mu);
+      const std::array<std::size_t, 3> key{n, w, k};
+      auto found = known.find(key);
+      if (found == known.end())
+        found = known
+                    .emplace(key, patch_at_lookup(runtime_[n][w][k], p, node.y_m, turn, side, s2, lookup.motion,
+                                                  lookup.kinematics, lookup.mu))
+                    .first;
+      const PatchAtLookup& at = found->second;
       PatchSum& sum = matching_sum(sums, p.rail_profile_y_m, n);
       sum.nodes.push_back(n);
       sum.add(at, p, weight);
@@ -739,9 +750,16 @@ std::vector<WheelsetTableMismatch> WheelsetTable::mismatches(const WheelsetOptio
   return found;
 }
 
+struct WheelsetTable::LookupCache {
+  PatchResults patches;
+};
+
 WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLoads& loads,
                                        double friction_coefficient, bool tangential_forces_in_vertical_balance) const {
-  WheelsetResult r = evaluate_at_table_loads(state, loads, friction_coefficient);
+  // The state is the same at every table load the balance tries: each node's patches are solved
+  // once (FastSim on their coarse copies) and only weighted anew.
+  LookupCache cache;
+  WheelsetResult r = evaluate_at_table_loads(state, loads, friction_coefficient, cache);
   if (!tangential_forces_in_vertical_balance) return r;
   // Within one cell of the load grid a wheel's vertical force is linear in the table load (the
   // nodes' forces, tangential ones included, are interpolated linearly): the first step assumes it
@@ -783,13 +801,13 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
     }
     if (met) break;
     r = evaluate_at_table_loads(state, WheelLoads{table_load[0], table_load[1], loads.balance_roll},
-                                friction_coefficient);
+                                friction_coefficient, cache);
   }
   return r;
 }
 
 WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state, const WheelLoads& loads,
-                                                      double friction_coefficient) const {
+                                                      double friction_coefficient, LookupCache& cache) const {
   if (nodes_.empty()) throw Error("wheelset table: the table is empty");
   check_lookup_state(state, friction_coefficient);
   const WheelsetMotion motion = wheelset_motion(state, nominal_rolling_radius_m_);
@@ -809,7 +827,7 @@ WheelsetResult WheelsetTable::evaluate_at_table_loads(const WheelsetState& state
     const Bracket bl =
         bracket(grid_.wheel_load_N, load, fmt::format("the {} wheel's load", side_name(side)).c_str(), "kN", 1e3);
     const Lookup lookup{{by, byaw, bl, position.yaw_rad}, motion, kinematics, friction_coefficient};
-    result.wheels[w] = evaluate_wheel(side, lookup, grid_, nodes_, runtime_);
+    result.wheels[w] = evaluate_wheel(side, lookup, grid_, nodes_, runtime_, cache.patches);
   }
   detail::sum_wheelset_forces(result, 1);
   return result;
