@@ -181,12 +181,14 @@ void towards_rigid_slip(L& h1, L& h2, L& sliding, const L& increment, const L& l
 // turned towards the rigid slip's as the lane slides (SlipDirection::rigid_slip).
 // kStrips: the coefficients per lane from `strips` (strip creepages; kSpin must be set).
 // strip_sums (with kStrips): S sum p1 and S sum p2 of each strip (mesh column) added to [0] and [1].
-// kMarchInlined (flatten): GCC leaves the 16-lane group's arithmetic (fixed_size_simd) as
-// out-of-line calls otherwise; inlined, the rigid-slip march is 3.7 times as fast
+// RAILCONTACT_MARCH_INLINED (flatten): GCC leaves the 16-lane group's arithmetic (fixed_size_simd)
+// as out-of-line calls otherwise; inlined, the rigid-slip march is 3.7 times as fast
 // (docs/BENCHMARKS.md "FastSim's march inlined").
 template <bool kSpin, bool kWeighted, bool kRecord, bool kCount = kRecord, bool kStrips = false, bool kRigid = false>
-RAILCONTACT_MARCH_INLINED TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k, double mu, MarchRecord* record,
-                       const StripLaneCoefficients* strips = nullptr, std::array<double*, 2> strip_sums = {}) {
+RAILCONTACT_MARCH_INLINED TangentialForces march(const detail::FastSimLayout& layout, const MarchCoefficients& k,
+                                                 double mu, MarchRecord* record,
+                                                 const StripLaneCoefficients* strips = nullptr,
+                                                 std::array<double*, 2> strip_sums = {}) {
   static_assert(!kRigid || (kWeighted && kSpin));
   Lanes F1 = 0.0, F2 = 0.0, M3 = 0.0;
   const double* step_m = layout.step_m.data();

@@ -523,12 +523,13 @@ struct Lookup {
   double mu;
 };
 
-// One wheel from the table: each node of the cell around the lookup contributes its patches with
-// its weight; patches of different nodes at nearly the same place on the rail profile are one
-// patch. (RuntimeTable: WheelsetTable's private runtime copies, parallel to the nodes.)
 // A patch's results at one state, by (node, wheel, patch): they do not depend on the load weights.
 using PatchResults = std::map<std::array<std::size_t, 3>, PatchAtLookup>;
 
+// One wheel from the table: each node of the cell around the lookup contributes its patches with
+// its weight; patches of different nodes at nearly the same place on the rail profile are one
+// patch. (RuntimeTable: WheelsetTable's private runtime copies, parallel to the nodes.) A patch
+// already solved for this state (`known`) is only weighted.
 template <typename RuntimeTable>
 WheelResult evaluate_wheel(WheelSide side, const Lookup& lookup, const WheelsetTableGrid& grid_,
                            const std::vector<WheelsetTableNode>& nodes_, const RuntimeTable& runtime_,
