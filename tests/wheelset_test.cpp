@@ -45,7 +45,12 @@ WheelsetState state_at(double y_m, double yaw_rad = 0.0) {
 // Forces with the wheelset at (y, ψ) are the mirror images of those at (−y, −ψ): the right wheel's
 // are the left wheel's mirrored (F1, F3 kept; F2, M3, η, φ, Fy reversed), to rounding.
 TEST(Wheelset, WheelsAtMinusYAreTheMirrorImageOfWheelsAtY) {
-  Wheelset wheelset(track(), coarse({TangentialSolver::nh_fastsim, TangentialSolver::exact}));
+  // The heights solved to 1e-10 of the load, beyond this test's 1e-8: at the default 1e-6 the two
+  // wheels' height iterations may stop at different points within it. Creepages agree to 1e-10
+  // (the heights' iterations), forces to 1e-8 of the load.
+  WheelsetOptions options = coarse({TangentialSolver::nh_fastsim, TangentialSolver::exact});
+  options.load_tolerance = 1e-10;
+  Wheelset wheelset(track(), options);
   for (const auto& [y, yaw] : {std::pair{3e-3, 0.0}, std::pair{-6.8e-3, 2e-3}}) {
     const WheelsetResult a = wheelset.evaluate(state_at(y, yaw));
     const WheelsetResult b = wheelset.evaluate(state_at(-y, -yaw));
@@ -60,8 +65,8 @@ TEST(Wheelset, WheelsAtMinusYAreTheMirrorImageOfWheelsAtY) {
       for (std::size_t p = 0; p < w.patches.size(); ++p) {
         const WheelsetPatch& P = w.patches[p];
         const WheelsetPatch& Q = m.patches[p];
-        EXPECT_NEAR(P.creepage.xi, Q.creepage.xi, 1e-12);
-        EXPECT_NEAR(P.creepage.eta, -Q.creepage.eta, 1e-12);
+        EXPECT_NEAR(P.creepage.xi, Q.creepage.xi, 1e-10);
+        EXPECT_NEAR(P.creepage.eta, -Q.creepage.eta, 1e-10);
         EXPECT_NEAR(P.creepage.phi, -Q.creepage.phi, 1e-10);
         for (std::size_t s = 0; s < P.solvers.size(); ++s) {
           EXPECT_NEAR(P.solvers[s].forces.F1_N, Q.solvers[s].forces.F1_N, 1e-8 * scale);
@@ -246,6 +251,42 @@ TEST(Wheelset, APredictedTimeStepTakesFewerIterationsAndGivesTheSameSolution) {
     s.position.lateral_displacement_m -= 1e-6;  // back: no prediction
     expect_fresh(stepping.evaluate(s), s, y);
   }
+}
+
+// By load a time step starts each wheel's height iteration from the linear prediction of its last
+// two overlaps (docs/WHEELSET.md §8 "The prediction"): along a drift of 1 µm per step the third
+// step, predicted, carries both loads after one normal solve per wheel, against two for the
+// second step (started from the first step's overlap alone), and gives a fresh Wheelset's forces
+// to within the balance's tolerances: Fz to the load tolerance plus the 1e-5 of the load to
+// which the tangential forces' vertical part settles, F1 and F2 to 1e-4 of μFz. A step that turns back is not predicted, and gives the fresh
+// solution too.
+TEST(Wheelset, APredictedHeightTakesOneNormalSolvePerWheelAndGivesTheSameSolution) {
+  WheelsetOptions o = coarse();
+  o.element_size_m = 0.2e-3;
+  const auto solves = [](const WheelsetResult& r) { return r.wheels[0].load_iterations + r.wheels[1].load_iterations; };
+  const auto expect_fresh = [&](const WheelsetResult& warm, const WheelsetState& s, double y) {
+    const WheelsetResult fresh = Wheelset(track(), o).evaluate(s);
+    for (int side = 0; side < 2; ++side) {
+      const WheelResult& w = warm.wheels[side];
+      const WheelResult& f = fresh.wheels[side];
+      const double muFz = o.friction_coefficient * f.force_track_N[2];
+      EXPECT_NEAR(w.force_track_N[2], f.force_track_N[2], (o.load_tolerance + 1e-5) * f.force_track_N[2]) << "y = " << y;
+      EXPECT_NEAR(w.force_track_N[0], f.force_track_N[0], 1e-4 * muFz) << "y = " << y;
+      EXPECT_NEAR(w.force_track_N[1], f.force_track_N[1], 1e-4 * muFz) << "y = " << y;
+    }
+  };
+  WheelsetState s = state_at(0.0);
+  Wheelset stepping(track(), o);
+  (void)stepping.evaluate(s);
+  s.position.lateral_displacement_m += 1e-6;
+  const int plain = solves(stepping.evaluate(s));
+  s.position.lateral_displacement_m += 1e-6;
+  const WheelsetResult predicted = stepping.evaluate(s);
+  EXPECT_EQ(plain, 4);
+  EXPECT_EQ(solves(predicted), 2);
+  expect_fresh(predicted, s, 0.0);
+  s.position.lateral_displacement_m -= 1e-6;  // back: no prediction
+  expect_fresh(stepping.evaluate(s), s, 0.0);
 }
 
 // After reset_warm_start() an evaluation gives a fresh Wheelset's numbers to the last digit, while

@@ -136,6 +136,32 @@ struct WheelsetWarmStart {
   std::array<double, 2> stiffness_N_per_m{0.0, 0.0};
   std::array<double, 2> tangential_vertical_N{0.0, 0.0};
   std::optional<WheelsetPosition> last_position;
+  // The overlaps and tangential parts of the time step before (at older_position), for their
+  // linear prediction (predicted); none after a jump.
+  std::array<double, 2> older_overlap_m{0.0, 0.0};
+  std::array<double, 2> older_tangential_vertical_N{0.0, 0.0};
+  std::optional<WheelsetPosition> older_position;
+
+  // The first guesses of each wheel's overlap and tangential part at `now`, a time step after the
+  // last evaluation by load: the last ones moved on along the last step, x + r (x − x_older) with r
+  // as in initial_pressure (the overlap kept within a factor 2 of the last). Along a 1 µm drift the
+  // overlap's guess carries the load to within the load tolerance, so that most steps solve each
+  // wheel's normal problem once (docs/WHEELSET.md §8 "The prediction").
+  struct HeightGuess {
+    std::array<double, 2> overlap_m, tangential_vertical_N;
+  };
+  [[nodiscard]] HeightGuess predicted(const WheelsetPosition& now) const {
+    if (!older_position || !last_position) return {overlap_m, tangential_vertical_N};
+    const double r = step_ratio(*older_position, *last_position, now);
+    HeightGuess guess{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      guess.overlap_m[k] = std::clamp(overlap_m[k] + r * (overlap_m[k] - older_overlap_m[k]), 0.5 * overlap_m[k],
+                                      2.0 * overlap_m[k]);
+      guess.tangential_vertical_N[k] =
+          tangential_vertical_N[k] + r * (tangential_vertical_N[k] - older_tangential_vertical_N[k]);
+    }
+    return guess;
+  }
 
   // A time step away from the last evaluation by load: within 0.1 mm laterally and 1 mrad of roll
   // and yaw. A jump starts the heights and the balance afresh, so that its numbers do not depend on
@@ -604,7 +630,7 @@ double tangential_vertical_force(const WheelResult& wheel, std::size_t solver) {
 
 // The wheel's height at which its normal forces carry `target_N` vertically: Newton-like steps on
 // the overlap δ below first touch, F ∝ δ^(3/2) (Hertz) first, then secant steps. overlap_m: the
-// first guess of δ in, the δ found out.
+// first guess of δ in, the δ found out (corrected by a Newton step with the contact stiffness).
 double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition position, double target_N,
                     const WheelsetOptions& options, double& overlap_m, std::vector<NormalPatch>& patches,
                     int& iterations, detail::WheelsetWarmStart& warm) {
@@ -618,8 +644,10 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
     patches = solve_normal(track, side, position, options, warm);
     const double force = normal_vertical_force(patches);
     if (std::abs(force - target_N) <= options.load_tolerance * target_N) {
-      overlap_m = delta;
       if (height.stiffness_N_per_m > 0.0) stiffness = height.stiffness_N_per_m;
+      // The overlap out is the root's Newton estimate, free of where within the tolerance the
+      // iteration stopped: the next step's prediction extrapolates it.
+      overlap_m = stiffness > 0.0 ? delta + (target_N - force) / stiffness : delta;
       return position.vertical_displacement_m;
     }
     const double next = height.next_overlap_m(delta, force, target_N, iterations);
@@ -920,10 +948,11 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
   const WheelsetState input = result.state;
   const std::array<double, 2> loads{options.loads->right_N, options.loads->left_N};
   if (!stepped) warm.stiffness_N_per_m = {0.0, 0.0};
+  const detail::WheelsetWarmStart::HeightGuess guess = warm.predicted(input.position);
   std::array<TangentialBalance, 2> tangential{};
   if (stepped && options.tangential_forces_in_vertical_balance)
-    for (std::size_t k = 0; k < 2; ++k) tangential[k].value_N = warm.tangential_vertical_N[k];
-  std::array<double, 2> overlap = stepped ? warm.overlap_m : std::array<double, 2>{0.08e-3, 0.08e-3};
+    for (std::size_t k = 0; k < 2; ++k) tangential[k].value_N = guess.tangential_vertical_N[k];
+  std::array<double, 2> overlap = stepped ? guess.overlap_m : std::array<double, 2>{0.08e-3, 0.08e-3};
   RollBalance roll;
   std::array<double, 2> heights{0.0, 0.0};
   std::array<std::vector<NormalPatch>, 2> normal;
@@ -950,7 +979,15 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
                                std::max(options.load_tolerance, tolerance) * loads[k];
     }
     if (settled) break;
-    for (std::size_t k = 0; k < 2; ++k) tangential[k].step(pass, new_tangential[k]);
+    for (std::size_t k = 0; k < 2; ++k) {
+      // The next pass's load differs by the change of T: its overlap guessed with the contact
+      // stiffness (Newton), so that the pass's first normal solve is close.
+      const double previous_T = tangential[k].value_N;
+      tangential[k].step(pass, new_tangential[k]);
+      if (warm.stiffness_N_per_m[k] > 0.0)
+        overlap[k] = std::clamp(overlap[k] + (previous_T - tangential[k].value_N) / warm.stiffness_N_per_m[k],
+                                0.5 * overlap[k], 2.0 * overlap[k]);
+    }
     if (tangential[0].bracket_closed(loads[0]) && tangential[1].bracket_closed(loads[1])) break;
     if (pass + 1 >= kMaximumBalanceIterations) {
       throw Error(ErrorKind::not_converged,
@@ -961,6 +998,9 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
     }
   }
   result.state = state;
+  warm.older_position = stepped ? warm.last_position : std::nullopt;
+  warm.older_overlap_m = warm.overlap_m;
+  warm.older_tangential_vertical_N = warm.tangential_vertical_N;
   warm.overlap_m = overlap;
   for (std::size_t k = 0; k < 2; ++k) warm.tangential_vertical_N[k] = tangential[k].value_N;
   warm.last_position = input.position;
