@@ -137,17 +137,19 @@ bool WheelOnRail::locus_sample(double wheel_parameter_m, ContactLocusSample& sam
   const double dr_ds = sign_ * p.dz_ds / p.dy_ds;
   // The wheel's outward normal at angle θ about the axle, e_ρ(θ) − dr/ds a, has no x component when
   // cos θ down_x + sin θ ahead_x = dr/ds a_x (docs/WHEELSET.md §2): the solution nearest the bottom.
+  // With (A, B) = R (cos θ0, sin θ0) and C = R cos σ: θ = θ0 ± σ, the one with the larger cos θ
+  // (θ0 + σ when sin θ0 ≤ 0), by the angle-addition formulas.
   const double A = down_[0], B = ahead_[0], C = dr_ds * axle_[0];
   const double R = std::hypot(A, B);
   if (!(std::abs(C) < R)) return false;
-  const double theta0 = std::atan2(B, A);
-  const double spread = std::acos(C / R);
-  const double t1 = theta0 + spread, t2 = theta0 - spread;
-  const double theta = std::cos(t1) >= std::cos(t2) ? t1 : t2;
-  if (!(std::cos(theta) > 0.5)) return false;  // not on the lower half of the wheel
+  const double cos_theta0 = A / R, sin_theta0 = B / R;
+  const double cos_spread = C / R, sin_spread = std::sqrt(1.0 - cos_spread * cos_spread);
+  const double turn = sin_theta0 <= 0.0 ? 1.0 : -1.0;  // θ = θ0 + turn σ
+  const double cos_theta = cos_theta0 * cos_spread - turn * sin_theta0 * sin_spread;
+  const double sin_theta = sin_theta0 * cos_spread + turn * cos_theta0 * sin_spread;
+  if (!(cos_theta > 0.5)) return false;  // not on the lower half of the wheel
   const double axial = sign_ * (wheel_offset_m_ + p.y_m);
-  Vector3 e_rho = add(Vector3{std::cos(theta) * down_[0], std::cos(theta) * down_[1], std::cos(theta) * down_[2]},
-                      ahead_, std::sin(theta));
+  Vector3 e_rho = add(Vector3{cos_theta * down_[0], cos_theta * down_[1], cos_theta * down_[2]}, ahead_, sin_theta);
   sample.point_track_m = add(add(centre_, axle_, axial), e_rho, radius);
   // The rail below the locus point.
   const double y_rail = sign_ * sample.point_track_m[1] - rail_offset_m_;

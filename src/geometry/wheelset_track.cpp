@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/wheel_locus.hpp"
 #include "geometry/wheelset_frames.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheelset_geometry.hpp"
@@ -207,19 +208,8 @@ double WheelsetTrack::touching_vertical_displacement_m(WheelSide side, const Whe
   WheelsetPosition at_nominal = position;
   at_nominal.vertical_displacement_m = 0.0;
   validate(at_nominal);
-  std::vector<ContactLocusSample> locus;
-  std::vector<std::uint8_t> valid;
-  sample_locus(geometry::WheelOnRail(*this, side, at_nominal), ContactSearchOptions{}.locus_step_m, locus, valid);
-  double gap = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < locus.size(); ++k)
-    if (valid[k]) gap = std::min(gap, locus[k].vertical_gap_m);
-  if (!std::isfinite(gap)) {
-    throw Error(ErrorKind::no_contact,
-                fmt::format("contact search, {} wheel at y = {:.3f} mm: the wheel and rail profiles do not overlap "
-                            "laterally",
-                            side_name(side), position.lateral_displacement_m / kMm));
-  }
-  return -gap;
+  return detail::touching_vertical_displacement_m(
+      detail::sample_wheel_locus(*this, side, at_nominal, ContactSearchOptions{}.locus_step_m));
 }
 
 double WheelsetTrack::wheel_profile_origin_y_m(WheelSide side) const {
@@ -234,11 +224,50 @@ WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetP
                                                  const ContactSearchOptions& options) const {
   validate(position);
   validate(options);
-  const geometry::WheelOnRail w(*this, side, position);
+  return detail::contact_search(*this, detail::sample_wheel_locus(*this, side, position, options.locus_step_m),
+                                position, options);
+}
+
+namespace detail {
+
+WheelLocus sample_wheel_locus(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
+                              double step_m) {
+  WheelLocus locus;
+  locus.side = side;
+  locus.position = position;
+  locus.position.vertical_displacement_m = 0.0;
+  locus.step_m = step_m;
+  sample_locus(geometry::WheelOnRail(track, side, locus.position), step_m, locus.samples, locus.valid);
+  return locus;
+}
+
+double touching_vertical_displacement_m(const WheelLocus& locus) {
+  double gap = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < locus.samples.size(); ++k)
+    if (locus.valid[k]) gap = std::min(gap, locus.samples[k].vertical_gap_m);
+  if (!std::isfinite(gap)) {
+    throw Error(ErrorKind::no_contact,
+                fmt::format("contact search, {} wheel at y = {:.3f} mm: the wheel and rail profiles do not overlap "
+                            "laterally",
+                            side_name(locus.side), locus.position.lateral_displacement_m / kMm));
+  }
+  return -gap;
+}
+
+WheelContactSearch contact_search(const WheelsetTrack& track, const WheelLocus& locus,
+                                  const WheelsetPosition& position, const ContactSearchOptions& options) {
+  const WheelSide side = locus.side;
+  const geometry::WheelOnRail w(track, side, position);
   WheelContactSearch search;
   search.side = side;
-  std::vector<std::uint8_t> valid;
-  sample_locus(w, options.locus_step_m, search.locus, valid);
+  const std::vector<std::uint8_t>& valid = locus.valid;
+  // The locus at z: every point, and so every vertical gap, lifted by z.
+  const double z = position.vertical_displacement_m;
+  search.locus = locus.samples;
+  for (ContactLocusSample& sample : search.locus) {
+    sample.point_track_m[2] += z;
+    sample.vertical_gap_m += z;
+  }
   const std::size_t n = search.locus.size();
   std::size_t valid_count = 0;
   search.min_vertical_gap_m = std::numeric_limits<double>::infinity();
@@ -269,14 +298,14 @@ WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetP
     // 5 degrees below the steepest), the wheel is climbing over the rail.
     const ProfileCurvePoint at_reference = w.wheel().at(w.wheel().parameter_at(region.wheel_profile_y_m));
     const double wheel_slope_rad = std::atan2(-at_reference.dz_ds, at_reference.dy_ds);
-    if (region.wheel_profile_y_m < flange_steepest_point_y_m(side) &&
-        wheel_slope_rad < flange_steepest_angle_rad(side) - kFlangeRoundingAngle_rad) {
+    if (region.wheel_profile_y_m < track.flange_steepest_point_y_m(side) &&
+        wheel_slope_rad < track.flange_steepest_angle_rad(side) - kFlangeRoundingAngle_rad) {
       throw Error(ErrorKind::invalid_input,
                   fmt::format("contact search, {}: the flange is climbing over the rail: the contact lies at the "
                               "wheel profile's y_p = {:.2f} mm, beyond the flange's steepest point ({:.2f} mm, "
                               "{:.1f} degrees), towards its tip, where its slope has fallen to {:.1f} degrees",
-                              where, region.wheel_profile_y_m / kMm, flange_steepest_point_y_m(side) / kMm,
-                              flange_steepest_angle_rad(side) * 180.0 / M_PI, wheel_slope_rad * 180.0 / M_PI));
+                              where, region.wheel_profile_y_m / kMm, track.flange_steepest_point_y_m(side) / kMm,
+                              track.flange_steepest_angle_rad(side) * 180.0 / M_PI, wheel_slope_rad * 180.0 / M_PI));
     }
   }
   std::sort(search.regions.begin(), search.regions.end(),
@@ -290,5 +319,7 @@ WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetP
   }
   return search;
 }
+
+}  // namespace detail
 
 }  // namespace railcontact

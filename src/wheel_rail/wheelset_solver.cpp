@@ -21,6 +21,7 @@
 #include "wheel_rail/patch_tangential_model.hpp"
 #include "wheel_rail/wheelset_assembly.hpp"
 #include "tangential/cropped_patch.hpp"
+#include "geometry/wheel_locus.hpp"
 #include "wheel_rail/wheel_height.hpp"
 
 namespace railcontact {
@@ -126,6 +127,7 @@ struct WheelsetWarmStart {
   };
   std::vector<Plan> plans;
   std::array<std::vector<Previous>, 2> previous;  // right, left
+  std::array<WheelLocus, 2> locus;                // each wheel's last contact locus (right, left)
   std::uint64_t clock = 0;
   std::uint64_t evaluation = 0;  // counts Wheelset::evaluate_rolling calls
   // By load: each wheel's last overlap below its first touch, its contact stiffness dF/dδ and the
@@ -170,6 +172,20 @@ struct WheelsetWarmStart {
     return last_position && std::abs(p.lateral_displacement_m - last_position->lateral_displacement_m) <= 0.1e-3 &&
            std::abs(p.roll_rad - last_position->roll_rad) <= 1e-3 &&
            std::abs(p.yaw_rad - last_position->yaw_rad) <= 1e-3;
+  }
+
+  // The contact locus of a wheel at `position`: the last one where only the height differs (the
+  // height iteration's trials, wheel_locus.hpp), otherwise sampled anew.
+  const WheelLocus& locus_at(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
+                             double step_m) {
+    WheelLocus& kept = locus[side == WheelSide::right ? 0 : 1];
+    if (!kept.serves(side, position, step_m)) {
+      WheelsetPosition at_nominal = position;
+      at_nominal.vertical_displacement_m = 0.0;
+      validate(at_nominal);
+      kept = sample_wheel_locus(track, side, at_nominal, step_m);
+    }
+    return kept;
   }
 
   NormalContactSolver& plan(const Mesh& mesh, const WheelsetOptions& options) {
@@ -349,7 +365,9 @@ SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const Inter
 // Each patch starts from the linear prediction of its last solutions (initial_pressure).
 std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
                                       const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
-  const WheelContactSearch search = track.contact_search(side, position, options.search);
+  validate(position);
+  const WheelContactSearch search = detail::contact_search(
+      track, warm.locus_at(track, side, position, options.search.locus_step_m), position, options.search);
   std::vector<NormalPatch> patches;
   for (const InterpenetrationRegion& region : search.regions) {
     // Bodies pressed this far into each other carry more than the largest normal force accepted
@@ -634,7 +652,8 @@ double tangential_vertical_force(const WheelResult& wheel, std::size_t solver) {
 double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition position, double target_N,
                     const WheelsetOptions& options, double& overlap_m, std::vector<NormalPatch>& patches,
                     int& iterations, detail::WheelsetWarmStart& warm) {
-  const double touching = track.touching_vertical_displacement_m(side, position);
+  const double touching =
+      detail::touching_vertical_displacement_m(warm.locus_at(track, side, position, options.search.locus_step_m));
   double delta = overlap_m;
   detail::HeightIteration height;
   double& stiffness = warm.stiffness_N_per_m[side == WheelSide::right ? 0 : 1];
