@@ -4,7 +4,7 @@
 //                              evaluation, back and forth over 50 µm (warm start: plans and pressures of the previous step)
 //   BM_WheelsetCold            by position, a fresh Wheelset per evaluation (plans built, no warm start)
 //   BM_WheelsetByLoad          by load (each wheel's height solved, tangential forces in the balance),
-//                              the time step's lateral steps
+//                              the time step's lateral steps; ...Balanced: the roll balanced too
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
 //   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
 //   BM_WheelsetStepConformal   the time step on conformal contact surfaces (docs/WHEELSET.md §4)
@@ -136,6 +136,26 @@ void BM_WheelsetByLoad(benchmark::State& state) {
   report(state, r);
 }
 
+// By load with the roll balanced too (WheelLoads::balance_roll: a rigid axle carrying both loads,
+// the states of loaded_state), the time step's lateral steps: each wheel's height, the axle's
+// roll and the tangential forces' vertical part solved.
+void BM_WheelsetByLoadBalanced(benchmark::State& state) {
+  WheelsetState s;
+  const double y0 = static_cast<double>(state.range(0)) * 1e-6;
+  s.position.lateral_displacement_m = y0;
+  WheelsetOptions o;
+  o.loads = WheelLoads{98.1e3, 98.1e3, true};
+  Wheelset wheelset(track(), o);
+  WheelsetResult r = wheelset.evaluate(s);
+  long step = 0;
+  for (auto _ : state) {
+    s.position.lateral_displacement_m = stepped_y_m(y0, ++step);
+    r = wheelset.evaluate(s);
+    benchmark::DoNotOptimize(r.force_track_N);
+  }
+  report(state, r);
+}
+
 // The time step's stages one by one (both wheels, the state of BM_WheelsetTimeStep), through the
 // public API: the contact search; the potential contact areas with their undeformed distance;
 // the normal problems on the whole areas, each started from the previous step's pressure (the
@@ -256,6 +276,7 @@ BENCHMARK(BM_WheelsetStageNormal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisec
 BENCHMARK(BM_WheelsetStageTangential)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetByLoadBalanced)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepConformal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);

@@ -532,7 +532,7 @@ typedef struct rc_wheelset_result {
                                            mean of the wheels' heights found */
   double roll_rad;                      /* the state as solved: roll (balance_roll: found) */
   int patch_count[2];                   /* patches of each wheel [rc_wheel_side] */
-  int load_iterations[2];               /* BY_LOAD: height iterations of each wheel */
+  int load_iterations[2];               /* BY_LOAD: normal solves of each wheel's height iteration, all balance passes */
 } rc_wheelset_result;
 
 /* A new wheelset with rc_wheelset_options_default and no track (set one before evaluating).

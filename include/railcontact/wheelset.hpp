@@ -220,6 +220,8 @@ struct WheelResult {
   // The same for every solver, in the order of WheelsetOptions::solvers.
   std::vector<Vector3> solver_force_track_N;
   double vertical_displacement_m = 0.0;  // the height at which the wheel was solved
+  // By load: the normal problems this wheel's height iteration solved, over every pass of the
+  // vertical balance (0 by position).
   int load_iterations = 0;
 };
 

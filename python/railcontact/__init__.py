@@ -478,7 +478,7 @@ class WheelResult:
     patches: list               #: of WheelsetPatch
     force_track_N: np.ndarray   #: sum over the patches (first solver), track frame (N), (3,)
     vertical_displacement_m: float  #: the height at which the wheel was solved (m)
-    load_iterations: int        #: by load: height iterations
+    load_iterations: int        #: by load: normal solves of the height iteration, all balance passes
 
 
 @dataclass(frozen=True)

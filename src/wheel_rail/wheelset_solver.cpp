@@ -137,25 +137,30 @@ struct WheelsetWarmStart {
   std::array<double, 2> overlap_m{0.0, 0.0};
   std::array<double, 2> stiffness_N_per_m{0.0, 0.0};
   std::array<double, 2> tangential_vertical_N{0.0, 0.0};
+  double roll_rad = 0.0;  // the roll the last balance settled on (WheelLoads::balance_roll)
   std::optional<WheelsetPosition> last_position;
-  // The overlaps and tangential parts of the time step before (at older_position), for their
-  // linear prediction (predicted); none after a jump.
+  // The overlaps, tangential parts and roll of the time step before (at older_position), for
+  // their linear prediction (predicted); none after a jump.
   std::array<double, 2> older_overlap_m{0.0, 0.0};
   std::array<double, 2> older_tangential_vertical_N{0.0, 0.0};
+  double older_roll_rad = 0.0;
   std::optional<WheelsetPosition> older_position;
 
-  // The first guesses of each wheel's overlap and tangential part at `now`, a time step after the
-  // last evaluation by load: the last ones moved on along the last step, x + r (x − x_older) with r
-  // as in initial_pressure (the overlap kept within a factor 2 of the last). Along a 1 µm drift the
-  // overlap's guess carries the load to within the load tolerance, so that most steps solve each
-  // wheel's normal problem once (docs/WHEELSET.md §8 "The prediction").
+  // The first guesses of each wheel's overlap and tangential part, and of the balanced roll, at
+  // `now`, a time step after the last evaluation by load: the last ones moved on along the last
+  // step, x + r (x − x_older) with r as in initial_pressure (the overlap kept within a factor 2 of
+  // the last). Along a 1 µm drift the overlap's guess carries the load to within the load
+  // tolerance, so that most steps solve each wheel's normal problem once (docs/WHEELSET.md §8
+  // "The prediction").
   struct HeightGuess {
     std::array<double, 2> overlap_m, tangential_vertical_N;
+    double roll_rad;
   };
   [[nodiscard]] HeightGuess predicted(const WheelsetPosition& now) const {
-    if (!older_position || !last_position) return {overlap_m, tangential_vertical_N};
+    if (!older_position || !last_position) return {overlap_m, tangential_vertical_N, roll_rad};
     const double r = step_ratio(*older_position, *last_position, now);
     HeightGuess guess{};
+    guess.roll_rad = roll_rad + r * (roll_rad - older_roll_rad);
     for (std::size_t k = 0; k < 2; ++k) {
       guess.overlap_m[k] = std::clamp(overlap_m[k] + r * (overlap_m[k] - older_overlap_m[k]), 0.5 * overlap_m[k],
                                       2.0 * overlap_m[k]);
@@ -975,12 +980,17 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
   RollBalance roll;
   std::array<double, 2> heights{0.0, 0.0};
   std::array<std::vector<NormalPatch>, 2> normal;
-  std::array<int, 2> iterations{0, 0};
+  std::array<int, 2> iterations{0, 0}, solves{0, 0};
   WheelsetState state = input;
+  // A time step balancing the roll starts from the roll predicted from the last steps (the input's
+  // roll is only the first guess of a fresh evaluation).
+  if (stepped && options.loads->balance_roll) state.position.roll_rad = guess.roll_rad;
   for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
-    for (std::size_t k = 0; k < 2; ++k)
+    for (std::size_t k = 0; k < 2; ++k) {
       heights[k] = solve_height(track, kSides[k], state.position, loads[k] - tangential[k].value_N, options, overlap[k],
                                 normal[k], iterations[k], warm);
+      solves[k] += iterations[k];
+    }
     bool settled = true;
     if (options.loads->balance_roll)
       settled = roll.settle(pass, heights, track.wheel_profile_origin_y_m(WheelSide::left), state.position.roll_rad);
@@ -990,7 +1000,7 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
       WheelsetState wheel_state = state;
       wheel_state.position.vertical_displacement_m = heights[k];
       result.wheels[k] = finish_wheel(track, kSides[k], wheel_state, normal[k], options);
-      result.wheels[k].load_iterations = iterations[k];
+      result.wheels[k].load_iterations = solves[k];
       if (options.tangential_forces_in_vertical_balance)
         new_tangential[k] = tangential_vertical_force(result.wheels[k], balance_index(options));
       const double tolerance = pass < kStrictBalancePasses ? kTangentialBalanceTolerance : kCoarseTangentialBalanceTolerance;
@@ -1020,6 +1030,8 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
   warm.older_position = stepped ? warm.last_position : std::nullopt;
   warm.older_overlap_m = warm.overlap_m;
   warm.older_tangential_vertical_N = warm.tangential_vertical_N;
+  warm.older_roll_rad = warm.roll_rad;
+  warm.roll_rad = state.position.roll_rad;
   warm.overlap_m = overlap;
   for (std::size_t k = 0; k < 2; ++k) warm.tangential_vertical_N[k] = tangential[k].value_N;
   warm.last_position = input.position;
