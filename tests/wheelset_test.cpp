@@ -317,6 +317,19 @@ TEST(Wheelset, ABalancedTimeStepStartsFromThePredictedRoll) {
   }
 }
 
+// Balancing the roll, the evaluation ends with both wheels at one axle height (to 1e-8 m), also
+// where the first pass's heights agree at the input's roll and the tangential forces then move
+// them apart (at yaw 1 mrad: the first pass has no tangential forces, its wheels are mirror images).
+TEST(Wheelset, TheBalancedRollLeavesBothWheelsAtOneHeight) {
+  WheelsetOptions o = coarse();
+  o.loads = WheelLoads{98.1e3, 98.1e3, true};
+  for (const double y : {0.0, -3e-3}) {
+    const WheelsetResult r = Wheelset(track(), o).evaluate(state_at(y, 1e-3));
+    EXPECT_NEAR(r.wheels[0].vertical_displacement_m, r.wheels[1].vertical_displacement_m, 1e-8) << "y = " << y;
+    for (const WheelResult& w : r.wheels) EXPECT_NEAR(w.force_track_N[2], 98.1e3, 1e-3 * 98.1e3) << "y = " << y;
+  }
+}
+
 // After reset_warm_start() an evaluation gives a fresh Wheelset's numbers to the last digit, while
 // the warm step before it started from the previous state's pressures.
 TEST(Wheelset, ResetWarmStartGivesAFreshWheelsetsNumbers) {

@@ -85,9 +85,11 @@ class NormalContactSolver {
                                                  const std::vector<double>& initial_pressure_Pa = {});
   // The complementarity residual of NormalSolution::residual for a given pressure (mesh size,
   // >= 0) on this mesh, from one fresh product: how far it is from solving the problem with this
-  // h and approach. Checks a solution found on a smaller mesh against the whole one.
+  // h and approach. Checks a solution found on a smaller mesh against the whole one. With
+  // displacement_m given, the product u = A p (m, mesh order) is written there too.
   [[nodiscard]] double complementarity_residual(const std::vector<double>& undeformed_distance_m, double approach_m,
-                                                const std::vector<double>& pressure_Pa);
+                                                const std::vector<double>& pressure_Pa,
+                                                std::vector<double>* displacement_m = nullptr);
 
  private:
   struct Plan;

@@ -168,7 +168,8 @@ NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>&
 }
 
 double NormalContactSolver::complementarity_residual(const std::vector<double>& h, double approach_m,
-                                                    const std::vector<double>& pressure_Pa) {
+                                                    const std::vector<double>& pressure_Pa,
+                                                    std::vector<double>* displacement_m) {
   const Mesh& mesh = plan_->mesh;
   validate_problem(mesh, h, kMinimumNormalForce_N);
   require(std::isfinite(approach_m), [&] {
@@ -194,6 +195,7 @@ double NormalContactSolver::complementarity_residual(const std::vector<double>& 
     u_max = std::max(u_max, u[k]);
     violation = std::max(violation, pressure_Pa[k] > 0.0 ? std::fabs(g) : -g);
   }
+  if (displacement_m != nullptr) displacement_m->assign(u.begin(), u.begin() + static_cast<std::ptrdiff_t>(mesh.size()));
   return u_max > 0.0 ? violation / u_max : (violation > 0.0 ? 1.0 : 0.0);
 }
 

@@ -1,9 +1,11 @@
 #include "wheel_rail/contact_window.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 #include "elastic/fft_convolution.hpp"
+#include "elastic/influence_coefficients.hpp"
 
 namespace railcontact::detail {
 namespace {
@@ -86,6 +88,69 @@ bool contact_on_inner_window_edge(const Mesh& mesh, const MeshWindow& window,
   for (int j2 = 0; j2 < window.n2; ++j2)
     if ((low1 && loaded(0, j2)) || (high1 && loaded(window.n1 - 1, j2))) return true;
   return false;
+}
+
+NormalInfluenceBound::NormalInfluenceBound(double dx1_m, double dx2_m, const Material& material)
+    : dx1_m_(dx1_m), dx2_m_(dx2_m), material_(material), exact_(static_cast<std::size_t>(kExact) * kExact) {
+  for (int d2 = 0; d2 < kExact; ++d2)
+    for (int d1 = 0; d1 < kExact; ++d1)
+      exact_[static_cast<std::size_t>(d2) * kExact + d1] =
+          normal_influence(d1 * dx1_m, d2 * dx2_m, ElementSize{dx1_m, dx2_m}, material);
+}
+
+double NormalInfluenceBound::at(int d1, int d2) const {
+  if (d1 < kExact && d2 < kExact) return exact_[static_cast<std::size_t>(d2) * kExact + d1];
+  const double r = std::hypot(d1 * dx1_m_, d2 * dx2_m_) - 0.5 * std::hypot(dx1_m_, dx2_m_);
+  return (1.0 - material_.poisson_ratio) / (M_PI * material_.shear_modulus_Pa()) * dx1_m_ * dx2_m_ / r;
+}
+
+bool window_solution_holds_outside(const Mesh& mesh, const std::vector<double>& h_m, const MeshWindow& window,
+                                   const std::vector<double>& pressure_Pa, const WholeAreaCheck& check,
+                                   const NormalInfluenceBound& influence) {
+  const Mesh& c = check.mesh;
+  if (c.dx1_m != mesh.dx1_m || c.dx2_m != mesh.dx2_m) return false;
+  // Element (i1, i2) of this mesh is element (i1 + shift1, i2 + shift2) of the check's.
+  const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - c.x1_first_m) / mesh.dx1_m));
+  const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - c.x2_first_m) / mesh.dx2_m));
+  const auto on_check = [&](int i1, int i2) {
+    return i1 + shift1 >= 0 && i1 + shift1 < c.n1 && i2 + shift2 >= 0 && i2 + shift2 < c.n2;
+  };
+  // The checked pressure must lie on this mesh (its product is then this mesh's product of it).
+  for (int j2 = 0; j2 < c.n2; ++j2)
+    for (int j1 = 0; j1 < c.n1; ++j1)
+      if (check.pressure_Pa[c.index(j1, j2)] > 0.0 &&
+          (j1 - shift1 < 0 || j1 - shift1 >= mesh.n1 || j2 - shift2 < 0 || j2 - shift2 >= mesh.n2))
+        return false;
+  // ||p − p_c||_1 and the bounding box of the elements where they differ.
+  double pressure_change_Pa = 0.0;  // the sum of the elements' |Δp|
+  int lo1 = mesh.n1, hi1 = -1, lo2 = mesh.n2, hi2 = -1;
+  for (int i2 = 0; i2 < mesh.n2; ++i2)
+    for (int i1 = 0; i1 < mesh.n1; ++i1) {
+      const double checked = on_check(i1, i2) ? check.pressure_Pa[c.index(i1 + shift1, i2 + shift2)] : 0.0;
+      const double difference = std::abs(pressure_Pa[mesh.index(i1, i2)] - checked);
+      if (difference == 0.0) continue;
+      pressure_change_Pa += difference;
+      lo1 = std::min(lo1, i1);
+      hi1 = std::max(hi1, i1);
+      lo2 = std::min(lo2, i2);
+      hi2 = std::max(hi2, i2);
+    }
+  for (int i2 = 0; i2 < mesh.n2; ++i2) {
+    const bool row_inside = i2 >= window.lo2 && i2 < window.lo2 + window.n2;
+    for (int i1 = 0; i1 < mesh.n1; ++i1) {
+      if (row_inside && i1 >= window.lo1 && i1 < window.lo1 + window.n1) continue;
+      const double h = h_m[mesh.index(i1, i2)];
+      if (h >= 0.0) continue;  // A p >= 0
+      if (!on_check(i1, i2)) return false;
+      double lower = check.displacement_m[c.index(i1 + shift1, i2 + shift2)];
+      if (pressure_change_Pa > 0.0) {
+        const int d1 = std::max({0, lo1 - i1, i1 - hi1}), d2 = std::max({0, lo2 - i2, i2 - hi2});
+        lower -= influence.at(d1, d2) * pressure_change_Pa;
+      }
+      if (h + lower < 0.0) return false;
+    }
+  }
+  return true;
 }
 
 }  // namespace railcontact::detail

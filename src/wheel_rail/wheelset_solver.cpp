@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -71,6 +72,9 @@ struct SurfaceSolution {
   TangentPlaneArea area;                 // planar, or conformal (with its strips)
   NormalSolution normal;                 // on area.mesh
   std::size_t solved_mesh_elements = 0;  // of the mesh solved on: a contact window or area.mesh
+  // Solved on a window: the whole-area check that proved it (made now, or an earlier one the
+  // bound held against), for the next step's window (contact_window.hpp).
+  std::shared_ptr<const detail::WholeAreaCheck> check;
 };
 
 // One patch's normal problem: on the surface the options choose, and, where the automatic surface
@@ -124,10 +128,12 @@ struct WheelsetWarmStart {
     double rail_profile_y_m;
     Solved last;
     std::optional<Solved> older;
+    std::shared_ptr<const WholeAreaCheck> check;  // its window's last whole-area check
   };
   std::vector<Plan> plans;
   std::array<std::vector<Previous>, 2> previous;  // right, left
   std::array<WheelLocus, 2> locus;                // each wheel's last contact locus (right, left)
+  std::optional<NormalInfluenceBound> influence;  // for the windows' bound, made at the first
   std::uint64_t clock = 0;
   std::uint64_t evaluation = 0;  // counts Wheelset::evaluate_rolling calls
   // By load: each wheel's last overlap below its first touch, its contact stiffness dF/dδ and the
@@ -282,7 +288,7 @@ struct WheelsetWarmStart {
     std::vector<Previous> list;
     for (const NormalPatch& p : patches) {
       Previous n{p.region.rail_profile_y_m, Solved{p.area.mesh, p.normal.pressure_Pa, position, evaluation},
-                 std::nullopt};
+                 std::nullopt, p.check};
       if (const Previous* earlier = nearest(side, p.region.rail_profile_y_m))
         n.older = earlier->last.evaluation == evaluation ? earlier->older : std::optional<Solved>(earlier->last);
       list.push_back(std::move(n));
@@ -306,8 +312,10 @@ namespace {
 struct WindowedSolution {
   NormalSolution normal;  // on the whole area's mesh
   std::size_t window_elements = 0;
+  std::shared_ptr<const detail::WholeAreaCheck> check;  // the check that proved it
 };
 std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& area, const std::vector<double>& initial,
+                                                        const std::shared_ptr<const detail::WholeAreaCheck>& earlier,
                                                         const WheelsetOptions& options,
                                                         detail::WheelsetWarmStart& warm) {
   constexpr int kWindowMargin = 3;
@@ -331,17 +339,35 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
       detail::contact_on_inner_window_edge(area.mesh, *window, s.pressure_Pa))
     return std::nullopt;
   std::vector<double> pressure = detail::paste_window(area.mesh, s.pressure_Pa, *window);
-  const double residual = warm.plan(area.mesh, options).complementarity_residual(area.h_m, 0.0, pressure);
-  if (!(residual <= 10.0 * options.normal.tolerance)) return std::nullopt;
+  // The check on the whole area: by the bound from the patch's earlier check where it proves no
+  // overlap outside the window (planar areas: the half-space's A33 on the tangent plane), which
+  // leaves the whole-area residual the window's; otherwise one product there, kept as the next
+  // steps' earlier check.
+  std::shared_ptr<const detail::WholeAreaCheck> check;
+  if (earlier && area.strips.empty()) {
+    if (!warm.influence || !warm.influence->fits(area.mesh.dx1_m, area.mesh.dx2_m, options.material))
+      warm.influence.emplace(area.mesh.dx1_m, area.mesh.dx2_m, options.material);
+    if (detail::window_solution_holds_outside(area.mesh, area.h_m, *window, pressure, *earlier, *warm.influence))
+      check = earlier;
+  }
+  if (!check) {
+    auto made = std::make_shared<detail::WholeAreaCheck>();
+    const double residual =
+        warm.plan(area.mesh, options).complementarity_residual(area.h_m, 0.0, pressure, &made->displacement_m);
+    if (!(residual <= 10.0 * options.normal.tolerance)) return std::nullopt;
+    made->mesh = area.mesh;
+    made->pressure_Pa = pressure;
+    s.residual = residual;
+    check = std::move(made);
+  }
   s.pressure_Pa = std::move(pressure);
-  s.residual = residual;
   s.touches_border = false;
   for (int i2 = 0; i2 < area.mesh.n2; ++i2)
     for (int i1 = 0; i1 < area.mesh.n1; ++i1)
       if (s.pressure_Pa[area.mesh.index(i1, i2)] > 0.0 &&
           (i1 == 0 || i2 == 0 || i1 == area.mesh.n1 - 1 || i2 == area.mesh.n2 - 1))
         s.touches_border = true;
-  return WindowedSolution{std::move(s), mesh.size()};
+  return WindowedSolution{std::move(s), mesh.size(), std::move(check)};
 }
 
 // The normal problem of a region on one contact surface's area. h is measured at this position
@@ -354,10 +380,13 @@ SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const Inter
   p.area = std::move(area);
   const std::vector<double> initial =
       warm_start ? warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh, predict_at) : std::vector<double>{};
-  std::optional<WindowedSolution> windowed = solve_in_contact_window(p.area, initial, options, warm);
+  const detail::WheelsetWarmStart::Previous* earlier = warm_start ? warm.nearest(side, region.rail_profile_y_m) : nullptr;
+  std::optional<WindowedSolution> windowed =
+      solve_in_contact_window(p.area, initial, earlier ? earlier->check : nullptr, options, warm);
   p.normal = windowed ? std::move(windowed->normal)
                       : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, initial);
   p.solved_mesh_elements = windowed ? windowed->window_elements : p.area.mesh.size();
+  if (windowed) p.check = std::move(windowed->check);
   if (!p.normal.converged) {
     throw Error(ErrorKind::not_converged,
                 fmt::format("wheelset: the normal problem of the {} wheel's patch at y_p = {:.2f} mm did not "
@@ -888,7 +917,9 @@ namespace {
 
 // A rigid axle's roll (WheelLoads::balance_roll): the wheels' heights must agree. The first step
 // turns the axle about its centre (the left wheel rises by roll × its lever); then secant steps,
-// since in flange contact each wheel's own height also moves with the roll.
+// since in flange contact each wheel's own height also moves with the roll. A pass that left the
+// roll where it was (its heights agreed, then the tangential forces moved them) takes the first
+// kind of step again: a secant through one roll has no slope.
 struct RollBalance {
   double previous_roll = 0.0, previous_mismatch = 0.0;
 
@@ -896,7 +927,7 @@ struct RollBalance {
   bool settle(int pass, const std::array<double, 2>& heights, double lever_m, double& roll) {
     const double mismatch = heights[1] - heights[0];
     double next = roll + mismatch / (2.0 * lever_m);
-    if (pass > 0 && mismatch != previous_mismatch)
+    if (pass > 0 && mismatch != previous_mismatch && roll != previous_roll)
       next = roll - mismatch * (roll - previous_roll) / (mismatch - previous_mismatch);
     previous_roll = roll;
     previous_mismatch = mismatch;
@@ -991,9 +1022,10 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
                                 normal[k], iterations[k], warm);
       solves[k] += iterations[k];
     }
-    bool settled = true;
-    if (options.loads->balance_roll)
-      settled = roll.settle(pass, heights, track.wheel_profile_origin_y_m(WheelSide::left), state.position.roll_rad);
+    const bool roll_settled =
+        !options.loads->balance_roll ||
+        roll.settle(pass, heights, track.wheel_profile_origin_y_m(WheelSide::left), state.position.roll_rad);
+    bool settled = roll_settled;
     state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
     std::array<double, 2> new_tangential{0.0, 0.0};
     for (std::size_t k = 0; k < 2; ++k) {
@@ -1017,7 +1049,7 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
         overlap[k] = std::clamp(overlap[k] + (previous_T - tangential[k].value_N) / warm.stiffness_N_per_m[k],
                                 0.5 * overlap[k], 2.0 * overlap[k]);
     }
-    if (tangential[0].bracket_closed(loads[0]) && tangential[1].bracket_closed(loads[1])) break;
+    if (roll_settled && tangential[0].bracket_closed(loads[0]) && tangential[1].bracket_closed(loads[1])) break;
     if (pass + 1 >= kMaximumBalanceIterations) {
       throw Error(ErrorKind::not_converged,
                   fmt::format("wheelset: the vertical balance of the wheels did not settle in {} passes (the "
