@@ -317,14 +317,17 @@ TEST(Wheelset, ABalancedTimeStepStartsFromThePredictedRoll) {
   }
 }
 
-// Balancing the roll, the evaluation ends with both wheels at one axle height (to 1e-8 m), also
-// where the first pass's heights agree at the input's roll and the tangential forces then move
-// them apart (at yaw 1 mrad: the first pass has no tangential forces, its wheels are mirror images).
+// Balancing the roll, the evaluation ends with both wheels at one axle height (to 1e-8 m) and each
+// carrying its load (to 1e-3 of it), also where the first pass's heights agree at the input's
+// roll and the tangential forces then move them apart (at yaw 1 mrad: the first pass has no
+// tangential forces, its wheels are mirror images), and in flange contact, where the tangential
+// balance's bracket from the first pass's roll once held another roll's answer (F3 1.3 % off).
 TEST(Wheelset, TheBalancedRollLeavesBothWheelsAtOneHeight) {
   WheelsetOptions o = coarse();
   o.loads = WheelLoads{98.1e3, 98.1e3, true};
-  for (const double y : {0.0, -3e-3}) {
-    const WheelsetResult r = Wheelset(track(), o).evaluate(state_at(y, 1e-3));
+  for (const auto& [y, yaw] : {std::pair{0.0, 1e-3}, std::pair{-3e-3, 1e-3}, std::pair{-6.5e-3, 1e-3}}) {
+    o.element_size_m = y < -6e-3 ? 0.2e-3 : 0.5e-3;  // the flange's case at the wheelset's default
+    const WheelsetResult r = Wheelset(track(), o).evaluate(state_at(y, yaw));
     EXPECT_NEAR(r.wheels[0].vertical_displacement_m, r.wheels[1].vertical_displacement_m, 1e-8) << "y = " << y;
     for (const WheelResult& w : r.wheels) EXPECT_NEAR(w.force_track_N[2], 98.1e3, 1e-3 * 98.1e3) << "y = " << y;
   }
