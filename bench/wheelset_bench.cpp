@@ -40,7 +40,7 @@ const WheelsetTrack& track() {
 
 // A state at y where both wheels carry 98.1 kN vertically: the wheelset's height and roll solved
 // together (WheelLoads::balance_roll), the state of a rigid axle under its load. In flange contact
-// (y = -6.3 ... -6.6 mm) the flange then carries F3 = 110-230 kN. (Until 2026-11-25 the height and
+// (y = -6.3 ... -6.6 mm) the flange then carries F3 = 147-267 kN. (Until 2026-11-25 the height and
 // roll came from each wheel's own height at zero roll; at y = -6.8 mm that state pressed the
 // flange with F3 = 1.13 MN on 8683 elements, six times the physical load: with both loads balanced
 // the flange climbs there.)
