@@ -95,6 +95,7 @@ struct SweepSummary {
   double worst_step_N = 0.0, worst_step_y_m = 0.0;  // the largest step of a wheel force between two y
   int jumps = 0;                                     // steps standing out from their neighbours (see below)
   int fine_swept_steps = 0;                          // candidate jumps swept again in 0.01 mm steps
+  std::string fine_failure;  // the first fine state that could not be solved (counted as a jump)
   double largest_angle_variation_rad = 0.0;          // over the patches (contact_angle_variation_rad)
   double tan_gamma_e = kNaN;
   // The wheelset table against nH-FastSim on the fly: the largest difference per track-frame
@@ -172,23 +173,31 @@ bool stands_out(const std::vector<double>& step, std::size_t k, double load_N) {
   return step[k] > kJumpFraction * load_N && step[k] > kJumpContrast * std::max(before, after);
 }
 
+// A candidate swept again: a jump, and why when a fine state could not be solved.
+struct FineSweep {
+  bool jump = false;
+  std::string failure;
+};
+
 void count_jumps(const std::vector<std::array<double, 3>>& force, const std::vector<std::size_t>& patches,
-                 const std::vector<double>& y, double load_N, const std::function<bool(std::size_t)>& resolved,
+                 const std::vector<double>& y, double load_N, const std::function<FineSweep(std::size_t)>& resolved,
                  SweepSummary& s) {
   const std::vector<double> step = force_steps(force);
   for (std::size_t k = 1; k < force.size(); ++k) {
     if (step[k] > s.worst_step_N) s.worst_step_N = step[k], s.worst_step_y_m = y[k];
     if (patches[k] != patches[k - 1] || !stands_out(step, k, load_N)) continue;
     ++s.fine_swept_steps;
-    if (resolved(k)) ++s.jumps;
+    const FineSweep fine = resolved(k);
+    if (fine.jump) ++s.jumps;
+    if (!fine.failure.empty() && s.fine_failure.empty()) s.fine_failure = fine.failure;
   }
 }
 
 // The right wheel's force from y_from to y_to in kFineSteps steps, on a wheelset with nH-FastSim
-// alone (the sweep's balance solver, so its forces are the sweep's): true when one fine step is a
-// jump with the patches unchanged across it, or a fine state cannot be solved.
-bool jump_on_fine_steps(const WheelsetTrack& track, WheelsetOptions options, double yaw_rad, double y_from_m,
-                        double y_to_m, double load_N) {
+// alone (the sweep's balance solver, so its forces are the sweep's): a jump when one fine step is a
+// jump with the patches unchanged across it, or a fine state cannot be solved (with its message).
+FineSweep jump_on_fine_steps(const WheelsetTrack& track, WheelsetOptions options, double yaw_rad, double y_from_m,
+                             double y_to_m, double load_N) {
   options.solvers = {TangentialSolver::nh_fastsim};
   Wheelset wheelset(track, options);
   std::vector<std::array<double, 3>> force;
@@ -201,14 +210,14 @@ bool jump_on_fine_steps(const WheelsetTrack& track, WheelsetOptions options, dou
       const WheelResult right = wheelset.evaluate(state).wheels[0];
       force.push_back({right.force_track_N[0], right.force_track_N[1], right.force_track_N[2]});
       patches.push_back(right.patches.size());
-    } catch (const Error&) {
-      return true;
+    } catch (const Error& e) {
+      return {true, fmt::format("y = {:.3f} mm: {}", state.position.lateral_displacement_m / kMm, e.what())};
     }
   }
   const std::vector<double> step = force_steps(force);
   for (std::size_t k = 1; k < step.size(); ++k)
-    if (patches[k] == patches[k - 1] && stands_out(step, k, load_N)) return true;
-  return false;
+    if (patches[k] == patches[k - 1] && stands_out(step, k, load_N)) return {true, {}};
+  return {false, {}};
 }
 
 // The table looked up at the sweep's state against nH-FastSim on the fly (the second solver), per
@@ -407,9 +416,14 @@ void print_sweeps_md(std::ostream& md, const ProfilePairStudyOptions& o, const s
                percent(s.worst_dF2_percent), s.worst_dF2_y_m / kMm, s.worst_step_N / 1e3, s.worst_step_y_m / kMm, s.jumps,
                s.fine_swept_steps, s.largest_angle_variation_rad, ok ? "yes" : "**no**");
   }
-  for (const SweepSummary& s : summaries)
+  for (const SweepSummary& s : summaries) {
     if (!s.stop.empty()) fmt::print(md, "\n- {} at yaw {:+.0f} mrad stopped before the flange-climb limit: {}\n", s.setup,
                                     s.yaw_rad * 1e3, s.stop);
+    if (!s.fine_failure.empty())
+      fmt::print(md, "\n- {} at yaw {:+.0f} mrad: a state of the 0.01 mm sweep again could not be solved, and its step "
+                     "counts as a jump: {}\n",
+                 s.setup, s.yaw_rad * 1e3, s.fine_failure);
+  }
 }
 
 // summary.md's second part (with a table): the table against the wheelset on the fly, per sweep.
