@@ -121,30 +121,13 @@ void BM_WheelsetCold(benchmark::State& state) {
   report(state, r);
 }
 
-void BM_WheelsetByLoad(benchmark::State& state) {
-  WheelsetState s;
-  const double y0 = static_cast<double>(state.range(0)) * 1e-6;
-  s.position.lateral_displacement_m = y0;
-  Wheelset wheelset(track(), WheelsetOptions{});
-  WheelsetResult r = wheelset.evaluate(s);
-  long step = 0;
-  for (auto _ : state) {
-    s.position.lateral_displacement_m = stepped_y_m(y0, ++step);
-    r = wheelset.evaluate(s);
-    benchmark::DoNotOptimize(r.force_track_N);
-  }
-  report(state, r);
-}
-
-// By load with the roll balanced too (WheelLoads::balance_roll: a rigid axle carrying both loads,
-// the states of loaded_state), the time step's lateral steps: each wheel's height, the axle's
-// roll and the tangential forces' vertical part solved.
-void BM_WheelsetByLoadBalanced(benchmark::State& state) {
+// The time step's lateral steps by load from y = the argument (µm), with these loads.
+void by_load_steps(benchmark::State& state, const WheelLoads& loads) {
   WheelsetState s;
   const double y0 = static_cast<double>(state.range(0)) * 1e-6;
   s.position.lateral_displacement_m = y0;
   WheelsetOptions o;
-  o.loads = WheelLoads{98.1e3, 98.1e3, true};
+  o.loads = loads;
   Wheelset wheelset(track(), o);
   WheelsetResult r = wheelset.evaluate(s);
   long step = 0;
@@ -155,6 +138,13 @@ void BM_WheelsetByLoadBalanced(benchmark::State& state) {
   }
   report(state, r);
 }
+
+void BM_WheelsetByLoad(benchmark::State& state) { by_load_steps(state, WheelLoads{}); }
+
+// By load with the roll balanced too (WheelLoads::balance_roll: a rigid axle carrying both loads,
+// the states of loaded_state): each wheel's height, the axle's roll and the tangential forces'
+// vertical part solved.
+void BM_WheelsetByLoadBalanced(benchmark::State& state) { by_load_steps(state, WheelLoads{98.1e3, 98.1e3, true}); }
 
 // The time step's stages one by one (both wheels, the state of BM_WheelsetTimeStep), through the
 // public API: the contact search; the potential contact areas with their undeformed distance;

@@ -56,6 +56,19 @@ Solved solve(const Mesh& mesh, double approach_m) {
   return s;
 }
 
+// Some element outside `window` overlaps: h + u < 0 there (u = A p, the product on the whole mesh).
+bool overlap_outside_window(const Mesh& mesh, const std::vector<double>& h_m, const std::vector<double>& u_m,
+                            const detail::MeshWindow& window) {
+  for (int i2 = 0; i2 < mesh.n2; ++i2)
+    for (int i1 = 0; i1 < mesh.n1; ++i1) {
+      const bool inside = i1 >= window.lo1 && i1 < window.lo1 + window.n1 && i2 >= window.lo2 &&
+                          i2 < window.lo2 + window.n2;
+      const std::size_t k = mesh.index(i1, i2);
+      if (!inside && h_m[k] + u_m[k] < 0.0) return true;
+    }
+  return false;
+}
+
 TEST(ContactWindowBound, HoldsForTheCheckedSolutionAndOnAMeshMovedByWholeElements) {
   const Solved a = solve(square_mesh(64, -31.5 * kElement_m), 40e-6);
   const detail::NormalInfluenceBound A(kElement_m, kElement_m, Material{});
@@ -75,19 +88,11 @@ TEST(ContactWindowBound, HoldsForANearbyStateAndFailsForAFarOne) {
   // 30 µm deeper, judged with the shallow state's window and pressure: the overlap outside that
   // window is real (the deep state's own product says so), and the bound does not hide it.
   const Solved deep = solve(square_mesh(64, -31.5 * kElement_m), 70e-6);
-  std::vector<double> shallow_pressure = a.check.pressure_Pa;
+  const std::vector<double>& shallow_pressure = a.check.pressure_Pa;
   NormalContactSolver solver(deep.mesh, Material{});
   std::vector<double> u;
   (void)solver.complementarity_residual(deep.h_m, 0.0, shallow_pressure, &u);
-  bool overlap_outside = false;
-  for (int i2 = 0; i2 < deep.mesh.n2; ++i2)
-    for (int i1 = 0; i1 < deep.mesh.n1; ++i1) {
-      const bool inside = i1 >= a.window.lo1 && i1 < a.window.lo1 + a.window.n1 && i2 >= a.window.lo2 &&
-                          i2 < a.window.lo2 + a.window.n2;
-      const std::size_t k = deep.mesh.index(i1, i2);
-      if (!inside && deep.h_m[k] + u[k] < 0.0) overlap_outside = true;
-    }
-  ASSERT_TRUE(overlap_outside);
+  ASSERT_TRUE(overlap_outside_window(deep.mesh, deep.h_m, u, a.window));
   EXPECT_FALSE(
       detail::window_solution_holds_outside(deep.mesh, deep.h_m, a.window, shallow_pressure, a.check, A));
   // Half the checked pressure on the same gap: the ring of overlap around the contact opens up
@@ -97,15 +102,7 @@ TEST(ContactWindowBound, HoldsForANearbyStateAndFailsForAFarOne) {
   for (double& p : half) p *= 0.5;
   NormalContactSolver shallow_solver(a.mesh, Material{});
   (void)shallow_solver.complementarity_residual(a.h_m, 0.0, half, &u);
-  overlap_outside = false;
-  for (int i2 = 0; i2 < a.mesh.n2; ++i2)
-    for (int i1 = 0; i1 < a.mesh.n1; ++i1) {
-      const bool inside = i1 >= a.window.lo1 && i1 < a.window.lo1 + a.window.n1 && i2 >= a.window.lo2 &&
-                          i2 < a.window.lo2 + a.window.n2;
-      const std::size_t k = a.mesh.index(i1, i2);
-      if (!inside && a.h_m[k] + u[k] < 0.0) overlap_outside = true;
-    }
-  ASSERT_TRUE(overlap_outside);
+  ASSERT_TRUE(overlap_outside_window(a.mesh, a.h_m, u, a.window));
   EXPECT_FALSE(detail::window_solution_holds_outside(a.mesh, a.h_m, a.window, half, a.check, A));
 }
 

@@ -253,6 +253,9 @@ TEST(Wheelset, APredictedTimeStepTakesFewerIterationsAndGivesTheSameSolution) {
   }
 }
 
+// By load: the normal problems both wheels' height iterations solved (WheelResult::load_iterations).
+int height_solves(const WheelsetResult& r) { return r.wheels[0].load_iterations + r.wheels[1].load_iterations; }
+
 // By load a time step starts each wheel's height iteration from the linear prediction of its last
 // two overlaps (docs/WHEELSET.md §8 "The prediction"): along a drift of 1 µm per step the third
 // step, predicted, carries both loads after one normal solve per wheel, against two for the
@@ -263,7 +266,6 @@ TEST(Wheelset, APredictedTimeStepTakesFewerIterationsAndGivesTheSameSolution) {
 TEST(Wheelset, APredictedHeightTakesOneNormalSolvePerWheelAndGivesTheSameSolution) {
   WheelsetOptions o = coarse();
   o.element_size_m = 0.2e-3;
-  const auto solves = [](const WheelsetResult& r) { return r.wheels[0].load_iterations + r.wheels[1].load_iterations; };
   const auto expect_fresh = [&](const WheelsetResult& warm, const WheelsetState& s, double y) {
     const WheelsetResult fresh = Wheelset(track(), o).evaluate(s);
     for (int side = 0; side < 2; ++side) {
@@ -279,11 +281,11 @@ TEST(Wheelset, APredictedHeightTakesOneNormalSolvePerWheelAndGivesTheSameSolutio
   Wheelset stepping(track(), o);
   (void)stepping.evaluate(s);
   s.position.lateral_displacement_m += 1e-6;
-  const int plain = solves(stepping.evaluate(s));
+  const int plain = height_solves(stepping.evaluate(s));
   s.position.lateral_displacement_m += 1e-6;
   const WheelsetResult predicted = stepping.evaluate(s);
   EXPECT_EQ(plain, 4);
-  EXPECT_EQ(solves(predicted), 2);
+  EXPECT_EQ(height_solves(predicted), 2);
   expect_fresh(predicted, s, 0.0);
   s.position.lateral_displacement_m -= 1e-6;  // back: no prediction
   expect_fresh(stepping.evaluate(s), s, 0.0);
@@ -297,7 +299,6 @@ TEST(Wheelset, APredictedHeightTakesOneNormalSolvePerWheelAndGivesTheSameSolutio
 TEST(Wheelset, ABalancedTimeStepStartsFromThePredictedRoll) {
   WheelsetOptions o = coarse();
   o.loads = WheelLoads{98.1e3, 98.1e3, true};
-  const auto solves = [](const WheelsetResult& r) { return r.wheels[0].load_iterations + r.wheels[1].load_iterations; };
   Wheelset stepping(track(), o), afresh(track(), o);
   WheelsetState s = state_at(-3e-3);
   WheelsetResult stepped, fresh;
@@ -307,7 +308,7 @@ TEST(Wheelset, ABalancedTimeStepStartsFromThePredictedRoll) {
     fresh = afresh.evaluate(s);
     s.position.lateral_displacement_m += 1e-6;
   }
-  EXPECT_LE(solves(stepped), 4) << "against " << solves(fresh) << " afresh";
+  EXPECT_LE(height_solves(stepped), 4) << "against " << height_solves(fresh) << " afresh";
   EXPECT_NEAR(stepped.state.position.roll_rad, fresh.state.position.roll_rad, 1e-8);
   for (int side = 0; side < 2; ++side) {
     const double muFz = o.friction_coefficient * fresh.wheels[side].force_track_N[2];

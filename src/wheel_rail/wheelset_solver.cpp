@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/wheel_locus.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/wheelset.hpp"
@@ -22,7 +23,6 @@
 #include "wheel_rail/patch_tangential_model.hpp"
 #include "wheel_rail/wheelset_assembly.hpp"
 #include "tangential/cropped_patch.hpp"
-#include "geometry/wheel_locus.hpp"
 #include "wheel_rail/wheel_height.hpp"
 
 namespace railcontact {
