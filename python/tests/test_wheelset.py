@@ -39,10 +39,14 @@ def test_default_wheelset_carries_the_loads(wheelset):
     assert wheelset.track["nominal_axle_height_m"] > 0.4
 
 
+# The C structs as ctypes sees them (railcontact/railcontact.h). A field missing here lets the
+# library write past the Python object (it once corrupted the heap: a later garbage collection
+# crashed); _guarded catches that as a failed assertion.
 class _Options(ctypes.Structure):
     _fields_ = ([(n, ctypes.c_double) for n in ("E", "nu", "mu", "element", "right", "left")]
                 + [(n, ctypes.c_int) for n in ("mode", "balance", "tangential", "lift", "warm", "slip", "count")]
-                + [("solvers", ctypes.c_int * 4)])
+                + [("solvers", ctypes.c_int * 4)]
+                + [(n, ctypes.c_int) for n in ("balance_solver", "reference_weighting", "contact_surface")])
 
 
 class _State(ctypes.Structure):
@@ -57,6 +61,19 @@ class _Result(ctypes.Structure):
                 ("patch_count", ctypes.c_int * 2), ("load_iterations", ctypes.c_int * 2)]
 
 
+_GUARD = 64  # bytes of a known pattern after each struct
+
+
+def _guarded(struct):
+    """An instance of `struct` followed by _GUARD bytes of 0xA5, and a check that they are intact."""
+    buffer = ctypes.create_string_buffer(b"\xa5" * (ctypes.sizeof(struct) + _GUARD))
+    value = struct.from_buffer(buffer)
+
+    def intact():
+        return buffer.raw[ctypes.sizeof(struct):] == b"\xa5" * _GUARD + b"\x00"
+    return value, intact
+
+
 def test_same_numbers_as_the_c_api(c_library):
     """The shared library's rc_wheelset, called through ctypes, against the module."""
     lib = c_library
@@ -64,18 +81,21 @@ def test_same_numbers_as_the_c_api(c_library):
     assert lib.rc_wheelset_create(ctypes.byref(handle)) == 0
     lib.rc_wheelset_set_default_track.argtypes = [ctypes.c_void_p]
     assert lib.rc_wheelset_set_default_track(handle) == 0
-    options = _Options()
+    options, options_intact = _guarded(_Options)
     lib.rc_wheelset_options_default(ctypes.byref(options))
+    assert options_intact(), "rc_wheelset_options has fields that _Options lacks"
     options.element = COARSE
     options.mu = 0.25
     lib.rc_wheelset_set_options.argtypes = [ctypes.c_void_p, ctypes.POINTER(_Options)]
     assert lib.rc_wheelset_set_options(handle, ctypes.byref(options)) == 0
-    state = _State()
+    state, state_intact = _guarded(_State)
     lib.rc_wheelset_state_default(ctypes.byref(state))
+    assert state_intact(), "rc_wheelset_state has fields that _State lacks"
     state.y, state.yaw, state.vy = -4e-3, 2e-3, 0.05
-    result = _Result()
+    result, result_intact = _guarded(_Result)
     lib.rc_wheelset_evaluate.argtypes = [ctypes.c_void_p, ctypes.POINTER(_State), ctypes.POINTER(_Result)]
     assert lib.rc_wheelset_evaluate(handle, ctypes.byref(state), ctypes.byref(result)) == 0
+    assert result_intact(), "rc_wheelset_result has fields that _Result lacks"
     lib.rc_wheelset_destroy.argtypes = [ctypes.c_void_p]
     lib.rc_wheelset_destroy(handle)
 
