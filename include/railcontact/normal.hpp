@@ -39,8 +39,8 @@ struct NormalSolution {
   double normal_force_N = 0.0;      // sum S p3 (equals the prescribed load)
   int iterations = 0;               // conjugate-gradient iterations
   bool converged = false;           // residual <= tolerance and the contact set stable
-  // max( max_{p3>0} |g|, max_{p3=0} max(0, -g) ) / max_I (A33 p3)_I, from a freshly computed
-  // A33 p3 (not the recursively updated one of the iteration).
+  // max( max_{p3>0} |g|, max_{p3=0} max(0, -g) ) / max_I (A33 p3)_I, from A33 p3 made by FFT at
+  // most 64 recursive updates before (their rounding: about 1e-16 of max A33 p3 each; NORMAL.md).
   double residual = 0.0;
   std::size_t elements_in_contact = 0;  // elements with p3 > 0
   bool touches_border = false;          // a contact element lies on the outer row/column of the mesh

@@ -15,8 +15,9 @@
 //   p <- p P / sum p                                       (load)
 // PK's entering pressure -tau r assumes t ~ r; with M it is replaced by a quarter of the pressure
 // that closes the gap of a single element, -r / A33(0,0) (see the .cpp).
-// Only the product A t needs an FFT when the set is unchanged: A p is updated recursively and
-// recomputed after a set change and before convergence is accepted.
+// Only the product A t needs an FFT when the set is unchanged: A p is updated recursively (and
+// recomputed after a change of more than kLargestElementUpdate elements, and before convergence is
+// accepted after more than kLargestRecursion updates).
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -32,7 +33,8 @@ namespace railcontact::detail {
 struct ConstrainedCgReport {
   int iterations = 0;
   bool converged = false;
-  double residual = 0.0;   // max complementarity violation / max(A p), from a fresh A p
+  double residual = 0.0;   // max complementarity violation / max(A p), from an A p made by FFT
+                           // at most kLargestRecursion updates before
   double approach_m = 0.0;  // delta = mean_Ic(h + A p)
 };
 
@@ -109,6 +111,10 @@ class ConstrainedConjugateGradient {
   // Up to this many such elements A p is updated element by element (each mesh.size()
   // multiply-adds) rather than by a product on the whole grid.
   static constexpr std::size_t kLargestElementUpdate = 16;
+
+ public:
+  // The most recursive updates of A p after which it decides convergence without a product by FFT.
+  static constexpr int kLargestRecursion = 64;
 };
 
 }  // namespace railcontact::detail
