@@ -109,25 +109,40 @@ bool window_solution_holds_outside(const Mesh& mesh, const std::vector<double>& 
                                    const NormalInfluenceBound& influence) {
   const Mesh& c = check.mesh;
   if (c.dx1_m != mesh.dx1_m || c.dx2_m != mesh.dx2_m) return false;
-  // Element (i1, i2) of this mesh is element (i1 + shift1, i2 + shift2) of the check's.
+  // Element (i1, i2) of this mesh is element (i1 + shift1, i2 + shift2) of the check's; the
+  // columns [on1_lo, on1_hi) and rows [on2_lo, on2_hi) of this mesh lie on the check's. Loops run
+  // row by row (the rows are contiguous).
   const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - c.x1_first_m) / mesh.dx1_m));
   const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - c.x2_first_m) / mesh.dx2_m));
-  const auto on_check = [&](int i1, int i2) {
-    return i1 + shift1 >= 0 && i1 + shift1 < c.n1 && i2 + shift2 >= 0 && i2 + shift2 < c.n2;
+  const int on1_lo = std::clamp(-shift1, 0, mesh.n1), on1_hi = std::clamp(c.n1 - shift1, on1_lo, mesh.n1);
+  const int on2_lo = std::clamp(-shift2, 0, mesh.n2), on2_hi = std::clamp(c.n2 - shift2, on2_lo, mesh.n2);
+  const auto n1 = static_cast<std::size_t>(mesh.n1);
+  const auto on_check_row = [&](int i2) { return on1_lo < on1_hi && i2 >= on2_lo && i2 < on2_hi; };
+  const auto check_row = [&](int i2) {  // the check's values of row i2 from column on1_lo on
+    return static_cast<std::size_t>(i2 + shift2) * static_cast<std::size_t>(c.n1) +
+           static_cast<std::size_t>(on1_lo + shift1);
   };
-  // The checked pressure must lie on this mesh (its product is then this mesh's product of it).
-  for (int j2 = 0; j2 < c.n2; ++j2)
-    for (int j1 = 0; j1 < c.n1; ++j1)
-      if (check.pressure_Pa[c.index(j1, j2)] > 0.0 &&
-          (j1 - shift1 < 0 || j1 - shift1 >= mesh.n1 || j2 - shift2 < 0 || j2 - shift2 >= mesh.n2))
-        return false;
+  // The checked pressure must lie on this mesh (its product is then this mesh's product of it):
+  // none of it on the check's rows or columns outside this mesh.
+  for (int j2 = 0; j2 < c.n2; ++j2) {
+    const double* row = check.pressure_Pa.data() + static_cast<std::size_t>(j2) * static_cast<std::size_t>(c.n1);
+    const bool row_on = on_check_row(j2 - shift2);
+    const int first_on = row_on ? on1_lo + shift1 : c.n1, last_on = row_on ? on1_hi + shift1 : c.n1;
+    for (int j1 = 0; j1 < first_on; ++j1)
+      if (row[j1] > 0.0) return false;
+    for (int j1 = last_on; j1 < c.n1; ++j1)
+      if (row[j1] > 0.0) return false;
+  }
   // ||p − p_c||_1 and the bounding box of the elements where they differ.
   double pressure_change_Pa = 0.0;  // the sum of the elements' |Δp|
   int lo1 = mesh.n1, hi1 = -1, lo2 = mesh.n2, hi2 = -1;
-  for (int i2 = 0; i2 < mesh.n2; ++i2)
+  for (int i2 = 0; i2 < mesh.n2; ++i2) {
+    const double* p = pressure_Pa.data() + static_cast<std::size_t>(i2) * n1;
+    const bool row_on = on_check_row(i2);
+    const double* checked = row_on ? check.pressure_Pa.data() + check_row(i2) : nullptr;  // from column on1_lo
     for (int i1 = 0; i1 < mesh.n1; ++i1) {
-      const double checked = on_check(i1, i2) ? check.pressure_Pa[c.index(i1 + shift1, i2 + shift2)] : 0.0;
-      const double difference = std::abs(pressure_Pa[mesh.index(i1, i2)] - checked);
+      const double before = row_on && i1 >= on1_lo && i1 < on1_hi ? checked[i1 - on1_lo] : 0.0;
+      const double difference = std::abs(p[i1] - before);
       if (difference == 0.0) continue;
       pressure_change_Pa += difference;
       lo1 = std::min(lo1, i1);
@@ -135,19 +150,22 @@ bool window_solution_holds_outside(const Mesh& mesh, const std::vector<double>& 
       lo2 = std::min(lo2, i2);
       hi2 = std::max(hi2, i2);
     }
+  }
   for (int i2 = 0; i2 < mesh.n2; ++i2) {
     const bool row_inside = i2 >= window.lo2 && i2 < window.lo2 + window.n2;
+    const bool row_on = on_check_row(i2);
+    const double* h = h_m.data() + static_cast<std::size_t>(i2) * n1;
+    const double* u = row_on ? check.displacement_m.data() + check_row(i2) : nullptr;  // from column on1_lo
     for (int i1 = 0; i1 < mesh.n1; ++i1) {
+      if (h[i1] >= 0.0) continue;  // A p >= 0
       if (row_inside && i1 >= window.lo1 && i1 < window.lo1 + window.n1) continue;
-      const double h = h_m[mesh.index(i1, i2)];
-      if (h >= 0.0) continue;  // A p >= 0
-      if (!on_check(i1, i2)) return false;
-      double lower = check.displacement_m[c.index(i1 + shift1, i2 + shift2)];
+      if (!row_on || i1 < on1_lo || i1 >= on1_hi) return false;
+      double lower = u[i1 - on1_lo];
       if (pressure_change_Pa > 0.0) {
         const int d1 = std::max({0, lo1 - i1, i1 - hi1}), d2 = std::max({0, lo2 - i2, i2 - hi2});
         lower -= influence.at(d1, d2) * pressure_change_Pa;
       }
-      if (h + lower < 0.0) return false;
+      if (h[i1] + lower < 0.0) return false;
     }
   }
   return true;

@@ -511,13 +511,15 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
   std::vector<double> solve_pressure = pressure_Pa;
   std::vector<std::size_t> solve_elements = elements;
   if (mirror) {
+    // Row i2 (constant x2) becomes row n2 - 1 - i2; an element keeps its place along the row.
     solve_mesh.x2_first_m = -mesh.x2(mesh.n2 - 1);
-    for (int i2 = 0; i2 < mesh.n2; ++i2)
-      for (int i1 = 0; i1 < mesh.n1; ++i1)
-        solve_pressure[solve_mesh.index(i1, mesh.n2 - 1 - i2)] = pressure_Pa[mesh.index(i1, i2)];
+    const auto n1 = static_cast<std::size_t>(mesh.n1), n2 = static_cast<std::size_t>(mesh.n2);
+    for (std::size_t i2 = 0; i2 < n2; ++i2)
+      std::copy_n(pressure_Pa.begin() + static_cast<std::ptrdiff_t>(i2 * n1), n1,
+                  solve_pressure.begin() + static_cast<std::ptrdiff_t>((n2 - 1 - i2) * n1));
     solve_elements.clear();
-    for (std::size_t k = 0; k < solve_mesh.size(); ++k)
-      if (solve_pressure[k] > 0.0) solve_elements.push_back(k);
+    for (const std::size_t k : elements) solve_elements.push_back((n2 - 1 - k / n1) * n1 + k % n1);
+    std::sort(solve_elements.begin(), solve_elements.end());
   }
   ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
   // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
