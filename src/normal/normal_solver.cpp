@@ -76,6 +76,21 @@ bool on_border(const Mesh& mesh, std::size_t k) {
   return i1 == 0 || i2 == 0 || i1 == mesh.n1 - 1 || i2 == mesh.n2 - 1;
 }
 
+// The elements in contact of a solution, whether one lies on the mesh's border, and the sum of
+// their pressures (Pa).
+double count_contact(const Mesh& mesh, NormalSolution& solution) {
+  double sum = 0.0;
+  for (std::size_t k = 0; k < mesh.size(); ++k) {
+    const double p = solution.pressure_Pa[k];
+    if (p > 0.0) {
+      sum += p;
+      ++solution.elements_in_contact;
+      if (on_border(mesh, k)) solution.touches_border = true;
+    }
+  }
+  return sum;
+}
+
 }  // namespace
 
 NormalContactSolver::NormalContactSolver(const Mesh& mesh, const Material& material, const NormalOptions& options) {
@@ -112,15 +127,7 @@ NormalSolution NormalContactSolver::solve(const std::vector<double>& h, double n
   solution.residual = report.residual;
   require_finite_solution(solution, solution.pressure_Pa);
 
-  double sum = 0.0;
-  for (std::size_t k = 0; k < mesh.size(); ++k) {
-    const double p = solution.pressure_Pa[k];
-    if (p > 0.0) {
-      sum += p;
-      ++solution.elements_in_contact;
-      if (on_border(mesh, k)) solution.touches_border = true;
-    }
-  }
+  const double sum = count_contact(mesh, solution);
   if (solution.elements_in_contact == 0)
     throw Error(ErrorKind::no_contact, "normal contact: no contact formed (no element carries pressure)");
   solution.normal_force_N = S * sum;
@@ -153,15 +160,7 @@ NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>&
   solution.approach_m = approach_m;
   solution.residual = report.residual;
   require_finite_solution(solution, solution.pressure_Pa);
-  double sum = 0.0;
-  for (std::size_t k = 0; k < mesh.size(); ++k) {
-    const double p = solution.pressure_Pa[k];
-    if (p > 0.0) {
-      sum += p;
-      ++solution.elements_in_contact;
-      if (on_border(mesh, k)) solution.touches_border = true;
-    }
-  }
+  const double sum = count_contact(mesh, solution);
   solution.normal_force_N = mesh.element_area_m2() * sum;
   solution.converged = report.converged;
   return solution;
