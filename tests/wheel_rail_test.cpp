@@ -256,6 +256,14 @@ TEST(WheelRail, RejectsWronglyOrientedProfiles) {
   EXPECT_THROW(WheelRailPair(wheel, mirrored_z(rail)), Error);  // z up
   EXPECT_THROW(WheelRailPair(wheel, mirrored_y(rail)), Error);  // gauge side at +y
   EXPECT_THROW(WheelRailPair(rail, rail), Error);               // a rail as the wheel
+  // An upright rail with 2 mm of side wear has its top 1.0 mm on the gauge side of the head's
+  // centre at the gauge depth: a worn rail, not a mirrored one (it was refused up to 2026-11-29).
+  const Profile worn_upright = read_profile(kProfiles / "UIC60_gauge_corner_worn.prr");
+  const WheelRailPair worn(wheel, worn_upright);
+  const double angle = worn.contact_point(0.0).contact_angle_rad;  // on the crown
+  EXPECT_TRUE(angle > -0.05 && angle < 0.15) << angle;
+  // An upright new rail is its own mirror image.
+  EXPECT_NO_THROW(WheelRailPair(wheel, mirrored_y(read_profile(kProfiles / "UIC60_upright.prr"))));
   TrackWheelsetParameters bad;
   bad.track_gauge_m = 0.0;
   EXPECT_THROW(WheelRailPair(wheel, rail, bad), Error);

@@ -195,10 +195,16 @@ WheelRailPair::WheelRailPair(const Profile& wheel, const Profile& rail, const Tr
   });
   rail_gauge_y_m_ = rail_.at(*s_gauge).y_m;
   // Rails are inclined towards the track centre, which moves their highest point towards the
-  // field side of the head: a top clearly on the gauge side means a mirrored profile.
+  // field side of the head (on the R300 crown by 7.5 mm at 1:40, 10 mm at 1:30, 15 mm at 1:20): a
+  // top clearly on the gauge side means a mirrored profile. Side wear on the gauge face moves the
+  // head's centre at the gauge depth towards the field side by half the wear, so that the top of
+  // an upright worn rail lies on the gauge side of it (1.0 mm with 2 mm of side wear): up to
+  // kLargestTopToGaugeSide_m (8 mm of side wear) is accepted, and a mirrored rail inclined 1:40
+  // (its top 7.9 mm on the gauge side) is refused unless it was worn by more than 7.7 mm.
+  constexpr double kLargestTopToGaugeSide_m = 4e-3;
   if (const auto s_field = crossing_from_end(rail_, gauge_level, false)) {
     const double head_centre_y = 0.5 * (rail_gauge_y_m_ + rail_.at(*s_field).y_m);
-    require(top.y_m > head_centre_y - 1e-3, [&] {
+    require(top.y_m > head_centre_y - kLargestTopToGaugeSide_m, [&] {
       return fmt::format(
           "rail profile {}: the top lies {:.1f} mm on the -y side of the head centre; the gauge side "
           "must be at -y (mirror y: in a SIMPACK file mirror.y = 1; in a text profile negate the y column)",
