@@ -111,8 +111,6 @@ class ConstrainedConjugateGradient {
   // Up to this many such elements A p is updated element by element (each mesh.size()
   // multiply-adds) rather than by a product on the whole grid.
   static constexpr std::size_t kLargestElementUpdate = 16;
-
- public:
   // The most recursive updates of A p after which it decides convergence without a product by FFT.
   static constexpr int kLargestRecursion = 64;
 };

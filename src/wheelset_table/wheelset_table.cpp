@@ -791,10 +791,13 @@ WheelsetResult WheelsetTable::evaluate(const WheelsetState& state, const WheelLo
       if ((next < lowest || next > highest) && at_edge)
         throw Error(fmt::format(
             "wheelset table: the {} wheel's load {:.6g} kN, with its tangential forces in the vertical balance, needs a "
-            "table load of about {:.4g} kN (extrapolated), beyond the table's loads [{:.6g}, {:.6g}] kN (at {:.6g} kN "
-            "its vertical force is {:.6g} kN): build the table with a {}, or look up with the frictionless balance "
-            "(tangential forces left out; --frictionless-balance on the command line)",
-            side, wanted[w] / 1e3, next / 1e3, lowest / 1e3, highest / 1e3, table_load[w] / 1e3, Fz / 1e3,
+            "table load {}beyond the table's loads [{:.6g}, {:.6g}] kN (at {:.6g} kN its vertical force is {:.6g} kN): "
+            "build the table with a {}, or look up with the frictionless balance (tangential forces left out; "
+            "--frictionless-balance on the command line)",
+            side, wanted[w] / 1e3,
+            // The extrapolation from the grid's last cell, named only where it is a load at all.
+            std::isfinite(next) && next > 0.0 ? fmt::format("of about {:.4g} kN (extrapolated), ", next / 1e3) : "",
+            lowest / 1e3, highest / 1e3, table_load[w] / 1e3, Fz / 1e3,
             lowest == highest ? "load grid around the load (it has one load)" : "wider load grid"));
       previous_load[w] = table_load[w];
       previous_Fz[w] = Fz;
