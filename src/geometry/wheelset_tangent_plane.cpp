@@ -58,46 +58,69 @@ namespace geometry {
 
 namespace {
 
-// The elements of strip i2 between its roots (increasing i1, the first and last element among
-// them): the cubic through the four nearest roots (the three nearest where the strip has only
-// three, the line through two). Lagrange's weights depend on the roots' spacing only: those of
-// equally spaced roots are kept from one interval to the next.
-void interpolate_between_roots(const Mesh& mesh, int i2, const std::vector<int>& roots, std::vector<double>& h) {
+// How the elements of a strip between its roots (increasing i1, both ends among them) take h: the
+// cubic through the four nearest roots (the three nearest where the strip has only three, the line
+// through two), as Lagrange's weights of those roots. The roots are the same elements on every
+// strip of a mesh, so the weights are made once per mesh.
+struct RootInterpolation {
+  struct Element {
+    int i1;
+    std::array<int, 4> root{};  // i1 of the roots (unused ones repeat the last, with weight 0)
+    std::array<double, 4> weight{};
+  };
+  std::vector<Element> elements;
+};
+
+RootInterpolation root_interpolation(const std::vector<int>& roots) {
+  RootInterpolation plan;
   const auto count = static_cast<int>(roots.size());
-  std::vector<std::array<double, 4>> weights;
-  // What the weights are for: the four roots' offsets from the first, where the interval starts
-  // from the first root and how many elements it has.
-  std::array<int, 4> weights_spacing{};
-  int weights_start = -1;
   for (int k = 0; k + 1 < count; ++k) {
     const int a = std::max(0, std::min(k - 1, count - 4));
     const int b = std::min(count, a + 4);
-    const int first = roots[static_cast<std::size_t>(a)];
-    std::array<int, 4> spacing{};
-    for (int j = a; j < b; ++j) spacing[static_cast<std::size_t>(j - a)] = roots[static_cast<std::size_t>(j)] - first;
-    const int from = roots[static_cast<std::size_t>(k)] + 1, to = roots[static_cast<std::size_t>(k + 1)];
-    if (spacing != weights_spacing || from - first != weights_start || static_cast<int>(weights.size()) != to - from) {
-      weights_spacing = spacing;
-      weights_start = from - first;
-      weights.assign(static_cast<std::size_t>(to - from), std::array<double, 4>{});
-      for (int i1 = from; i1 < to; ++i1)
-        for (int j = 0; j < b - a; ++j) {
-          double weight = 1.0;
-          for (int m = 0; m < b - a; ++m)
-            if (m != j)
-              weight *= static_cast<double>(i1 - first - spacing[static_cast<std::size_t>(m)]) /
-                        static_cast<double>(spacing[static_cast<std::size_t>(j)] - spacing[static_cast<std::size_t>(m)]);
-          weights[static_cast<std::size_t>(i1 - from)][static_cast<std::size_t>(j)] = weight;
+    for (int i1 = roots[static_cast<std::size_t>(k)] + 1; i1 < roots[static_cast<std::size_t>(k + 1)]; ++i1) {
+      RootInterpolation::Element e;
+      e.i1 = i1;
+      e.root.fill(roots[static_cast<std::size_t>(b - 1)]);
+      for (int j = a; j < b; ++j) {
+        const int rj = roots[static_cast<std::size_t>(j)];
+        double weight = 1.0;
+        for (int m = a; m < b; ++m) {
+          const int rm = roots[static_cast<std::size_t>(m)];
+          if (m != j) weight *= static_cast<double>(i1 - rm) / static_cast<double>(rj - rm);
         }
-    }
-    double known[4] = {0.0, 0.0, 0.0, 0.0};
-    for (int j = a; j < b; ++j) known[j - a] = h[mesh.index(roots[static_cast<std::size_t>(j)], i2)];
-    for (int i1 = from; i1 < to; ++i1) {
-      const std::array<double, 4>& w = weights[static_cast<std::size_t>(i1 - from)];
-      h[mesh.index(i1, i2)] = w[0] * known[0] + w[1] * known[1] + w[2] * known[2] + w[3] * known[3];
+        e.root[static_cast<std::size_t>(j - a)] = rj;
+        e.weight[static_cast<std::size_t>(j - a)] = weight;
+      }
+      plan.elements.push_back(e);
     }
   }
+  return plan;
 }
+
+// Extrapolated from the last known points of a strip's march (newest first) to x: the parabola
+// through three, the line through two, the value of one.
+struct MarchHistory {
+  std::array<double, 3> x{}, t{}, u{};
+  int known = 0;
+  void add(double xi, double ti, double ui) {
+    x = {xi, x[0], x[1]};
+    t = {ti, t[0], t[1]};
+    u = {ui, u[0], u[1]};
+    known = std::min(known + 1, 3);
+  }
+  void extrapolate(double xi, double& t_out, double& u_out) const {
+    t_out = 0.0;
+    u_out = 0.0;
+    for (int j = 0; j < known; ++j) {
+      double weight = 1.0;
+      for (int m = 0; m < known; ++m)
+        if (m != j)
+          weight *= (xi - x[static_cast<std::size_t>(m)]) / (x[static_cast<std::size_t>(j)] - x[static_cast<std::size_t>(m)]);
+      t_out += weight * t[static_cast<std::size_t>(j)];
+      u_out += weight * u[static_cast<std::size_t>(j)];
+    }
+  }
+};
 
 }  // namespace
 
@@ -110,7 +133,7 @@ int round_up_to_granule(int n) {
 void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
                                    const std::vector<double>& strip_x2_m, std::vector<double>& h) {
   // Strip by strip; the rail (straight along x) is met at the same t for every x1 of a strip, and
-  // each wheel root starts from its neighbour's. The middle of the strip first, then outwards.
+  // each wheel root starts from its neighbours'. The middle of the strip first, then outwards.
   //
   // Along a strip h varies on the scale of the wheel's radius (it rises about as x1² cos γ / 2r):
   // the exact root is found at every `stride`-th element (spacing at most kRootSpacing_m) and at
@@ -120,40 +143,51 @@ void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationR
   // (WheelsetGeometry.TheUndeformedDistanceIsTheExactOneOnEveryElement).
   constexpr double kRootSpacing_m = 1e-3;
   const int stride = std::max(1, static_cast<int>(std::floor(kRootSpacing_m / mesh.dx1_m + 1e-9)));
-  std::vector<int> roots;  // the elements whose root is found, in increasing i1
+  const int middle = std::clamp(static_cast<int>(std::lround(-mesh.x1_first_m / mesh.dx1_m)), 0, mesh.n1 - 1);
+  // The roots' elements from the middle outwards, each direction every stride-th element and the
+  // strip's end; the same on every strip.
+  std::array<std::vector<int>, 2> march;
+  for (std::size_t d = 0; d < 2; ++d) {
+    const int direction = d == 0 ? +1 : -1;
+    for (int i1 = middle + direction * stride; i1 >= 0 && i1 < mesh.n1; i1 += direction * stride) march[d].push_back(i1);
+    if (const int end = direction > 0 ? mesh.n1 - 1 : 0; end != middle && (march[d].empty() || march[d].back() != end))
+      march[d].push_back(end);
+  }
+  std::vector<int> roots{middle};
+  for (const std::vector<int>& m : march) roots.insert(roots.end(), m.begin(), m.end());
+  std::sort(roots.begin(), roots.end());
+  const RootInterpolation interpolation = root_interpolation(roots);
+  // The strips in the order of the right wheel's x2 (the left wheel's mesh is its mirror image), so
+  // that each strip starts from the same neighbour on both wheels.
+  const bool right = region.side == WheelSide::right;
   std::optional<Guesses> g;
-  for (int i2 = 0; i2 < mesh.n2; ++i2) {
+  for (int k2 = 0; k2 < mesh.n2; ++k2) {
+    const int i2 = right ? k2 : mesh.n2 - 1 - k2;
     const double x2 = strip_x2_m[static_cast<std::size_t>(i2)];
     if (std::isnan(x2)) continue;
     if (!g) g = guesses(w, region, x2);
     const double rail = w.rail_normal_m(region, x2, g->rail_parameter);
-    const int middle = std::clamp(static_cast<int>(std::lround(-mesh.x1_first_m / mesh.dx1_m)), 0, mesh.n1 - 1);
     double t_middle = rail, u_middle = g->wheel_parameter;
     w.wheel_normal_m(region, mesh.x1(middle), x2, t_middle, u_middle);
     g->wheel_parameter = u_middle;
-    roots.clear();
-    for (int direction : {+1, -1}) {
-      // This direction's roots from the middle outwards, every stride-th element and the strip's end.
-      std::vector<int> along;
-      for (int i1 = middle; i1 >= 0 && i1 < mesh.n1; i1 += direction * stride) along.push_back(i1);
-      if (const int end = direction > 0 ? mesh.n1 - 1 : 0; along.back() != end) along.push_back(end);
-      // Start each root from the line through the two previous ones (second-order accurate).
-      double t = t_middle, u = u_middle, t_before = t_middle, u_before = u_middle;
-      for (std::size_t step = 0; step < along.size(); ++step) {
-        const int i1 = along[step];
-        double t_guess = step >= 2 ? 2.0 * t - t_before : t, u_guess = step >= 2 ? 2.0 * u - u_before : u;
-        t_before = t;
-        u_before = u;
-        h[mesh.index(i1, i2)] = w.wheel_normal_m(region, mesh.x1(i1), x2, t_guess, u_guess) - rail;
-        t = t_guess;
-        u = u_guess;
-        roots.push_back(i1);
+    double* strip = h.data() + mesh.index(0, i2);  // i1 runs fastest: the strip is contiguous
+    strip[middle] = t_middle - rail;
+    for (const std::vector<int>& m : march) {
+      // Each root starts from the parabola through the three before it (in x1; third-order
+      // accurate, so that Newton's first step mostly ends it).
+      MarchHistory history;
+      history.add(mesh.x1(middle), t_middle, u_middle);
+      for (const int i1 : m) {
+        const double x1 = mesh.x1(i1);
+        double t = 0.0, u = 0.0;
+        history.extrapolate(x1, t, u);
+        strip[i1] = w.wheel_normal_m(region, x1, x2, t, u) - rail;
+        history.add(x1, t, u);
       }
     }
-    if (stride == 1) continue;
-    std::sort(roots.begin(), roots.end());
-    roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
-    interpolate_between_roots(mesh, i2, roots, h);
+    for (const RootInterpolation::Element& e : interpolation.elements)
+      strip[e.i1] = e.weight[0] * strip[e.root[0]] + e.weight[1] * strip[e.root[1]] + e.weight[2] * strip[e.root[2]] +
+                    e.weight[3] * strip[e.root[3]];
   }
 }
 
