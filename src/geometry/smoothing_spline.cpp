@@ -42,6 +42,7 @@ struct SmoothProfile::Impl {
     std::array<double, 4> y, z;  // value, d/ds, d2/ds2, d3/ds3 at the middle
   };
   double knot_spacing_m = 0.0;
+  double knots_per_m = 0.0;  // 1 / knot_spacing_m: interval_at multiplies (its rounding is corrected there)
   std::vector<Interval> intervals;
   [[nodiscard]] const Interval& interval_at(double s) const;
   [[nodiscard]] double y_at(double s) const;
@@ -68,7 +69,7 @@ CubicValue cubic_at(const std::array<double, 4>& c, double t) {
 
 const SmoothProfile::Impl::Interval& SmoothProfile::Impl::interval_at(double s) const {
   const auto last = static_cast<std::ptrdiff_t>(intervals.size()) - 1;
-  auto k = std::clamp(static_cast<std::ptrdiff_t>(std::floor(s / knot_spacing_m)), std::ptrdiff_t{0}, last);
+  auto k = std::clamp(static_cast<std::ptrdiff_t>(std::floor(s * knots_per_m)), std::ptrdiff_t{0}, last);
   // Rounding of s / h at a knot: the interval whose knots bracket s (its lower knot belongs to it).
   const auto lower_knot = [this](std::ptrdiff_t j) { return static_cast<double>(j) * knot_spacing_m; };
   if (k > 0 && s < lower_knot(k)) --k;
@@ -278,6 +279,7 @@ SmoothProfile::SmoothProfile(const Profile& profile, const SmoothingOptions& opt
   impl->source = profile.source;
   impl->kind = profile.kind;
   impl->knot_spacing_m = grid.h;
+  impl->knots_per_m = 1.0 / grid.h;
   tabulate(Curve(grid.knots, coefficients.transpose()), grid.knots, grid.intervals, *impl);
   impl_ = std::move(impl);
 }

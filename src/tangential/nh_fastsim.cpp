@@ -44,19 +44,25 @@ void validate(const NhFastSimOptions& options) {
 
 }  // namespace
 
-int NhFastSim::automatic_coarsening(const ContactPatch& patch) {
+int NhFastSim::automatic_coarsening(std::size_t elements_in_contact) {
   constexpr double kMinimumCoarseElements = 250;
   constexpr std::size_t kCoarsenFrom = 400;
-  const auto n = static_cast<double>(patch.elements().count());
+  const auto n = static_cast<double>(elements_in_contact);
   int factor = 1;
   while (factor < kMaximumCoarsening && n / ((factor + 1) * (factor + 1)) >= kMinimumCoarseElements) ++factor;
-  if (factor == 1 && patch.elements().count() >= kCoarsenFrom) factor = 2;
+  if (factor == 1 && elements_in_contact >= kCoarsenFrom) factor = 2;
   return factor;
 }
 
-CoarseBlocks NhFastSim::automatic_coarse_blocks(const ContactPatch& patch) {
-  const int factor = automatic_coarsening(patch);
+int NhFastSim::automatic_coarsening(const ContactPatch& patch) { return automatic_coarsening(patch.elements().count()); }
+
+CoarseBlocks NhFastSim::automatic_coarse_blocks(std::size_t elements_in_contact) {
+  const int factor = automatic_coarsening(elements_in_contact);
   return {factor, factor >= 3 ? factor + 1 : factor};
+}
+
+CoarseBlocks NhFastSim::automatic_coarse_blocks(const ContactPatch& patch) {
+  return automatic_coarse_blocks(patch.elements().count());
 }
 
 NhFastSim::NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Matrix3> K2,

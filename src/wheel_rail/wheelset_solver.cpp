@@ -521,17 +521,20 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
     for (const std::size_t k : elements) solve_elements.push_back((n2 - 1 - k / n1) * n1 + k % n1);
     std::sort(solve_elements.begin(), solve_elements.end());
   }
-  ContactPatch contact = detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
   // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
   // corner, which jumps by an element as elements enter): the forces then change continuously.
+  // Otherwise the patch cropped to its elements.
+  CoarseBlocks blocks{1, 1};
   if (std::find(options.solvers.begin(), options.solvers.end(), TangentialSolver::nh_fastsim) != options.solvers.end() &&
-      contact.elements().count() >= kMinimumElementsForK2) {
+      elements.size() >= kMinimumElementsForK2) {
     // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
     const int factor = options.nh_fastsim.flexibility_coarsening;
-    const CoarseBlocks blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(contact);
-    if (blocks != CoarseBlocks{1, 1})
-      contact = detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, blocks);
+    blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(elements.size());
   }
+  ContactPatch contact =
+      blocks != CoarseBlocks{1, 1}
+          ? detail::block_aligned_patch(solve_mesh, solve_pressure, solve_elements, options.material, blocks)
+          : detail::cropped_patch(solve_mesh, solve_pressure, solve_elements, options.material);
   // The patch's origin moved to the centre of pressure (x1c, x2c from the reference point):
   // the rigid slip (ξ − φ x2, η + φ x1) gives the creepages there.
   patch.pressure_centre_x1_m = -contact.x1_shift_m();
