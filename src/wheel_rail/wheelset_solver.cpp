@@ -517,9 +517,15 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
     for (std::size_t i2 = 0; i2 < n2; ++i2)
       std::copy_n(pressure_Pa.begin() + static_cast<std::ptrdiff_t>(i2 * n1), n1,
                   solve_pressure.begin() + static_cast<std::ptrdiff_t>((n2 - 1 - i2) * n1));
+    // The elements row by row from the last row: in increasing order on the mirrored mesh.
     solve_elements.clear();
-    for (const std::size_t k : elements) solve_elements.push_back((n2 - 1 - k / n1) * n1 + k % n1);
-    std::sort(solve_elements.begin(), solve_elements.end());
+    for (auto row_end = elements.end(); row_end != elements.begin();) {
+      const std::size_t row = *(row_end - 1) / n1;
+      auto row_begin = row_end;
+      while (row_begin != elements.begin() && *(row_begin - 1) / n1 == row) --row_begin;
+      for (auto k = row_begin; k != row_end; ++k) solve_elements.push_back((n2 - 1 - row) * n1 + *k % n1);
+      row_end = row_begin;
+    }
   }
   // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
   // corner, which jumps by an element as elements enter): the forces then change continuously.
@@ -586,11 +592,16 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   const Mesh& mesh = n.area.mesh;
   patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
   std::vector<std::size_t> elements;
-  for (std::size_t k = 0; k < mesh.size(); ++k) {
-    const double p = n.normal.pressure_Pa[k];
+  elements.reserve(patch.elements_in_contact);
+  double max_pressure_Pa = 0.0;  // a local: the loop keeps it in a register
+  const std::size_t size = mesh.size();
+  const double* pressure_Pa = n.normal.pressure_Pa.data();
+  for (std::size_t k = 0; k < size; ++k) {
+    const double p = pressure_Pa[k];
     if (p > 0.0) elements.push_back(k);
-    patch.max_pressure_Pa = std::max(patch.max_pressure_Pa, p);
+    max_pressure_Pa = std::max(max_pressure_Pa, p);
   }
+  patch.max_pressure_Pa = max_pressure_Pa;
   if (elements.empty()) {
     // A patch that has just appeared: overlap, but no element in contact yet. Zero forces.
     for (TangentialSolver s : options.solvers) {
