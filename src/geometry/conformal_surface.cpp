@@ -111,11 +111,12 @@ TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& p
     std::vector<double>& h = area.h_m;
     h.assign(mesh.size(), kNotInContact_m);
     std::vector<double> strip_x2(strips.size(), std::numeric_limits<double>::quiet_NaN());
+    const geometry::StripRoots roots = geometry::strip_roots(mesh);
     for (std::size_t j = 0; j < strips.size(); ++j) {
       if (!strips[j].possible_contact) continue;
       strip_x2[j] = strips[j].x2_m;
       try {
-        geometry::undeformed_distance_on_strips(w, region, mesh, strip_x2, h);
+        geometry::undeformed_distance_on_strips(w, region, mesh, strip_x2, h, &roots);
         for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, static_cast<int>(j))] *= std::cos(strips[j].angle_rad);
       } catch (const Error&) {
         strips[j].possible_contact = false;

@@ -8,6 +8,7 @@
 //   wheel profile point (y_w, z_w) ->  axial coordinate s = σ (W0 + y_w) along the axle from the
 //                                      wheelset centre, radius r = r0 + z_w − z_w(taping line),
 //                                      W0 = flange-back distance / 2 − y_w(flange back).
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -108,10 +109,28 @@ using AreaFiller = std::function<void(const Mesh& mesh, TangentPlaneArea& area)>
 TangentPlaneArea grown_area(const GrowingArea& growing, const AreaFiller& fill);
 inline constexpr int kMaximumGrowthSteps = 8;
 
+// Along a strip of a mesh h varies on the scale of the wheel's radius: the exact root is found at
+// some elements (`march`: from the middle element outwards, each direction every stride-th
+// element and the strip's end) and the others take Lagrange's cubic through the four nearest
+// roots (`interpolation`). The same on every strip of a mesh: made once per mesh.
+struct StripRoots {
+  struct Interpolated {
+    int i1;
+    std::array<int, 4> root{};  // i1 of the roots (unused ones repeat the last, with weight 0)
+    std::array<double, 4> weight{};
+  };
+  int middle = 0;
+  std::array<std::vector<int>, 2> march;  // towards +x1, towards −x1
+  std::vector<Interpolated> interpolation;
+};
+StripRoots strip_roots(const Mesh& mesh);
+
 // The undeformed distance along a region's X3 on the strips of a mesh (docs/WHEELSET.md §4):
 // strip i2 at tangent-plane coordinate strip_x2_m[i2], each element at x1 = mesh.x1(i1); strips
-// whose x2 is NaN are left as they are in h (mesh.index() order, sized by the caller).
+// whose x2 is NaN are left as they are in h (mesh.index() order, sized by the caller). `roots`:
+// strip_roots(mesh), made once where the function is called strip by strip.
 void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
-                                   const std::vector<double>& strip_x2_m, std::vector<double>& h);
+                                   const std::vector<double>& strip_x2_m, std::vector<double>& h,
+                                   const StripRoots* roots = nullptr);
 
 }  // namespace railcontact::geometry

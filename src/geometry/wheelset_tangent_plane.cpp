@@ -58,45 +58,6 @@ namespace geometry {
 
 namespace {
 
-// How the elements of a strip between its roots (increasing i1, both ends among them) take h: the
-// cubic through the four nearest roots (the three nearest where the strip has only three, the line
-// through two), as Lagrange's weights of those roots. The roots are the same elements on every
-// strip of a mesh, so the weights are made once per mesh.
-struct RootInterpolation {
-  struct Element {
-    int i1;
-    std::array<int, 4> root{};  // i1 of the roots (unused ones repeat the last, with weight 0)
-    std::array<double, 4> weight{};
-  };
-  std::vector<Element> elements;
-};
-
-RootInterpolation root_interpolation(const std::vector<int>& roots) {
-  RootInterpolation plan;
-  const auto count = static_cast<int>(roots.size());
-  for (int k = 0; k + 1 < count; ++k) {
-    const int a = std::max(0, std::min(k - 1, count - 4));
-    const int b = std::min(count, a + 4);
-    for (int i1 = roots[static_cast<std::size_t>(k)] + 1; i1 < roots[static_cast<std::size_t>(k + 1)]; ++i1) {
-      RootInterpolation::Element e;
-      e.i1 = i1;
-      e.root.fill(roots[static_cast<std::size_t>(b - 1)]);
-      for (int j = a; j < b; ++j) {
-        const int rj = roots[static_cast<std::size_t>(j)];
-        double weight = 1.0;
-        for (int m = a; m < b; ++m) {
-          const int rm = roots[static_cast<std::size_t>(m)];
-          if (m != j) weight *= static_cast<double>(i1 - rm) / static_cast<double>(rj - rm);
-        }
-        e.root[static_cast<std::size_t>(j - a)] = rj;
-        e.weight[static_cast<std::size_t>(j - a)] = weight;
-      }
-      plan.elements.push_back(e);
-    }
-  }
-  return plan;
-}
-
 // Extrapolated from the last known points of a strip's march (newest first) to x: the parabola
 // through three, the line through two, the value of one.
 struct MarchHistory {
@@ -130,33 +91,59 @@ int round_up_to_granule(int n) {
   return (n + granule - 1) / granule * granule;
 }
 
-void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
-                                   const std::vector<double>& strip_x2_m, std::vector<double>& h) {
-  // Strip by strip; the rail (straight along x) is met at the same t for every x1 of a strip, and
-  // each wheel root starts from its neighbours'. The middle of the strip first, then outwards.
-  //
-  // Along a strip h varies on the scale of the wheel's radius (it rises about as x1² cos γ / 2r):
-  // the exact root is found at every `stride`-th element (spacing at most kRootSpacing_m) and at
-  // both ends, and the elements between take the cubic through the four nearest roots. They agree
-  // with the roots to 1.3e-12 m on the tread and 1.7e-11 m on a yawed flange (γ = 1.22 rad), seven
-  // orders below the overlap of a loaded wheel
+StripRoots strip_roots(const Mesh& mesh) {
+  // The exact root at every `stride`-th element (spacing at most kRootSpacing_m) and at both ends;
+  // the elements between agree with the roots to 1.3e-12 m on the tread and 1.7e-11 m on a yawed
+  // flange (γ = 1.22 rad), seven orders below the overlap of a loaded wheel
   // (WheelsetGeometry.TheUndeformedDistanceIsTheExactOneOnEveryElement).
   constexpr double kRootSpacing_m = 1e-3;
   const int stride = std::max(1, static_cast<int>(std::floor(kRootSpacing_m / mesh.dx1_m + 1e-9)));
-  const int middle = std::clamp(static_cast<int>(std::lround(-mesh.x1_first_m / mesh.dx1_m)), 0, mesh.n1 - 1);
-  // The roots' elements from the middle outwards, each direction every stride-th element and the
-  // strip's end; the same on every strip.
-  std::array<std::vector<int>, 2> march;
+  StripRoots plan;
+  plan.middle = std::clamp(static_cast<int>(std::lround(-mesh.x1_first_m / mesh.dx1_m)), 0, mesh.n1 - 1);
   for (std::size_t d = 0; d < 2; ++d) {
     const int direction = d == 0 ? +1 : -1;
-    for (int i1 = middle + direction * stride; i1 >= 0 && i1 < mesh.n1; i1 += direction * stride) march[d].push_back(i1);
-    if (const int end = direction > 0 ? mesh.n1 - 1 : 0; end != middle && (march[d].empty() || march[d].back() != end))
-      march[d].push_back(end);
+    std::vector<int>& m = plan.march[d];
+    for (int i1 = plan.middle + direction * stride; i1 >= 0 && i1 < mesh.n1; i1 += direction * stride) m.push_back(i1);
+    if (const int end = direction > 0 ? mesh.n1 - 1 : 0; end != plan.middle && (m.empty() || m.back() != end))
+      m.push_back(end);
   }
-  std::vector<int> roots{middle};
-  for (const std::vector<int>& m : march) roots.insert(roots.end(), m.begin(), m.end());
+  std::vector<int> roots{plan.middle};
+  for (const std::vector<int>& m : plan.march) roots.insert(roots.end(), m.begin(), m.end());
   std::sort(roots.begin(), roots.end());
-  const RootInterpolation interpolation = root_interpolation(roots);
+  // Between roots k and k + 1: the cubic through the four nearest roots (the three nearest where
+  // the strip has only three, the line through two).
+  const auto count = static_cast<int>(roots.size());
+  for (int k = 0; k + 1 < count; ++k) {
+    const int a = std::max(0, std::min(k - 1, count - 4));
+    const int b = std::min(count, a + 4);
+    for (int i1 = roots[static_cast<std::size_t>(k)] + 1; i1 < roots[static_cast<std::size_t>(k + 1)]; ++i1) {
+      StripRoots::Interpolated e;
+      e.i1 = i1;
+      e.root.fill(roots[static_cast<std::size_t>(b - 1)]);
+      for (int j = a; j < b; ++j) {
+        const int rj = roots[static_cast<std::size_t>(j)];
+        double weight = 1.0;
+        for (int m = a; m < b; ++m) {
+          const int rm = roots[static_cast<std::size_t>(m)];
+          if (m != j) weight *= static_cast<double>(i1 - rm) / static_cast<double>(rj - rm);
+        }
+        e.root[static_cast<std::size_t>(j - a)] = rj;
+        e.weight[static_cast<std::size_t>(j - a)] = weight;
+      }
+      plan.interpolation.push_back(e);
+    }
+  }
+  return plan;
+}
+
+void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationRegion& region, const Mesh& mesh,
+                                   const std::vector<double>& strip_x2_m, std::vector<double>& h,
+                                   const StripRoots* roots) {
+  // Strip by strip; the rail (straight along x) is met at the same t for every x1 of a strip, and
+  // each wheel root starts from its neighbours'. The middle of the strip first, then outwards.
+  std::optional<StripRoots> made;
+  if (roots == nullptr) roots = &made.emplace(strip_roots(mesh));
+  const int middle = roots->middle;
   // The strips in the order of the right wheel's x2 (the left wheel's mesh is its mirror image), so
   // that each strip starts from the same neighbour on both wheels.
   const bool right = region.side == WheelSide::right;
@@ -172,7 +159,7 @@ void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationR
     g->wheel_parameter = u_middle;
     double* strip = h.data() + mesh.index(0, i2);  // i1 runs fastest: the strip is contiguous
     strip[middle] = t_middle - rail;
-    for (const std::vector<int>& m : march) {
+    for (const std::vector<int>& m : roots->march) {
       // Each root starts from the parabola through the three before it (in x1; third-order
       // accurate, so that Newton's first step mostly ends it).
       MarchHistory history;
@@ -185,7 +172,7 @@ void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationR
         history.add(x1, t, u);
       }
     }
-    for (const RootInterpolation::Element& e : interpolation.elements)
+    for (const StripRoots::Interpolated& e : roots->interpolation)
       strip[e.i1] = e.weight[0] * strip[e.root[0]] + e.weight[1] * strip[e.root[1]] + e.weight[2] * strip[e.root[2]] +
                     e.weight[3] * strip[e.root[3]];
   }
