@@ -554,7 +554,7 @@ namespace {
 // slip flags may flip where |p| sits on the bound to rounding), and a wheelset (`railcontact wheelset`, by load, both
 // wheels: the same code) to the last digit.
 TEST(CApiEqualsCli, SinglePatchAndWheelsetToTheLastDigit) {
-  const std::filesystem::path dir = test::scratch_directory("c_api_equals_cli");
+  const test::ScratchDirectory dir("c_api_equals_cli");
   std::ofstream(dir / "case.toml") << "[geometry]\ntype = \"ellipse\"\na = 0.006\nb = 0.004\n[material]\nE = 2.1e11\n"
                                       "nu = 0.3\n[load]\nnormal_force = 80000\n[friction]\nmu = 0.3\n[creepage]\n"
                                       "xi = 0.001\neta = 0.0005\nphi = 0.3\n[mesh]\nelements = 2800\n[solvers]\n"
@@ -607,7 +607,6 @@ TEST(CApiEqualsCli, SinglePatchAndWheelsetToTheLastDigit) {
       EXPECT_EQ(r.wheel_force_track_N[k][i], w["wheels"][k]["force_track_N"][i].get<double>())
           << k << " " << i << " difference " << r.wheel_force_track_N[k][i] - w["wheels"][k]["force_track_N"][i].get<double>();
   rc_wheelset_destroy(wheelset);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

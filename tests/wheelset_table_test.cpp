@@ -527,7 +527,7 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   nlohmann::json old_format = nlohmann::json::parse(std::ifstream(v3));
   old_format["format_version"] = 2;
   old_format.erase("slip_direction");
-  const std::filesystem::path dir = scratch_directory("wheelset_table_slip");
+  const test::ScratchDirectory dir("wheelset_table_slip");
   const std::string v2 = (dir / "v2.json").string();
   std::ofstream(v2) << old_format.dump();
   const auto evaluate = [](const std::string& file, const std::string& extra) {
@@ -661,7 +661,7 @@ TEST(WheelsetTableCli, SweepFromTheTableGivesItsPointEvaluations) {
 // A table built with the depth-weighted reference point records it; a run evaluates it with that
 // weighting only (the default, CONTACT's squared gap, is another contact definition).
 TEST(WheelsetTableCli, ATableRecordsItsReferenceWeighting) {
-  const std::filesystem::path dir = scratch_directory("wheelset_table_weighting");
+  const test::ScratchDirectory dir("wheelset_table_weighting");
   const std::string file = (dir / "depth.json").string();
   const CommandResult build = run_cli("wheelset-table build --y-m=0:0:0.001 --load-N 98100 --element-size-m 0.0005 "
                                       "--reference-weighting depth --out " + file);
@@ -676,11 +676,10 @@ TEST(WheelsetTableCli, ATableRecordsItsReferenceWeighting) {
                            "over V_ref (this railcontact's) differs from the table's depth reference point"),
             std::string::npos)
       << other.err;
-  std::filesystem::remove_all(dir);
 }
 
 TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
-  const std::filesystem::path dir = scratch_directory("wheelset_table_cli");
+  const test::ScratchDirectory dir("wheelset_table_cli");
   const std::string file = (dir / "table.json").string();
   const CommandResult build =
       run_cli("wheelset-table build --y-m=-0.0005:0.0005:0.0005 --load-N 90000,110000 --element-size-m 0.0005 --out " + file);
@@ -699,14 +698,13 @@ TEST(WheelsetTableCli, BuildThenEvaluateGivesTheLibrarysLookup) {
   EXPECT_EQ(j["wheelset_table"], file);
   for (int w = 0; w < 2; ++w)
     for (int i = 0; i < 3; ++i) EXPECT_EQ(j["wheels"][w]["force_track_N"][i].get<double>(), r.wheels[w].force_track_N[i]);
-  std::filesystem::remove_all(dir);
 }
 
 // `wheelset-table build --contact-surface auto` records the surface; a lookup that asks for it
 // gives the automatic wheelset's patches (the flange's conformal weight 1 in the JSON), one that
 // asks for the planar surface is refused naming the setting, and an unknown name is refused.
 TEST(WheelsetTableCli, ATableOnTheAutomaticSurface) {
-  const std::filesystem::path dir = scratch_directory("wheelset_table_cli_auto");
+  const test::ScratchDirectory dir("wheelset_table_cli_auto");
   const std::string file = (dir / "table.json").string();
   const CommandResult build = run_cli("wheelset-table build --y-m=-0.0066:-0.0064:0.0002 --load-N 90000,110000 "
                                       "--element-size-m 0.0005 --contact-surface auto --out " + file);
@@ -724,7 +722,6 @@ TEST(WheelsetTableCli, ATableOnTheAutomaticSurface) {
   EXPECT_NE(planar.err.find("contact-surface planar (--contact-surface) differs from the table's auto"), std::string::npos)
       << planar.err;
   EXPECT_EQ(run_cli("wheelset-table build --contact-surface curved --out " + file).exit_code, 2);
-  std::filesystem::remove_all(dir);
 }
 
 // The measured worn wheel Car7358 on UIC60 snaps into flange contact between y = −6.95 and −7.0 mm

@@ -671,7 +671,7 @@ namespace {
 // `railcontact wheelset --sweep-y-m`: one CSV row per patch and position; a sweep that runs into the
 // flange-climb limit keeps the rows before it, and its error says where and why it stopped.
 TEST(WheelsetCli, SweepWritesTheCsvAndStopsAtTheFlangeClimbLimit) {
-  const std::filesystem::path dir = test::scratch_directory("wheelset_sweep_cli");
+  const test::ScratchDirectory dir("wheelset_sweep_cli");
   const std::string no_figures = "RAILCONTACT_SCRIPTS=/nonexistent-railcontact-scripts ";
   const auto rows_at = [](const std::filesystem::path& csv) {
     std::ifstream in(csv);
@@ -697,7 +697,6 @@ TEST(WheelsetCli, SweepWritesTheCsvAndStopsAtTheFlangeClimbLimit) {
   EXPECT_NE(stopped.err.find("the flange is climbing over the rail"), std::string::npos) << stopped.err;
   EXPECT_EQ(rows_at(dir / "b" / "wheelset_sweep.csv"),
             (std::vector<std::string>{"-8.750000", "-8.750000", "-9.000000", "-9.000000"}));
-  std::filesystem::remove_all(dir);
 }
 
 
