@@ -110,6 +110,36 @@ TEST(WheelsetGeometry, TheUndeformedDistanceIsTheExactOneOnEveryElement) {
   }
 }
 
+// The left wheel's potential area is the mirrored right wheel's, element by element, to rounding:
+// its strips are solved in the right wheel's order, each from the same neighbour's root (9.5e-14 m
+// apart at y = -6.8 mm, yaw 2 mrad when they ran in the left mesh's own order).
+TEST(WheelsetGeometry, TheLeftWheelsUndeformedDistanceIsTheMirroredRightWheels) {
+  const WheelsetTrack& track = s1002_uic60();
+  for (const WheelsetPosition& p : {pressed(-6.8e-3, 0.3e-3, 0.0, 2e-3), pressed(2e-3, 0.08e-3)}) {
+    const WheelsetPosition mirrored = at(-p.lateral_displacement_m, p.vertical_displacement_m, -p.roll_rad, -p.yaw_rad);
+    const WheelContactSearch right = track.contact_search(WheelSide::right, p);
+    const WheelContactSearch left = track.contact_search(WheelSide::left, mirrored);
+    ASSERT_EQ(left.regions.size(), right.regions.size());
+    for (std::size_t k = 0; k < right.regions.size(); ++k) {
+      const TangentPlaneArea r = track.potential_contact_area(p, right.regions[k], 0.5e-3);
+      const TangentPlaneArea l = track.potential_contact_area(mirrored, left.regions[k], 0.5e-3);
+      ASSERT_EQ(l.mesh.n1, r.mesh.n1);
+      ASSERT_EQ(l.mesh.n2, r.mesh.n2);
+      double largest = 0.0;
+      int overlapping = 0;
+      for (int i2 = 0; i2 < r.mesh.n2; ++i2)
+        for (int i1 = 0; i1 < r.mesh.n1; ++i1) {
+          const double h = r.h_m[r.mesh.index(i1, i2)];
+          if (!(h < 0.0)) continue;
+          ++overlapping;
+          largest = std::max(largest, std::abs(h - l.h_m[l.mesh.index(i1, l.mesh.n2 - 1 - i2)]));
+        }
+      EXPECT_GT(overlapping, 100);
+      EXPECT_LT(largest, 1e-14) << p.lateral_displacement_m;
+    }
+  }
+}
+
 // The left wheel at (y, roll, yaw) is the mirror image of the right wheel at (−y, −roll, −yaw).
 TEST(WheelsetGeometry, LeftWheelIsTheMirroredRightWheel) {
   const WheelsetTrack& track = s1002_uic60();
