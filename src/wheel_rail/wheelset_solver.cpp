@@ -591,17 +591,14 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   patch.normal_mesh_elements = n.solved_mesh_elements;
   const Mesh& mesh = n.area.mesh;
   patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
+  // The largest pressure in a loop of its own: beside push_back's call the maximum would be
+  // stored and reloaded at every element.
+  const std::vector<double>& pressure_Pa = n.normal.pressure_Pa;
+  patch.max_pressure_Pa = std::max(0.0, *std::max_element(pressure_Pa.begin(), pressure_Pa.end()));
   std::vector<std::size_t> elements;
   elements.reserve(patch.elements_in_contact);
-  double max_pressure_Pa = 0.0;  // a local: the loop keeps it in a register
-  const std::size_t size = mesh.size();
-  const double* pressure_Pa = n.normal.pressure_Pa.data();
-  for (std::size_t k = 0; k < size; ++k) {
-    const double p = pressure_Pa[k];
-    if (p > 0.0) elements.push_back(k);
-    max_pressure_Pa = std::max(max_pressure_Pa, p);
-  }
-  patch.max_pressure_Pa = max_pressure_Pa;
+  for (std::size_t k = 0; k < pressure_Pa.size(); ++k)
+    if (pressure_Pa[k] > 0.0) elements.push_back(k);
   if (elements.empty()) {
     // A patch that has just appeared: overlap, but no element in contact yet. Zero forces.
     for (TangentialSolver s : options.solvers) {
