@@ -1038,8 +1038,13 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
   // A time step balancing the roll starts from the roll predicted from the last steps (the input's
   // roll is only the first guess of a fresh evaluation).
   if (stepped && options.loads->balance_roll) state.position.roll_rad = guess.roll_rad;
+  // Independent wheels (no roll to balance): a wheel whose T has settled while the other's has not
+  // keeps its pass's solution; solving it again at its secant's next T, within the tolerance of
+  // the last, would only repeat it.
+  std::array<bool, 2> kept{false, false};
   for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
     for (std::size_t k = 0; k < 2; ++k) {
+      if (kept[k]) continue;
       heights[k] = solve_height(track, kSides[k], state.position, loads[k] - tangential[k].value_N, options, overlap[k],
                                 normal[k], iterations[k], warm);
       solves[k] += iterations[k];
@@ -1050,19 +1055,29 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
     bool settled = roll_settled;
     state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
     std::array<double, 2> new_tangential{0.0, 0.0};
+    const double tolerance = pass < kStrictBalancePasses ? kTangentialBalanceTolerance : kCoarseTangentialBalanceTolerance;
+    std::array<bool, 2> wheel_settled{false, false};
     for (std::size_t k = 0; k < 2; ++k) {
+      if (kept[k]) {
+        wheel_settled[k] = true;
+        continue;
+      }
       WheelsetState wheel_state = state;
       wheel_state.position.vertical_displacement_m = heights[k];
       result.wheels[k] = finish_wheel(track, kSides[k], wheel_state, normal[k], options);
       result.wheels[k].load_iterations = solves[k];
       if (options.tangential_forces_in_vertical_balance)
         new_tangential[k] = tangential_vertical_force(result.wheels[k], balance_index(options));
-      const double tolerance = pass < kStrictBalancePasses ? kTangentialBalanceTolerance : kCoarseTangentialBalanceTolerance;
-      settled = settled && std::abs(new_tangential[k] - tangential[k].value_N) <=
-                               std::max(options.load_tolerance, tolerance) * loads[k];
+      wheel_settled[k] =
+          std::abs(new_tangential[k] - tangential[k].value_N) <= std::max(options.load_tolerance, tolerance) * loads[k];
+      settled = settled && wheel_settled[k];
     }
     if (settled) break;
     for (std::size_t k = 0; k < 2; ++k) {
+      if (!options.loads->balance_roll && wheel_settled[k]) {
+        kept[k] = true;
+        continue;
+      }
       // The next pass's load differs by the change of T: its overlap guessed with the contact
       // stiffness (Newton), so that the pass's first normal solve is close.
       const double previous_T = tangential[k].value_N;
@@ -1071,7 +1086,9 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
         overlap[k] = std::clamp(overlap[k] + (previous_T - tangential[k].value_N) / warm.stiffness_N_per_m[k],
                                 0.5 * overlap[k], 2.0 * overlap[k]);
     }
-    if (roll_settled && tangential[0].bracket_closed(loads[0]) && tangential[1].bracket_closed(loads[1])) break;
+    if (roll_settled && (kept[0] || tangential[0].bracket_closed(loads[0])) &&
+        (kept[1] || tangential[1].bracket_closed(loads[1])))
+      break;
     if (pass + 1 >= kMaximumBalanceIterations) {
       throw Error(ErrorKind::not_converged,
                   fmt::format("wheelset: the vertical balance of the wheels did not settle in {} passes (the "
