@@ -291,6 +291,33 @@ TEST(Wheelset, APredictedHeightTakesOneNormalSolvePerWheelAndGivesTheSameSolutio
   expect_fresh(stepping.evaluate(s), s, 0.0);
 }
 
+// By load with each wheel's height on its own, a wheel whose tangential part has settled keeps its
+// pass's solution while the other wheel's settles: in flange contact (y = -6.8 mm, 0.5 mm
+// elements, a drift of 1 µm per step) the tread wheel takes one normal solve per step after the
+// first (3 or 4 when it was solved again in every pass), the flange wheel more, and both wheels
+// still carry their loads to the balance's tolerance (1e-5 of the load) and agree with a fresh
+// Wheelset's forces to it.
+TEST(Wheelset, ASettledWheelKeepsItsSolutionWhileTheOtherSettles) {
+  WheelsetOptions o = coarse();
+  Wheelset stepping(track(), o);
+  WheelsetState s = state_at(-6.8e-3);
+  (void)stepping.evaluate(s);
+  for (int k = 1; k <= 3; ++k) {
+    s.position.lateral_displacement_m = -6.8e-3 + k * 1e-6;
+    const WheelsetResult r = stepping.evaluate(s);
+    EXPECT_GT(r.wheels[0].load_iterations, 2) << k;  // the flange wheel: several passes
+    EXPECT_LE(r.wheels[1].load_iterations, 2) << k;  // the tread wheel, kept
+    const WheelsetResult fresh = Wheelset(track(), o).evaluate(s);
+    for (int side = 0; side < 2; ++side) {
+      const double load = side == 0 ? o.loads->right_N : o.loads->left_N;
+      EXPECT_NEAR(r.wheels[side].force_track_N[2], load, (o.load_tolerance + 1e-5) * load) << k;
+      const double muFz = o.friction_coefficient * load;
+      EXPECT_NEAR(r.wheels[side].force_track_N[0], fresh.wheels[side].force_track_N[0], 1e-4 * muFz) << k;
+      EXPECT_NEAR(r.wheels[side].force_track_N[1], fresh.wheels[side].force_track_N[1], 1e-4 * muFz) << k;
+    }
+  }
+}
+
 // Balancing the roll too (WheelLoads::balance_roll), a time step starts from the roll predicted
 // from the last steps, not from the input's roll: along a drift of 1 µm per step at y = −3 mm the
 // third step solves each wheel's normal problem at most twice (2 in all, 0.5 mm elements; 18 for
