@@ -46,32 +46,43 @@ WheelsetState state_at(double y_m, double yaw_rad = 0.0) {
 // are the left wheel's mirrored (F1, F3 kept; F2, M3, η, φ, Fy reversed), to rounding.
 TEST(Wheelset, WheelsAtMinusYAreTheMirrorImageOfWheelsAtY) {
   // The heights solved to 1e-10 of the load, beyond this test's 1e-8: at the default 1e-6 the two
-  // wheels' height iterations may stop at different points within it. Creepages agree to 1e-10
-  // (the heights' iterations), forces to 1e-8 of the load.
-  WheelsetOptions options = coarse({TangentialSolver::nh_fastsim, TangentialSolver::exact});
-  options.load_tolerance = 1e-10;
-  Wheelset wheelset(track(), options);
-  for (const auto& [y, yaw] : {std::pair{3e-3, 0.0}, std::pair{-6.8e-3, 2e-3}}) {
-    const WheelsetResult a = wheelset.evaluate(state_at(y, yaw));
-    const WheelsetResult b = wheelset.evaluate(state_at(-y, -yaw));
-    for (std::size_t k = 0; k < 2; ++k) {
-      const WheelResult& w = a.wheels[k];
-      const WheelResult& m = b.wheels[1 - k];
-      ASSERT_EQ(w.patches.size(), m.patches.size());
-      const double scale = w.force_track_N[2];
-      EXPECT_NEAR(w.force_track_N[0], m.force_track_N[0], 1e-8 * scale);
-      EXPECT_NEAR(w.force_track_N[1], -m.force_track_N[1], 1e-8 * scale);
-      EXPECT_NEAR(w.force_track_N[2], m.force_track_N[2], 1e-8 * scale);
-      for (std::size_t p = 0; p < w.patches.size(); ++p) {
-        const WheelsetPatch& P = w.patches[p];
-        const WheelsetPatch& Q = m.patches[p];
-        EXPECT_NEAR(P.creepage.xi, Q.creepage.xi, 1e-10);
-        EXPECT_NEAR(P.creepage.eta, -Q.creepage.eta, 1e-10);
-        EXPECT_NEAR(P.creepage.phi, -Q.creepage.phi, 1e-10);
-        for (std::size_t s = 0; s < P.solvers.size(); ++s) {
-          EXPECT_NEAR(P.solvers[s].forces.F1_N, Q.solvers[s].forces.F1_N, 1e-8 * scale);
-          EXPECT_NEAR(P.solvers[s].forces.F2_N, -Q.solvers[s].forces.F2_N, 1e-8 * scale);
-          EXPECT_NEAR(P.solvers[s].forces.M3_Nm, -Q.solvers[s].forces.M3_Nm, 1e-8 * scale);
+  // wheels' height iterations may stop at different points within it. With the frictionless
+  // balance creepages agree to 1e-10 (the heights' iterations) and forces to 1e-8 of the load. With
+  // the tangential forces in the balance, their vertical part settles to 1e-5 of the load in
+  // passes whose path the mirrored states' rounding may change (in flange contact the two
+  // evaluations then differed by 1.1e-8 of the load in F2 in the sanitizers' build): forces agree
+  // to that 1e-5 of the load, creepages to 1e-6 (the heights then differ by up to about 1e-9 m,
+  // and on the flange the contact angle moves by 0.7 mrad per µm of height).
+  for (const bool tangential_in_balance : {false, true}) {
+    SCOPED_TRACE(tangential_in_balance);
+    WheelsetOptions options = coarse({TangentialSolver::nh_fastsim, TangentialSolver::exact});
+    options.load_tolerance = 1e-10;
+    options.tangential_forces_in_vertical_balance = tangential_in_balance;
+    const double force_tolerance = tangential_in_balance ? 1e-5 : 1e-8;     // of the load
+    const double creepage_tolerance = tangential_in_balance ? 1e-6 : 1e-10;  // 1 and 1/m
+    Wheelset wheelset(track(), options);
+    for (const auto& [y, yaw] : {std::pair{3e-3, 0.0}, std::pair{-6.8e-3, 2e-3}}) {
+      const WheelsetResult a = wheelset.evaluate(state_at(y, yaw));
+      const WheelsetResult b = wheelset.evaluate(state_at(-y, -yaw));
+      for (std::size_t k = 0; k < 2; ++k) {
+        const WheelResult& w = a.wheels[k];
+        const WheelResult& m = b.wheels[1 - k];
+        ASSERT_EQ(w.patches.size(), m.patches.size());
+        const double scale = w.force_track_N[2];
+        EXPECT_NEAR(w.force_track_N[0], m.force_track_N[0], force_tolerance * scale);
+        EXPECT_NEAR(w.force_track_N[1], -m.force_track_N[1], force_tolerance * scale);
+        EXPECT_NEAR(w.force_track_N[2], m.force_track_N[2], force_tolerance * scale);
+        for (std::size_t p = 0; p < w.patches.size(); ++p) {
+          const WheelsetPatch& P = w.patches[p];
+          const WheelsetPatch& Q = m.patches[p];
+          EXPECT_NEAR(P.creepage.xi, Q.creepage.xi, creepage_tolerance);
+          EXPECT_NEAR(P.creepage.eta, -Q.creepage.eta, creepage_tolerance);
+          EXPECT_NEAR(P.creepage.phi, -Q.creepage.phi, creepage_tolerance);
+          for (std::size_t s = 0; s < P.solvers.size(); ++s) {
+            EXPECT_NEAR(P.solvers[s].forces.F1_N, Q.solvers[s].forces.F1_N, force_tolerance * scale);
+            EXPECT_NEAR(P.solvers[s].forces.F2_N, -Q.solvers[s].forces.F2_N, force_tolerance * scale);
+            EXPECT_NEAR(P.solvers[s].forces.M3_Nm, -Q.solvers[s].forces.M3_Nm, force_tolerance * scale);
+          }
         }
       }
     }
@@ -293,20 +304,20 @@ TEST(Wheelset, APredictedHeightTakesOneNormalSolvePerWheelAndGivesTheSameSolutio
 
 // By load with each wheel's height on its own, a wheel whose tangential part has settled keeps its
 // pass's solution while the other wheel's settles: in flange contact (y = -6.8 mm, 0.5 mm
-// elements, a drift of 1 µm per step) the tread wheel takes one normal solve per step after the
-// first (3 or 4 when it was solved again in every pass), the flange wheel more, and both wheels
-// still carry their loads to the balance's tolerance (1e-5 of the load) and agree with a fresh
-// Wheelset's forces to it.
+// elements, a drift of 1 µm per step) the tread wheel takes 4 normal solves in three steps (10 when
+// it was solved again in every pass), the flange wheel 14, and both wheels still carry their loads
+// to the balance's tolerance (1e-5 of the load) and agree with a fresh Wheelset's forces to it.
 TEST(Wheelset, ASettledWheelKeepsItsSolutionWhileTheOtherSettles) {
   WheelsetOptions o = coarse();
   Wheelset stepping(track(), o);
   WheelsetState s = state_at(-6.8e-3);
   (void)stepping.evaluate(s);
+  int flange_solves = 0, tread_solves = 0;
   for (int k = 1; k <= 3; ++k) {
     s.position.lateral_displacement_m = -6.8e-3 + k * 1e-6;
     const WheelsetResult r = stepping.evaluate(s);
-    EXPECT_GT(r.wheels[0].load_iterations, 2) << k;  // the flange wheel: several passes
-    EXPECT_LE(r.wheels[1].load_iterations, 2) << k;  // the tread wheel, kept
+    flange_solves += r.wheels[0].load_iterations;
+    tread_solves += r.wheels[1].load_iterations;
     const WheelsetResult fresh = Wheelset(track(), o).evaluate(s);
     for (int side = 0; side < 2; ++side) {
       const double load = side == 0 ? o.loads->right_N : o.loads->left_N;
@@ -316,6 +327,8 @@ TEST(Wheelset, ASettledWheelKeepsItsSolutionWhileTheOtherSettles) {
       EXPECT_NEAR(r.wheels[side].force_track_N[1], fresh.wheels[side].force_track_N[1], 1e-4 * muFz) << k;
     }
   }
+  EXPECT_GT(flange_solves, 8);  // several passes
+  EXPECT_LE(tread_solves, 6);   // kept after it settles
 }
 
 // Balancing the roll too (WheelLoads::balance_roll), a time step starts from the roll predicted
