@@ -355,15 +355,12 @@ class NhFastSim {
   // coarser patch": from about 250 coarse elements the largest creep-force error moves by at most
   // 0.1 points; below 1000 elements FastSim's own discretisation error dominates).
   static int automatic_coarsening(const ContactPatch& patch);
-  // The same from the number of elements in contact (a patch's elements().count()).
-  static int automatic_coarsening(std::size_t elements_in_contact);
   // The blocks of the automatic coarsening: automatic_coarsening(patch) = f elements along the
   // rolling direction and, from f = 3, f + 1 across (f below). With the lateral direction one
   // element coarser the paper's Fig 5 errors are lower at most sizes from 2000 elements (their rms
   // nearly everywhere; docs/FASTSIM.md "Blocks one element longer across"), and K2 costs 40 %
   // less at ~4700 elements (a power-of-two transform length across).
   static CoarseBlocks automatic_coarse_blocks(const ContactPatch& patch);
-  static CoarseBlocks automatic_coarse_blocks(std::size_t elements_in_contact);
 
   // Creep forces and the spin moment on the wheel (Kalker's sign convention). Throws Error unless
   // mu > 0 and the creepages are finite.

@@ -69,6 +69,11 @@ std::vector<ContactRegion> split_at_necks(const Mesh& mesh, const std::vector<do
 inline constexpr std::size_t kMinimumElementsForK2 = 20;
 inline constexpr std::size_t kFallbackElementsForK2 = 200;
 
+// NhFastSim::automatic_coarsening and automatic_coarse_blocks from the number of elements in
+// contact (a patch's elements().count()), for a caller that has not built the patch yet.
+int automatic_coarsening(std::size_t elements_in_contact);
+CoarseBlocks automatic_coarse_blocks(std::size_t elements_in_contact);
+
 // nH-FastSim prepared on a patch by that rule: empty for a patch too small for K2, which then takes
 // the equivalent ellipse's flexibilities. Throws what NhFastSim throws on a larger patch.
 std::optional<NhFastSim> nh_fastsim_unless_too_small(const ContactPatch& patch, const NhFastSimOptions& options);

@@ -10,6 +10,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/tangential.hpp"
 #include "tangential/adhesion_tuning.hpp"
+#include "tangential/cropped_patch.hpp"
 
 namespace railcontact {
 namespace {
@@ -44,7 +45,9 @@ void validate(const NhFastSimOptions& options) {
 
 }  // namespace
 
-int NhFastSim::automatic_coarsening(std::size_t elements_in_contact) {
+namespace detail {
+
+int automatic_coarsening(std::size_t elements_in_contact) {
   constexpr double kMinimumCoarseElements = 250;
   constexpr std::size_t kCoarsenFrom = 400;
   const auto n = static_cast<double>(elements_in_contact);
@@ -54,15 +57,19 @@ int NhFastSim::automatic_coarsening(std::size_t elements_in_contact) {
   return factor;
 }
 
-int NhFastSim::automatic_coarsening(const ContactPatch& patch) { return automatic_coarsening(patch.elements().count()); }
-
-CoarseBlocks NhFastSim::automatic_coarse_blocks(std::size_t elements_in_contact) {
+CoarseBlocks automatic_coarse_blocks(std::size_t elements_in_contact) {
   const int factor = automatic_coarsening(elements_in_contact);
   return {factor, factor >= 3 ? factor + 1 : factor};
 }
 
+}  // namespace detail
+
+int NhFastSim::automatic_coarsening(const ContactPatch& patch) {
+  return detail::automatic_coarsening(patch.elements().count());
+}
+
 CoarseBlocks NhFastSim::automatic_coarse_blocks(const ContactPatch& patch) {
-  return automatic_coarse_blocks(patch.elements().count());
+  return detail::automatic_coarse_blocks(patch.elements().count());
 }
 
 NhFastSim::NhFastSim(FastSim fastsim, NhFastSimFlexibilities flexibilities, std::optional<Matrix3> K2,

@@ -535,7 +535,7 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
       elements.size() >= kMinimumElementsForK2) {
     // The aligned crop keeps the elements, so NhFastSim's automatic blocks are these.
     const int factor = options.nh_fastsim.flexibility_coarsening;
-    blocks = factor > 0 ? CoarseBlocks{factor, factor} : NhFastSim::automatic_coarse_blocks(elements.size());
+    blocks = factor > 0 ? CoarseBlocks{factor, factor} : detail::automatic_coarse_blocks(elements.size());
   }
   ContactPatch contact =
       blocks != CoarseBlocks{1, 1}
