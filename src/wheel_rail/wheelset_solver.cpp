@@ -729,6 +729,121 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
                           target_N, side_name(side), kMaximumLoadIterations));
 }
 
+// One wheel's height at which its whole contact force carries `load_N`, on its own (independent
+// wheels, no roll to balance; docs/WHEELSET.md §5 "By load"): Newton steps on the overlap δ against
+// the total vertical force F(δ) = N(δ) + T(δ), the normal forces' and the tangential forces'
+// vertical parts. Each trial solves the normal problem once and, when N + T is within
+// kTangentialTrialRange of the load, the tangential problem (until then T keeps its first guess: a
+// fresh evaluation's first trials). The stiffness dF/dδ is the secant of N scaled by F/N: T jumps
+// where an element enters the patch, N barely. A bracket of δ across which F changes by more than
+// 1.5 times what the stiffness explains holds such a jump, and is halved. Settled when |F − load|
+// is within the balance's tolerance (1e-5 of the load; 1e-3 after kStrictBalancePasses tangential
+// solves) or the bracket has closed to kBracketTolerance of the load: the wheel is then the trial
+// nearest to the load. overlap_m: δ's first guess in, the root's Newton estimate out;
+// tangential_N: T's first guess in, the answer's T out.
+void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const WheelsetState& state, double load_N,
+                         const WheelsetOptions& options, double& overlap_m, double& tangential_N, WheelResult& wheel,
+                         detail::WheelsetWarmStart& warm) {
+  constexpr double kTangentialTrialRange = 1e-2;  // of the load
+  const std::size_t k = side == WheelSide::right ? 0 : 1;
+  const std::size_t solver = balance_index(options);
+  const double touching = detail::touching_vertical_displacement_m(
+      warm.locus_at(track, side, state.position, options.search.locus_step_m));
+  WheelsetState trial = state;
+  double delta = overlap_m, T = tangential_N;
+  int tangential_trials = 0;
+  double lo_m = 0.0, hi_m = std::numeric_limits<double>::infinity();  // F < load at lo_m, > at hi_m
+  // The contact stiffness dF/dδ: the last evaluation's, then the secants of this one's trials.
+  double& stiffness = warm.stiffness_N_per_m[k];
+  const bool seeded = stiffness > 0.0;  // by the last evaluation
+  double previous_delta = 0.0, previous_N = 0.0;
+  double F_lo = 0.0, F_hi = 0.0;  // the total vertical force at lo_m and hi_m
+  // The trial with the tangential part solved that came closest to the load.
+  double best_residual = std::numeric_limits<double>::infinity(), best_delta = 0.0, best_F = 0.0, best_T = 0.0;
+  WheelResult best;
+  bool bracketed = false;
+  for (int iteration = 1; iteration <= kMaximumLoadIterations; ++iteration) {
+    trial.position.vertical_displacement_m = touching - delta;
+    std::vector<NormalPatch> patches = solve_normal(track, side, trial.position, options, warm);
+    const double N = normal_vertical_force(patches);
+    const bool with_T = N > 0.0 && std::abs(N + T - load_N) <= kTangentialTrialRange * load_N;
+    if (with_T) {
+      wheel = finish_wheel(track, side, trial, patches, options);
+      T = tangential_vertical_force(wheel, solver);
+      ++tangential_trials;
+    }
+    const double F = N + T;
+    // The stiffness from the secant of the normal force, which T's jumps do not reach, scaled by
+    // F/N (T moves in proportion to N: its friction-limited part does).
+    if (N > 0.0 && previous_N > 0.0 && delta != previous_delta) {
+      const double secant = (N - previous_N) / (delta - previous_delta) * (F / N);
+      if (secant > 0.0) stiffness = secant;
+    }
+    if (with_T) {
+      if (std::abs(F - load_N) < best_residual) {
+        best_residual = std::abs(F - load_N);
+        best_delta = delta;
+        best_F = F;
+        best_T = T;
+        best = wheel;
+      }
+      if (F < load_N && delta >= lo_m) {
+        lo_m = delta;
+        F_lo = F;
+      }
+      if (F > load_N && delta <= hi_m) {
+        hi_m = delta;
+        F_hi = F;
+      }
+      const double tolerance = std::max(options.load_tolerance, tangential_trials <= kStrictBalancePasses
+                                                                    ? kTangentialBalanceTolerance
+                                                                    : kCoarseTangentialBalanceTolerance);
+      // The bracket has closed: no trial can come closer than the best.
+      bracketed = std::isfinite(hi_m) && lo_m > 0.0;
+      const bool closed = bracketed && (hi_m - lo_m) * stiffness <= kBracketTolerance * load_N;
+      if (best_residual <= tolerance * load_N || closed) {
+        wheel = std::move(best);
+        wheel.load_iterations = iteration;
+        overlap_m = best_delta + (load_N - best_F) / stiffness;
+        tangential_N = best_T;
+        return;
+      }
+    }
+    // As the height iteration of solve_height: the first step with the last evaluation's stiffness
+    // (a time step), or two of Hertz's (afresh: F grows faster than linearly, and a secant from
+    // below would overshoot), then Newton's.
+    double next;
+    if (!(F > 0.0))
+      next = 2.0 * delta;
+    else if (!(stiffness > 0.0) || (!seeded && iteration <= 2))
+      next = delta * std::pow(load_N / F, 2.0 / 3.0);
+    else
+      next = delta + (load_N - F) / stiffness;
+    next = std::clamp(next, 0.25 * delta, 4.0 * delta);
+    // A bracket across which F changes by more than 1.5 times what the stiffness explains holds a
+    // jump of T (an element entering the patch): Newton's steps from either side would land across
+    // it again and again; it is halved instead.
+    const bool jump = bracketed && F_hi - F_lo > 1.5 * stiffness * (hi_m - lo_m);
+    if (std::isfinite(hi_m) && (jump || !(next > lo_m && next < hi_m))) next = 0.5 * (lo_m + hi_m);
+    require(delta < kMaximumOverlap_m || F >= load_N, [&] {
+      return fmt::format("wheelset: the {} wheel would need an overlap of more than {:g} mm to carry {:g} N (at "
+                         "{:g} mm it carries {:g} N)",
+                         side_name(side), kMaximumOverlap_m / kMm, load_N, delta / kMm, F);
+    });
+    previous_delta = delta;
+    previous_N = N;
+    delta = std::min(next, kMaximumOverlap_m);
+  }
+  throw Error(ErrorKind::not_converged,
+              fmt::format("wheelset: the vertical load {:g} N of the {} wheel was not met in {} iterations ({})",
+                          load_N, side_name(side), kMaximumLoadIterations,
+                          std::isfinite(best_residual)
+                              ? fmt::format("the total vertical force, with the tangential forces' part, came "
+                                            "within {:.3g} N of it",
+                                            best_residual)
+                              : std::string("the normal forces never came within 1 % of it")));
+}
+
 }  // namespace
 
 const char* contact_surface_name(ContactSurface surface) {
@@ -1038,13 +1153,32 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
   // A time step balancing the roll starts from the roll predicted from the last steps (the input's
   // roll is only the first guess of a fresh evaluation).
   if (stepped && options.loads->balance_roll) state.position.roll_rad = guess.roll_rad;
-  // Independent wheels (no roll to balance): a wheel whose T has settled while the other's has not
-  // keeps its pass's solution; solving it again at its secant's next T, within the tolerance of
-  // the last, would only repeat it.
-  std::array<bool, 2> kept{false, false};
+  const auto remember = [&] {
+    result.state = state;
+    warm.older_position = stepped ? warm.last_position : std::nullopt;
+    warm.older_overlap_m = warm.overlap_m;
+    warm.older_tangential_vertical_N = warm.tangential_vertical_N;
+    warm.older_roll_rad = warm.roll_rad;
+    warm.roll_rad = state.position.roll_rad;
+    warm.overlap_m = overlap;
+    for (std::size_t k = 0; k < 2; ++k) warm.tangential_vertical_N[k] = tangential[k].value_N;
+    warm.last_position = input.position;
+  };
+  if (!options.loads->balance_roll && options.tangential_forces_in_vertical_balance) {
+    // Independent wheels: each wheel's total vertical force balanced on its own.
+    for (std::size_t k = 0; k < 2; ++k) {
+      balance_wheel_total(track, kSides[k], state, loads[k], options, overlap[k], tangential[k].value_N,
+                          result.wheels[k], warm);
+      heights[k] = result.wheels[k].vertical_displacement_m;
+    }
+    state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
+    remember();
+    return;
+  }
+  // Balancing the roll, or the normal forces alone: passes, each solving both wheels' heights to
+  // their loads less the tangential parts T, then the tangential problems and the next T and roll.
   for (int pass = 0; pass < kMaximumBalanceIterations; ++pass) {
     for (std::size_t k = 0; k < 2; ++k) {
-      if (kept[k]) continue;
       heights[k] = solve_height(track, kSides[k], state.position, loads[k] - tangential[k].value_N, options, overlap[k],
                                 normal[k], iterations[k], warm);
       solves[k] += iterations[k];
@@ -1056,28 +1190,18 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
     state.position.vertical_displacement_m = 0.5 * (heights[0] + heights[1]);
     std::array<double, 2> new_tangential{0.0, 0.0};
     const double tolerance = pass < kStrictBalancePasses ? kTangentialBalanceTolerance : kCoarseTangentialBalanceTolerance;
-    std::array<bool, 2> wheel_settled{false, false};
     for (std::size_t k = 0; k < 2; ++k) {
-      if (kept[k]) {
-        wheel_settled[k] = true;
-        continue;
-      }
       WheelsetState wheel_state = state;
       wheel_state.position.vertical_displacement_m = heights[k];
       result.wheels[k] = finish_wheel(track, kSides[k], wheel_state, normal[k], options);
       result.wheels[k].load_iterations = solves[k];
       if (options.tangential_forces_in_vertical_balance)
         new_tangential[k] = tangential_vertical_force(result.wheels[k], balance_index(options));
-      wheel_settled[k] =
-          std::abs(new_tangential[k] - tangential[k].value_N) <= std::max(options.load_tolerance, tolerance) * loads[k];
-      settled = settled && wheel_settled[k];
+      settled = settled && std::abs(new_tangential[k] - tangential[k].value_N) <=
+                               std::max(options.load_tolerance, tolerance) * loads[k];
     }
     if (settled) break;
     for (std::size_t k = 0; k < 2; ++k) {
-      if (!options.loads->balance_roll && wheel_settled[k]) {
-        kept[k] = true;
-        continue;
-      }
       // The next pass's load differs by the change of T: its overlap guessed with the contact
       // stiffness (Newton), so that the pass's first normal solve is close.
       const double previous_T = tangential[k].value_N;
@@ -1086,8 +1210,7 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
         overlap[k] = std::clamp(overlap[k] + (previous_T - tangential[k].value_N) / warm.stiffness_N_per_m[k],
                                 0.5 * overlap[k], 2.0 * overlap[k]);
     }
-    if (roll_settled && (kept[0] || tangential[0].bracket_closed(loads[0])) &&
-        (kept[1] || tangential[1].bracket_closed(loads[1])))
+    if (roll_settled && tangential[0].bracket_closed(loads[0]) && tangential[1].bracket_closed(loads[1]))
       break;
     if (pass + 1 >= kMaximumBalanceIterations) {
       throw Error(ErrorKind::not_converged,
@@ -1097,15 +1220,7 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
                               new_tangential[1] - tangential[1].previous_N));
     }
   }
-  result.state = state;
-  warm.older_position = stepped ? warm.last_position : std::nullopt;
-  warm.older_overlap_m = warm.overlap_m;
-  warm.older_tangential_vertical_N = warm.tangential_vertical_N;
-  warm.older_roll_rad = warm.roll_rad;
-  warm.roll_rad = state.position.roll_rad;
-  warm.overlap_m = overlap;
-  for (std::size_t k = 0; k < 2; ++k) warm.tangential_vertical_N[k] = tangential[k].value_N;
-  warm.last_position = input.position;
+  remember();
 }
 
 // The wheelset's totals (a lifted wheel refused unless allowed), every number finite.
