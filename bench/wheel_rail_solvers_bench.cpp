@@ -4,7 +4,10 @@
 // contact (4700: the reference exact program's patch, ~4656 in contact).
 //   BM_NhFastSimOnTheFly          NhFastSim(patch) with its flexibilities + forces, in a process
 //                                 that has solved before (FFT plans made; the same patch, so the
-//                                 coarse K2 operator's kernels are kept from the last call)
+//                                 coarse K2 operator's kernels are kept from the last call; K2's
+//                                 adjoint solves made, the thread's memo of them emptied before each)
+//   BM_NhFastSimOnTheFlyRemembered  the same with the memo: K2 from the adjoint solutions of the
+//                                 last call (a patch met before, docs/FASTSIM.md)
 //   BM_NhFastSimOnTheFlyNewPatchEachCall  the same over 21 patches in turn (no kernels kept)
 //   BM_NhFastSimStage_*           its stages one by one (the profile breakdown)
 //   BM_FastSimWithKnownFlexibilities  the march alone (flexibilities known: the table's cost)
@@ -51,13 +54,23 @@ void count_elements(benchmark::State& state, const Case& c) {
 
 void BM_NhFastSimOnTheFly(benchmark::State& state) {
   const Case& c = comparison_case(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
+  for (auto _ : state) {
+    forget_remembered_adjoints();
+    benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
+  }
   count_elements(state, c);
   const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(c.patch.patch);
   state.counters["blocks_along"] = blocks.along;
   state.counters["blocks_across"] = blocks.across;
 }
 BENCHMARK(BM_NhFastSimOnTheFly)->Arg(3000)->Arg(4700)->Arg(11000)->Unit(benchmark::kMicrosecond);
+
+void BM_NhFastSimOnTheFlyRemembered(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
+  count_elements(state, c);
+}
+BENCHMARK(BM_NhFastSimOnTheFlyRemembered)->Arg(4700)->Unit(benchmark::kMicrosecond);
 
 // A different patch on every call: 21 patches of y = -0.5 ... 0.5 mm in steps of 0.05 mm, each with
 // the element size that gives it ~4700 elements, so no two share a coarse mesh and the kept
@@ -142,6 +155,7 @@ void BM_NhFastSimStage_ForceRowsOfK2(benchmark::State& state) {
   const AdhesionTuning tuning{AdhesionPreconditioner::marching_half_laplacian, 1.5};
   int iterations = 0;
   for (auto _ : state) {
+    forget_remembered_adjoints();
     const AdhesionSolution K2 = solve_full_adhesion(coarse.elements(), coarse.material(), options, tuning);
     iterations = K2.iterations;
     benchmark::DoNotOptimize(K2.creepage_matrix.values.data());

@@ -12,6 +12,8 @@
 #include <iostream>
 #include <limits>
 #include <tuple>
+#include <optional>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -35,7 +37,7 @@ ContactPatch ellipse_patch(double a_m, double b_m, int elements) {
 
 // A non-Hertzian patch: two separated lobes along X1 of different size and height, the second one
 // shifted in X2, so that many strips hold two runs and the patch has no symmetry.
-ContactPatch two_lobe_patch() {
+ContactPatch two_lobe_patch(double lobe2_peak_Pa = 0.8e9) {
   const Mesh mesh = Mesh::covering(-10e-3, 10e-3, -6e-3, 6e-3, 64, 36);
   std::vector<double> pressure(mesh.size(), 0.0);
   for (int i2 = 0; i2 < mesh.n2; ++i2) {
@@ -43,7 +45,8 @@ ContactPatch two_lobe_patch() {
       const double x = mesh.x1(i1), y = mesh.x2(i2);
       const double lobe1 = 1.0 - std::pow((x + 5e-3) / 4e-3, 2) - std::pow(y / 4.5e-3, 2);
       const double lobe2 = 1.0 - std::pow((x - 5e-3) / 3.5e-3, 2) - std::pow((y - 1e-3) / 3e-3, 2);
-      pressure[mesh.index(i1, i2)] = 1.2e9 * std::sqrt(std::max(0.0, lobe1)) + 0.8e9 * std::sqrt(std::max(0.0, lobe2));
+      pressure[mesh.index(i1, i2)] =
+          1.2e9 * std::sqrt(std::max(0.0, lobe1)) + lobe2_peak_Pa * std::sqrt(std::max(0.0, lobe2));
     }
   }
   return ContactPatch(mesh, pressure, Material{});
@@ -769,6 +772,33 @@ TEST(NhFastSim, CoarseBlocksLongerAcrossKeepTheLoadAndCropToTheContact) {
   EXPECT_NEAR(Lc.L3 / L.L3, 1.0, 0.05);
   EXPECT_THROW(coarsened(fine, CoarseBlocks{0, 2}), Error);
   EXPECT_THROW(coarsened(fine, CoarseBlocks{2, kMaximumCoarsening + 2}), Error);
+}
+
+// K2's force rows come from adjoint solutions that depend on the (coarse) patch's elements, not on
+// where it lies; a thread remembers the last few (docs/FASTSIM.md "K2 of a patch met before"). The
+// same elements with another pressure (lobe 2 pressed 1.5 times harder: the centre of pressure, the
+// patch's origin, moves by 0.9 mm along x1) give, after the first patch on this thread, the K2 and
+// flexibilities a new thread solves afresh, and their own spin column (not the first patch's).
+TEST(NhFastSim, AMovedPatchGetsTheSameK2AsAFreshSolve) {
+  const ContactPatch first = two_lobe_patch();
+  const ContactPatch moved = two_lobe_patch(1.5 * 0.8e9);
+  ASSERT_EQ(moved.elements().indices(), first.elements().indices());
+  NhFastSimOptions options;
+  options.flexibility_coarsening = 2;
+  const NhFastSim a(first, options);
+  const NhFastSim remembered(moved, options);  // the first patch's adjoints, on this thread
+  std::optional<NhFastSim> fresh;
+  std::thread([&] { fresh.emplace(moved, options); }).join();
+  ASSERT_TRUE(remembered.creepage_matrix() && fresh->creepage_matrix() && a.creepage_matrix());
+  const Matrix3& K = *remembered.creepage_matrix();
+  const Matrix3& F = *fresh->creepage_matrix();
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(K(i, j), F(i, j), 1e-12 * std::abs(F(i, j))) << i << j;
+  EXPECT_NEAR(remembered.flexibility().L3, fresh->flexibility().L3, 1e-12 * fresh->flexibility().L3);
+  EXPECT_NEAR(remembered.flexibility().L1, fresh->flexibility().L1, 1e-12 * fresh->flexibility().L1);
+  EXPECT_EQ(remembered.krylov_iterations(), fresh->krylov_iterations());
+  // The spin column moved with the origin: K2_23 by about 0.9 mm times K2_22.
+  EXPECT_GT(std::abs(K(1, 2) - (*a.creepage_matrix())(1, 2)), 1e-4 * std::abs(K(1, 1)));
 }
 
 // The automatic coarsening: the patch itself below 400 elements, square blocks of 2 below the

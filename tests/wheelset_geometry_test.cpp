@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "geometry/wheel_locus.hpp"
 #include "railcontact/error.hpp"
+#include "railcontact/wheel_rail.hpp"
 #include "railcontact/geometry.hpp"
 #include "railcontact/wheelset_geometry.hpp"
 
@@ -213,6 +215,64 @@ TEST(WheelsetGeometry, ReferencePointIsContinuousThroughTheContactJump) {
   }
   EXPECT_LT(largest_step_y, 0.1e-3);     // steps of 0.01 mm in y: no jump of millimetres
   EXPECT_LT(largest_step_angle, 1e-3);   // the first-touch angle jumps by 0.037 rad here
+}
+
+// The wheelset's locus on demand (every 8th sample first, the rest where the wheel may overlap its
+// rail; docs/WHEELSET.md §8 "The locus on demand") gives the fully sampled locus's first touch and
+// regions to the last bit: on S1002/UIC60 1:40, S1002 on the 1:20 rail, the hollow-worn S1002 and
+// Car7358 on the worn rail, y from 0 to the flange (−7 mm) in 0.25 mm steps at yaw 0 and ±8 mrad,
+// roll 1 mrad, 10 µm, 0.1 mm and 0.5 mm below first touch (tread, flange root, flange and two-point
+// contact), on both wheels.
+TEST(WheelsetGeometry, TheLocusOnDemandGivesTheFullLocussRegions) {
+  const std::filesystem::path setups = std::filesystem::path(RAILCONTACT_DATA_DIR) / "wheel_rail";
+  int regions = 0, two_region_searches = 0;
+  for (const char* setup :
+       {"s1002_uic60.json", "s1002_uic60_1in20.json", "s1002hollow_uic60.json", "car7358_uic60.json"}) {
+    const WheelsetTrack track(load_wheel_rail_pair(read_wheel_rail_setup(setups / setup)));
+    for (const WheelSide side : {WheelSide::right, WheelSide::left}) {
+      const double sign = side == WheelSide::right ? 1.0 : -1.0;  // towards this wheel's flange
+      for (double y_mm = 0.0; y_mm <= 7.0; y_mm += 0.25) {
+        for (const double yaw : {0.0, 8e-3, -8e-3}) {
+          const WheelsetPosition p = at(-sign * y_mm * kMm, 0.0, 1e-3, yaw);
+          const double step = ContactSearchOptions{}.locus_step_m;
+          detail::WheelLocus full = detail::sample_wheel_locus(track, side, p, step);
+          detail::WheelLocus lazy = detail::sample_wheel_locus(track, side, p, step, 8);
+          const double touching = detail::touching_vertical_displacement_m(track, full);
+          EXPECT_EQ(detail::touching_vertical_displacement_m(track, lazy), touching) << setup << " y " << y_mm;
+          for (const double overlap_m : {10e-6, 0.1e-3, 0.5e-3}) {
+            WheelsetPosition q = p;
+            q.vertical_displacement_m = touching - overlap_m;
+            WheelContactSearch a, b;
+            try {
+              a = detail::contact_search(track, full, q, ContactSearchOptions{});
+            } catch (const Error&) {
+              EXPECT_THROW((void)detail::contact_search(track, lazy, q, ContactSearchOptions{}), Error);
+              continue;
+            }
+            b = detail::contact_search(track, lazy, q, ContactSearchOptions{});
+            ASSERT_EQ(a.regions.size(), b.regions.size()) << setup << " y " << y_mm << " yaw " << yaw;
+            regions += static_cast<int>(a.regions.size());
+            two_region_searches += a.regions.size() > 1 ? 1 : 0;
+            for (std::size_t r = 0; r < a.regions.size(); ++r) {
+              const InterpenetrationRegion &A = a.regions[r], &B = b.regions[r];
+              EXPECT_EQ(A.first_sample, B.first_sample);
+              EXPECT_EQ(A.last_sample, B.last_sample);
+              EXPECT_EQ(A.rail_profile_y_m, B.rail_profile_y_m) << setup << " y " << y_mm;
+              EXPECT_EQ(A.contact_angle_rad, B.contact_angle_rad);
+              EXPECT_EQ(A.contact_angle_spread_rad, B.contact_angle_spread_rad);
+              EXPECT_EQ(A.max_interpenetration_m, B.max_interpenetration_m);
+              EXPECT_EQ(A.reference_point_track_m, B.reference_point_track_m);
+              EXPECT_EQ(A.x1_min_m, B.x1_min_m);
+              EXPECT_EQ(A.x2_min_m, B.x2_min_m);
+              EXPECT_EQ(A.x2_max_m, B.x2_max_m);
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(regions, 2000);  // 2174 regions, 81 searches with two
+  EXPECT_GT(two_region_searches, 60);
 }
 
 TEST(WheelsetGeometry, RefusesBadPositions) {

@@ -89,26 +89,106 @@ std::vector<LocusRun> merged_runs(const std::vector<LocusRun>& runs, const std::
   return merged;
 }
 
-// The contact locus of a wheel from one end of its profile to the other, and a flag per sample:
-// false where the sample has no locus point or no rail below it (geometry::WheelOnRail::locus_sample).
-void sample_locus(const geometry::WheelOnRail& w, double step_m, std::vector<ContactLocusSample>& locus,
-                  std::vector<std::uint8_t>& valid) {
+// The contact locus of a wheel from one end of its profile to the other: sample k of `count`
+// intervals at the wheel profile parameter s0 + (s1 − s0) k / count, and a flag per sample: false
+// where it has no locus point or no rail below it (geometry::WheelOnRail::locus_sample).
+std::size_t locus_intervals(const geometry::WheelOnRail& w, double step_m) {
+  return static_cast<std::size_t>(std::ceil((w.wheel().s_end_m() - w.wheel().s_begin_m()) / step_m));
+}
+
+double locus_parameter(const geometry::WheelOnRail& w, std::size_t count, std::size_t k) {
   const double s0 = w.wheel().s_begin_m(), s1 = w.wheel().s_end_m();
-  const auto count = static_cast<std::size_t>(std::ceil((s1 - s0) / step_m));
-  locus.clear();
-  valid.clear();
-  locus.reserve(count + 1);
-  valid.reserve(count + 1);
-  for (std::size_t k = 0; k <= count; ++k) {
-    const double s = s0 + (s1 - s0) * static_cast<double>(k) / static_cast<double>(count);
-    ContactLocusSample sample;
-    const bool ok = w.locus_sample(s, sample);
-    locus.push_back(sample);
-    valid.push_back(ok ? 1 : 0);
+  return s0 + (s1 - s0) * static_cast<double>(k) / static_cast<double>(count);
+}
+
+void compute_sample(const geometry::WheelOnRail& w, std::size_t k, detail::WheelLocus& locus) {
+  ContactLocusSample sample;
+  locus.valid[k] = w.locus_sample(locus_parameter(w, locus.samples.size() - 1, k), sample) ? 1 : 0;
+  locus.samples[k] = sample;
+}
+
+// Samples a locus (all of it, or its coarse samples: every coarse_every-th and the last).
+void sample_locus(const geometry::WheelOnRail& w, detail::WheelLocus& locus) {
+  const std::size_t count = locus_intervals(w, locus.step_m), n = count + 1;
+  if (locus.coarse_every <= 1) {
+    locus.computed.clear();
+    locus.samples.clear();
+    locus.valid.clear();
+    locus.samples.reserve(n);
+    locus.valid.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      ContactLocusSample sample;
+      locus.valid.push_back(w.locus_sample(locus_parameter(w, count, k), sample) ? 1 : 0);
+      locus.samples.push_back(sample);
+    }
+    return;
+  }
+  locus.samples.assign(n, ContactLocusSample{});
+  locus.valid.assign(n, 1);
+  locus.computed.assign(n, 0);
+  const auto c = static_cast<std::size_t>(locus.coarse_every);
+  const auto coarse = [&](std::size_t k) {
+    compute_sample(w, k, locus);
+    locus.computed[k] = 1;
+  };
+  for (std::size_t k = 0; k < n - 1; k += c) coarse(k);
+  coarse(n - 1);
+  for (std::size_t k = 0; k < n; ++k)
+    if (!locus.computed[k]) locus.samples[k].vertical_gap_m = std::numeric_limits<double>::infinity();
+}
+
+// An on-demand locus's samples between the coarse samples around k (k itself coarse: the interval
+// after it).
+void fill_interval(const geometry::WheelOnRail& w, std::size_t k, detail::WheelLocus& locus) {
+  const auto c = static_cast<std::size_t>(locus.coarse_every);
+  const std::size_t a = k / c * c, b = std::min(a + c, locus.samples.size() - 1);
+  for (std::size_t i = a + 1; i < b; ++i) {
+    if (locus.computed[i]) continue;
+    compute_sample(w, i, locus);
+    locus.computed[i] = 1;
   }
 }
 
+// The margin of refine_locus: above the level, the gap at a coarse sample is known to keep clear
+// of it between coarse samples when it exceeds it by this and by eight times what the gap's
+// curvature there (its second difference over the coarse samples) lets it dip.
+constexpr double kLocusMargin_m = 0.05e-3;
+
 }  // namespace
+
+namespace detail {
+
+void refine_locus(const WheelsetTrack& track, WheelLocus& locus, double level_m) {
+  if (locus.computed.empty()) return;
+  const geometry::WheelOnRail w(track, locus.side, locus.position);
+  const std::size_t n = locus.samples.size();
+  const auto c = static_cast<std::size_t>(locus.coarse_every);
+  // The second difference of the gap at coarse sample k over its coarse neighbours; infinite where
+  // one is missing or has no locus point.
+  const auto bend = [&](std::size_t k) {
+    if (k < c || k + c > n - 1 || k % c != 0) return std::numeric_limits<double>::infinity();
+    if (!locus.valid[k - c] || !locus.valid[k] || !locus.valid[k + c]) return std::numeric_limits<double>::infinity();
+    const double g0 = locus.samples[k - c].vertical_gap_m, g1 = locus.samples[k].vertical_gap_m,
+                 g2 = locus.samples[k + c].vertical_gap_m;
+    return std::abs(g0 - 2.0 * g1 + g2);
+  };
+  for (std::size_t a = 0; a + 1 < n; a += c) {
+    const std::size_t b = std::min(a + c, n - 1);
+    if (b == a + 1 || locus.computed[a + 1]) continue;
+    if (!locus.valid[a] && !locus.valid[b]) {
+      // Between two samples without a locus point or rail below it (beyond the rail head, the
+      // flange beside it): none either.
+      for (std::size_t k = a + 1; k < b; ++k) locus.valid[k] = 0;
+      continue;
+    }
+    const double lowest = std::min(locus.samples[a].vertical_gap_m, locus.samples[b].vertical_gap_m);
+    const double margin = kLocusMargin_m + std::max(bend(a), bend(b));
+    if (locus.valid[a] && locus.valid[b] && lowest - margin >= level_m) continue;
+    fill_interval(w, a, locus);
+  }
+}
+
+}  // namespace detail
 
 const char* side_name(WheelSide side) { return side == WheelSide::right ? "right" : "left"; }
 
@@ -175,13 +255,11 @@ void WheelsetTrack::place_wheelset() {
   // H0: lower the wheelset (zero displacement, roll and yaw) from H = 0 until the first wheel touches.
   nominal_axle_height_m_ = 0.0;
   double height = -std::numeric_limits<double>::infinity();
-  std::vector<ContactLocusSample> locus;
-  std::vector<std::uint8_t> valid;
   for (WheelSide side : {WheelSide::right, WheelSide::left}) {
-    sample_locus(geometry::WheelOnRail(*this, side, WheelsetPosition{}), ContactSearchOptions{}.locus_step_m, locus,
-                 valid);
-    for (std::size_t k = 0; k < locus.size(); ++k)
-      if (valid[k]) height = std::max(height, -locus[k].vertical_gap_m);
+    const detail::WheelLocus locus =
+        detail::sample_wheel_locus(*this, side, WheelsetPosition{}, ContactSearchOptions{}.locus_step_m);
+    for (std::size_t k = 0; k < locus.samples.size(); ++k)
+      if (locus.valid[k]) height = std::max(height, -locus.samples[k].vertical_gap_m);
   }
   require(std::isfinite(height), "wheelset: the wheel and rail profiles do not overlap laterally at y = 0");
   nominal_axle_height_m_ = height;
@@ -208,8 +286,8 @@ double WheelsetTrack::touching_vertical_displacement_m(WheelSide side, const Whe
   WheelsetPosition at_nominal = position;
   at_nominal.vertical_displacement_m = 0.0;
   validate(at_nominal);
-  return detail::touching_vertical_displacement_m(
-      detail::sample_wheel_locus(*this, side, at_nominal, ContactSearchOptions{}.locus_step_m));
+  detail::WheelLocus locus = detail::sample_wheel_locus(*this, side, at_nominal, ContactSearchOptions{}.locus_step_m);
+  return detail::touching_vertical_displacement_m(*this, locus);
 }
 
 double WheelsetTrack::wheel_profile_origin_y_m(WheelSide side) const {
@@ -224,24 +302,31 @@ WheelContactSearch WheelsetTrack::contact_search(WheelSide side, const WheelsetP
                                                  const ContactSearchOptions& options) const {
   validate(position);
   validate(options);
-  return detail::contact_search(*this, detail::sample_wheel_locus(*this, side, position, options.locus_step_m),
-                                position, options);
+  detail::WheelLocus locus = detail::sample_wheel_locus(*this, side, position, options.locus_step_m);
+  return detail::contact_search(*this, locus, position, options);
 }
 
 namespace detail {
 
 WheelLocus sample_wheel_locus(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
-                              double step_m) {
+                              double step_m, int coarse_every) {
   WheelLocus locus;
   locus.side = side;
   locus.position = position;
   locus.position.vertical_displacement_m = 0.0;
   locus.step_m = step_m;
-  sample_locus(geometry::WheelOnRail(track, side, locus.position), step_m, locus.samples, locus.valid);
+  locus.coarse_every = std::max(1, coarse_every);
+  sample_locus(geometry::WheelOnRail(track, side, locus.position), locus);
   return locus;
 }
 
-double touching_vertical_displacement_m(const WheelLocus& locus) {
+double touching_vertical_displacement_m(const WheelsetTrack& track, WheelLocus& locus) {
+  if (!locus.computed.empty()) {
+    double coarse = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < locus.samples.size(); ++k)
+      if (locus.computed[k] && locus.valid[k]) coarse = std::min(coarse, locus.samples[k].vertical_gap_m);
+    refine_locus(track, locus, coarse);
+  }
   double gap = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < locus.samples.size(); ++k)
     if (locus.valid[k]) gap = std::min(gap, locus.samples[k].vertical_gap_m);
@@ -254,8 +339,8 @@ double touching_vertical_displacement_m(const WheelLocus& locus) {
   return -gap;
 }
 
-WheelContactSearch contact_search(const WheelsetTrack& track, const WheelLocus& locus,
-                                  const WheelsetPosition& position, const ContactSearchOptions& options) {
+WheelContactSearch contact_search(const WheelsetTrack& track, WheelLocus& locus, const WheelsetPosition& position,
+                                  const ContactSearchOptions& options) {
   const WheelSide side = locus.side;
   const geometry::WheelOnRail w(track, side, position);
   WheelContactSearch search;
@@ -263,11 +348,15 @@ WheelContactSearch contact_search(const WheelsetTrack& track, const WheelLocus& 
   const std::vector<std::uint8_t>& valid = locus.valid;
   // The locus at z: every point, and so every vertical gap, lifted by z.
   const double z = position.vertical_displacement_m;
-  search.locus = locus.samples;
-  for (ContactLocusSample& sample : search.locus) {
-    sample.point_track_m[2] += z;
-    sample.vertical_gap_m += z;
-  }
+  refine_locus(track, locus, -z);
+  const auto lift = [&] {
+    search.locus = locus.samples;
+    for (ContactLocusSample& sample : search.locus) {
+      sample.point_track_m[2] += z;
+      sample.vertical_gap_m += z;
+    }
+  };
+  lift();
   const std::size_t n = search.locus.size();
   std::size_t valid_count = 0;
   search.min_vertical_gap_m = std::numeric_limits<double>::infinity();
@@ -290,7 +379,24 @@ WheelContactSearch contact_search(const WheelsetTrack& track, const WheelLocus& 
 
   // Runs of overlapping samples (vertical gap < 0), neighbours close along the rail and similar in
   // contact angle merged into one (docs/WHEELSET.md §3).
-  const std::vector<LocusRun> merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
+  std::vector<LocusRun> merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
+  // An on-demand locus computed across each region and beside it (regions merged across a gap
+  // hold samples that do not overlap).
+  if (!locus.computed.empty()) {
+    bool filled = false;
+    const geometry::WheelOnRail at_nominal(track, side, locus.position);
+    for (const LocusRun& r : merged) {
+      for (std::size_t k = r.first > 0 ? r.first - 1 : 0; k <= std::min(r.last + 1, locus.samples.size() - 1); ++k) {
+        if (locus.computed[k]) continue;
+        fill_interval(at_nominal, k, locus);
+        filled = true;
+      }
+    }
+    if (filled) {
+      lift();
+      merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
+    }
+  }
   for (const LocusRun& r : merged) {
     search.regions.push_back(w.region(search.locus, r.first, r.last, options.weighting));
     const InterpenetrationRegion& region = search.regions.back();

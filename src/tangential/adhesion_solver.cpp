@@ -1,8 +1,11 @@
 // Full-adhesion steady-state rolling: K2 (paper Eq 14, 18).
 #include <Eigen/LU>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -130,6 +133,51 @@ void solve_columns(const ContactElements& elements, const Material& material, do
   }
 }
 
+// What the adjoint solutions y_i = R^-T (S D)^T e_i of solve_force_rows depend on: the elements'
+// indices on their mesh, the mesh's size and element sizes, the material and the solver's settings.
+// Not where the patch lies: R is translation invariant and the force rows of S D are the elements'
+// areas. K2's rows y_i^T W do depend on the positions (its spin column on the distance from the
+// patch's origin, the centre of pressure).
+struct AdjointKey {
+  int n1 = 0, n2 = 0;
+  double dx1_m = 0.0, dx2_m = 0.0;
+  std::vector<std::size_t> indices;
+  double youngs_modulus_Pa = 0.0, poisson_ratio = 0.0;
+  double alpha = 0.0, tolerance = 0.0;
+  int max_iterations = 0;
+  AdhesionPreconditioner preconditioner = AdhesionPreconditioner::marching;
+  double gamma = 0.0;
+  bool operator==(const AdjointKey&) const = default;
+};
+
+struct AdjointSolutions {
+  AdjointKey key;
+  std::array<Eigen::VectorXd, 2> y;
+  int iterations = 0;
+  double relative_residual = 0.0;
+};
+
+// The adjoint solutions of the last few patches solved on this thread. A wheelset's time step
+// meets the same coarse patch (nH-FastSim's K2 blocks) step after step, and by load at every trial
+// height of a step: its K2 rows are then y_i^T W of the remembered y_i, the same numbers as a new
+// solve's (the solve is a function of the key alone; test NhFastSim.AMovedPatchGetsTheSameK2AsAFreshSolve),
+// without its GMRES (docs/FASTSIM.md "K2 of a patch met before"). Like FFTW's plans, a pure cache:
+// nothing a caller sees depends on it but the time.
+const AdjointSolutions* remembered_adjoints(const AdjointKey& key, std::vector<AdjointSolutions>& memo) {
+  for (auto it = memo.begin(); it != memo.end(); ++it) {
+    if (it->key == key) {
+      std::rotate(it, it + 1, memo.end());  // most recent last
+      return &memo.back();
+    }
+  }
+  return nullptr;
+}
+
+std::vector<AdjointSolutions>& remembered_adjoints_of_this_thread() {
+  thread_local std::vector<AdjointSolutions> memo;
+  return memo;
+}
+
 // Rows 1 and 2 of K2 by adjoint solves: K2(i, :) = (R^-T (S D)^T e_i)^T W.
 void solve_force_rows(const ContactElements& elements, const Material& material, const AdhesionOptions& options,
                       const AdhesionTuning& tuning, Work& solution) {
@@ -155,6 +203,29 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
   const ApplyFunction precondition = [&preconditioner](const double* r, double* z) {
     preconditioner.apply_transpose(r, z);
   };
+  // nH-FastSim's coarse patches have 250-1000 elements; the memo stays below 1.2 MB a thread.
+  constexpr std::size_t kRememberedPatches = 8;
+  constexpr std::size_t kLargestRememberedPatch = 4096;  // elements
+  std::vector<AdjointSolutions>& memo = remembered_adjoints_of_this_thread();
+  AdjointKey key{mesh.n1,
+                 mesh.n2,
+                 mesh.dx1_m,
+                 mesh.dx2_m,
+                 elements.indices(),
+                 material.youngs_modulus_Pa,
+                 material.poisson_ratio,
+                 alpha,
+                 options.tolerance,
+                 options.max_iterations,
+                 tuning.preconditioner,
+                 tuning.half_laplacian_gamma};
+  if (const AdjointSolutions* known = remembered_adjoints(key, memo)) {
+    for (int i = 0; i < 2; ++i) solution.creepage_matrix.row(i) = known->y[static_cast<std::size_t>(i)].transpose() * W;
+    solution.iterations += known->iterations;
+    solution.relative_residual = std::max(solution.relative_residual, known->relative_residual);
+    return;
+  }
+  AdjointSolutions solved;
   KrylovOptions krylov;
   krylov.tolerance = options.tolerance;
   krylov.max_iterations = options.max_iterations;
@@ -173,10 +244,19 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
                               "(relative residual {:.2e} > {:.1e})",
                               i + 1, report.iterations, report.relative_residual, options.tolerance));
     solution.creepage_matrix.row(i) = y.transpose() * W;
+    solved.iterations += report.iterations;
+    solved.relative_residual = std::max(solved.relative_residual, report.relative_residual);
+    solved.y[static_cast<std::size_t>(i)] = std::move(y);
   }
+  if (elements.count() > kLargestRememberedPatch) return;
+  solved.key = std::move(key);
+  if (memo.size() == kRememberedPatches) memo.erase(memo.begin());
+  memo.push_back(std::move(solved));
 }
 
 }  // namespace
+
+void forget_remembered_adjoints() { remembered_adjoints_of_this_thread().clear(); }
 
 AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
                                      const AdhesionOptions& options) {

@@ -22,4 +22,8 @@ struct AdhesionTuning {
 AdhesionSolution solve_full_adhesion(const ContactElements& elements, const Material& material,
                                      const AdhesionOptions& options, const AdhesionTuning& tuning);
 
+// Empties this thread's memo of K2's adjoint solutions (docs/FASTSIM.md "K2 of a patch met
+// before"), so that the next force rows are solved: for benchmarks of a solve on a patch met before.
+void forget_remembered_adjoints();
+
 }  // namespace railcontact

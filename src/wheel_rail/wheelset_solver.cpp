@@ -186,15 +186,17 @@ struct WheelsetWarmStart {
   }
 
   // The contact locus of a wheel at `position`: the last one where only the height differs (the
-  // height iteration's trials, wheel_locus.hpp), otherwise sampled anew.
-  const WheelLocus& locus_at(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
-                             double step_m) {
+  // height iteration's trials, wheel_locus.hpp), otherwise sampled anew, on demand: every
+  // kLocusCoarseEvery-th sample first, the others where the wheel may overlap its rail
+  // (refine_locus; docs/WHEELSET.md §8 "The locus on demand").
+  static constexpr int kLocusCoarseEvery = 8;
+  WheelLocus& locus_at(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position, double step_m) {
     WheelLocus& kept = locus[side == WheelSide::right ? 0 : 1];
     if (!kept.serves(side, position, step_m)) {
       WheelsetPosition at_nominal = position;
       at_nominal.vertical_displacement_m = 0.0;
       validate(at_nominal);
-      kept = sample_wheel_locus(track, side, at_nominal, step_m);
+      kept = sample_wheel_locus(track, side, at_nominal, step_m, kLocusCoarseEvery);
     }
     return kept;
   }
@@ -700,7 +702,7 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
                     const WheelsetOptions& options, double& overlap_m, std::vector<NormalPatch>& patches,
                     int& iterations, detail::WheelsetWarmStart& warm) {
   const double touching =
-      detail::touching_vertical_displacement_m(warm.locus_at(track, side, position, options.search.locus_step_m));
+      detail::touching_vertical_displacement_m(track, warm.locus_at(track, side, position, options.search.locus_step_m));
   double delta = overlap_m;
   detail::HeightIteration height;
   double& stiffness = warm.stiffness_N_per_m[side == WheelSide::right ? 0 : 1];
@@ -748,7 +750,7 @@ void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const Wheel
   const std::size_t k = side == WheelSide::right ? 0 : 1;
   const std::size_t solver = balance_index(options);
   const double touching = detail::touching_vertical_displacement_m(
-      warm.locus_at(track, side, state.position, options.search.locus_step_m));
+      track, warm.locus_at(track, side, state.position, options.search.locus_step_m));
   WheelsetState trial = state;
   double delta = overlap_m, T = tangential_N;
   int tangential_trials = 0;
