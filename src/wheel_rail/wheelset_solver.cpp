@@ -695,6 +695,16 @@ double tangential_vertical_force(const WheelResult& wheel, std::size_t solver) {
   return f;
 }
 
+// A height iteration at the deepest overlap accepted (kMaximumOverlap_m) whose wheel still carries
+// less than its target: refused.
+void require_overlap_within_limit(WheelSide side, double overlap_m, double force_N, double target_N) {
+  require(overlap_m < kMaximumOverlap_m || force_N >= target_N, [&] {
+    return fmt::format("wheelset: the {} wheel would need an overlap of more than {:g} mm to carry {:g} N (at "
+                       "{:g} mm it carries {:g} N)",
+                       side_name(side), kMaximumOverlap_m / kMm, target_N, overlap_m / kMm, force_N);
+  });
+}
+
 // The wheel's height at which its normal forces carry `target_N` vertically: Newton-like steps on
 // the overlap δ below first touch, F ∝ δ^(3/2) (Hertz) first, then secant steps. overlap_m: the
 // first guess of δ in, the δ found out (corrected by a Newton step with the contact stiffness).
@@ -719,11 +729,7 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
       return position.vertical_displacement_m;
     }
     const double next = height.next_overlap_m(delta, force, target_N, iterations);
-    require(delta < kMaximumOverlap_m || force >= target_N, [&] {
-      return fmt::format("wheelset: the {} wheel would need an overlap of more than {:g} mm to carry {:g} N (at "
-                         "{:g} mm it carries {:g} N)",
-                         side_name(side), kMaximumOverlap_m / kMm, target_N, delta / kMm, force);
-    });
+    require_overlap_within_limit(side, delta, force, target_N);
     delta = next;
   }
   throw Error(ErrorKind::not_converged,
@@ -787,7 +793,7 @@ void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const Wheel
         best_delta = delta;
         best_F = F;
         best_T = T;
-        best = wheel;
+        best = std::move(wheel);  // the next trial that solves T writes `wheel` anew
       }
       if (F < load_N && delta >= lo_m) {
         lo_m = delta;
@@ -827,11 +833,7 @@ void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const Wheel
     // it again and again; it is halved instead.
     const bool jump = bracketed && F_hi - F_lo > 1.5 * stiffness * (hi_m - lo_m);
     if (std::isfinite(hi_m) && (jump || !(next > lo_m && next < hi_m))) next = 0.5 * (lo_m + hi_m);
-    require(delta < kMaximumOverlap_m || F >= load_N, [&] {
-      return fmt::format("wheelset: the {} wheel would need an overlap of more than {:g} mm to carry {:g} N (at "
-                         "{:g} mm it carries {:g} N)",
-                         side_name(side), kMaximumOverlap_m / kMm, load_N, delta / kMm, F);
-    });
+    require_overlap_within_limit(side, delta, F, load_N);
     previous_delta = delta;
     previous_N = N;
     delta = std::min(next, kMaximumOverlap_m);
