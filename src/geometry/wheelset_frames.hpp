@@ -111,13 +111,14 @@ inline constexpr int kMaximumGrowthSteps = 8;
 
 // Along a strip of a mesh h varies on the scale of the wheel's radius: the exact root is found at
 // some elements (`march`: from the middle element outwards, each direction every stride-th
-// element and the strip's end) and the others take Lagrange's cubic through the four nearest
+// element and the strip's end) and the others take Lagrange's quintic through the six nearest
 // roots (`interpolation`). The same on every strip of a mesh: made once per mesh.
 struct StripRoots {
   struct Interpolated {
     int i1;
-    std::array<int, 4> root{};  // i1 of the roots (unused ones repeat the last, with weight 0)
-    std::array<double, 4> weight{};
+    static constexpr int kPoints = 6;  // the quintic through the six nearest roots
+    std::array<int, kPoints> root{};  // i1 of the roots (unused ones repeat the last, with weight 0)
+    std::array<double, kPoints> weight{};
   };
   int middle = 0;
   std::array<std::vector<int>, 2> march;  // towards +x1, towards −x1

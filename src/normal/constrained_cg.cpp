@@ -1,10 +1,31 @@
 // Polonsky & Keer's constrained conjugate gradients (Wear 231, 1999, §3); see the header.
 #include "normal/constrained_cg.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace railcontact::detail {
+namespace {
+
+// The work vectors as Eigen arrays: their sums and maxima run vectorised (Eigen's reductions
+// keep several partial sums; the order of the additions differs from a plain loop's only in
+// rounding).
+Eigen::Map<const Eigen::ArrayXd> array(std::span<const double> v) {
+  return {v.data(), static_cast<Eigen::Index>(v.size())};
+}
+Eigen::Map<Eigen::ArrayXd> array(std::vector<double>& v) { return {v.data(), static_cast<Eigen::Index>(v.size())}; }
+
+// The largest of zero and the values, NaN if any is NaN: a breakdown (an overflow in a degenerate
+// problem) must reach the convergence test and the caller's check, not be dropped by a maximum.
+template <typename Expression>
+double largest_or_zero(const Expression& values) {
+  const double largest = values.template maxCoeff<Eigen::PropagateNaN>();
+  return std::isnan(largest) || largest > 0.0 ? largest : 0.0;
+}
+
+}  // namespace
 
 ConstrainedConjugateGradient::ConstrainedConjugateGradient(const Mesh& mesh)
     : preconditioner_(mesh),
@@ -13,7 +34,8 @@ ConstrainedConjugateGradient::ConstrainedConjugateGradient(const Mesh& mesh)
       z_(mesh.size()),
       t_(mesh.size()),
       q_(mesh.size()),
-      in_contact_(mesh.size()) {}
+      in_contact_(mesh.size()),
+      contact_mask_(mesh.size()) {}
 
 ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, std::span<const double> h,
                                                         double pressure_sum, std::span<double> p, double tolerance,
@@ -30,30 +52,27 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve_at_approach(InfluenceOpe
 ConstrainedConjugateGradient::ContactSet ConstrainedConjugateGradient::mark_contact_set(std::span<const double> p,
                                                                                         std::span<const double> h) {
   ContactSet set;
+  std::size_t count = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const bool in = p[i] > 0.0;
     in_contact_[i] = in ? 1 : 0;
-    if (in) {
-      ++set.count;
-      set.gap_sum += h[i] + u_[i];
-    }
+    contact_mask_[i] = in ? 1.0 : 0.0;
+    count += in ? 1 : 0;
   }
+  set.count = count;
+  set.gap_sum = (array(contact_mask_) * (array(h) + array(u_))).sum();
   return set;
 }
 
 ConstrainedConjugateGradient::GapResidual ConstrainedConjugateGradient::gap_residual(std::span<const double> h,
                                                                                      double delta) {
+  // r = h + A p - delta; the violation is |r| on Ic and -r (overlap) outside it.
+  const auto mask = array(contact_mask_);
+  auto r = array(r_);
+  r = array(h) + array(u_) - delta;
   GapResidual gap;
-  for (std::size_t i = 0; i < r_.size(); ++i) {
-    const double r = h[i] + u_[i] - delta;
-    r_[i] = r;
-    gap.u_max = std::max(gap.u_max, u_[i]);
-    if (in_contact_[i] != 0) {
-      gap.violation = std::max(gap.violation, std::fabs(r));
-    } else {
-      gap.violation = std::max(gap.violation, -r);
-    }
-  }
+  gap.u_max = largest_or_zero(array(u_));
+  gap.violation = largest_or_zero((mask * r.abs()).max((1.0 - mask) * -r));
   return gap;
 }
 
@@ -71,37 +90,24 @@ bool ConstrainedConjugateGradient::enter_overlap(InfluenceOperator& A, std::span
 
 double ConstrainedConjugateGradient::preconditioned_residual(std::size_t contact_count, bool load_given) {
   preconditioner_.apply(in_contact_, contact_count, r_, z_);
-  const std::size_t n = z_.size();
-  double z_sum = 0.0;
-  for (std::size_t i = 0; i < n; ++i) z_sum += z_[i];  // z = 0 outside Ic
-  const double z_mean = load_given && contact_count > 0 ? z_sum / static_cast<double>(contact_count) : 0.0;
-  double G = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (in_contact_[i] != 0) {
-      z_[i] -= z_mean;
-      G += r_[i] * z_[i];
-    }
-  }
-  return G;
+  auto z = array(z_);  // 0 outside Ic
+  if (load_given && contact_count > 0) z -= (z.sum() / static_cast<double>(contact_count)) * array(contact_mask_);
+  return (array(r_) * z).sum();  // over Ic
 }
 
 void ConstrainedConjugateGradient::conjugate_direction(double beta) {
-  for (std::size_t i = 0; i < t_.size(); ++i) t_[i] = in_contact_[i] != 0 ? z_[i] + beta * t_[i] : 0.0;
+  array(t_) = array(contact_mask_) * (array(z_) + beta * array(t_));
 }
 
 double ConstrainedConjugateGradient::step_length(InfluenceOperator& A, std::size_t contact_count, bool load_given) {
   A.apply_on_grid(t_, q_);
-  const std::size_t n = q_.size();
-  double q_sum = 0.0;
-  for (std::size_t i = 0; i < n; ++i) q_sum += in_contact_[i] != 0 ? q_[i] : 0.0;
-  const double q_mean = load_given && contact_count > 0 ? q_sum / static_cast<double>(contact_count) : 0.0;
-  double numerator = 0.0, denominator = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (in_contact_[i] != 0) {
-      numerator += r_[i] * t_[i];
-      denominator += (q_[i] - q_mean) * t_[i];
-    }
-  }
+  const auto mask = array(contact_mask_);
+  const auto t = array(t_);  // 0 outside Ic
+  const auto q = array(q_);
+  const double q_mean =
+      load_given && contact_count > 0 ? (mask * q).sum() / static_cast<double>(contact_count) : 0.0;
+  const double numerator = (array(r_) * t).sum();
+  const double denominator = ((q - q_mean) * t).sum();
   return denominator > 0.0 ? numerator / denominator : 0.0;
 }
 
@@ -222,6 +228,13 @@ ConstrainedCgReport ConstrainedConjugateGradient::iterate(InfluenceOperator& A, 
     G_old = G;
     // PK steps 4–5: q = A t and the step length tau.
     const double tau = step_length(A, set.count, load_given);
+    if (!std::isfinite(G) || !std::isfinite(tau)) {
+      // A breakdown (an overflow in a degenerate problem): no solution; the caller reports it.
+      report.residual = std::numeric_limits<double>::quiet_NaN();
+      report.converged = false;
+      report.iterations = iterations;
+      break;
+    }
     // PK steps 6–7: the projected pressure update and the overlap entering the set. Elements
     // outside Ic enter only when their penetration exceeds half the tolerance, so that rounding
     // noise cannot keep the set changing.

@@ -106,6 +106,7 @@ class ConstrainedConjugateGradient {
   std::vector<double> t_;  // search direction (0 outside Ic)
   std::vector<double> q_;  // A t
   std::vector<std::uint8_t> in_contact_;
+  std::vector<double> contact_mask_;  // 1 on Ic, 0 elsewhere: the sums over Ic as vectorised products
   // Elements whose pressure left the step's p − τ t in the last update, with the difference.
   std::vector<std::pair<std::size_t, double>> moved_;
   // Up to this many such elements A p is updated element by element (each mesh.size()

@@ -18,24 +18,30 @@ void ContactLaplacianPreconditioner::apply(std::span<const std::uint8_t> in_cont
   const double c0 = gamma_ * std::numbers::pi * std::numbers::pi / (size_m * std::sqrt(mesh_.dx1_m * mesh_.dx2_m));
   const auto n1 = static_cast<std::size_t>(mesh_.n1);
   const auto n2 = static_cast<std::size_t>(mesh_.n2);
-  // r on Ic, 0 outside (Dirichlet) and beyond the mesh.
-  auto value = [&](std::size_t k) { return in_contact[k] != 0 ? r[k] : 0.0; };
+  // r on Ic, 0 outside (Dirichlet) and beyond the mesh: rows -1 and n2 of masked_ are zero.
+  masked_.assign((n2 + 2) * n1, 0.0);
+  double* const v = masked_.data() + n1;  // row 0
+  for (std::size_t k = 0; k < n1 * n2; ++k) v[k] = in_contact[k] != 0 ? r[k] : 0.0;
+  const double w1 = inv_dx1_sq_, w2 = inv_dx2_sq_;
+  // z = c0 r - Laplacian_h r on Ic (r = v there), 0 elsewhere.
+  const auto stencil = [&](double left, double centre, double right, double down, double up) {
+    return c0 * centre - ((left - 2.0 * centre + right) * w1 + (down - 2.0 * centre + up) * w2);
+  };
   for (std::size_t i2 = 0; i2 < n2; ++i2) {
-    for (std::size_t i1 = 0; i1 < n1; ++i1) {
-      const std::size_t k = i2 * n1 + i1;
-      if (in_contact[k] == 0) {
-        z[k] = 0.0;
-        continue;
-      }
-      const double centre = r[k];
-      const double left = i1 > 0 ? value(k - 1) : 0.0;
-      const double right = i1 + 1 < n1 ? value(k + 1) : 0.0;
-      const double down = i2 > 0 ? value(k - n1) : 0.0;
-      const double up = i2 + 1 < n2 ? value(k + n1) : 0.0;
-      const double laplacian =
-          (left - 2.0 * centre + right) * inv_dx1_sq_ + (down - 2.0 * centre + up) * inv_dx2_sq_;
-      z[k] = c0 * centre - laplacian;
+    const double* row = v + i2 * n1;
+    const double* down = row - n1;
+    const double* up = row + n1;
+    const std::uint8_t* in = in_contact.data() + i2 * n1;
+    double* out = z.data() + i2 * n1;
+    if (n1 == 1) {
+      out[0] = in[0] != 0 ? stencil(0.0, row[0], 0.0, down[0], up[0]) : 0.0;
+      continue;
     }
+    out[0] = in[0] != 0 ? stencil(0.0, row[0], row[1], down[0], up[0]) : 0.0;
+    for (std::size_t i1 = 1; i1 + 1 < n1; ++i1)
+      out[i1] = in[i1] != 0 ? stencil(row[i1 - 1], row[i1], row[i1 + 1], down[i1], up[i1]) : 0.0;
+    const std::size_t last = n1 - 1;
+    out[last] = in[last] != 0 ? stencil(row[last - 1], row[last], 0.0, down[last], up[last]) : 0.0;
   }
 }
 

@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "railcontact/contact_patch.hpp"
 
@@ -34,6 +35,9 @@ class ContactLaplacianPreconditioner {
   Mesh mesh_;
   double gamma_;
   double inv_dx1_sq_, inv_dx2_sq_;
+  // r on Ic and 0 elsewhere, with a row of zeros before and after the mesh's rows (the stencil's
+  // neighbours beyond the mesh), so that the stencil's inner loop has no branch and vectorises.
+  mutable std::vector<double> masked_;
 };
 
 }  // namespace railcontact::detail
