@@ -34,7 +34,6 @@ ConstrainedConjugateGradient::ConstrainedConjugateGradient(const Mesh& mesh)
       z_(mesh.size()),
       t_(mesh.size()),
       q_(mesh.size()),
-      in_contact_(mesh.size()),
       contact_mask_(mesh.size()) {}
 
 ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, std::span<const double> h,
@@ -52,14 +51,8 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve_at_approach(InfluenceOpe
 ConstrainedConjugateGradient::ContactSet ConstrainedConjugateGradient::mark_contact_set(std::span<const double> p,
                                                                                         std::span<const double> h) {
   ContactSet set;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const bool in = p[i] > 0.0;
-    in_contact_[i] = in ? 1 : 0;
-    contact_mask_[i] = in ? 1.0 : 0.0;
-    count += in ? 1 : 0;
-  }
-  set.count = count;
+  for (std::size_t i = 0; i < p.size(); ++i) contact_mask_[i] = p[i] > 0.0 ? 1.0 : 0.0;
+  set.count = static_cast<std::size_t>(array(contact_mask_).sum());  // exact: a sum of ones
   set.gap_sum = (array(contact_mask_) * (array(h) + array(u_))).sum();
   return set;
 }
@@ -89,7 +82,7 @@ bool ConstrainedConjugateGradient::enter_overlap(InfluenceOperator& A, std::span
 }
 
 double ConstrainedConjugateGradient::preconditioned_residual(std::size_t contact_count, bool load_given) {
-  preconditioner_.apply(in_contact_, contact_count, r_, z_);
+  preconditioner_.apply(contact_mask_, contact_count, r_, z_);
   auto z = array(z_);  // 0 outside Ic
   if (load_given && contact_count > 0) z -= (z.sum() / static_cast<double>(contact_count)) * array(contact_mask_);
   return (array(r_) * z).sum();  // over Ic
@@ -118,7 +111,7 @@ ConstrainedConjugateGradient::PressureStep ConstrainedConjugateGradient::project
   PressureStep step;
   moved_.clear();
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (in_contact_[i] != 0) {
+    if (contact_mask_[i] != 0.0) {
       double pi = p[i] - tau * t_[i];
       if (pi <= 0.0) {
         moved_.push_back({i, -pi});

@@ -71,7 +71,7 @@ class ConstrainedConjugateGradient {
     bool set_changed = false;   // an element left or entered Ic
     bool recursive = true;      // A p may follow by recursion (few elements moved)
   };
-  // Ic = {p > 0} into in_contact_ (PK step 1).
+  // Ic = {p > 0} into contact_mask_ (PK step 1).
   ContactSet mark_contact_set(std::span<const double> p, std::span<const double> h);
   // r = g = h - delta + A p into r_ (PK step 2) and the complementarity violation.
   GapResidual gap_residual(std::span<const double> h, double delta);
@@ -105,7 +105,6 @@ class ConstrainedConjugateGradient {
   std::vector<double> z_;  // preconditioned residual
   std::vector<double> t_;  // search direction (0 outside Ic)
   std::vector<double> q_;  // A t
-  std::vector<std::uint8_t> in_contact_;
   std::vector<double> contact_mask_;  // 1 on Ic, 0 elsewhere: the sums over Ic as vectorised products
   // Elements whose pressure left the step's p − τ t in the last update, with the difference.
   std::vector<std::pair<std::size_t, double>> moved_;

@@ -14,7 +14,6 @@
 // solvers (src/tangential/steady_rolling_preconditioner.hpp). M is symmetric positive definite
 // on Ic, so conjugate gradients may use it.
 #include <cstddef>
-#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -26,9 +25,9 @@ class ContactLaplacianPreconditioner {
  public:
   explicit ContactLaplacianPreconditioner(const Mesh& mesh, double gamma = 2.5);
 
-  // z = (c0 - Laplacian_h) r on the elements with in_contact != 0 (r taken as 0 elsewhere),
+  // z = (c0 - Laplacian_h) r on the elements with contact_mask = 1 (r taken as 0 where it is 0),
   // z = 0 elsewhere; c0 from the number of contact elements. Grid vectors (mesh size).
-  void apply(std::span<const std::uint8_t> in_contact, std::size_t contact_count, std::span<const double> r,
+  void apply(std::span<const double> contact_mask, std::size_t contact_count, std::span<const double> r,
              std::span<double> z) const;
 
  private:
