@@ -9,6 +9,9 @@
 //   BM_NhFastSimOnTheFlyRemembered  the same with the memo: K2 from the adjoint solutions of the
 //                                 last call (a patch met before, docs/FASTSIM.md)
 //   BM_NhFastSimOnTheFlyNewPatchEachCall  the same over 21 patches in turn (no kernels kept)
+//   BM_NhFastSimOnTheFlyAfterExact  BM_NhFastSimOnTheFly interleaved with other work, as in a time
+//                                 step: before each timed call (memo emptied) the exact solver solves
+//                                 the same patch, untimed, and leaves the caches full of its own data
 //   BM_NhFastSimStage_*           its stages one by one (the profile breakdown)
 //   BM_FastSimWithKnownFlexibilities  the march alone (flexibilities known: the table's cost)
 //   BM_Exact                      solve_rolling_exact, inexact Newton (the default)
@@ -181,6 +184,20 @@ void BM_FastSimWithKnownFlexibilities(benchmark::State& state) {
   count_elements(state, c);
 }
 BENCHMARK(BM_FastSimWithKnownFlexibilities)->Arg(4700)->Unit(benchmark::kMicrosecond);
+
+void BM_NhFastSimOnTheFlyAfterExact(benchmark::State& state) {
+  const Case& c = comparison_case(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    state.PauseTiming();
+    benchmark::DoNotOptimize(solve_rolling_exact(c.patch.patch, c.creepage, kMu).forces);
+    forget_remembered_adjoints();
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
+  }
+  count_elements(state, c);
+}
+// A fixed count: the untimed exact solves (tens of ms each) would otherwise run for minutes.
+BENCHMARK(BM_NhFastSimOnTheFlyAfterExact)->Arg(4700)->Iterations(40)->Unit(benchmark::kMicrosecond);
 
 void run_exact(benchmark::State& state, bool inexact_newton) {
   const Case& c = comparison_case(static_cast<int>(state.range(0)));
