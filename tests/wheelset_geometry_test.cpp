@@ -264,6 +264,7 @@ TEST(WheelsetGeometry, TheLocusOnDemandGivesTheFullLocussRegions) {
               EXPECT_EQ(A.max_interpenetration_m, B.max_interpenetration_m);
               EXPECT_EQ(A.reference_point_track_m, B.reference_point_track_m);
               EXPECT_EQ(A.x1_min_m, B.x1_min_m);
+              EXPECT_EQ(A.x1_max_m, B.x1_max_m);
               EXPECT_EQ(A.x2_min_m, B.x2_min_m);
               EXPECT_EQ(A.x2_max_m, B.x2_max_m);
             }

@@ -19,7 +19,6 @@
 // recomputed after a change of more than kLargestElementUpdate elements, and before convergence is
 // accepted after more than kLargestRecursion updates).
 #include <cstddef>
-#include <cstdint>
 #include <optional>
 #include <span>
 #include <utility>

@@ -187,22 +187,16 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
   const double slip_offset = options.rigid_slip_point == RigidSlipPoint::collocation ? 0.5 * alpha * mesh.dx1_m
                                                                                       : 0.5 * (alpha + 1.0) * mesh.dx1_m;
   const Eigen::MatrixXd W = rigid_slip_columns(elements, slip_offset);
-  const Eigen::MatrixXd SD = force_rows(elements);
-  InfluenceOperator R = make_steady_rolling_operator(mesh, material, alpha);
   solution.creepage_matrix.setConstant(std::numeric_limits<double>::quiet_NaN());
   if (options.solver == LinearSolver::dense) {
+    const Eigen::MatrixXd SD = force_rows(elements);
+    InfluenceOperator R = make_steady_rolling_operator(mesh, material, alpha);
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(R.dense(elements.indices()).transpose());
     for (int i = 0; i < 2; ++i) solution.creepage_matrix.row(i) = (lu.solve(SD.row(i).transpose())).transpose() * W;
     return;
   }
-  const MatrixFreeOperator M(2 * n, [&R, &elements, n](const double* x, double* y) {
-    R.apply_transpose(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
-  });
-  const SteadyRollingPreconditioner preconditioner(
-      elements, tuning.preconditioner == AdhesionPreconditioner::marching ? 0.0 : tuning.half_laplacian_gamma);
-  const ApplyFunction precondition = [&preconditioner](const double* r, double* z) {
-    preconditioner.apply_transpose(r, z);
-  };
+  // A patch met before: its rows from the remembered adjoint solutions, before the operator and
+  // the preconditioner are made.
   // nH-FastSim's coarse patches have 250-1000 elements; the memo stays below 1.2 MB a thread.
   constexpr std::size_t kRememberedPatches = 8;
   constexpr std::size_t kLargestRememberedPatch = 4096;  // elements
@@ -225,6 +219,16 @@ void solve_force_rows(const ContactElements& elements, const Material& material,
     solution.relative_residual = std::max(solution.relative_residual, known->relative_residual);
     return;
   }
+  const Eigen::MatrixXd SD = force_rows(elements);
+  InfluenceOperator R = make_steady_rolling_operator(mesh, material, alpha);
+  const MatrixFreeOperator M(2 * n, [&R, &elements, n](const double* x, double* y) {
+    R.apply_transpose(elements.indices(), {x, static_cast<std::size_t>(2 * n)}, {y, static_cast<std::size_t>(2 * n)});
+  });
+  const SteadyRollingPreconditioner preconditioner(
+      elements, tuning.preconditioner == AdhesionPreconditioner::marching ? 0.0 : tuning.half_laplacian_gamma);
+  const ApplyFunction precondition = [&preconditioner](const double* r, double* z) {
+    preconditioner.apply_transpose(r, z);
+  };
   AdjointSolutions solved;
   KrylovOptions krylov;
   krylov.tolerance = options.tolerance;
