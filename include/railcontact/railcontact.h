@@ -439,9 +439,11 @@ typedef struct rc_wheelset_options {
   int warm_start;              /* 1 (default): an evaluation starts from the previous one's
                                   pressures, heights and balance and reuses its plans
                                   (docs/WHEELSET.md §8; faster for a time step, the numbers depend
-                                  on the previous state to the solvers' tolerances: 1e-6 of F3,
-                                  by load with the tangential forces in the balance 1e-5 of the
-                                  load); 0: every evaluation from a cold start (its numbers depend
+                                  on the previous state to the solvers' tolerances: 2e-6 of F3,
+                                  2e-4 of mu F3 where an element at a contact's edge is in
+                                  contact in one and not the other, by load with the tangential
+                                  forces in the balance 1e-5 of the load); 0: every evaluation
+                                  from a cold start (its numbers depend
                                   on the state only, as in the batch) */
   int slip_direction;          /* nh-fastsim: rc_slip_direction; default RC_SLIP_RIGID (the
                                   wheelset's, for its flange) */
