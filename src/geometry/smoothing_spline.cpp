@@ -49,6 +49,11 @@ struct SmoothProfile::Impl {
   // Samples of y(s) with their running maximum, for inverting y(s) (graph form).
   std::vector<double> table_s_m;
   std::vector<double> table_y_max_m;
+  // Where to search that table: bucket b of equal widths in y from table_y_max_m.front() holds
+  // the first sample whose y_max reaches the bucket's lower end, the last entry the table's size
+  // (parameter_at then searches a few samples instead of the whole table).
+  std::vector<std::size_t> bucket_first_sample;
+  double buckets_per_m = 0.0;
   std::string source;
   ProfileKind kind = ProfileKind::unknown;
 };
@@ -261,6 +266,16 @@ void tabulate(const Curve& curve, const Curve::KnotVectorType& knots, int interv
     impl.table_s_m[static_cast<std::size_t>(k)] = sk;
     impl.table_y_max_m[static_cast<std::size_t>(k)] = y_max;
   }
+  const std::vector<double>& ys = impl.table_y_max_m;
+  const double y_range = ys.back() - ys.front();
+  const auto buckets = static_cast<std::size_t>(samples);
+  impl.buckets_per_m = y_range > 0.0 ? static_cast<double>(buckets) / y_range : 0.0;
+  impl.bucket_first_sample.resize(buckets + 1);
+  for (std::size_t b = 0; b < buckets; ++b) {
+    const double lower_end = ys.front() + static_cast<double>(b) * (y_range / static_cast<double>(buckets));
+    impl.bucket_first_sample[b] = static_cast<std::size_t>(std::lower_bound(ys.begin(), ys.end(), lower_end) - ys.begin());
+  }
+  impl.bucket_first_sample[buckets] = ys.size();
 }
 
 }  // namespace
@@ -328,7 +343,20 @@ double SmoothProfile::parameter_at(double y_m) const {
     return fmt::format("profile {}: y = {:.6f} mm lies outside the profile [{:.6f}, {:.6f}] mm", im.source, y_m * 1e3,
                        ys.front() * 1e3, ys.back() * 1e3);
   });
-  const auto it = std::lower_bound(ys.begin(), ys.end(), y_m);
+  // The first sample with y_max >= y_m: within y_m's bucket when the bucket brackets it (always,
+  // but where rounding puts y_m in a neighbouring bucket), else over the whole table.
+  auto it = ys.end();
+  if (im.buckets_per_m > 0.0) {
+    const auto buckets = static_cast<double>(im.bucket_first_sample.size() - 1);
+    const auto b = static_cast<std::size_t>(std::clamp(std::floor((y_m - ys.front()) * im.buckets_per_m), 0.0, buckets - 1.0));
+    const std::size_t lo = im.bucket_first_sample[b], hi = im.bucket_first_sample[b + 1];
+    if ((lo == 0 || ys[lo - 1] < y_m) && (hi == ys.size() || ys[hi] >= y_m))
+      it = std::lower_bound(ys.begin() + static_cast<std::ptrdiff_t>(lo), ys.begin() + static_cast<std::ptrdiff_t>(hi), y_m);
+    else
+      it = std::lower_bound(ys.begin(), ys.end(), y_m);
+  } else {
+    it = std::lower_bound(ys.begin(), ys.end(), y_m);
+  }
   if (it == ys.begin()) return im.table_s_m.front();
   if (it == ys.end()) return im.table_s_m.back();
   const auto j = static_cast<std::size_t>(it - ys.begin());

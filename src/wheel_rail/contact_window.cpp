@@ -24,9 +24,7 @@ void widen(int lo, int hi, int margin, int granule, int count, int& first, int& 
 
 }  // namespace
 
-std::optional<MeshWindow> contact_window(const Mesh& mesh, const std::vector<double>& pressure_Pa, int margin,
-                                         int granule, double largest_fraction) {
-  if (pressure_Pa.size() != mesh.size()) return std::nullopt;
+std::optional<MeshWindow> pressure_support(const Mesh& mesh, const std::vector<double>& pressure_Pa) {
   int lo1 = mesh.n1, hi1 = -1, lo2 = mesh.n2, hi2 = -1;
   for (int i2 = 0; i2 < mesh.n2; ++i2)
     for (int i1 = 0; i1 < mesh.n1; ++i1)
@@ -37,9 +35,17 @@ std::optional<MeshWindow> contact_window(const Mesh& mesh, const std::vector<dou
         hi2 = std::max(hi2, i2);
       }
   if (hi1 < 0) return std::nullopt;
+  return MeshWindow{lo1, lo2, hi1 - lo1 + 1, hi2 - lo2 + 1};
+}
+
+std::optional<MeshWindow> contact_window(const Mesh& mesh, const std::vector<double>& pressure_Pa, int margin,
+                                         int granule, double largest_fraction) {
+  if (pressure_Pa.size() != mesh.size()) return std::nullopt;
+  const std::optional<MeshWindow> support = pressure_support(mesh, pressure_Pa);
+  if (!support) return std::nullopt;
   MeshWindow w;
-  widen(lo1, hi1, margin, granule, mesh.n1, w.lo1, w.n1);
-  widen(lo2, hi2, margin, granule, mesh.n2, w.lo2, w.n2);
+  widen(support->lo1, support->lo1 + support->n1 - 1, margin, granule, mesh.n1, w.lo1, w.n1);
+  widen(support->lo2, support->lo2 + support->n2 - 1, margin, granule, mesh.n2, w.lo2, w.n2);
   // The cost that matters is the padded transforms' (fft_convolution.hpp): compare those.
   const auto padded = [](int n1, int n2) {
     return static_cast<double>(fft_friendly_length(2 * n1 - 1)) * fft_friendly_length(2 * n2 - 1);
@@ -123,24 +129,27 @@ bool window_solution_holds_outside(const Mesh& mesh, const std::vector<double>& 
            static_cast<std::size_t>(on1_lo + shift1);
   };
   // The checked pressure must lie on this mesh (its product is then this mesh's product of it):
-  // none of it on the check's rows or columns outside this mesh.
-  for (int j2 = 0; j2 < c.n2; ++j2) {
-    const double* row = check.pressure_Pa.data() + static_cast<std::size_t>(j2) * static_cast<std::size_t>(c.n1);
-    const bool row_on = on_check_row(j2 - shift2);
-    const int first_on = row_on ? on1_lo + shift1 : c.n1, last_on = row_on ? on1_hi + shift1 : c.n1;
-    for (int j1 = 0; j1 < first_on; ++j1)
-      if (row[j1] > 0.0) return false;
-    for (int j1 = last_on; j1 < c.n1; ++j1)
-      if (row[j1] > 0.0) return false;
+  // its support, a box, within the columns and rows of this mesh that lie on the check's.
+  const std::optional<MeshWindow> support = check.support ? *check.support : pressure_support(c, check.pressure_Pa);
+  if (support && (support->lo1 - shift1 < on1_lo || support->lo1 + support->n1 - shift1 > on1_hi ||
+                  support->lo2 - shift2 < on2_lo || support->lo2 + support->n2 - shift2 > on2_hi))
+    return false;
+  // ||p − p_c||_1 and the bounding box of the elements where they differ, over the window (p is zero
+  // outside it) and the check's support moved onto this mesh (p_c is zero outside it).
+  int box_lo1 = window.lo1, box_hi1 = window.lo1 + window.n1, box_lo2 = window.lo2, box_hi2 = window.lo2 + window.n2;
+  if (support) {
+    box_lo1 = std::min(box_lo1, support->lo1 - shift1);
+    box_hi1 = std::max(box_hi1, support->lo1 + support->n1 - shift1);
+    box_lo2 = std::min(box_lo2, support->lo2 - shift2);
+    box_hi2 = std::max(box_hi2, support->lo2 + support->n2 - shift2);
   }
-  // ||p − p_c||_1 and the bounding box of the elements where they differ.
   double pressure_change_Pa = 0.0;  // the sum of the elements' |Δp|
   int lo1 = mesh.n1, hi1 = -1, lo2 = mesh.n2, hi2 = -1;
-  for (int i2 = 0; i2 < mesh.n2; ++i2) {
+  for (int i2 = box_lo2; i2 < box_hi2; ++i2) {
     const double* p = pressure_Pa.data() + static_cast<std::size_t>(i2) * n1;
     const bool row_on = on_check_row(i2);
     const double* checked = row_on ? check.pressure_Pa.data() + check_row(i2) : nullptr;  // from column on1_lo
-    for (int i1 = 0; i1 < mesh.n1; ++i1) {
+    for (int i1 = box_lo1; i1 < box_hi1; ++i1) {
       const double before = row_on && i1 >= on1_lo && i1 < on1_hi ? checked[i1 - on1_lo] : 0.0;
       const double difference = std::abs(p[i1] - before);
       if (difference == 0.0) continue;

@@ -17,6 +17,9 @@ struct MeshWindow {
   int lo1 = 0, lo2 = 0, n1 = 0, n2 = 0;
 };
 
+// The bounding box of the elements with pressure > 0; empty when none is.
+std::optional<MeshWindow> pressure_support(const Mesh& mesh, const std::vector<double>& pressure_Pa);
+
 // The window around the elements with pressure > 0, widened by `margin` elements on every side and
 // then to a multiple of `granule` elements per axis (of the largest power of two g with 16 g <= its
 // length when that is coarser; so that its size, and the solver plan it needs,
@@ -43,6 +46,9 @@ bool contact_on_inner_window_edge(const Mesh& mesh, const MeshWindow& window, co
 struct WholeAreaCheck {
   Mesh mesh;
   std::vector<double> pressure_Pa, displacement_m;
+  // pressure_support(mesh, pressure_Pa), made with the check so that each step's test need not
+  // scan the check's pressure; when absent, the test finds it.
+  std::optional<std::optional<MeshWindow>> support;
 };
 
 // Upper bounds of A33 (m/Pa, elastic/influence_coefficients.hpp) between two elements d1 columns

@@ -359,6 +359,7 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
     if (!(residual <= 10.0 * options.normal.tolerance)) return std::nullopt;
     made->mesh = area.mesh;
     made->pressure_Pa = pressure;
+    made->support = detail::pressure_support(area.mesh, pressure);
     s.residual = residual;
     check = std::move(made);
   }
