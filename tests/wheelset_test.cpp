@@ -215,6 +215,25 @@ TEST(Wheelset, AWindowedTimeStepGivesTheWholeAreasSolution) {
   }
 }
 
+// Each patch of `got` against the same patch of `reference`: the same patches, each normal force
+// within normal_share of its F3 and F1, F2 within tangential_share of its μF3 (and, with
+// same_elements, the same elements in contact).
+void expect_patches_near(const WheelsetResult& got, const WheelsetResult& reference, double mu, double normal_share,
+                         double tangential_share, double y, bool same_elements = false) {
+  for (int side = 0; side < 2; ++side) {
+    ASSERT_EQ(got.wheels[side].patches.size(), reference.wheels[side].patches.size()) << "y = " << y;
+    for (std::size_t j = 0; j < reference.wheels[side].patches.size(); ++j) {
+      const WheelsetPatch& p = got.wheels[side].patches[j];
+      const WheelsetPatch& q = reference.wheels[side].patches[j];
+      const double muF3 = mu * q.normal_force_N;
+      if (same_elements) EXPECT_EQ(p.elements_in_contact, q.elements_in_contact) << "y = " << y;
+      EXPECT_NEAR(p.normal_force_N, q.normal_force_N, normal_share * q.normal_force_N) << "y = " << y;
+      EXPECT_NEAR(p.forces().F1_N, q.forces().F1_N, tangential_share * muF3) << "y = " << y;
+      EXPECT_NEAR(p.forces().F2_N, q.forces().F2_N, tangential_share * muF3) << "y = " << y;
+    }
+  }
+}
+
 // By position a time step starts each patch's normal solve from the linear prediction of its last
 // two solutions (docs/WHEELSET.md §8 "The prediction"): along a drift of 1 µm per step the third
 // step, predicted, takes fewer conjugate-gradient iterations than the second, started from the
@@ -234,19 +253,7 @@ TEST(Wheelset, APredictedTimeStepTakesFewerIterationsAndGivesTheSameSolution) {
     return n;
   };
   const auto expect_fresh = [&](const WheelsetResult& warm, const WheelsetState& s, double y) {
-    const WheelsetResult fresh = Wheelset(track(), o).evaluate(s);
-    for (int side = 0; side < 2; ++side) {
-      ASSERT_EQ(warm.wheels[side].patches.size(), fresh.wheels[side].patches.size()) << "y = " << y;
-      for (std::size_t j = 0; j < fresh.wheels[side].patches.size(); ++j) {
-        const WheelsetPatch& p = warm.wheels[side].patches[j];
-        const WheelsetPatch& q = fresh.wheels[side].patches[j];
-        const double muF3 = o.friction_coefficient * q.normal_force_N;
-        EXPECT_EQ(p.elements_in_contact, q.elements_in_contact) << "y = " << y;
-        EXPECT_NEAR(p.normal_force_N, q.normal_force_N, agree * q.normal_force_N) << "y = " << y;
-        EXPECT_NEAR(p.forces().F1_N, q.forces().F1_N, agree * muF3) << "y = " << y;
-        EXPECT_NEAR(p.forces().F2_N, q.forces().F2_N, agree * muF3) << "y = " << y;
-      }
-    }
+    expect_patches_near(warm, Wheelset(track(), o).evaluate(s), o.friction_coefficient, agree, agree, y, true);
   };
   for (const double y : {0.0, -6.5e-3}) {
     WheelsetState s = state_at(y);
@@ -286,18 +293,7 @@ TEST(Wheelset, ItsNormalToleranceKeepsATimeStepWithinTheAccuracyTargets) {
       s.position.lateral_displacement_m += 1e-6;
       warm = stepping.evaluate(s);
     }
-    const WheelsetResult fresh = Wheelset(track(), tight).evaluate(s);
-    for (int side = 0; side < 2; ++side) {
-      ASSERT_EQ(warm.wheels[side].patches.size(), fresh.wheels[side].patches.size()) << "y = " << y;
-      for (std::size_t j = 0; j < fresh.wheels[side].patches.size(); ++j) {
-        const WheelsetPatch& p = warm.wheels[side].patches[j];
-        const WheelsetPatch& q = fresh.wheels[side].patches[j];
-        const double muF3 = o.friction_coefficient * q.normal_force_N;
-        EXPECT_NEAR(p.normal_force_N, q.normal_force_N, 1e-5 * q.normal_force_N) << "y = " << y;
-        EXPECT_NEAR(p.forces().F1_N, q.forces().F1_N, 5e-4 * muF3) << "y = " << y;
-        EXPECT_NEAR(p.forces().F2_N, q.forces().F2_N, 5e-4 * muF3) << "y = " << y;
-      }
-    }
+    expect_patches_near(warm, Wheelset(track(), tight).evaluate(s), o.friction_coefficient, 1e-5, 5e-4, y);
   }
 }
 

@@ -343,20 +343,19 @@ double SmoothProfile::parameter_at(double y_m) const {
     return fmt::format("profile {}: y = {:.6f} mm lies outside the profile [{:.6f}, {:.6f}] mm", im.source, y_m * 1e3,
                        ys.front() * 1e3, ys.back() * 1e3);
   });
-  // The first sample with y_max >= y_m: within y_m's bucket when the bucket brackets it (always,
-  // but where rounding puts y_m in a neighbouring bucket), else over the whole table.
-  auto it = ys.end();
+  // The first sample with y_max >= y_m: searched within y_m's bucket when the bucket brackets it
+  // (always, but where rounding puts y_m in a neighbouring bucket), else in the whole table.
+  auto first = ys.begin(), last = ys.end();
   if (im.buckets_per_m > 0.0) {
     const auto buckets = static_cast<double>(im.bucket_first_sample.size() - 1);
     const auto b = static_cast<std::size_t>(std::clamp(std::floor((y_m - ys.front()) * im.buckets_per_m), 0.0, buckets - 1.0));
     const std::size_t lo = im.bucket_first_sample[b], hi = im.bucket_first_sample[b + 1];
-    if ((lo == 0 || ys[lo - 1] < y_m) && (hi == ys.size() || ys[hi] >= y_m))
-      it = std::lower_bound(ys.begin() + static_cast<std::ptrdiff_t>(lo), ys.begin() + static_cast<std::ptrdiff_t>(hi), y_m);
-    else
-      it = std::lower_bound(ys.begin(), ys.end(), y_m);
-  } else {
-    it = std::lower_bound(ys.begin(), ys.end(), y_m);
+    if ((lo == 0 || ys[lo - 1] < y_m) && (hi == ys.size() || ys[hi] >= y_m)) {
+      first = ys.begin() + static_cast<std::ptrdiff_t>(lo);
+      last = ys.begin() + static_cast<std::ptrdiff_t>(hi);
+    }
   }
+  const auto it = std::lower_bound(first, last, y_m);
   if (it == ys.begin()) return im.table_s_m.front();
   if (it == ys.end()) return im.table_s_m.back();
   const auto j = static_cast<std::size_t>(it - ys.begin());
