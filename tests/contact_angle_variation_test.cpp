@@ -3,7 +3,7 @@
 // the range holds the contact angle; on the tread at y = 0 it stays below the flag; where the
 // contact runs from the flange root onto the flange it spans more than 0.2 rad (Kalker's CONTACT in
 // its conformal mode finds 0.33 to 0.82 rad at y = -6.5 mm, issue #31), and the CLI's JSON and text
-// output flag it.
+// output flag it (the text with the remedy, on a planar patch only).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,6 +52,14 @@ TEST(ContactAngleVariation, TheJsonAndTheTextFlagALargeVariation) {
   EXPECT_EQ(patch.at("contact_angle_range_rad").size(), 2u);
   const test::CommandResult text = test::run_cli("wheelset --y-m -0.0065 --element-size-m 0.0005");
   EXPECT_NE(text.out.find("note: the rail's normal angle varies over the patch"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("--contact-surface auto (or conformal) solves it on the curved surface"), std::string::npos)
+      << text.out;
+  // On the curved surface the same patch is solved as its angle varies: no note.
+  const test::CommandResult curved =
+      test::run_cli("wheelset --y-m -0.0065 --element-size-m 0.0005 --contact-surface conformal");
+  ASSERT_EQ(curved.exit_code, 0) << curved.err;
+  EXPECT_NE(curved.out.find("contact surface: conformal"), std::string::npos) << curved.out;
+  EXPECT_EQ(curved.out.find("note: the rail's normal angle"), std::string::npos) << curved.out;
   const test::CommandResult tread = test::run_cli("wheelset --y-m 0 --element-size-m 0.0005 --json");
   ASSERT_EQ(tread.exit_code, 0) << tread.err;
   EXPECT_FALSE(nlohmann::json::parse(tread.out).at("wheels").at(0).at("patches").at(0).at("large_angle_variation").get<bool>());

@@ -488,10 +488,13 @@ void print_patch_text(const WheelsetPatch& p) {
     fmt::print("    contact surface: planar and conformal blended, conformal weight {:.3f}\n", p.conformal_weight);
   else if (p.surface == ContactSurface::conformal)
     fmt::print("    contact surface: conformal\n");
+  // A planar patch whose rail normal turns far from its tangent plane: the note names the remedy
+  // (a patch on the curved surface, or blended towards it, is solved as the angle varies).
   const double variation = contact_angle_variation_rad(p.region);
-  if (std::isfinite(variation) && variation > kLargeContactAngleVariation_rad)
+  if (std::isfinite(variation) && variation > kLargeContactAngleVariation_rad && p.conformal_weight == 0.0)
     fmt::print("    note: the rail's normal angle varies over the patch from {:.3f} to {:.3f} rad, up to {:.3f} rad "
-               "from its tangent plane: a planar patch is a rough model here (docs/WHEELSET.md §4)\n",
+               "from its tangent plane: a planar patch is a rough model here; --contact-surface auto (or "
+               "conformal) solves it on the curved surface (docs/WHEELSET.md §4)\n",
                p.region.contact_angle_min_rad, p.region.contact_angle_max_rad, variation);
   for (const PatchSolverResult& s : p.solvers)
     fmt::print("    {:<18} F1 = {:.0f} N, F2 = {:.0f} N, M3 = {:.2f} N m\n", solver_name(s.solver), s.forces.F1_N,
