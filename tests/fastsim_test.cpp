@@ -371,7 +371,8 @@ void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
   EXPECT_LT(rel_diff(fastsim.forces({0, 0, phi}, Lm, kMu).M3_Nm, K2(2, 2) * phi), 1e-9);
   // Also through NhFastSim on the patch itself (the two force rows of K2 by adjoint solves at
   // GMRES tolerance 1e-3: K2, hence L, to ~5e-4; measured 9e-5 ... 2.2e-4), which also reports
-  // f11, f22, f23 = -K2_11, -K2_22, -K2_23 and forces equal to FastSim's with its flexibilities.
+  // f11, f22, f23 = -K2_11, -K2_22, -K2_23 and forces equal to FastSim's with its flexibilities and
+  // its creepage coupling.
   NhFastSimOptions full_resolution;
   full_resolution.flexibility_coarsening = 1;
   const NhFastSim nh(patch, full_resolution);
@@ -381,7 +382,7 @@ void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
   EXPECT_LT(rel_diff(nh.flexibilities().f22_N, -K2(1, 1)), 1e-3);
   EXPECT_LT(rel_diff(nh.flexibilities().f23_Nm, -K2(1, 2)), 1e-3);
   const Creepage c{2e-4, -1e-4, 0.3};
-  EXPECT_EQ(nh.forces(c, kMu).F2_N, fastsim.forces(c, L2, kMu).F2_N);
+  EXPECT_EQ(nh.forces(c, kMu).F2_N, fastsim.forces(c, L2, kMu, nh.coupling()).F2_N);
   EXPECT_LT(rel_diff(L2.L1, L.L1), 1e-3);
   EXPECT_LT(rel_diff(L2.L2, L.L2), 1e-3);
   EXPECT_LT(rel_diff(L2.L3, L.L3), 1e-3);
@@ -390,6 +391,42 @@ void expect_linear_limit_reproduces_K2(const ContactPatch& patch) {
 TEST(NhFastSim, SmallCreepageReproducesK2OnEllipse) { expect_linear_limit_reproduces_K2(ellipse_patch(6e-3, 4e-3, 1500)); }
 
 TEST(NhFastSim, SmallCreepageReproducesK2OnNonHertzianPatch) { expect_linear_limit_reproduces_K2(two_lobe_patch()); }
+
+// The creepage coupling (NhFastSimOptions::creepage_coupling, docs/FASTSIM.md "The creepage
+// coupling"): with it nH-FastSim's full-adhesion F1 and F2 are K2's whole force rows on a patch
+// without symmetry, F1 per eta, F2 per xi and F1 per spin too; without it F1 per eta and F2 per xi
+// are zero and F1 per spin is FastSim's own (S(DB)_13 / L3), more than 10 % off K2's here.
+TEST(NhFastSim, TheCreepageCouplingGivesK2sWholeForceRows) {
+  const ContactPatch patch = two_lobe_patch();
+  NhFastSimOptions options;
+  options.flexibility_coarsening = 1;
+  options.creepage_coupling = true;
+  const NhFastSim coupled(patch, options);
+  options.creepage_coupling = false;
+  const NhFastSim plain(patch, options);
+  ASSERT_TRUE(coupled.creepage_matrix().has_value());
+  const Matrix3& K2 = *coupled.creepage_matrix();
+  EXPECT_EQ(coupled.flexibility().L1, plain.flexibility().L1);  // the flexibilities are the same
+  EXPECT_EQ(coupled.flexibility().L3, plain.flexibility().L3);
+  EXPECT_TRUE(plain.flexibilities().coupling.none());
+  // The cross terms between xi and eta are small on this patch (0.1 % of the diagonal), but far
+  // above the 1e-9 to which the coupled forces are checked; the spin's F1 is far off without.
+  EXPECT_GT(std::abs(K2(1, 0)), 1e-4 * std::abs(K2(0, 0)));
+  EXPECT_GT(std::abs(K2(0, 1)), 1e-4 * std::abs(K2(1, 1)));
+  const double unit[3] = {1e-7, 1e-7, 1e-5};  // small enough that nothing slips
+  for (int j = 0; j < 3; ++j) {
+    Creepage c{0.0, 0.0, 0.0};
+    (j == 0 ? c.xi : j == 1 ? c.eta : c.phi) = unit[j];
+    const FastSimResult with = coupled.solve(c, kMu), without = plain.solve(c, kMu);
+    ASSERT_EQ(with.adhesion_fraction, 1.0);
+    const double scale = std::max(std::abs(K2(0, j)), std::abs(K2(1, j))) * unit[j];
+    EXPECT_NEAR(with.forces.F1_N, K2(0, j) * unit[j], 1e-9 * scale) << "creepage " << j;
+    EXPECT_NEAR(with.forces.F2_N, K2(1, j) * unit[j], 1e-9 * scale) << "creepage " << j;
+    if (j == 2) EXPECT_GT(std::abs(without.forces.F1_N / (K2(0, 2) * unit[2]) - 1.0), 0.1);
+  }
+  // The diagonal terms are FastSim's own: xi alone gives the same F1 with and without.
+  EXPECT_NEAR(coupled.forces({1e-7, 0, 0}, kMu).F1_N, plain.forces({1e-7, 0, 0}, kMu).F1_N, 1e-12 * std::abs(K2(0, 0)));
+}
 
 // Term by term vs Kalker's flexibilities of Eq 9 on ellipses, K2 from the adhesion solver at ~2800
 // elements. The full-matrix match (Eq 21) and the moment match for L3 are reported for study.

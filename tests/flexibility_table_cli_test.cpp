@@ -86,7 +86,7 @@ TEST(FlextableCli, BuildWritesATableThatRunUses) {
   const CommandResult old_run = run_cli("run " + (dir / "case.toml").string() + " --flextable " + old_table + " --json");
   ASSERT_EQ(old_run.exit_code, 0) << old_run.err;
   EXPECT_NE(old_run.err.find("note: " + old_table + ": the table was built with an older nH-FastSim recipe (1 or 2, "
-                             "not recorded; this railcontact: 3)"),
+                             "not recorded; this railcontact: 4)"),
             std::string::npos)
       << old_run.err;
   EXPECT_EQ(nlohmann::json::parse(old_run.out)["results"]["nh-fastsim"]["F1"], j["results"]["nh-fastsim"]["F1"]);

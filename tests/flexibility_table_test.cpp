@@ -418,9 +418,9 @@ TEST(FlexibilityTableFile, MalformedFilesNameTheProblem) {
   EXPECT_NO_THROW((void)parse_flexibility_table(good, "t.json"));
   EXPECT_NE(error_for("{\n \"format\": ").find("t.json:2: malformed JSON"), std::string::npos) << error_for("{\n \"format\": ");
   EXPECT_NE(error_for("{}").find("not a flexibility table"), std::string::npos);
-  EXPECT_NE(error_for(replaced("\"format_version\": 4", "\"format_version\": 5")).find("format_version 5"), std::string::npos);
-  EXPECT_NE(error_for(replaced("\"nh_fastsim_recipe\": 3", "\"nh_fastsim_recipe\": 4"))
-                .find("nh_fastsim_recipe 4 must lie in [0, 3]"),
+  EXPECT_NE(error_for(replaced("\"format_version\": 5", "\"format_version\": 6")).find("format_version 6"), std::string::npos);
+  EXPECT_NE(error_for(replaced("\"nh_fastsim_recipe\": 4", "\"nh_fastsim_recipe\": 5"))
+                .find("nh_fastsim_recipe 5 must lie in [0, 4]"),
             std::string::npos);
   EXPECT_NE(error_for(replaced("\"contact_reference\": \"smooth\"", "\"contact_reference\": \"lowest\""))
                 .find("contact_reference \"lowest\" must be \"smooth\" or \"first-touch\""),
@@ -485,15 +485,15 @@ TEST(FlexibilityTable, DefaultBuildUsesTheRecipeOfRunAndRecordsIt) {
   EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().nh_fastsim_recipe, kNhFastSimRecipe);
   EXPECT_EQ(older_nh_fastsim_recipe_note(kNhFastSimRecipe), "");
   std::string v1 = json;
-  v1.replace(v1.find("\"format_version\": 4"), 19, "\"format_version\": 1");
+  v1.replace(v1.find("\"format_version\": 5"), 19, "\"format_version\": 1");
   v1.replace(v1.find("\"flexibility_coarsening\": 0,"), 28, "");
   v1.replace(v1.find("\"contact_reference\": \"smooth\","), 30, "");
-  v1.replace(v1.find("\"nh_fastsim_recipe\": 3,"), 24, "");
+  v1.replace(v1.find("\"nh_fastsim_recipe\": 4,"), 24, "");
   const FlexibilityTable old = parse_flexibility_table(v1, "t.json");
   EXPECT_EQ(old.metadata().flexibility_coarsening, 1);
   EXPECT_EQ(old.metadata().contact_reference, ContactReference::first_touch);
   EXPECT_EQ(old.metadata().nh_fastsim_recipe, 0);
-  EXPECT_NE(older_nh_fastsim_recipe_note(0).find("older nH-FastSim recipe (1 or 2, not recorded; this railcontact: 3)"),
+  EXPECT_NE(older_nh_fastsim_recipe_note(0).find("older nH-FastSim recipe (1 or 2, not recorded; this railcontact: 4)"),
             std::string::npos);
 }
 

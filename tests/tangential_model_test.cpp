@@ -205,7 +205,7 @@ StoredPatch stored_lobes_of(const NhFastSimPerLobe& per_lobe) {
   StoredPatch stored;
   for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
     const NhFastSimPerLobe::LobeView lobe = per_lobe.lobe(k);
-    stored.lobes.push_back({lobe.patch, lobe.flexibility, lobe.x1_centre_m, lobe.x2_centre_m});
+    stored.lobes.push_back({lobe.patch, lobe.flexibility, lobe.x1_centre_m, lobe.x2_centre_m, lobe.coupling});
   }
   return stored;
 }
@@ -233,7 +233,7 @@ TEST(TangentialModel, AStoredPatchIsSolvedAsPerLobe) {
   // flexibilities those of nH-FastSim on it.
   StoredPatch blended = stored_lobes_of(per_lobe);
   const NhFastSim whole(patch);
-  blended.whole = StoredLobe{patch, whole.flexibility(), 0.0, 0.0};
+  blended.whole = StoredLobe{patch, whole.flexibility(), 0.0, 0.0, whole.coupling()};
   blended.whole_patch_weight = 0.25;
   const TangentialForces f = TangentialModel(blended, options_for(TangentialSolver::nh_fastsim)).solve(kCreepage, kMu, TangentialOutput::forces).forces;
   const TangentialForces lobes = per_lobe.solve(kCreepage, kMu).forces, one = whole.solve(kCreepage, kMu).forces;
@@ -246,7 +246,7 @@ TEST(TangentialModel, AStoredPatchOfOneLobeIsFastSimWithItsFlexibilities) {
   const double muF3 = kMu * patch.normal_force_N();
   const NhFastSim nh(patch);
   StoredPatch one;
-  one.lobes.push_back({patch, nh.flexibility(), 0.0, 0.0});
+  one.lobes.push_back({patch, nh.flexibility(), 0.0, 0.0, nh.coupling()});
   const TangentialModel stored(one, options_for(TangentialSolver::nh_fastsim));
   EXPECT_EQ(stored.flexibility_source(), "given");
   const TangentialSolution fields = stored.solve(kCreepage, kMu, TangentialOutput::fields);

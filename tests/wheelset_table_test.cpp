@@ -473,7 +473,7 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   // Format 3 names the slip direction; format 1-2 files evaluate with the radial one (Eq 8).
   // Format 4 records the nH-FastSim recipe; older files load with recipe 0 (not recorded).
   nlohmann::json slip = nlohmann::json::parse(wheelset_table_json(table()));
-  EXPECT_EQ(slip["format_version"], 6);
+  EXPECT_EQ(slip["format_version"], 7);
   EXPECT_EQ(slip["contact_surface"], "planar");
   EXPECT_TRUE(slip["nodes"][0]["wheels"][0][0]["conformal"].is_null());
   nlohmann::json band = slip;
@@ -489,7 +489,7 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").metadata().nh_fastsim_recipe, kNhFastSimRecipe);
   nlohmann::json newer = slip;
   newer["nh_fastsim_recipe"] = kNhFastSimRecipe + 1;
-  EXPECT_NE(message(newer.dump()).find("nh_fastsim_recipe = 4 must lie in [0, 3]"), std::string::npos)
+  EXPECT_NE(message(newer.dump()).find("nh_fastsim_recipe = 5 must lie in [0, 4]"), std::string::npos)
       << message(newer.dump());
   slip = before_format_6(slip);
   slip.erase("nh_fastsim_recipe");
@@ -542,7 +542,7 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   // names it; then it is used with a note, and the JSON records the override.
   const CommandResult refused = run_cli("wheelset --table " + v3 + " --y-m -0.0053 --load-N 100000 --frictionless-balance --json");
   EXPECT_EQ(refused.exit_code, 2);
-  EXPECT_NE(refused.err.find("recipe 3 (this railcontact's) differs from the table's 1 or 2, not recorded"),
+  EXPECT_NE(refused.err.find("recipe 4 (this railcontact's) differs from the table's 1 or 2, not recorded"),
             std::string::npos)
       << refused.err;
   EXPECT_EQ(weighted["wheelset_table_overrides"][0]["setting"], "recipe");

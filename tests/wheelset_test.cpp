@@ -368,9 +368,9 @@ TEST(Wheelset, EachWheelsHeightIsSolvedOnItsTotalVerticalForce) {
 
 // Balancing the roll too (WheelLoads::balance_roll), a time step starts from the roll predicted
 // from the last steps, not from the input's roll: along a drift of 1 µm per step at y = −3 mm the
-// third step solves each wheel's normal problem at most twice (2 in all, 0.5 mm elements; 18 for
-// a Wheelset that starts each step afresh, 24 for a time step from the input's roll), and gives a
-// fresh Wheelset's roll and forces within the balance's tolerances.
+// third step solves the wheels' normal problems at most 5 times in all (0.5 mm elements; 20 for a
+// Wheelset that starts each step afresh), and gives a fresh Wheelset's roll and forces within the
+// balance's tolerances.
 TEST(Wheelset, ABalancedTimeStepStartsFromThePredictedRoll) {
   WheelsetOptions o = coarse();
   o.loads = WheelLoads{98.1e3, 98.1e3, true};
@@ -383,7 +383,7 @@ TEST(Wheelset, ABalancedTimeStepStartsFromThePredictedRoll) {
     fresh = afresh.evaluate(s);
     s.position.lateral_displacement_m += 1e-6;
   }
-  EXPECT_LE(height_solves(stepped), 4) << "against " << height_solves(fresh) << " afresh";
+  EXPECT_LE(height_solves(stepped), 5) << "against " << height_solves(fresh) << " afresh";
   EXPECT_NEAR(stepped.state.position.roll_rad, fresh.state.position.roll_rad, 1e-8);
   for (int side = 0; side < 2; ++side) {
     const double muFz = o.friction_coefficient * fresh.wheels[side].force_track_N[2];
@@ -806,6 +806,36 @@ TEST(Wheelset, WeightedNhFastSimWithinThreePercentOnTheFlange) {
     EXPECT_LT(worst[1], 0.03) << "yaw " << yaw_rad;
     EXPECT_LT(worst[2], 0.03) << "yaw " << yaw_rad;
   }
+}
+
+// S1002 on the 1:30 rail at y = −3.6 mm, yaw 0: the tread patch is a comet, a Hertz-like core with
+// a wing of low pressure across it, under a spin that turns xi − phi x2 across the patch. FastSim's
+// own F1 per spin (S(DB)_13 / L3) is half of K2's there; with the creepage coupling (nH-FastSim's
+// default, docs/FASTSIM.md "The creepage coupling") nH-FastSim is within 1 % of mu F3 of the exact
+// solver, without it 4.8 % off (the paper's method).
+TEST(Wheelset, TheCreepageCouplingBringsTheCometTreadPatchWithinOnePercent) {
+  const WheelsetTrack track_1in30(load_wheel_rail_pair(
+      read_wheel_rail_setup(std::filesystem::path(RAILCONTACT_DATA_DIR) / "wheel_rail" / "s1002_uic60_1in30.json")));
+  double miss[2] = {0.0, 0.0};
+  for (const bool coupling : {false, true}) {
+    WheelsetOptions options;
+    options.solvers = {TangentialSolver::exact, TangentialSolver::nh_fastsim};
+    options.nh_fastsim.creepage_coupling = coupling;
+    Wheelset wheelset(track_1in30, options);
+    const WheelsetResult result = wheelset.evaluate(state_at(-3.6e-3));
+    ASSERT_EQ(result.wheels[0].patches.size(), 1u);
+    const WheelsetPatch& tread = result.wheels[0].patches.front();
+    ASSERT_LT(tread.region.contact_angle_rad, 0.1);
+    EXPECT_EQ(tread.solvers[1].coupling.none(), !coupling);
+    const TangentialForces& exact = tread.solvers[0].forces;
+    const TangentialForces& nh = tread.solvers[1].forces;
+    const double mu_F3 = options.friction_coefficient * tread.normal_force_N;
+    miss[coupling ? 1 : 0] = std::max(std::abs(nh.F1_N - exact.F1_N), std::abs(nh.F2_N - exact.F2_N)) / mu_F3;
+  }
+  std::cout << "  nH-FastSim against exact, % of mu F3: without the coupling " << 100 * miss[0] << ", with "
+            << 100 * miss[1] << "\n";
+  EXPECT_GT(miss[0], 0.04);
+  EXPECT_LT(miss[1], 0.01);
 }
 
 // S1002 on the 1:20 rail at y = -6.6 mm, yaw -10 mrad: the flange patch (contact angle 1.1 rad)

@@ -204,7 +204,7 @@ TangentialModelOptions model_options(TangentialSolver kind, const Case& input, c
   // Classical FastSim: the flexibilities of the ellipse, or the wheel-rail patch's equivalent one (Eq 9).
   o.ellipse_semi_axes_m = std::array<double, 2>{result.summary.a_m, result.summary.b_m};
   if (const std::optional<FlexibilityTableValues>& t = result.flexibility_table_values)
-    o.given_flexibilities = NhFastSimFlexibilities{t->flexibility, t->f11_N, t->f22_N, t->f23_Nm};
+    o.given_flexibilities = NhFastSimFlexibilities{t->flexibility, t->f11_N, t->f22_N, t->f23_Nm, t->coupling};
   return o;
 }
 

@@ -56,6 +56,7 @@ struct FlexibilityTableNode {
   double f11_N = 0.0;            // -K2_11: F1 per unit xi (N)
   double f22_N = 0.0;            // -K2_22: F2 per unit eta (N)
   double f23_Nm = 0.0;           // -K2_23: F2 per 1/m of spin (N m)
+  CreepageCoupling coupling;     // nH-FastSim's creepage coupling (tangential.hpp); zero in older tables
   double normal_force_N = 0.0;   // F3 = Fz / cos γ
   double contact_angle_rad = 0.0;  // γ of the point of first touch
   double spin_per_m = 0.0;       // Eq 24, signed (right wheel)
@@ -109,6 +110,7 @@ struct FlexibilityTableValues {
   double y_m = 0.0, vertical_load_N = 0.0;
   Flexibility flexibility;
   double f11_N = 0.0, f22_N = 0.0, f23_Nm = 0.0;
+  CreepageCoupling coupling;  // interpolated: its lengths (xi_per_phi_m, eta_per_phi_m) as L
   double normal_force_N = 0.0, contact_angle_rad = 0.0, spin_per_m = 0.0;
   double area_m2 = 0.0;              // the patch's own (lookup_for_patch) or the interpolated area
   double elements_in_contact = 0.0;  // interpolated

@@ -224,13 +224,46 @@ struct FastSimResult {
   double adhesion_fraction = 1.0;    // elements in adhesion / elements in contact (= area fraction)
 };
 
-// FastSim prepared for one contact patch: the traction bound and the marching geometry are
-// computed once, so each evaluation costs only the marching. Immutable after construction;
-// copies share the prepared data; evaluations are thread-safe.
 namespace detail {
 struct FastSimLayout;  // the marching data, lane-interleaved (fastsim.cpp)
 }  // namespace detail
 
+// The part of K2's force rows that FastSim's diagonal flexibilities leave out (docs/FASTSIM.md
+// "The creepage coupling"). In adhesion FastSim's F1 comes from xi and the spin only, F2 from eta
+// and the spin, and the spin's F1 from the spin's flexibility L3 (matched to K2_23, not K2_13). On a
+// patch that is not symmetric about its axes (a comet, a flange) K2 also carries F1 per eta (K2_12),
+// F2 per xi (K2_21) and another F1 per spin. FastSim marches the effective creepages
+//   xi' = xi + xi_per_eta eta + xi_per_phi_m phi,   eta' = eta + eta_per_xi xi + eta_per_phi_m phi,
+// phi' = phi, with which its full-adhesion F1 and F2 are K2's first two rows entire:
+//   xi_per_eta = K2_12 / K2_11,  xi_per_phi_m = (K2_13 - S(DB)_13 / L3) / K2_11,
+//   eta_per_xi = K2_21 / K2_22,  eta_per_phi_m = (K2_23 - S(DB)_23 / L3) / K2_22 (0 term by term).
+// All zero: FastSim's own creepages (the paper's method; flexibilities given without a coupling).
+// In FastSim's march (FastSim::solve(..., coupling)) the effective creepages give the adhesion
+// increments; with SlipDirection::rigid_slip a sliding traction still turns to the rigid slip of the
+// creepages themselves.
+struct CreepageCoupling {
+  double xi_per_eta = 0.0;      // -
+  double xi_per_phi_m = 0.0;    // m
+  double eta_per_xi = 0.0;      // -
+  double eta_per_phi_m = 0.0;   // m
+  [[nodiscard]] Creepage effective(const Creepage& c) const {
+    return {c.xi + xi_per_eta * c.eta + xi_per_phi_m * c.phi, c.eta + eta_per_xi * c.xi + eta_per_phi_m * c.phi, c.phi};
+  }
+  [[nodiscard]] bool none() const {
+    return xi_per_eta == 0.0 && xi_per_phi_m == 0.0 && eta_per_xi == 0.0 && eta_per_phi_m == 0.0;
+  }
+  // The coupling of the same march on a copy of the patch whose origin lies at (d1, d2) (m) in the
+  // patch's coordinates, the creepages taken there: FastSim marches the spin with L3, so where L1
+  // or L2 differ from L3 its spin terms depend on the origin, and
+  //   xi_per_phi_m' = xi_per_phi_m + d2 (1 - L1/L3) - xi_per_eta d1,
+  //   eta_per_phi_m' = eta_per_phi_m + eta_per_xi d2 - d1 (1 - L2/L3)
+  // keep its full-adhesion forces. No coupling stays none.
+  [[nodiscard]] CreepageCoupling moved_to(double d1_m, double d2_m, const Flexibility& L) const;
+};
+
+// FastSim prepared for one contact patch: the traction bound and the marching geometry are
+// computed once, so each evaluation costs only the marching. Immutable after construction;
+// copies share the prepared data; evaluations are thread-safe.
 class FastSim {
  public:
   // Throws railcontact::Error if the patch has no element in contact or bound.skew is not in
@@ -242,13 +275,15 @@ class FastSim {
   // (creepage / L times the patch length) would exceed 1e150 Pa, beyond what the march can square
   // (non-physical flexibilities; kind invalid_input). A non-finite result is never returned (kind
   // internal: with checked input it would be a bug).
-  [[nodiscard]] TangentialForces forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
+  [[nodiscard]] TangentialForces forces(const Creepage& creepage, const Flexibility& flexibility, double mu,
+                                        const CreepageCoupling& coupling = {}) const;
   // Forces, tractions, slip flags. Same checks as forces().
-  [[nodiscard]] FastSimResult solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const;
+  [[nodiscard]] FastSimResult solve(const Creepage& creepage, const Flexibility& flexibility, double mu,
+                                    const CreepageCoupling& coupling = {}) const;
   // Forces and the adhesion fraction only (p1_Pa, p2_Pa, slip left empty): the cost of forces(),
   // for a caller that needs the adhesion fraction but not the fields. Same checks as forces().
   [[nodiscard]] FastSimResult forces_and_adhesion(const Creepage& creepage, const Flexibility& flexibility,
-                                                  double mu) const;
+                                                  double mu, const CreepageCoupling& coupling = {}) const;
   // Forces, tractions, slip flags from the creepages of each strip (StripCreepages: one per mesh
   // column; a conformal patch, docs/METHOD.md "nH-FastSim on a conformal patch"). Each strip
   // marches dp1 = (ξ0/L1 + (ξ_i2 − ξ0)/L3) step and dp2 = (η_i2/L2) step + (φ_i2/L3) step (x1 −
@@ -256,11 +291,12 @@ class FastSim {
   // ξ across the strips marches with the spin's flexibility, as −φ x2 does in Eq 2, so the strips
   // (ξ − φ x2, η, φ) give solve(ξ, η, φ)'s numbers. Throws Error (invalid_input) for another count
   // or a non-finite creepage, and as solve().
-  [[nodiscard]] FastSimResult solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const;
+  [[nodiscard]] FastSimResult solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu,
+                                    const CreepageCoupling& coupling = {}) const;
   // The same march, forces only, with each strip's sums (what a conformal patch turns strip by
   // strip into its frame): no per-element output is allocated. Same checks as solve().
   [[nodiscard]] StripForces strip_forces(const StripCreepages& creepages, const Flexibility& flexibility,
-                                         double mu) const;
+                                         double mu, const CreepageCoupling& coupling = {}) const;
 
   [[nodiscard]] std::size_t element_count() const;
   [[nodiscard]] TractionBound bound() const;
@@ -313,7 +349,16 @@ struct NhFastSimOptions {
   // alpha of K2's collocation points (docs/METHOD.md §3), in [kMinimumCollocationOffset, 1].
   double collocation_offset = 0.0;
   FlexibilityMatch match = FlexibilityMatch::term_by_term;
+  // March the effective creepages of K2's coupling (CreepageCoupling) in adhesion (the default,
+  // railcontact's nH-FastSim, recipe 4); false: the paper's method, F1 from xi and the spin only, F2
+  // from eta and the spin (docs/FASTSIM.md "The creepage coupling").
+  bool creepage_coupling = true;
 };
+
+// The coupling of K2 (its force rows, Kalker's sign convention) that FastSim prepared on the patch
+// K2 was solved on leaves out with the flexibilities L (nh_fastsim_flexibility). Throws
+// railcontact::Error if the force rows are not finite.
+CreepageCoupling creepage_coupling(const FastSim& fastsim, const Matrix3& K2, const Flexibility& L);
 
 // The flexibilities of nH-FastSim and the creepage coefficients of the K2 they were matched to:
 // f11 = -K2_11 (F1 per unit xi), f22 = -K2_22, f23 = -K2_23 (N, N, N m), which also normalise the
@@ -321,6 +366,7 @@ struct NhFastSimOptions {
 struct NhFastSimFlexibilities {
   Flexibility flexibility;
   double f11_N = 0.0, f22_N = 0.0, f23_Nm = 0.0;
+  CreepageCoupling coupling;  // K2's coupling (above); zero for the paper's method
 };
 
 // The version of the recipe by which NhFastSim's first constructor (below) computes the
@@ -329,8 +375,11 @@ struct NhFastSimFlexibilities {
 // are not the ones computed on the fly today.
 //   1: square blocks f x f, K2 to GMRES 1e-3 (until 2026-11-26);
 //   2: blocks f x (f + 1) from f = 3 (2026-11-26; docs/FASTSIM.md "Blocks one element longer across");
-//   3: K2 to GMRES 3e-3 (2026-11-26; docs/FASTSIM.md "K2's solves").
-inline constexpr int kNhFastSimRecipe = 3;
+//   3: K2 to GMRES 3e-3 (2026-11-26; docs/FASTSIM.md "K2's solves");
+//   4: the creepage coupling of K2's force rows (docs/FASTSIM.md "The creepage coupling").
+inline constexpr int kNhFastSimRecipe = 4;
+// The recipe these options compute: kNhFastSimRecipe, or 3 without the creepage coupling.
+constexpr int nh_fastsim_recipe(bool creepage_coupling) { return creepage_coupling ? kNhFastSimRecipe : 3; }
 
 // nH-FastSim prepared for one contact patch: the whole method in one place. On the fly (the first
 // constructor) it
@@ -379,6 +428,7 @@ class NhFastSim {
 
   [[nodiscard]] const NhFastSimFlexibilities& flexibilities() const { return flexibilities_; }
   [[nodiscard]] const Flexibility& flexibility() const { return flexibilities_.flexibility; }
+  [[nodiscard]] const CreepageCoupling& coupling() const { return flexibilities_.coupling; }
   // K2 of the coarsened patch as solved (rows 1-2; row 3 NaN with the term-by-term match), when
   // computed on the fly.
   [[nodiscard]] const std::optional<Matrix3>& creepage_matrix() const { return creepage_matrix_; }
@@ -445,6 +495,7 @@ class NhFastSimPerLobe {
     const ContactPatch& patch;
     const Flexibility& flexibility;
     double x1_centre_m, x2_centre_m;
+    CreepageCoupling coupling;  // zero for the equivalent ellipse's fallback
   };
   [[nodiscard]] LobeView lobe(std::size_t k) const;
   // The most loaded lobe's flexibilities (those of the patch when it has one lobe).
@@ -459,6 +510,10 @@ class NhFastSimPerLobe {
   // one: src/tangential/cropped_patch.hpp); the whole patch's flexibilities then (else nullptr).
   [[nodiscard]] double whole_patch_weight() const { return whole_weight_; }
   [[nodiscard]] const Flexibility* whole_patch_flexibility() const;
+  // The creepage coupling of the most loaded lobe, and of the whole patch where a neck is blended
+  // (zero without one, or for the equivalent ellipse's fallback).
+  [[nodiscard]] CreepageCoupling coupling() const;
+  [[nodiscard]] CreepageCoupling whole_patch_coupling() const;
 
  private:
   struct Lobe;

@@ -69,6 +69,7 @@ struct StoredLobe {
   ContactPatch patch;  // the lobe's coarse copy (its origin its centre of pressure)
   Flexibility flexibility;
   double x1_centre_m = 0.0, x2_centre_m = 0.0;  // its centre of pressure in the patch's coordinates
+  CreepageCoupling coupling;  // nH-FastSim's creepage coupling about the copy's origin (tangential.hpp)
 };
 struct StoredPatch {
   std::vector<StoredLobe> lobes;  // one for a patch of one lobe (its centre the patch's origin)
@@ -125,6 +126,9 @@ class TangentialModel {
   // FastSim's flexibilities L1-L3 (m/Pa): nh-fastsim's from K2 (per lobe: the most loaded lobe's),
   // given, or Eq 9's fallback; fastsim's of Eq 9. Empty for the exact solvers.
   [[nodiscard]] std::optional<Flexibility> flexibility() const;
+  // nh-fastsim's creepage coupling (CreepageCoupling, railcontact/tangential.hpp; per lobe: the most
+  // loaded lobe's); zero for the other solvers and for given flexibilities.
+  [[nodiscard]] CreepageCoupling coupling() const;
   // Where the flexibilities come from, in words ("K2", "K2 of the patch coarsened by 2", "K2 of each
   // of its 2 lobes (the most loaded one's shown)", "given", "Eq 9"); empty for the exact solvers.
   [[nodiscard]] const std::string& flexibility_source() const;

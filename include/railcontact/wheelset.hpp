@@ -167,6 +167,9 @@ struct PatchSolverResult {
   // equivalent ellipse's for a patch too small for K2), fastsim's of the equivalent ellipse
   // (Eq 9); zero for the exact solvers.
   Flexibility flexibility{0.0, 0.0, 0.0};
+  // nh_fastsim's creepage coupling about the patch's origin (CreepageCoupling, tangential.hpp; the
+  // most loaded lobe's on a patch of several); zero for the other solvers.
+  CreepageCoupling coupling;
   std::vector<double> p1_Pa, p2_Pa;  // per contact element (keep_tractions)
   std::vector<std::uint8_t> slip;
   double adhesion_fraction = 0.0;

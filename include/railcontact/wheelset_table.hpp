@@ -74,6 +74,7 @@ struct WheelsetTableLobe {
   // Centre of pressure of its coarse patch from the patch's reference point (contact frame).
   double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;
   Flexibility flexibility;  // L1-L3 of nH-FastSim on this lobe
+  CreepageCoupling coupling;  // its creepage coupling about the runtime copy's origin (tangential.hpp)
   Mesh runtime_mesh;        // as the patch's: solve frame, origin at the lobe's centre of pressure
   std::vector<double> runtime_pressure_Pa;
   // A lobe of a conformal patch: one strip per runtime_mesh column (empty for a planar patch's).
@@ -95,6 +96,7 @@ struct WheelsetTableConformalPatch {
   double max_pressure_Pa = 0.0;
   double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;  // of the runtime copy, developed
   Flexibility flexibility;  // L1-L3 of nH-FastSim on the developed patch
+  CreepageCoupling coupling;  // its creepage coupling about the runtime copy's origin
   Mesh runtime_mesh;        // solve frame, origin at its centre of pressure
   std::vector<double> runtime_pressure_Pa;
   std::vector<WheelsetTableStrip> strips;  // one per runtime_mesh column
@@ -121,6 +123,7 @@ struct WheelsetTablePatch {
   // Centre of pressure from the reference point (contact frame).
   double pressure_centre_x1_m = 0.0, pressure_centre_x2_m = 0.0;
   Flexibility flexibility;  // L1-L3 of nH-FastSim on this patch
+  CreepageCoupling coupling;  // its creepage coupling about the runtime copy's origin (tangential.hpp)
   // The coarse patch for FastSim at lookup, in the solve frame (a left wheel's patch mirrored
   // x2 -> −x2 into a right wheel's frame, as Wheelset solves it), origin at its centre of pressure.
   // Empty (no elements) for a patch that has overlap but no element in contact yet.

@@ -77,8 +77,8 @@ def test_the_kalker_linearisation_has_the_contact_models_signs(example_data):
     # simulation calls it). They differ by the creep coefficients of the real patch against the
     # local Hertz ellipse (f11 by 15 %, f22 by 4 %, docs/PYTHON.md) and by the slope of the rolling
     # radius at the creepage point across the contact jump at y = ±0.25 mm (the yaw moment from y:
-    # the contact model's is 0.76 of Kalker's with the squared-gap reference point): 40 % bounds
-    # that, and a sign error is a 200 % difference.
+    # the contact model's is 0.71 of Kalker's with the squared-gap reference point and nH-FastSim's
+    # creepage coupling): 50 % bounds that, and a sign error is a 200 % difference.
     wheelset = hunting_linear.simulation_wheelset()
     sweep = hunting_linear.contact_model_sweep(wheelset, largest_m=0.2e-3)
     derivatives = hunting_linear.contact_model_derivatives(wheelset)
@@ -88,7 +88,7 @@ def test_the_kalker_linearisation_has_the_contact_models_signs(example_data):
     for matrix, (i, j) in (("contact_stiffness", (0, 1)), ("contact_stiffness", (1, 0)),
                            ("contact_damping", (0, 0)), ("contact_damping", (1, 1))):
         a, b = getattr(kalker, matrix)[i, j], getattr(own, matrix)[i, j]
-        assert abs(a - b) < 0.4 * abs(b), (matrix, i, j, a, b)
+        assert abs(a - b) < 0.5 * abs(b), (matrix, i, j, a, b)
 
 
 def test_the_examples_linear_critical_speed_lies_near_the_simulated_onset(example_data):

@@ -328,7 +328,7 @@ std::shared_ptr<const PreparedPatch> SinglePatchSolver::prepare_wheel_rail(const
   p->a_m = p->normal.a_m = a_eq;
   p->b_m = p->normal.b_m = b_eq;
   const FlexibilityTableValues& v = prepared.table_values();
-  p->given = NhFastSimFlexibilities{v.flexibility, v.f11_N, v.f22_N, v.f23_Nm};
+  p->given = NhFastSimFlexibilities{v.flexibility, v.f11_N, v.f22_N, v.f23_Nm, v.coupling};
   prepare_method(s, *p);
   return p;
 }

@@ -305,6 +305,10 @@ FlexibilityTableValues FlexibilityTable::interpolate(double y_m, double vertical
     v.f11_N = sum([](const FlexibilityTableNode& n) { return n.f11_N; });
     v.f22_N = sum([](const FlexibilityTableNode& n) { return n.f22_N; });
     v.f23_Nm = sum([](const FlexibilityTableNode& n) { return n.f23_Nm; });
+    v.coupling.xi_per_eta = sum([](const FlexibilityTableNode& n) { return n.coupling.xi_per_eta; });
+    v.coupling.xi_per_phi_m = sum([](const FlexibilityTableNode& n) { return n.coupling.xi_per_phi_m; });
+    v.coupling.eta_per_xi = sum([](const FlexibilityTableNode& n) { return n.coupling.eta_per_xi; });
+    v.coupling.eta_per_phi_m = sum([](const FlexibilityTableNode& n) { return n.coupling.eta_per_phi_m; });
     return v;
   }
   // Area-scaled: L ∝ √A, f11, f22 ∝ A, f23 ∝ A^1.5 at fixed shape.
@@ -315,6 +319,11 @@ FlexibilityTableValues FlexibilityTable::interpolate(double y_m, double vertical
   v.f11_N = v.area_m2 * sum([](const FlexibilityTableNode& n) { return n.f11_N / n.area_m2; });
   v.f22_N = v.area_m2 * sum([](const FlexibilityTableNode& n) { return n.f22_N / n.area_m2; });
   v.f23_Nm = v.area_m2 * root_area * sum([](const FlexibilityTableNode& n) { return n.f23_Nm / (n.area_m2 * std::sqrt(n.area_m2)); });
+  // The coupling: its ratios as they are, its lengths (per 1/m of spin) ∝ √A as L.
+  v.coupling.xi_per_eta = sum([](const FlexibilityTableNode& n) { return n.coupling.xi_per_eta; });
+  v.coupling.eta_per_xi = sum([](const FlexibilityTableNode& n) { return n.coupling.eta_per_xi; });
+  v.coupling.xi_per_phi_m = root_area * sum([](const FlexibilityTableNode& n) { return n.coupling.xi_per_phi_m / std::sqrt(n.area_m2); });
+  v.coupling.eta_per_phi_m = root_area * sum([](const FlexibilityTableNode& n) { return n.coupling.eta_per_phi_m / std::sqrt(n.area_m2); });
   return v;
 }
 

@@ -87,6 +87,7 @@ FlexibilityTableNode solve_node(const WheelRailPair& pair, double y_m, double Fz
     n.f11_N = nh.flexibilities().f11_N;
     n.f22_N = nh.flexibilities().f22_N;
     n.f23_Nm = nh.flexibilities().f23_Nm;
+    n.coupling = nh.coupling();
     n.normal_force_N = p.normal_force_N;
     n.contact_angle_rad = p.contact_angle_rad;
     n.spin_per_m = p.spin_per_m;
@@ -184,6 +185,7 @@ FlexibilityTableMetadata table_metadata(const WheelRailPair& pair, const Flexibi
   metadata.target_elements = options.patch.target_elements;
   metadata.contact_reference = options.patch.reference;
   metadata.collocation_offset = options.nh_fastsim.collocation_offset;
+  metadata.nh_fastsim_recipe = nh_fastsim_recipe(options.nh_fastsim.creepage_coupling);
   metadata.flexibility_coarsening = options.nh_fastsim.flexibility_coarsening;
   metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;

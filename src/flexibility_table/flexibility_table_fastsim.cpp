@@ -23,7 +23,7 @@ WheelRailPatchOptions table_patch_options(const FlexibilityTable& table) {
 FlexibilityTableFastSim::Patch::Patch(const FlexibilityTable& table, WheelRailPatch patch)
     : patch_(std::make_shared<const WheelRailPatch>(std::move(patch))),
       values_(table.lookup_for_patch(patch_->lateral_displacement_m, patch_->vertical_load_N, patch_->area_m2)),
-      nh_fastsim_(patch_->patch, NhFastSimFlexibilities{values_.flexibility, values_.f11_N, values_.f22_N, values_.f23_Nm}) {}
+      nh_fastsim_(patch_->patch, NhFastSimFlexibilities{values_.flexibility, values_.f11_N, values_.f22_N, values_.f23_Nm, values_.coupling}) {}
 
 TangentialForces FlexibilityTableFastSim::Patch::forces(const Creepage& creepage, double mu) const {
   return nh_fastsim_.forces(creepage, mu);

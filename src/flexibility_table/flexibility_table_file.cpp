@@ -36,7 +36,7 @@ constexpr const char* kFormat = "railcontact flexibility table";
 // Version 2 records the recipe's flexibility coarsening; version-1 tables (built on the full patch,
 // coarsening 1) are still read. Version 3 records the contact reference, version 4 the nH-FastSim
 // recipe (kNhFastSimRecipe).
-constexpr int kFormatVersion = 4;
+constexpr int kFormatVersion = 5;  // 5: each solved node's creepage_coupling (older: none)
 // The largest table file read (a 100 × 20 grid is about 1 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 256u << 20;  // 256 MiB
 
@@ -55,6 +55,12 @@ json node_json(const FlexibilityTableNode& n) {
               {"f11_N", number_or_null(n.f11_N, s)},
               {"f22_N", number_or_null(n.f22_N, s)},
               {"f23_Nm", number_or_null(n.f23_Nm, s)},
+              {"creepage_coupling",
+               s ? json{{"xi_per_eta", n.coupling.xi_per_eta},
+                        {"xi_per_phi_m", n.coupling.xi_per_phi_m},
+                        {"eta_per_xi", n.coupling.eta_per_xi},
+                        {"eta_per_phi_m", n.coupling.eta_per_phi_m}}
+                 : json(nullptr)},
               {"normal_force_N", number_or_null(n.normal_force_N, s)},
               {"contact_angle_rad", number_or_null(n.contact_angle_rad, s)},
               {"spin_per_m", number_or_null(n.spin_per_m, s)},
@@ -76,11 +82,20 @@ FlexibilityTableNode read_node(const json& item, std::size_t index, const std::s
   static const char* const kValues[] = {"L1_m_per_Pa", "L2_m_per_Pa", "L3_m_per_Pa", "f11_N", "f22_N", "f23_Nm",
                                         "normal_force_N", "contact_angle_rad", "spin_per_m", "area_m2",
                                         "elements_in_contact"};
+  // Format 5 and later: each node's creepage coupling (absent in older tables: none).
+  const bool has_coupling = r.has("creepage_coupling");
   if (n.status != FlexibilityNodeStatus::solved) {
     for (const char* key : kValues)
       if (!r.get(key).is_null()) r.fail(fmt::format("{} must be null: the node is not solved", r.qualified(key)));
+    if (has_coupling && !r.get("creepage_coupling").is_null())
+      r.fail(fmt::format("{} must be null: the node is not solved", r.qualified("creepage_coupling")));
     r.finish();
     return n;
+  }
+  if (has_coupling) {
+    StrictJsonReader c = r.child("creepage_coupling");
+    n.coupling = {c.number("xi_per_eta"), c.number("xi_per_phi_m"), c.number("eta_per_xi"), c.number("eta_per_phi_m")};
+    c.finish();
   }
   n.flexibility = {r.number("L1_m_per_Pa"), r.number("L2_m_per_Pa"), r.number("L3_m_per_Pa")};
   n.f11_N = r.number("f11_N");

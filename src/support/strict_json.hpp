@@ -27,6 +27,7 @@ class StrictJsonReader {
 
   [[noreturn]] void fail(const std::string& what) const;
   const nlohmann::json& get(const std::string& key);
+  [[nodiscard]] bool has(const std::string& key) const { return object_.is_object() && object_.contains(key); }
   double number(const std::string& key);  // finite
   std::string string(const std::string& key);
   std::size_t count(const std::string& key);  // a non-negative whole number

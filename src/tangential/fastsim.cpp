@@ -112,19 +112,24 @@ struct MarchRecord {
 // (0, 1].
 // SlipDirection::rigid_slip: the step's spin part taken with L1, L2 instead of L3 is
 // dp1 + rigid_d1 (−x2) step, dp2 + rigid_d2 step (x1 − step/2) (Eq 2-3), rigid_d1 = phi (1/L1 − 1/L3),
-// rigid_d2 = phi (1/L2 − 1/L3).
+// rigid_d2 = phi (1/L2 − 1/L3); with a creepage coupling (CreepageCoupling: the increments from the
+// effective creepages xi', eta') also the constant parts rigid_c1 step, rigid_c2 step, rigid_c1 =
+// (xi − xi')/L1, rigid_c2 = (eta − eta')/L2, which turn a sliding traction to the rigid slip of the
+// creepages themselves.
 struct MarchCoefficients {
   double xi_over_L1, eta_over_L2, phi_over_L3;
   double sigma, rho1, rho2;
   double rigid_d1 = 0.0, rigid_d2 = 0.0;
+  double rigid_c1 = 0.0, rigid_c2 = 0.0;
 };
 
 // Per block and lane, the increments' coefficients of a march on strip creepages
 // (FastSim::solve(StripCreepages, ...)): dp1 = c1 step, dp2 = c2 step + c3 step (x1 − step/2).
-// With SlipDirection::rigid_slip, d1 and d3 the same increments' rigid-slip corrections per lane:
-// (xi − xi0) (1/L1 − 1/L3) and phi (1/L2 − 1/L3).
+// With SlipDirection::rigid_slip, d1, d2 and d3 the same increments' rigid-slip corrections per
+// lane: (xi − xi0) (1/L1 − 1/L3) + (xi − xi')/L1, (eta − eta')/L2 and phi (1/L2 − 1/L3) (xi', eta'
+// the strip's effective creepages of a CreepageCoupling; d2 multiplies the step).
 struct StripLaneCoefficients {
-  AlignedVector<double> c1, c2, c3, d1, d3;
+  AlignedVector<double> c1, c2, c3, d1, d2, d3;
 };
 
 // Eq 7-8: a trial traction h = (p1, p2) over the bound (lanes `slip`, |h| > limit) is brought
@@ -206,9 +211,10 @@ RAILCONTACT_MARCH_INLINED TangentialForces march(const detail::FastSimLayout& la
       c3 = Lanes(&strips->c3[b * kLanes], stdx::vector_aligned);
     }
     // rigid_slip's corrections of the increments (zero unless kRigid) and the lanes' sliding.
-    Lanes d1 = -k.rigid_d1 * x2, d3 = k.rigid_d2, sliding = 0.0;
+    Lanes d1 = -k.rigid_d1 * x2 + k.rigid_c1, d2 = k.rigid_c2, d3 = k.rigid_d2, sliding = 0.0;
     if constexpr (kStrips && kRigid) {
       d1 = Lanes(&strips->d1[b * kLanes], stdx::vector_aligned);
+      d2 = Lanes(&strips->d2[b * kLanes], stdx::vector_aligned);
       d3 = Lanes(&strips->d3[b * kLanes], stdx::vector_aligned);
     }
     Lanes p1 = 0.0, p2 = 0.0, sum_p1 = 0.0, sum_p2 = 0.0, sum_x1p2 = 0.0;
@@ -232,7 +238,7 @@ RAILCONTACT_MARCH_INLINED TangentialForces march(const detail::FastSimLayout& la
         if (stdx::any_of(slip)) {
           Lanes h1 = p1, h2 = p2, h_norm2 = norm2;
           if constexpr (kRigid) {
-            const Lanes d1_step = d1 * step, d3_step = d3 * (step * (x1 - 0.5 * step));
+            const Lanes d1_step = d1 * step, d3_step = d2 * step + d3 * (step * (x1 - 0.5 * step));
             const Lanes i1 = c1 * step + d1_step, i2 = c2 * step + c3 * (step * (x1 - 0.5 * step)) + d3_step;
             towards_rigid_slip(h1, h2, sliding, stdx::sqrt(i1 * i1 + i2 * i2), limit, slip, d1_step, d3_step);
             h_norm2 = h1 * h1 + h2 * h2;
@@ -292,7 +298,8 @@ RAILCONTACT_MARCH_INLINED TangentialForces march(const detail::FastSimLayout& la
 
 bool positive_finite(double value) { return std::isfinite(value) && value > 0.0; }
 
-MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibility& flexibility, double mu) {
+MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibility& flexibility, double mu,
+                                        const CreepageCoupling& coupling = {}) {
   require(positive_finite(mu),
           [&] { return fmt::format("fastsim: the friction coefficient mu = {} must be positive and finite", mu); });
   require(positive_finite(flexibility.L1) && positive_finite(flexibility.L2) && positive_finite(flexibility.L3), [&] {
@@ -306,7 +313,8 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
   // Beyond L_max / L_min = 1e6 (no physical patch) the weighted limiting keeps the radial direction.
   const double L_min = std::min(flexibility.L1, flexibility.L2);
   const double L_max = std::max(flexibility.L1, flexibility.L2);
-  MarchCoefficients k{creepage.xi / flexibility.L1, creepage.eta / flexibility.L2, creepage.phi / flexibility.L3,
+  const Creepage effective = coupling.effective(creepage);
+  MarchCoefficients k{effective.xi / flexibility.L1, effective.eta / flexibility.L2, effective.phi / flexibility.L3,
                       1.0, 1.0, 1.0};
   if (L_max <= 1e6 * L_min) {
     k.sigma = L_min / (0.5 * (flexibility.L1 + flexibility.L2));
@@ -315,6 +323,8 @@ MarchCoefficients checked_coefficients(const Creepage& creepage, const Flexibili
   }
   k.rigid_d1 = creepage.phi * (1.0 / flexibility.L1 - 1.0 / flexibility.L3);
   k.rigid_d2 = creepage.phi * (1.0 / flexibility.L2 - 1.0 / flexibility.L3);
+  k.rigid_c1 = (creepage.xi - effective.xi) / flexibility.L1;
+  k.rigid_c2 = (creepage.eta - effective.eta) / flexibility.L2;
   return k;
 }
 
@@ -357,7 +367,8 @@ template <bool kRecord, bool kCount = kRecord>
 TangentialForces march_for(const detail::FastSimLayout& layout, const Creepage& creepage, const MarchCoefficients& k,
                            double mu, MarchRecord* record) {
   const bool spin = creepage.phi != 0.0;
-  const Limiting l = limiting(layout, k, spin && (k.rigid_d1 != 0.0 || k.rigid_d2 != 0.0));
+  const Limiting l =
+      limiting(layout, k, spin && (k.rigid_d1 != 0.0 || k.rigid_d2 != 0.0 || k.rigid_c1 != 0.0 || k.rigid_c2 != 0.0));
   if (spin) {
     if (l.rigid) return march<true, true, kRecord, kCount, false, true>(layout, k, mu, record);
     return l.weighted ? march<true, true, kRecord, kCount>(layout, k, mu, record)
@@ -520,16 +531,18 @@ TractionBound FastSim::bound() const { return layout_->bound; }
 const std::vector<double>& FastSim::bound_pressure_Pa() const { return layout_->bound_pressure_Pa; }
 const Matrix3& FastSim::adhesion_force_matrix() const { return layout_->adhesion_force_matrix; }
 
-TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
-  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
+TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu,
+                                 const CreepageCoupling& coupling) const {
+  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu, coupling);
   require_marchable(k, layout_->reach_m, creepage, flexibility);
   const TangentialForces forces = march_for<false>(*layout_, creepage, k, mu, nullptr);
   require_finite_forces(forces);
   return forces;
 }
 
-FastSimResult FastSim::forces_and_adhesion(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
-  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
+FastSimResult FastSim::forces_and_adhesion(const Creepage& creepage, const Flexibility& flexibility, double mu,
+                                           const CreepageCoupling& coupling) const {
+  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu, coupling);
   require_marchable(k, layout_->reach_m, creepage, flexibility);
   MarchRecord count;
   FastSimResult result;
@@ -540,8 +553,9 @@ FastSimResult FastSim::forces_and_adhesion(const Creepage& creepage, const Flexi
   return result;
 }
 
-FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexibility, double mu) const {
-  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu);
+FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexibility, double mu,
+                             const CreepageCoupling& coupling) const {
+  const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu, coupling);
   require_marchable(k, layout_->reach_m, creepage, flexibility);
   MarchRecord record = empty_record(layout_->element_count);
   const TangentialForces forces = march_for<true>(*layout_, creepage, k, mu, &record);
@@ -552,12 +566,33 @@ namespace {
 
 // The march's coefficients for strip creepages (FastSim::solve(StripCreepages, ...)), checked as
 // solve() checks one creepage; k receives the coefficients of the largest ones (the limiting's).
-StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layout, const StripCreepages& creepages,
-                                              const Flexibility& flexibility, double mu, MarchCoefficients& k) {
-  require(creepages.size() == static_cast<std::size_t>(layout.strips), [&] {
-    return fmt::format("fastsim: {} strip creepages for a patch of {} strips (mesh columns)", creepages.size(),
+StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layout, const StripCreepages& given,
+                                              const Flexibility& flexibility, double mu, MarchCoefficients& k,
+                                              const CreepageCoupling& coupling) {
+  require(given.size() == static_cast<std::size_t>(layout.strips), [&] {
+    return fmt::format("fastsim: {} strip creepages for a patch of {} strips (mesh columns)", given.size(),
                        layout.strips);
   });
+  // ξ0: the strips' ξ at x2 = 0, linear between the two strips around it (the patch's origin).
+  // Marching every strip's ξ − ξ0 with L3 (as Eq 2 marches −φ x2) is within 4.6 % of μ F3 of the
+  // exact solver over the conformal patches of every shipped profile pair; marching the part not
+  // linear in x2 with L1 misses by up to 7.8 % (S1002 on the 1:20 rail at y = −6.2 mm).
+  const auto xi_at_origin = [&layout](const StripCreepages& strips) {
+    if (layout.strips == 1) return strips[0].xi;
+    const double at = std::clamp(-layout.strip_x2_first_m / layout.strip_dx2_m, 0.0, layout.strips - 1.0);
+    const std::size_t below = std::min(static_cast<std::size_t>(at), static_cast<std::size_t>(layout.strips - 2));
+    return strips[below].xi + (at - static_cast<double>(below)) * (strips[below + 1].xi - strips[below].xi);
+  };
+  // The increments march each strip's effective creepages (CreepageCoupling; the creepages
+  // themselves without one): its own eta and phi couple into its xi, and xi0 into its eta, as one
+  // creepage (xi0, eta, phi) couples in solve(Creepage) (the strips' xi − xi0 is marched like −phi x2).
+  StripCreepages creepages = given;
+  if (!coupling.none()) {
+    const double given_xi0 = xi_at_origin(given);
+    for (Creepage& c : creepages)
+      c = {c.xi + coupling.xi_per_eta * c.eta + coupling.xi_per_phi_m * c.phi,
+           c.eta + coupling.eta_per_xi * given_xi0 + coupling.eta_per_phi_m * c.phi, c.phi};
+  }
   // The largest creepages check the flexibilities, mu and the march's range as solve() does.
   Creepage largest;
   for (const Creepage& c : creepages) {
@@ -570,16 +605,7 @@ StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layou
   }
   k = checked_coefficients(largest, flexibility, mu);
   require_marchable(k, layout.reach_m, largest, flexibility);
-  // ξ0: the strips' ξ at x2 = 0, linear between the two strips around it (the patch's origin).
-  // Marching every strip's ξ − ξ0 with L3 (as Eq 2 marches −φ x2) is within 4.6 % of μ F3 of the
-  // exact solver over the conformal patches of every shipped profile pair; marching the part not
-  // linear in x2 with L1 misses by up to 7.8 % (S1002 on the 1:20 rail at y = −6.2 mm).
-  double xi0 = creepages[0].xi;
-  if (layout.strips > 1) {
-    const double at = std::clamp(-layout.strip_x2_first_m / layout.strip_dx2_m, 0.0, layout.strips - 1.0);
-    const std::size_t below = std::min(static_cast<std::size_t>(at), static_cast<std::size_t>(layout.strips - 2));
-    xi0 = creepages[below].xi + (at - static_cast<double>(below)) * (creepages[below + 1].xi - creepages[below].xi);
-  }
+  const double xi0 = xi_at_origin(creepages);
   StripLaneCoefficients lanes;
   lanes.c1.resize(layout.lane_strip.size());
   lanes.c2.resize(layout.lane_strip.size());
@@ -587,15 +613,18 @@ StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layou
   const bool rigid = layout.bound.slip_direction == SlipDirection::rigid_slip;
   if (rigid) {
     lanes.d1.resize(layout.lane_strip.size());
+    lanes.d2.resize(layout.lane_strip.size());
     lanes.d3.resize(layout.lane_strip.size());
   }
   for (std::size_t l = 0; l < layout.lane_strip.size(); ++l) {
     const Creepage& c = creepages[static_cast<std::size_t>(layout.lane_strip[l])];
+    const Creepage& own = given[static_cast<std::size_t>(layout.lane_strip[l])];
     lanes.c1[l] = xi0 / flexibility.L1 + (c.xi - xi0) / flexibility.L3;
     lanes.c2[l] = c.eta / flexibility.L2;
     lanes.c3[l] = c.phi / flexibility.L3;
     if (rigid) {
-      lanes.d1[l] = (c.xi - xi0) * (1.0 / flexibility.L1 - 1.0 / flexibility.L3);
+      lanes.d1[l] = (c.xi - xi0) * (1.0 / flexibility.L1 - 1.0 / flexibility.L3) + (own.xi - c.xi) / flexibility.L1;
+      lanes.d2[l] = (own.eta - c.eta) / flexibility.L2;
       lanes.d3[l] = c.phi * (1.0 / flexibility.L2 - 1.0 / flexibility.L3);
     }
   }
@@ -604,10 +633,11 @@ StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layou
 
 }  // namespace
 
-FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const {
+FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility& flexibility, double mu,
+                             const CreepageCoupling& coupling) const {
   const detail::FastSimLayout& layout = *layout_;
   MarchCoefficients k{};
-  const StripLaneCoefficients lanes = strip_lane_coefficients(layout, creepages, flexibility, mu, k);
+  const StripLaneCoefficients lanes = strip_lane_coefficients(layout, creepages, flexibility, mu, k, coupling);
   MarchRecord record = empty_record(layout.element_count);
   const Limiting l = limiting(layout, k, !lanes.d1.empty());
   const TangentialForces forces = l.rigid      ? march<true, true, true, true, true, true>(layout, k, mu, &record, &lanes)
@@ -616,10 +646,11 @@ FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility&
   return recorded_result(forces, std::move(record));
 }
 
-StripForces FastSim::strip_forces(const StripCreepages& creepages, const Flexibility& flexibility, double mu) const {
+StripForces FastSim::strip_forces(const StripCreepages& creepages, const Flexibility& flexibility, double mu,
+                                  const CreepageCoupling& coupling) const {
   const detail::FastSimLayout& layout = *layout_;
   MarchCoefficients k{};
-  const StripLaneCoefficients lanes = strip_lane_coefficients(layout, creepages, flexibility, mu, k);
+  const StripLaneCoefficients lanes = strip_lane_coefficients(layout, creepages, flexibility, mu, k, coupling);
   StripForces out;
   out.F1_N.assign(creepages.size(), 0.0);
   out.F2_N.assign(creepages.size(), 0.0);

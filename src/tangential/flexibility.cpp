@@ -73,4 +73,26 @@ Flexibility nh_fastsim_flexibility(const FastSim& fastsim, const Matrix3& K2, Fl
   return L;
 }
 
+CreepageCoupling CreepageCoupling::moved_to(double d1_m, double d2_m, const Flexibility& L) const {
+  if (none()) return *this;
+  CreepageCoupling c = *this;
+  c.xi_per_phi_m = xi_per_phi_m + d2_m * (1.0 - L.L1 / L.L3) - xi_per_eta * d1_m;
+  c.eta_per_phi_m = eta_per_phi_m + eta_per_xi * d2_m - d1_m * (1.0 - L.L2 / L.L3);
+  return c;
+}
+
+CreepageCoupling creepage_coupling(const FastSim& fastsim, const Matrix3& K2, const Flexibility& L) {
+  // FastSim's full-adhesion forces per creepage, K3 = S D B L^-1 (Eq 19-20), against K2's force rows.
+  const Matrix3& SDB = fastsim.adhesion_force_matrix();
+  require(std::isfinite(K2(0, 1)) && std::isfinite(K2(0, 2)) && std::isfinite(K2(1, 0)) && K2(0, 0) != 0.0 &&
+              K2(1, 1) != 0.0,
+          "nH-FastSim creepage coupling: K2's force rows are not finite");
+  CreepageCoupling c;
+  c.xi_per_eta = (K2(0, 1) - SDB(0, 1) / L.L2) / K2(0, 0);
+  c.xi_per_phi_m = (K2(0, 2) - SDB(0, 2) / L.L3) / K2(0, 0);
+  c.eta_per_xi = (K2(1, 0) - SDB(1, 0) / L.L1) / K2(1, 1);
+  c.eta_per_phi_m = (K2(1, 2) - SDB(1, 2) / L.L3) / K2(1, 1);
+  return c;
+}
+
 }  // namespace railcontact

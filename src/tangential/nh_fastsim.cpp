@@ -99,6 +99,8 @@ NhFastSim::NhFastSim(const ContactPatch& patch, const NhFastSimOptions& options)
   flexibilities_.f11_N = -k(0, 0);
   flexibilities_.f22_N = -k(1, 1);
   flexibilities_.f23_Nm = -k(1, 2);
+  if (options.creepage_coupling)
+    flexibilities_.coupling = creepage_coupling(coarse_patch ? FastSim(coarse) : fastsim_, k, flexibilities_.flexibility);
   creepage_matrix_ = k;
   krylov_iterations_ = K2.iterations;
 }
@@ -114,19 +116,19 @@ NhFastSim::NhFastSim(const ContactPatch& patch, const NhFastSimFlexibilities& gi
 }
 
 TangentialForces NhFastSim::forces(const Creepage& creepage, double mu) const {
-  return fastsim_.forces(creepage, flexibilities_.flexibility, mu);
+  return fastsim_.forces(creepage, flexibilities_.flexibility, mu, flexibilities_.coupling);
 }
 
 FastSimResult NhFastSim::solve(const Creepage& creepage, double mu) const {
-  return fastsim_.solve(creepage, flexibilities_.flexibility, mu);
+  return fastsim_.solve(creepage, flexibilities_.flexibility, mu, flexibilities_.coupling);
 }
 
 FastSimResult NhFastSim::solve(const StripCreepages& creepages, double mu) const {
-  return fastsim_.solve(creepages, flexibilities_.flexibility, mu);
+  return fastsim_.solve(creepages, flexibilities_.flexibility, mu, flexibilities_.coupling);
 }
 
 FastSimResult NhFastSim::forces_and_adhesion(const Creepage& creepage, double mu) const {
-  return fastsim_.forces_and_adhesion(creepage, flexibilities_.flexibility, mu);
+  return fastsim_.forces_and_adhesion(creepage, flexibilities_.flexibility, mu, flexibilities_.coupling);
 }
 
 Creepage NhFastSim::creepage_from_normalised(double xi_normalised, double eta_normalised, double phi_per_m, double mu,

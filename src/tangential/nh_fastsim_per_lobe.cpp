@@ -190,12 +190,23 @@ NhFastSimPerLobe::LobeView NhFastSimPerLobe::lobe(std::size_t k) const {
   if (k >= lobes_.size())
     throw Error(fmt::format("NhFastSimPerLobe: lobe {} of a patch of {} lobes", k, lobes_.size()));
   const Lobe& l = lobes_[k];
-  return {l.part, l.nh ? l.nh->flexibility() : l.fallback_flexibility, l.x1_centre_m, l.x2_centre_m};
+  return {l.part, l.nh ? l.nh->flexibility() : l.fallback_flexibility, l.x1_centre_m, l.x2_centre_m,
+          l.nh ? l.nh->coupling() : CreepageCoupling{}};
 }
 
 const Flexibility& NhFastSimPerLobe::flexibility() const {
   const Lobe& main = lobes_.front();  // contact_regions: by decreasing load
   return main.nh ? main.nh->flexibility() : main.fallback_flexibility;
+}
+
+CreepageCoupling NhFastSimPerLobe::coupling() const {
+  const Lobe& main = lobes_.front();
+  return main.nh ? main.nh->coupling() : CreepageCoupling{};
+}
+
+CreepageCoupling NhFastSimPerLobe::whole_patch_coupling() const {
+  if (whole_.empty() || !whole_.front().nh) return {};
+  return whole_.front().nh->coupling();
 }
 
 const Flexibility* NhFastSimPerLobe::whole_patch_flexibility() const {

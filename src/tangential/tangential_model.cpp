@@ -34,6 +34,7 @@ class TangentialModelImpl {
   std::size_t columns = 0;
   double element_area_m2 = 0.0;
   std::optional<Flexibility> flexibility;
+  CreepageCoupling coupling;
   std::string flexibility_source;
   int preparation_krylov_iterations = 0;
   const NhFastSim* nh_fastsim = nullptr;
@@ -117,6 +118,7 @@ class NhFastSimModel final : public TangentialModelImpl {
   explicit NhFastSimModel(NhFastSim nh) : nh_(std::move(nh)) {
     nh_fastsim = &nh_;
     flexibility = nh_.flexibility();
+    coupling = nh_.coupling();
   }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
     if (output == TangentialOutput::forces_only) return only_forces(nh_.forces(c, mu));
@@ -137,6 +139,7 @@ class NhFastSimPerLobeModel final : public TangentialModelImpl {
   explicit NhFastSimPerLobeModel(NhFastSimPerLobe lobes) : lobes_(std::move(lobes)) {
     per_lobe = &lobes_;
     flexibility = lobes_.flexibility();  // the most loaded lobe's
+    coupling = lobes_.coupling();
   }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
     return from_fastsim(lobes_.solve(c, mu), output);
@@ -183,6 +186,7 @@ class StoredPatchModel final : public TangentialModelImpl {
     for (const StoredLobe& lobe : patch.lobes) lobes_.push_back(prepared(lobe, bound));
     if (patch.whole && whole_weight_ > 0.0) whole_.push_back(prepared(*patch.whole, bound));
     flexibility = patch.lobes.front().flexibility;
+    coupling = patch.lobes.front().coupling;
   }
   TangentialSolution solve(const Creepage& c, double mu, TangentialOutput output) const override {
     if (lobes_.size() == 1 && whole_.empty()) return one_lobe(lobes_.front(), c, mu, output);
@@ -210,8 +214,9 @@ class StoredPatchModel final : public TangentialModelImpl {
     require(lobes_.size() == 1 && whole_.empty(),
             "tangential model: a stored patch of several lobes takes the creepages at its origin, not per strip");
     const Lobe& lobe = lobes_.front();
-    if (output == TangentialOutput::strip_forces) return from_strip_forces(lobe.fastsim.strip_forces(c, lobe.L, mu));
-    return from_fastsim(lobe.fastsim.solve(c, lobe.L, mu), output);
+    if (output == TangentialOutput::strip_forces)
+      return from_strip_forces(lobe.fastsim.strip_forces(c, lobe.L, mu, lobe.coupling));
+    return from_fastsim(lobe.fastsim.solve(c, lobe.L, mu, lobe.coupling), output);
   }
 
  private:
@@ -219,6 +224,7 @@ class StoredPatchModel final : public TangentialModelImpl {
     FastSim fastsim;
     Flexibility L;
     double x1_m, x2_m;  // its centre in the patch's coordinates
+    CreepageCoupling coupling;
   };
   static Lobe prepared(const StoredLobe& lobe, const TractionBound& bound) {
     const Flexibility& L = lobe.flexibility;
@@ -228,18 +234,22 @@ class StoredPatchModel final : public TangentialModelImpl {
     require(std::isfinite(lobe.x1_centre_m) && std::isfinite(lobe.x2_centre_m),
             "tangential model: a stored lobe's centre must be finite");
     require(lobe.patch.elements().count() > 0, "tangential model: a stored lobe has no element in contact");
-    return {FastSim(lobe.patch, bound), L, lobe.x1_centre_m, lobe.x2_centre_m};
+    const CreepageCoupling& k = lobe.coupling;
+    require(std::isfinite(k.xi_per_eta) && std::isfinite(k.xi_per_phi_m) && std::isfinite(k.eta_per_xi) &&
+                std::isfinite(k.eta_per_phi_m),
+            "tangential model: a stored lobe's creepage coupling must be finite");
+    return {FastSim(lobe.patch, bound), L, lobe.x1_centre_m, lobe.x2_centre_m, k};
   }
   // One lobe's solution for the creepages at the patch's origin: at its centre, M3 moved back.
   static TangentialSolution one_lobe(const Lobe& lobe, const Creepage& c, double mu, TangentialOutput output) {
     const Creepage at = detail::creepage_at(c, lobe.x1_m, lobe.x2_m);
     TangentialSolution s;
     if (output == TangentialOutput::forces_only)
-      s = only_forces(lobe.fastsim.forces(at, lobe.L, mu));
+      s = only_forces(lobe.fastsim.forces(at, lobe.L, mu, lobe.coupling));
     else if (output == TangentialOutput::forces)
-      s = from_fastsim(lobe.fastsim.forces_and_adhesion(at, lobe.L, mu), output);
+      s = from_fastsim(lobe.fastsim.forces_and_adhesion(at, lobe.L, mu, lobe.coupling), output);
     else
-      s = from_fastsim(lobe.fastsim.solve(at, lobe.L, mu), output);
+      s = from_fastsim(lobe.fastsim.solve(at, lobe.L, mu, lobe.coupling), output);
     s.forces.M3_Nm = detail::moment_about_origin_Nm(s.forces, lobe.x1_m, lobe.x2_m);
     return s;
   }
@@ -432,6 +442,7 @@ TangentialSolution TangentialModel::solve(const StripCreepages& creepages, doubl
 
 TangentialSolver TangentialModel::solver() const { return impl_->solver; }
 std::optional<Flexibility> TangentialModel::flexibility() const { return impl_->flexibility; }
+CreepageCoupling TangentialModel::coupling() const { return impl_->coupling; }
 const std::string& TangentialModel::flexibility_source() const { return impl_->flexibility_source; }
 int TangentialModel::preparation_krylov_iterations() const { return impl_->preparation_krylov_iterations; }
 const NhFastSim* TangentialModel::nh_fastsim() const { return impl_->nh_fastsim; }

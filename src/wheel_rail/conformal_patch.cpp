@@ -123,6 +123,7 @@ ConformalSolve solve_conformal_patch(TangentialSolver solver, const Interpenetra
   PatchSolverResult& r = out.result;
   r.solver = solver;
   r.flexibility = model.flexibility().value_or(Flexibility{0.0, 0.0, 0.0});
+  r.coupling = model.coupling();
   r.forces = {F1, s2 * F2, s2 * s.forces.M3_Nm};
   r.force_track_N = along(along(region.x1_axis, F1, region.x2_axis, s2 * F2), 1.0, region.x3_axis, F3);
   r.adhesion_fraction = s.adhesion_fraction;

@@ -446,6 +446,7 @@ PatchSolverResult solve_tangential(TangentialSolver solver, const ContactPatch& 
   r.solver = solver;
   r.forces = t.forces;
   r.flexibility = model.flexibility().value_or(Flexibility{0.0, 0.0, 0.0});
+  r.coupling = model.coupling();
   r.adhesion_fraction = t.adhesion_fraction;
   if (options.keep_tractions) {
     r.p1_Pa = std::move(t.p1_Pa);
@@ -645,6 +646,8 @@ WheelsetPatch blended(const WheelsetPatch& planar, WheelsetPatch conformal, doub
     mix3(a.force_track_N, b.force_track_N);
     b.flexibility = {mix(a.flexibility.L1, b.flexibility.L1), mix(a.flexibility.L2, b.flexibility.L2),
                      mix(a.flexibility.L3, b.flexibility.L3)};
+    b.coupling = {mix(a.coupling.xi_per_eta, b.coupling.xi_per_eta), mix(a.coupling.xi_per_phi_m, b.coupling.xi_per_phi_m),
+                  mix(a.coupling.eta_per_xi, b.coupling.eta_per_xi), mix(a.coupling.eta_per_phi_m, b.coupling.eta_per_phi_m)};
     b.adhesion_fraction = mix(a.adhesion_fraction, b.adhesion_fraction);
   }
   return conformal;

@@ -297,14 +297,14 @@ Runtime runtime_patch(const WheelsetTablePatch& p, double s2, const Material& ma
   options.nh_fastsim.bound = bound;
   Runtime runtime;
   const auto lobe = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa, const Flexibility& flexibility,
-                        double x1_m, double x2_m) {
-    return StoredLobe{ContactPatch(mesh, pressure_Pa, material), flexibility, x1_m, s2 * x2_m};
+                        const CreepageCoupling& coupling, double x1_m, double x2_m) {
+    return StoredLobe{ContactPatch(mesh, pressure_Pa, material), flexibility, x1_m, s2 * x2_m, coupling};
   };
   if (!p.runtime_pressure_Pa.empty()) {
     StoredPatch stored;
-    const StoredLobe whole = lobe(p.runtime_mesh, p.runtime_pressure_Pa, p.flexibility, 0.0, 0.0);
+    const StoredLobe whole = lobe(p.runtime_mesh, p.runtime_pressure_Pa, p.flexibility, p.coupling, 0.0, 0.0);
     for (const WheelsetTableLobe& l : p.lobes)
-      stored.lobes.push_back(lobe(l.runtime_mesh, l.runtime_pressure_Pa, l.flexibility,
+      stored.lobes.push_back(lobe(l.runtime_mesh, l.runtime_pressure_Pa, l.flexibility, l.coupling,
                                   l.pressure_centre_x1_m - p.pressure_centre_x1_m,
                                   l.pressure_centre_x2_m - p.pressure_centre_x2_m));
     if (stored.lobes.empty()) {
@@ -317,9 +317,9 @@ Runtime runtime_patch(const WheelsetTablePatch& p, double s2, const Material& ma
   }
   if (p.conformal && !p.conformal->runtime_pressure_Pa.empty()) {
     const auto curved = [&](const Mesh& mesh, const std::vector<double>& pressure_Pa, const Flexibility& flexibility,
-                            const std::vector<WheelsetTableStrip>& strips) {
+                            const CreepageCoupling& coupling, const std::vector<WheelsetTableStrip>& strips) {
       StoredPatch stored;
-      stored.lobes.push_back(lobe(mesh, pressure_Pa, flexibility, 0.0, 0.0));
+      stored.lobes.push_back(lobe(mesh, pressure_Pa, flexibility, coupling, 0.0, 0.0));
       typename Runtime::CurvedCopy c{TangentialModel(stored, options), {}, {}, {}};
       for (const WheelsetTableStrip& strip : strips) {
         const double cos_angle = std::cos(strip.angle_rad), sin_angle = std::sin(strip.angle_rad);
@@ -336,9 +336,10 @@ Runtime runtime_patch(const WheelsetTablePatch& p, double s2, const Material& ma
       return c;
     };
     const WheelsetTableConformalPatch& c = *p.conformal;
-    runtime.conformal.emplace(curved(c.runtime_mesh, c.runtime_pressure_Pa, c.flexibility, c.strips));
+    runtime.conformal.emplace(curved(c.runtime_mesh, c.runtime_pressure_Pa, c.flexibility, c.coupling, c.strips));
     for (const WheelsetTableLobe& l : c.lobes)
-      runtime.conformal_lobes.push_back(curved(l.runtime_mesh, l.runtime_pressure_Pa, l.flexibility, l.strips));
+      runtime.conformal_lobes.push_back(
+          curved(l.runtime_mesh, l.runtime_pressure_Pa, l.flexibility, l.coupling, l.strips));
   }
   return runtime;
 }
@@ -726,8 +727,8 @@ std::vector<WheelsetTableMismatch> WheelsetTable::mismatches(const WheelsetOptio
         slip_direction_name(bound_.slip_direction));
   if (!same(nh.bound.skew, bound_.skew))
     add(WheelsetTableSetting::traction_bound_skew, fmt::format("{:g}", nh.bound.skew), fmt::format("{:g}", bound_.skew));
-  if (metadata_.nh_fastsim_recipe != kNhFastSimRecipe)
-    add(WheelsetTableSetting::nh_fastsim_recipe, std::to_string(kNhFastSimRecipe),
+  if (metadata_.nh_fastsim_recipe != nh_fastsim_recipe(nh.creepage_coupling))
+    add(WheelsetTableSetting::nh_fastsim_recipe, std::to_string(nh_fastsim_recipe(nh.creepage_coupling)),
         metadata_.nh_fastsim_recipe == 0 ? std::string("1 or 2, not recorded") : std::to_string(metadata_.nh_fastsim_recipe));
   if (options.search.weighting != metadata_.reference_weighting || !metadata_.creepage_on_wheel_surface) {
     const auto definition = [](ReferenceWeighting w, bool wheel_surface) {

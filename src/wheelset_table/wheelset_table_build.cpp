@@ -59,6 +59,7 @@ struct KeptLobes {
   std::vector<WheelsetTableLobe> lobes;
   double whole_patch_weight = 0.0;
   std::optional<Flexibility> whole_patch_flexibility;
+  CreepageCoupling whole_patch_coupling;  // about the patch's origin
 };
 KeptLobes keep_lobes(const ContactPatch& fine, int runtime_elements, double contact_angle_rad, double fine_x1_m,
                      double fine_x2_m, double s2, const NhFastSimOptions& nh_fastsim) {
@@ -68,6 +69,7 @@ KeptLobes keep_lobes(const ContactPatch& fine, int runtime_elements, double cont
   if (const Flexibility* whole = per_lobe.whole_patch_flexibility()) {
     kept.whole_patch_weight = per_lobe.whole_patch_weight();
     kept.whole_patch_flexibility = *whole;
+    kept.whole_patch_coupling = per_lobe.whole_patch_coupling();
   }
   const double fine_elements = static_cast<double>(fine.elements().count());
   for (std::size_t k = 0; k < per_lobe.lobe_count(); ++k) {
@@ -78,6 +80,7 @@ KeptLobes keep_lobes(const ContactPatch& fine, int runtime_elements, double cont
         20, static_cast<int>(std::lround(runtime_elements * static_cast<double>(lobe.patch.elements().count()) / fine_elements)));
     const std::array<double, 2> lobe_coarse =
         keep_runtime_copy(lobe.patch, target, contact_angle_rad, l.runtime_mesh, l.runtime_pressure_Pa);
+    l.coupling = lobe.coupling.moved_to(lobe_coarse[0], lobe_coarse[1], lobe.flexibility);
     l.pressure_centre_x1_m = fine_x1_m + lobe.x1_centre_m + lobe_coarse[0];
     l.pressure_centre_x2_m = fine_x2_m + s2 * (lobe.x2_centre_m + lobe_coarse[1]);
     kept.lobes.push_back(std::move(l));
@@ -132,6 +135,7 @@ WheelsetTableConformalPatch conformal_table_patch(const WheelsetPatch& patch, do
       keep_runtime_copy(patch.patch, runtime_elements, patch.region.contact_angle_rad, c.runtime_mesh, c.runtime_pressure_Pa);
   c.pressure_centre_x1_m += coarse[0];
   c.pressure_centre_x2_m += s2 * coarse[1];
+  c.coupling = patch.solvers.front().coupling.moved_to(coarse[0], coarse[1], c.flexibility);
   c.strips = runtime_strips(patch.strips, c.runtime_mesh, c.pressure_centre_x2_m, s2, centre);
   KeptLobes kept = keep_lobes(patch.patch, runtime_elements, patch.region.contact_angle_rad, fine_x1, fine_x2, s2,
                               nh_fastsim);
@@ -139,7 +143,10 @@ WheelsetTableConformalPatch conformal_table_patch(const WheelsetPatch& patch, do
   for (WheelsetTableLobe& l : c.lobes)
     l.strips = runtime_strips(patch.strips, l.runtime_mesh, l.pressure_centre_x2_m, s2, centre);
   c.whole_patch_weight = kept.whole_patch_weight;
-  if (kept.whole_patch_flexibility) c.flexibility = *kept.whole_patch_flexibility;
+  if (kept.whole_patch_flexibility) {
+    c.flexibility = *kept.whole_patch_flexibility;
+    c.coupling = kept.whole_patch_coupling.moved_to(coarse[0], coarse[1], c.flexibility);
+  }
   return c;
 }
 
@@ -164,6 +171,7 @@ WheelsetTablePatch table_patch_fields(const WheelsetPatch& patch, const Vector3&
   t.pressure_centre_x1_m = patch.pressure_centre_x1_m;
   t.pressure_centre_x2_m = patch.pressure_centre_x2_m;
   t.flexibility = patch.solvers.front().flexibility;
+  t.coupling = patch.solvers.front().coupling;  // about the fine patch's origin until its copy is kept
   return t;
 }
 
@@ -182,11 +190,15 @@ void keep_planar_runtime(const WheelsetPatch& patch, WheelSide side, int runtime
   const double fine_x1 = t.pressure_centre_x1_m, fine_x2 = t.pressure_centre_x2_m;
   t.pressure_centre_x1_m += coarse[0];
   t.pressure_centre_x2_m += s2 * coarse[1];
+  t.coupling = t.coupling.moved_to(coarse[0], coarse[1], t.flexibility);
   // A patch of several lobes: each lobe's flexibilities and coarse copy.
   KeptLobes kept = keep_lobes(patch.patch, runtime_elements, angle, fine_x1, fine_x2, s2, nh_fastsim);
   t.lobes = std::move(kept.lobes);
   t.whole_patch_weight = kept.whole_patch_weight;
-  if (kept.whole_patch_flexibility) t.flexibility = *kept.whole_patch_flexibility;
+  if (kept.whole_patch_flexibility) {
+    t.flexibility = *kept.whole_patch_flexibility;
+    t.coupling = kept.whole_patch_coupling.moved_to(coarse[0], coarse[1], t.flexibility);
+  }
 }
 
 // A patch as a node keeps it. On the conformal surface (weight above 0) its conformal part, and
@@ -463,6 +475,7 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   metadata.element_size_m = wheelset_options.element_size_m;
   metadata.flexibility_coarsening = wheelset_options.nh_fastsim.flexibility_coarsening;
   metadata.collocation_offset = wheelset_options.nh_fastsim.collocation_offset;
+  metadata.nh_fastsim_recipe = nh_fastsim_recipe(wheelset_options.nh_fastsim.creepage_coupling);
   metadata.runtime_elements = options.runtime_elements;
   metadata.reference_weighting = wheelset_options.search.weighting;
   metadata.creepage_on_wheel_surface = true;

@@ -25,8 +25,9 @@ constexpr const char* kFormat = "railcontact wheelset table";
 // patches without lobes.
 // 3: slip_direction (1-2: the radial one); 4: nh_fastsim_recipe; 5: reference_weighting and
 // creepage_point (older: depth, the rail surface); 6: contact_surface, contact_surface_switch and
-// each patch's "conformal" part (older: planar).
-constexpr int kFormatVersion = 6;
+// each patch's "conformal" part (older: planar); 7: each runtime copy's "creepage_coupling" (older:
+// none).
+constexpr int kFormatVersion = 7;
 // The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
 // At most this many nodes (as a build makes) and elements per runtime mesh.
@@ -41,6 +42,10 @@ json mesh_json(const Mesh& m) {
 }
 
 json flexibility_json(const Flexibility& L) { return json::array({L.L1, L.L2, L.L3}); }
+// CreepageCoupling (tangential.hpp): [xi_per_eta, xi_per_phi_m, eta_per_xi, eta_per_phi_m].
+json coupling_json(const CreepageCoupling& c) {
+  return json::array({c.xi_per_eta, c.xi_per_phi_m, c.eta_per_xi, c.eta_per_phi_m});
+}
 
 json strips_json(const std::vector<WheelsetTableStrip>& strips) {
   json out = json::array();
@@ -56,6 +61,7 @@ json lobes_json(const std::vector<WheelsetTableLobe>& lobes, bool with_strips) {
     json lobe{{"pressure_centre_x1_m", l.pressure_centre_x1_m},
               {"pressure_centre_x2_m", l.pressure_centre_x2_m},
               {"flexibility_m_per_Pa", flexibility_json(l.flexibility)},
+              {"creepage_coupling", coupling_json(l.coupling)},
               {"runtime_mesh", mesh_json(l.runtime_mesh)},
               {"runtime_pressure_Pa", l.runtime_pressure_Pa}};
     if (with_strips) lobe["strips"] = strips_json(l.strips);
@@ -78,6 +84,7 @@ json conformal_json(const std::optional<WheelsetTableConformalPatch>& conformal)
               {"pressure_centre_x1_m", c.pressure_centre_x1_m},
               {"pressure_centre_x2_m", c.pressure_centre_x2_m},
               {"flexibility_m_per_Pa", flexibility_json(c.flexibility)},
+              {"creepage_coupling", coupling_json(c.coupling)},
               {"runtime_mesh", mesh_json(c.runtime_mesh)},
               {"runtime_pressure_Pa", c.runtime_pressure_Pa},
               {"strips", strips}};
@@ -101,6 +108,7 @@ json patch_json(const WheelsetTablePatch& p) {
               {"pressure_centre_x1_m", p.pressure_centre_x1_m},
               {"pressure_centre_x2_m", p.pressure_centre_x2_m},
               {"flexibility_m_per_Pa", flexibility_json(p.flexibility)},
+              {"creepage_coupling", coupling_json(p.coupling)},
               {"runtime_mesh", mesh_json(p.runtime_mesh)},
               {"runtime_pressure_Pa", p.runtime_pressure_Pa},
               {"lobes", lobes},
@@ -140,10 +148,17 @@ int read_int(StrictJsonReader& r, const std::string& key, int lo, int hi) {
 }
 
 // flexibility_m_per_Pa, runtime_mesh and runtime_pressure_Pa of a patch or a lobe.
-void read_runtime(StrictJsonReader& r, Flexibility& flexibility, Mesh& mesh, std::vector<double>& pressure_Pa) {
+void read_runtime(StrictJsonReader& r, Flexibility& flexibility, CreepageCoupling& coupling, Mesh& mesh,
+                  std::vector<double>& pressure_Pa) {
   const std::vector<double> L = r.numbers("flexibility_m_per_Pa");
   if (L.size() != 3) r.fail(fmt::format("{} must be a list of 3 numbers", r.qualified("flexibility_m_per_Pa")));
   flexibility = {L[0], L[1], L[2]};
+  // Format 7 and later; none in older tables (built before the coupling, recipe 3 or older).
+  if (r.has("creepage_coupling")) {
+    const std::vector<double> c = r.numbers("creepage_coupling");
+    if (c.size() != 4) r.fail(fmt::format("{} must be a list of 4 numbers", r.qualified("creepage_coupling")));
+    coupling = {c[0], c[1], c[2], c[3]};
+  }
   {
     StrictJsonReader m = r.child("runtime_mesh");
     mesh.n1 = read_int(m, "n1", 0, 1 << 20);
@@ -199,7 +214,7 @@ std::vector<WheelsetTableLobe> read_lobes(StrictJsonReader& r, bool with_strips)
     WheelsetTableLobe lobe;
     lobe.pressure_centre_x1_m = l.number("pressure_centre_x1_m");
     lobe.pressure_centre_x2_m = l.number("pressure_centre_x2_m");
-    read_runtime(l, lobe.flexibility, lobe.runtime_mesh, lobe.runtime_pressure_Pa);
+    read_runtime(l, lobe.flexibility, lobe.coupling, lobe.runtime_mesh, lobe.runtime_pressure_Pa);
     if (with_strips) lobe.strips = read_strips(l);
     l.finish();
     out.push_back(std::move(lobe));
@@ -217,7 +232,7 @@ WheelsetTableConformalPatch read_conformal(StrictJsonReader r) {
   c.max_pressure_Pa = r.number("max_pressure_Pa");
   c.pressure_centre_x1_m = r.number("pressure_centre_x1_m");
   c.pressure_centre_x2_m = r.number("pressure_centre_x2_m");
-  read_runtime(r, c.flexibility, c.runtime_mesh, c.runtime_pressure_Pa);
+  read_runtime(r, c.flexibility, c.coupling, c.runtime_mesh, c.runtime_pressure_Pa);
   c.strips = read_strips(r);
   c.lobes = read_lobes(r, true);
   c.whole_patch_weight = r.number("whole_patch_weight");
@@ -242,7 +257,7 @@ WheelsetTablePatch read_patch(StrictJsonReader r, int version) {
   p.max_pressure_Pa = r.number("max_pressure_Pa");
   p.pressure_centre_x1_m = r.number("pressure_centre_x1_m");
   p.pressure_centre_x2_m = r.number("pressure_centre_x2_m");
-  read_runtime(r, p.flexibility, p.runtime_mesh, p.runtime_pressure_Pa);
+  read_runtime(r, p.flexibility, p.coupling, p.runtime_mesh, p.runtime_pressure_Pa);
   if (version >= 2) {
     p.lobes = read_lobes(r, false);
     p.whole_patch_weight = r.number("whole_patch_weight");
