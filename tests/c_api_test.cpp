@@ -306,14 +306,10 @@ TEST(CApi, JacobianAtSmallCreepageIsTheCreepageMatrix) {
   ASSERT_EQ(rc_solver_jacobian(s.h, &c, &f, J), RC_OK) << s.error();
   // In full adhesion FastSim is linear: the differences are the slopes of the C++ API's forces.
   const double h = 1e-6;
-  const TangentialForces at_c = nh.forces(Creepage{1e-5, 0, 0}, kMu);
   EXPECT_NEAR(J[0], nh.forces(Creepage{h, 0, 0}, kMu).F1_N / h, 1e-6 * std::abs(J[0]));
-  EXPECT_NEAR(J[4], (nh.forces(Creepage{1e-5, h, 0}, kMu).F2_N - at_c.F2_N) / h, 1e-6 * std::abs(J[4]));
-  EXPECT_NEAR(J[5], (nh.forces(Creepage{1e-5, 0, 1e-4}, kMu).F2_N - at_c.F2_N) / 1e-4, 1e-6 * std::abs(J[5]));
-  EXPECT_NEAR(J[1], (nh.forces(Creepage{1e-5, h, 0}, kMu).F1_N - at_c.F1_N) / h, 1e-6 * std::abs(J[0]));
-  // F1 per eta is K2_12 of the coarse patch (the creepage coupling), zero on an ellipse but for the
-  // blocks' layout: below 1 % of F1 per xi.
-  EXPECT_LT(std::abs(J[1]), 0.01 * std::abs(J[0]));
+  EXPECT_NEAR(J[4], nh.forces(Creepage{1e-5, h, 0}, kMu).F2_N / h, 1e-6 * std::abs(J[4]));
+  EXPECT_NEAR(J[5], nh.forces(Creepage{1e-5, 0, 1e-4}, kMu).F2_N / 1e-4, 1e-6 * std::abs(J[5]));
+  EXPECT_NEAR(J[1], 0.0, 1e-6 * std::abs(J[0]));
   // ... and close to the creepage coefficients of K2 the flexibilities were matched to (on the
   // patch coarsened for K2: a few per cent).
   EXPECT_NEAR(J[0], -nh.flexibilities().f11_N, 0.06 * nh.flexibilities().f11_N);

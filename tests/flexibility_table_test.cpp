@@ -419,7 +419,7 @@ TEST(FlexibilityTableFile, MalformedFilesNameTheProblem) {
   EXPECT_NE(error_for("{\n \"format\": ").find("t.json:2: malformed JSON"), std::string::npos) << error_for("{\n \"format\": ");
   EXPECT_NE(error_for("{}").find("not a flexibility table"), std::string::npos);
   EXPECT_NE(error_for(replaced("\"format_version\": 5", "\"format_version\": 6")).find("format_version 6"), std::string::npos);
-  EXPECT_NE(error_for(replaced("\"nh_fastsim_recipe\": 4", "\"nh_fastsim_recipe\": 5"))
+  EXPECT_NE(error_for(replaced("\"nh_fastsim_recipe\": 3", "\"nh_fastsim_recipe\": 5"))
                 .find("nh_fastsim_recipe 5 must lie in [0, 4]"),
             std::string::npos);
   EXPECT_NE(error_for(replaced("\"contact_reference\": \"smooth\"", "\"contact_reference\": \"lowest\""))
@@ -479,16 +479,19 @@ TEST(FlexibilityTable, DefaultBuildUsesTheRecipeOfRunAndRecordsIt) {
   // built on the patch itself, versions 1 and 2 on the point of first touch, versions 1 to 3 with
   // an nH-FastSim recipe not recorded (older than this one: the commands note it).
   const std::string json = flexibility_table_json(t);
-  EXPECT_EQ(t.metadata().nh_fastsim_recipe, kNhFastSimRecipe);
+  // The recipe of `railcontact run`: single patches march without the creepage coupling (recipe 3;
+  // the flexibilities are recipe 4's).
+  EXPECT_EQ(t.metadata().nh_fastsim_recipe, nh_fastsim_recipe(false));
   EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().flexibility_coarsening, 0);
   EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().contact_reference, ContactReference::smooth);
-  EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().nh_fastsim_recipe, kNhFastSimRecipe);
+  EXPECT_EQ(parse_flexibility_table(json, "t.json").metadata().nh_fastsim_recipe, 3);
   EXPECT_EQ(older_nh_fastsim_recipe_note(kNhFastSimRecipe), "");
+  EXPECT_EQ(older_nh_fastsim_recipe_note(3), "");
   std::string v1 = json;
   v1.replace(v1.find("\"format_version\": 5"), 19, "\"format_version\": 1");
   v1.replace(v1.find("\"flexibility_coarsening\": 0,"), 28, "");
   v1.replace(v1.find("\"contact_reference\": \"smooth\","), 30, "");
-  v1.replace(v1.find("\"nh_fastsim_recipe\": 4,"), 24, "");
+  v1.replace(v1.find("\"nh_fastsim_recipe\": 3,"), 24, "");
   const FlexibilityTable old = parse_flexibility_table(v1, "t.json");
   EXPECT_EQ(old.metadata().flexibility_coarsening, 1);
   EXPECT_EQ(old.metadata().contact_reference, ContactReference::first_touch);

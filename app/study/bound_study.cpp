@@ -51,7 +51,7 @@ std::array<double, kSkews.size()> worst_errors(const ContactPatch& patch, double
       const RollingSolution exact = solve_rolling_exact(patch, c, kMu);
       const double F = std::hypot(exact.forces.F1_N, exact.forces.F2_N);
       for (std::size_t k = 0; k < kSkews.size(); ++k) {
-        const TangentialForces f = fastsims[k].forces(c, L, kMu);
+        const TangentialForces f = fastsims[k].forces(c, L, kMu, nh.coupling());
         worst[k] = std::max(worst[k], std::fabs(std::hypot(f.F1_N, f.F2_N) / F - 1.0));
       }
     }

@@ -103,9 +103,9 @@ void compare_families(const CheckPatch& at, const std::vector<CreepageFamily>& f
                        family.eta_normalised * saturation / point.f22_on_the_fly_N, phi};
     const Creepage table_raw{family.xi_normalised * saturation / at.table.f11_N,
                              family.eta_normalised * saturation / at.table.f22_N, phi};
-    const TangentialForces reference = fastsim.forces(raw, point.on_the_fly, mu);
-    const TangentialForces tabled = fastsim.forces(raw, point.table, mu);
-    const TangentialForces table_normalised = fastsim.forces(table_raw, point.table, mu);
+    const TangentialForces reference = fastsim.forces(raw, point.on_the_fly, mu, at.on_the_fly.coupling());
+    const TangentialForces tabled = fastsim.forces(raw, point.table, mu, at.table.coupling);
+    const TangentialForces table_normalised = fastsim.forces(table_raw, point.table, mu, at.table.coupling);
     point.force_difference.push_back(relative_difference(tabled, reference));
     point.force_difference_table_normalised.push_back(relative_difference(table_normalised, reference));
     if (against_exact) {

@@ -175,12 +175,13 @@ double compare_solvers_at(const PreparedPatch& p, double y, std::ostream& fig5, 
       const double F_exact = magnitude(solve_rolling_exact(wr.patch, c, kMu).forces);
       const FastSim& ours = p.nh->fastsim();
       const FastSim& paper = *p.paper_fastsim;
-      for (const auto& [solver, fastsim, L] :
-           {std::tuple{"nh-fastsim", &ours, p.nh->flexibility()},
-            std::tuple{"nh-fastsim-default", &ours, p.nh_default->flexibility()},
-            std::tuple{"nh-fastsim-paper", &paper, p.nh->flexibility()},
-            std::tuple{"fastsim", &paper, p.equivalent_ellipse}}) {
-        const double F = magnitude(fastsim->forces(c, L, kMu));
+      // railcontact's nH-FastSim with its creepage coupling; the paper's and FastSim without.
+      for (const auto& [solver, fastsim, L, coupling] :
+           {std::tuple{"nh-fastsim", &ours, p.nh->flexibility(), p.nh->coupling()},
+            std::tuple{"nh-fastsim-default", &ours, p.nh_default->flexibility(), p.nh_default->coupling()},
+            std::tuple{"nh-fastsim-paper", &paper, p.nh->flexibility(), CreepageCoupling{}},
+            std::tuple{"fastsim", &paper, p.equivalent_ellipse, CreepageCoupling{}}}) {
+        const double F = magnitude(fastsim->forces(c, L, kMu, coupling));
         const double error = std::fabs(F - F_exact) / F_exact;
         fmt::print(fig5, "{},{:.6f},{},{},{:.6f},{},{:.4f},{:.4f},{:.6f}\n", family.name, y, family.xi * level,
                    family.eta * level, c.phi, solver, F, F_exact, error);

@@ -349,10 +349,11 @@ struct NhFastSimOptions {
   // alpha of K2's collocation points (docs/METHOD.md §3), in [kMinimumCollocationOffset, 1].
   double collocation_offset = 0.0;
   FlexibilityMatch match = FlexibilityMatch::term_by_term;
-  // March the effective creepages of K2's coupling (CreepageCoupling) in adhesion (the default,
-  // railcontact's nH-FastSim, recipe 4); false: the paper's method, F1 from xi and the spin only, F2
-  // from eta and the spin (docs/FASTSIM.md "The creepage coupling").
-  bool creepage_coupling = true;
+  // March the effective creepages of K2's coupling (CreepageCoupling) in adhesion (recipe 4: the
+  // wheelset's default, WheelsetOptions::nh_fastsim); false (single patches' default): the paper's
+  // method, F1 from xi and the spin only, F2 from eta and the spin (docs/FASTSIM.md "The creepage
+  // coupling").
+  bool creepage_coupling = false;
 };
 
 // The coupling of K2 (its force rows, Kalker's sign convention) that FastSim prepared on the patch

@@ -194,7 +194,8 @@ void FlexibilityTable::check_material(const Material& material, double collocati
 }
 
 std::string older_nh_fastsim_recipe_note(int nh_fastsim_recipe) {
-  if (nh_fastsim_recipe >= kNhFastSimRecipe) return {};
+  // Recipes 3 and 4 have the same flexibilities (4 adds the creepage coupling, stored with them).
+  if (nh_fastsim_recipe >= 3) return {};
   return fmt::format(
       "the table was built with an older nH-FastSim recipe ({}; this railcontact: {}): its flexibilities differ from "
       "the ones computed on the fly by up to a few per cent (docs/FLEXTABLE.md \"Tables of older recipes\"); rebuild "
