@@ -371,7 +371,9 @@ def simulate_near(table_file):
     if not os.path.exists(table_file):
         raise SystemExit(f"hunting_linear: error: --simulate needs the simulation's wheelset table {table_file}: "
                          "run examples/hunting_simulation.py with --out the --simulation directory first")
-    wheelset = simulation_wheelset()
+    # As the simulation's table contact: one load, its lookups balanced by the normal forces alone.
+    wheelset = railcontact.Wheelset(element_size=0.5e-3, loads=(simulation.WHEEL_LOAD_N,) * 2, mu=simulation.MU,
+                                    tangential_in_balance=False)
     wheelset.load_table(table_file)
     contact = simulation.Contact("table", wheelset, True)
     rows = []
