@@ -3,6 +3,7 @@
 // traction bound, and FastSim's march (Eq 2-8). Every user of the method — case runs, the
 // flexibility table, the studies, the benchmarks — builds it here.
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include <fmt/format.h>
@@ -94,13 +95,14 @@ NhFastSim::NhFastSim(const ContactPatch& patch, const NhFastSimOptions& options)
   const AdhesionSolution K2 = solve_full_adhesion(flexibility_patch.elements(), flexibility_patch.material(),
                                                   adhesion_options(options), kAdhesionTuning);
   const Matrix3& k = K2.creepage_matrix;
-  flexibilities_.flexibility = coarse_patch ? nh_fastsim_flexibility(FastSim(coarse), k, options.match)
-                                            : nh_fastsim_flexibility(fastsim_, k, options.match);
+  // FastSim on the patch K2 was solved on: its S D B (Eq 19) for the match and the coupling.
+  const std::optional<FastSim> coarse_fastsim = coarse_patch ? std::optional<FastSim>(FastSim(coarse)) : std::nullopt;
+  const FastSim& matched = coarse_patch ? *coarse_fastsim : fastsim_;
+  flexibilities_.flexibility = nh_fastsim_flexibility(matched, k, options.match);
   flexibilities_.f11_N = -k(0, 0);
   flexibilities_.f22_N = -k(1, 1);
   flexibilities_.f23_Nm = -k(1, 2);
-  if (options.creepage_coupling)
-    flexibilities_.coupling = creepage_coupling(coarse_patch ? FastSim(coarse) : fastsim_, k, flexibilities_.flexibility);
+  if (options.creepage_coupling) flexibilities_.coupling = creepage_coupling(matched, k, flexibilities_.flexibility);
   creepage_matrix_ = k;
   krylov_iterations_ = K2.iterations;
 }
