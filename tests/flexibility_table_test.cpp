@@ -430,6 +430,12 @@ TEST(FlexibilityTableFile, MalformedFilesNameTheProblem) {
   EXPECT_NE(error_for(replaced("\"target_elements\"", "\"extra\": 1, \"target_elements\"")).find("unknown key 'extra'"),
             std::string::npos);
   EXPECT_NE(error_for(replaced("\"f11_N\"", "\"f11\"")).find("nodes[0]"), std::string::npos);
+  // A creepage coupling beyond what a patch gives (ratios below 0.01, lengths below 1 mm measured) is
+  // refused, naming the node.
+  EXPECT_NE(error_for(replaced("\"xi_per_eta\": 0.0", "\"xi_per_eta\": 50.0"))
+                .find("nodes[0] (y = 1.0000 mm, Fz = 80000 N): creepage_coupling (50, 0 m, 0, 0 m) is not plausible"),
+            std::string::npos)
+      << error_for(replaced("\"xi_per_eta\": 0.0", "\"xi_per_eta\": 50.0"));
   EXPECT_NE(error_for(replaced("\"L1_m_per_Pa\": ", "\"L1_m_per_Pa\": \"x\", \"y\": ")).find("must be a number"),
             std::string::npos);
   EXPECT_NE(error_for(replaced("\"fnv1a64\": \"", "\"fnv1a64\": \"zz")).find("fnv1a64"), std::string::npos);

@@ -467,6 +467,16 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   huge["nodes"][1]["wheels"][1][0]["runtime_pressure_Pa"][3] = 1e306;
   EXPECT_NE(message(huge.dump()).find("the runtime pressures must lie in [0, 1e11] Pa"), std::string::npos)
       << message(huge.dump());
+  // A creepage coupling beyond what a patch gives (ratios below 0.01, lengths below 1 mm measured) or
+  // of the wrong length is refused, not marched.
+  huge = nlohmann::json::parse(wheelset_table_json(table()));
+  huge["nodes"][1]["wheels"][0][0]["creepage_coupling"][0] = 50.0;
+  EXPECT_NE(message(huge.dump()).find("nodes[1] wheel 0 patch 0: the creepage coupling's ratios must lie within ±1"),
+            std::string::npos)
+      << message(huge.dump());
+  huge["nodes"][1]["wheels"][0][0]["creepage_coupling"] = {0.0, 0.0};
+  EXPECT_NE(message(huge.dump()).find("creepage_coupling must be a list of 4 numbers"), std::string::npos)
+      << message(huge.dump());
   std::string unknown = wheelset_table_json(table());
   unknown.replace(unknown.find("\"area_m2\""), 9, "\"area_mm2\"");
   EXPECT_NE(message(unknown).find("missing key 'nodes[0].wheels[0][0].area_m2'"), std::string::npos) << message(unknown);

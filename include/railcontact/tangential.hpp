@@ -252,6 +252,12 @@ struct CreepageCoupling {
   [[nodiscard]] bool none() const {
     return xi_per_eta == 0.0 && xi_per_phi_m == 0.0 && eta_per_xi == 0.0 && eta_per_phi_m == 0.0;
   }
+  // What a table may hold: the ratios within ±1 and the lengths within ±0.1 m (measured on the
+  // shipped pairs: ratios below 0.01, lengths below 1 mm).
+  [[nodiscard]] bool plausible() const {
+    return std::abs(xi_per_eta) <= 1.0 && std::abs(eta_per_xi) <= 1.0 && std::abs(xi_per_phi_m) <= 0.1 &&
+           std::abs(eta_per_phi_m) <= 0.1;
+  }
   // The coupling of the same march on a copy of the patch whose origin lies at (d1, d2) (m) in the
   // patch's coordinates, the creepages taken there: FastSim marches the spin with L3, so where L1
   // or L2 differ from L3 its spin terms depend on the origin, and

@@ -48,6 +48,12 @@ void check_node(const FlexibilityTableNode& n, std::size_t index) {
   check("f11_N", n.f11_N, in_open(n.f11_N, 0.0, 1e12), "0 < f11 < 1e12 N");
   check("f22_N", n.f22_N, in_open(n.f22_N, 0.0, 1e12), "0 < f22 < 1e12 N");
   check("f23_Nm", n.f23_Nm, in_open(n.f23_Nm, 0.0, 1e10), "0 < f23 < 1e10 N m");
+  require(n.coupling.plausible(), [&] {
+    return fmt::format("flexibility table: nodes[{}] (y = {:.4f} mm, Fz = {:g} N): creepage_coupling ({:g}, {:g} m, "
+                       "{:g}, {:g} m) is not plausible (ratios within ±1, lengths within ±0.1 m)",
+                       index, n.y_m / kMm, n.vertical_load_N, n.coupling.xi_per_eta, n.coupling.xi_per_phi_m,
+                       n.coupling.eta_per_xi, n.coupling.eta_per_phi_m);
+  });
   check("normal_force_N", n.normal_force_N, n.normal_force_N > 0.0 && n.normal_force_N <= 1e8, "0 < F3 <= 1e8 N");
   check("contact_angle_rad", n.contact_angle_rad, std::abs(n.contact_angle_rad) <= 1.5, "|contact angle| <= 1.5 rad");
   check("spin_per_m", n.spin_per_m, std::abs(n.spin_per_m) <= 100.0, "|spin| <= 100 1/m");

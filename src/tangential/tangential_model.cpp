@@ -234,11 +234,10 @@ class StoredPatchModel final : public TangentialModelImpl {
     require(std::isfinite(lobe.x1_centre_m) && std::isfinite(lobe.x2_centre_m),
             "tangential model: a stored lobe's centre must be finite");
     require(lobe.patch.elements().count() > 0, "tangential model: a stored lobe has no element in contact");
-    const CreepageCoupling& k = lobe.coupling;
-    require(std::isfinite(k.xi_per_eta) && std::isfinite(k.xi_per_phi_m) && std::isfinite(k.eta_per_xi) &&
-                std::isfinite(k.eta_per_phi_m),
-            "tangential model: a stored lobe's creepage coupling must be finite");
-    return {FastSim(lobe.patch, bound), L, lobe.x1_centre_m, lobe.x2_centre_m, k};
+    require(lobe.coupling.plausible(),
+            "tangential model: a stored lobe's creepage coupling must have its ratios within ±1 and its lengths "
+            "within ±0.1 m");
+    return {FastSim(lobe.patch, bound), L, lobe.x1_centre_m, lobe.x2_centre_m, lobe.coupling};
   }
   // One lobe's solution for the creepages at the patch's origin: at its centre, M3 moved back.
   static TangentialSolution one_lobe(const Lobe& lobe, const Creepage& c, double mu, TangentialOutput output) {

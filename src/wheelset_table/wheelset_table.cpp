@@ -124,6 +124,20 @@ void check_patch(const WheelsetTablePatch& p, std::size_t node, int wheel, std::
   });
 }
 
+// Every runtime copy's creepage coupling (CreepageCoupling::plausible).
+void check_couplings(const WheelsetTablePatch& p, std::size_t node, int wheel, std::size_t k) {
+  bool plausible = p.coupling.plausible();
+  for (const WheelsetTableLobe& l : p.lobes) plausible = plausible && l.coupling.plausible();
+  if (p.conformal) {
+    plausible = plausible && p.conformal->coupling.plausible();
+    for (const WheelsetTableLobe& l : p.conformal->lobes) plausible = plausible && l.coupling.plausible();
+  }
+  if (!plausible)
+    throw Error(fmt::format("wheelset table: nodes[{}] wheel {} patch {}: the creepage coupling's ratios must lie "
+                            "within ±1 and its lengths within ±0.1 m",
+                            node, wheel, k));
+}
+
 // The interval of `grid` holding x and the weight of its upper node; a grid of one value holds
 // only that value.
 struct Bracket {
@@ -624,6 +638,7 @@ WheelsetTable::WheelsetTable(WheelsetTableGrid grid, std::vector<WheelsetTableNo
       for (std::size_t k = 0; k < node.wheels[w].size(); ++k) {
         const WheelsetTablePatch& p = node.wheels[w][k];
         check_patch(p, n, w, k);
+        check_couplings(p, n, w, k);
         runtime_[n][w].push_back(runtime_patch<RuntimePatch>(p, w == 1 ? -1.0 : 1.0, material_, bound_));
       }
     }
