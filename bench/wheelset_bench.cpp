@@ -7,6 +7,7 @@
 //                              the time step's lateral steps; ...Balanced: the roll balanced too
 //   BM_WheelsetStepExact       the time step with the exact solver instead of nH-FastSim
 //   BM_WheelsetStepFullK2      the time step with nH-FastSim's K2 on the patch itself (coarsening 1)
+//   BM_WheelsetStepRigidSlip   the time step with the rigid-slip direction instead of the elastic slip
 //   BM_WheelsetStepConformal   the time step on conformal contact surfaces (docs/WHEELSET.md §4)
 //   BM_WheelsetStage...        the time step's stages one by one (see stage_inputs below)
 //   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp; ...Radial:
@@ -85,11 +86,13 @@ double stepped_y_m(double y0_m, long step) {
 }
 
 void time_step(benchmark::State& state, TangentialSolver solver, int coarsening = 0,
-               ContactSurface surface = ContactSurface::planar) {
+               ContactSurface surface = ContactSurface::planar,
+               SlipDirection slip_direction = WheelsetOptions{}.nh_fastsim.bound.slip_direction) {
   WheelsetState s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
   const double y0 = s.position.lateral_displacement_m;
   WheelsetOptions options = by_position(solver, coarsening);
   options.contact_surface = surface;
+  options.nh_fastsim.bound.slip_direction = slip_direction;
   Wheelset wheelset(track(), options);
   WheelsetResult r = wheelset.evaluate(s);
   long step = 0;
@@ -104,6 +107,11 @@ void time_step(benchmark::State& state, TangentialSolver solver, int coarsening 
 void BM_WheelsetTimeStep(benchmark::State& state) { time_step(state, TangentialSolver::nh_fastsim); }
 void BM_WheelsetStepExact(benchmark::State& state) { time_step(state, TangentialSolver::exact); }
 void BM_WheelsetStepFullK2(benchmark::State& state) { time_step(state, TangentialSolver::nh_fastsim, 1); }
+// The time step with the rigid-slip direction instead of the default elastic slip (the cost of the
+// full-slip iteration where a patch slips everywhere).
+void BM_WheelsetStepRigidSlip(benchmark::State& state) {
+  time_step(state, TangentialSolver::nh_fastsim, 0, ContactSurface::planar, SlipDirection::rigid_slip);
+}
 // The same steps on conformal contact surfaces (docs/WHEELSET.md §4 "Conformal contact").
 void BM_WheelsetStepConformal(benchmark::State& state) {
   time_step(state, TangentialSolver::nh_fastsim, 0, ContactSurface::conformal);
@@ -270,6 +278,7 @@ BENCHMARK(BM_WheelsetByLoadBalanced)->Arg(0)->Arg(-6500)->Unit(benchmark::kMilli
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepConformal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStepRigidSlip)->Arg(0)->Arg(-6500)->Arg(-6600)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetTable)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableRadial)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableBalanced)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);

@@ -129,8 +129,8 @@ TEST(CApi, SlipDirectionReachesNhFastSim) {
   rc_settings s;
   rc_settings_default(&s);
   EXPECT_EQ(s.slip_direction, RC_SLIP_RADIAL);
-  rc_forces forces[3]{};
-  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED, RC_SLIP_RIGID}) {
+  rc_forces forces[4]{};
+  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED, RC_SLIP_RIGID, RC_SLIP_ELASTIC}) {
     Solver solver;
     rc_settings_default(&s);
     s.mesh_value = kElements;
@@ -149,10 +149,10 @@ TEST(CApi, SlipDirectionReachesNhFastSim) {
 
   Solver solver;
   rc_settings_default(&s);
-  s.slip_direction = 3;
+  s.slip_direction = 4;
   EXPECT_EQ(rc_solver_set_settings(solver.h, &s), RC_INVALID_INPUT);
-  EXPECT_NE(solver.error().find("rc_settings.slip_direction = 3 is not an rc_slip_direction (0 radial, 1 "
-                                "flexibility-weighted, 2 rigid-slip)"),
+  EXPECT_NE(solver.error().find("rc_settings.slip_direction = 4 is not an rc_slip_direction (0 radial, 1 "
+                                "flexibility-weighted, 2 rigid-slip, 3 elastic-slip)"),
             std::string::npos)
       << solver.error();
 }

@@ -355,15 +355,15 @@ TEST(CApiWheelset, TwoHandlesOnTwoThreadsEqualSerial) {
   }
 }
 
-// rc_wheelset_options.slip_direction: rigid-slip by default (the C++ wheelset's), the others on
+// rc_wheelset_options.slip_direction: elastic-slip by default (the C++ wheelset's), the others on
 // request; each equals railcontact::Wheelset with that slip direction, and on the flange (y = -7 mm,
 // deep slip with spin) they differ.
 TEST(CApiWheelset, SlipDirectionEqualsTheCppWheelset) {
   rc_wheelset_options o;
   rc_wheelset_options_default(&o);
-  EXPECT_EQ(o.slip_direction, RC_SLIP_RIGID);
-  double right[3][3] = {};  // the right wheel's force (track axes), per slip direction
-  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED, RC_SLIP_RIGID}) {
+  EXPECT_EQ(o.slip_direction, RC_SLIP_ELASTIC);
+  double right[4][3] = {};  // the right wheel's force (track axes), per slip direction
+  for (const int direction : {RC_SLIP_RADIAL, RC_SLIP_FLEXIBILITY_WEIGHTED, RC_SLIP_RIGID, RC_SLIP_ELASTIC}) {
     CWheelset c(true, 0);
     ASSERT_EQ(rc_wheelset_get_options(c.h, &o), RC_OK);
     o.slip_direction = direction;

@@ -129,7 +129,7 @@ INSTANTIATE_TEST_SUITE_P(Run, CliBadInput,
                          ::testing::Values(std::pair{"run /nonexistent/case.toml", "cannot read"},
                                            std::pair{"run --slip-direction sideways",
                                                      "--slip-direction: unknown slip direction 'sideways' (radial, "
-                                                     "flexibility-weighted, rigid-slip)"},
+                                                     "flexibility-weighted, rigid-slip, elastic-slip)"},
                                            std::pair{"run --slip-direction ''",
                                                      "--slip-direction: unknown slip direction ''"},
                                            std::pair{"run " RAILCONTACT_SOURCE_DIR "/tests/data/unknown_key.toml",

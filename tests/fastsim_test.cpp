@@ -570,6 +570,8 @@ TEST(FastSimFullSlip, RigidSlipTractionOpposesTheRigidSlipWithASmallSpinFlexibil
   }
   EXPECT_EQ(parse_slip_direction("rigid-slip"), SlipDirection::rigid_slip);
   EXPECT_STREQ(slip_direction_name(SlipDirection::rigid_slip), "rigid-slip");
+  EXPECT_EQ(parse_slip_direction("elastic-slip"), SlipDirection::elastic_slip);
+  EXPECT_STREQ(slip_direction_name(SlipDirection::elastic_slip), "elastic-slip");
 }
 
 // Simplified theory on a Hertzian patch, closed form (derivation).

@@ -137,15 +137,20 @@ TEST(WheelsetTable, APatchOfTwoLobesIsSolvedPerLobeAsOnTheFly) {
       EXPECT_NEAR(got.wheels[w].patches.front().forces().M3_Nm, expected.wheels[w].patches.front().forces().M3_Nm, 1e-9 * 100e3);
     }
   }
-  // The lobes dropped in the file: one set of flexibilities for the whole patch.
-  const std::string text = wheelset_table_json(t);
+  // The lobes dropped in the file: one set of flexibilities for the whole patch. With the
+  // rigid-slip direction: with the elastic slip (the default) this state's patch slips everywhere
+  // and takes Coulomb's law along the elastic slip, which does not depend on the flexibilities.
+  WheelsetTableOptions rigid_options = coarse_table_options(100000);
+  rigid_options.wheelset.nh_fastsim.bound.slip_direction = SlipDirection::rigid_slip;
+  const WheelsetTable rigid = build_wheelset_table(track(), {{-5.3e-3, -5.2e-3}, {0.0}, {100e3}}, rigid_options);
+  const std::string text = wheelset_table_json(rigid);
   const WheelsetTable back = parse_wheelset_table(text, "lobes.json");
   EXPECT_EQ(back.node(0, 0, 0).wheels[0][0].lobes.size(), 2u);
   nlohmann::json without = nlohmann::json::parse(text);
   for (auto& n : without["nodes"]) n["wheels"][0][0]["lobes"] = nlohmann::json::array();
   const WheelsetTable whole = parse_wheelset_table(without.dump(), "whole.json");
   const WheelsetState state = moving_state(-5.3e-3);
-  const double a = t.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu).wheels[0].force_track_N[0];
+  const double a = rigid.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu).wheels[0].force_track_N[0];
   const double b = whole.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu).wheels[0].force_track_N[0];
   EXPECT_EQ(back.evaluate(state, WheelLoads{100e3, 100e3, false}, kMu).wheels[0].force_track_N[0], a);
   EXPECT_GT(std::abs(a - b), 0.01 * kMu * 100e3) << a << " " << b;
@@ -338,7 +343,7 @@ TEST(WheelsetTable, MismatchesNameEverySettingItWasNotBuiltFor) {
   is(1, WheelsetTableSetting::element_size, "2 mm", "0.5 mm");
   is(2, WheelsetTableSetting::flexibility_coarsening, "1", "0 (automatic)");
   is(3, WheelsetTableSetting::collocation_offset, "0.5", "0");
-  is(4, WheelsetTableSetting::slip_direction, "radial", "rigid-slip");
+  is(4, WheelsetTableSetting::slip_direction, "radial", "elastic-slip");
   EXPECT_EQ(m[5].setting, WheelsetTableSetting::traction_bound_skew);
   // A table of an older recipe (format 3: not recorded) differs from this railcontact's.
   nlohmann::json old = before_format_6(nlohmann::json::parse(wheelset_table_json(table())));
@@ -509,7 +514,7 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   EXPECT_EQ(parse_wheelset_table(slip.dump(), "t.json").metadata().nh_fastsim_recipe, 0);
   EXPECT_EQ(slip["slip_direction"], slip_direction_name(table().bound().slip_direction));
   slip["slip_direction"] = "sideways";
-  EXPECT_NE(message(slip.dump()).find("slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted, rigid-slip)"),
+  EXPECT_NE(message(slip.dump()).find("slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted, rigid-slip, elastic-slip)"),
             std::string::npos)
       << message(slip.dump());
   slip.erase("slip_direction");

@@ -644,7 +644,7 @@ TEST(WheelsetCli, RefusesBadCaseFiles) {
   EXPECT_EQ(missing.exit_code, 3);
   const CommandResult slip = run_cli("wheelset " + write("slip.toml", "[solvers]\nslip_direction = \"sideways\"\n"));
   EXPECT_EQ(slip.exit_code, 2);
-  expect_one_error_line(slip, "[solvers] slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted, rigid-slip)");
+  expect_one_error_line(slip, "[solvers] slip_direction: unknown slip direction 'sideways' (radial, flexibility-weighted, rigid-slip, elastic-slip)");
 }
 
 // --slip-direction and [solvers] slip_direction reach nH-FastSim: on the flange the rigid-slip F1
@@ -659,7 +659,7 @@ TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
   };
   const nlohmann::json radial = flange_json(" --slip-direction radial");
   const nlohmann::json weighted = flange_json("");
-  EXPECT_EQ(WheelsetOptions{}.nh_fastsim.bound.slip_direction, SlipDirection::rigid_slip);
+  EXPECT_EQ(WheelsetOptions{}.nh_fastsim.bound.slip_direction, SlipDirection::elastic_slip);
   const std::filesystem::path case_path = dir.path() / "flange.toml";
   std::ofstream(case_path) << "[solvers]\nslip_direction = \"radial\"\n";
   const nlohmann::json from_case = flange_json(" " + case_path.string());
@@ -675,7 +675,7 @@ TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
   const nlohmann::json kalker_weighted_json = nlohmann::json::parse(kalker_weighted.out);
   EXPECT_EQ(kalker_json["wheels"], kalker_weighted_json["wheels"]);
   EXPECT_EQ(kalker_json["nh_fastsim_slip_direction"], "radial");
-  EXPECT_EQ(kalker_weighted_json["nh_fastsim_slip_direction"], "rigid-slip");
+  EXPECT_EQ(kalker_weighted_json["nh_fastsim_slip_direction"], "elastic-slip");
 
   WheelsetOptions options;
   options.element_size_m = 0.4e-3;
@@ -686,7 +686,7 @@ TEST(WheelsetCli, SlipDirectionFromTheOptionAndTheCaseFile) {
 
   const CommandResult bad = run_cli("wheelset --slip-direction sideways");
   EXPECT_EQ(bad.exit_code, 2);
-  expect_one_error_line(bad, "--slip-direction: unknown slip direction 'sideways' (radial, flexibility-weighted, rigid-slip)");
+  expect_one_error_line(bad, "--slip-direction: unknown slip direction 'sideways' (radial, flexibility-weighted, rigid-slip, elastic-slip)");
 }
 
 }  // namespace

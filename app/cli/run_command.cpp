@@ -22,7 +22,7 @@ struct RunArguments {
   std::string case_file;
   std::string out;
   std::string flextable;
-  std::optional<std::string> slip_direction;  // --slip-direction (radial, flexibility-weighted, rigid-slip): overrides the case file's
+  std::optional<std::string> slip_direction;  // --slip-direction (radial, flexibility-weighted, rigid-slip, elastic-slip): overrides the case file's
   bool json = false;
 };
 
@@ -75,8 +75,8 @@ void add_run_command(CLI::App& app, Action& action) {
                   "instead of K2 (wheel-rail cases)");
   cmd->add_option_function<std::string>(
       "--slip-direction", [args](const std::string& name) { args->slip_direction = name; },
-      "nh-fastsim's slipping traction: radial (Eq 8, the default), flexibility-weighted or rigid-slip (for flange "
-      "patches; docs/FASTSIM.md \"The slip direction\"); overrides the case file's [solvers] slip_direction");
+      "nh-fastsim's slipping traction: radial (Eq 8, the default), flexibility-weighted, rigid-slip or "
+      "elastic-slip (for flange patches; docs/FASTSIM.md \"The slip direction\"); overrides the case file's [solvers] slip_direction");
   cmd->callback([args, &action] { action = [args] { return run(*args); }; });
 }
 

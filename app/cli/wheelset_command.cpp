@@ -43,7 +43,7 @@ struct WheelsetArguments {
   std::vector<std::string> solvers;
   bool json = false;
   int flexibility_coarsening = 0;
-  std::string slip_direction;  // --slip-direction (radial, flexibility-weighted, rigid-slip)
+  std::string slip_direction;  // --slip-direction (radial, flexibility-weighted, rigid-slip, elastic-slip)
   std::string sweep_y_m;  // FROM:TO:STEP in m
   double wheel_angular_velocity_rad_per_s = 0.0;
   bool free_rolling = false;
@@ -584,9 +584,10 @@ void add_wheelset_command(CLI::App& app, Action& action) {
   sub->add_option("--flexibility-coarsening", args->flexibility_coarsening,
                   "nH-FastSim: K2 on the patch coarsened in square blocks of this factor (0: automatic, 1: the patch itself)");
   sub->add_option("--slip-direction", args->slip_direction,
-                  "nH-FastSim's slipping traction: rigid-slip (default; within 3 % on the flange, in full slip under "
-                  "spin too), flexibility-weighted (without the turn to the rigid slip) or radial (Eq 8, the paper's); "
-                  "docs/FASTSIM.md \"The slip direction\"");
+                  "nH-FastSim's slipping traction: elastic-slip (default: rigid-slip, and where a patch slips "
+                  "everywhere Coulomb's law along the elastic slip), rigid-slip (within 3 % on the flange, in full "
+                  "slip under spin too), flexibility-weighted (without the turn to the rigid slip) or radial (Eq 8, "
+                  "the paper's); docs/FASTSIM.md \"The slip direction\"");
   sub->add_option("--sweep-y-m", args->sweep_y_m,
                   "sweep the lateral displacement, FROM:TO:STEP in m (+ to the left; e.g. 0:-0.007:0.0001): CSV and "
                   "figures in --out");

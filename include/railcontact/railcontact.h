@@ -116,9 +116,12 @@ typedef enum rc_slip_direction {
   RC_SLIP_FLEXIBILITY_WEIGHTED = 1, /* towards the slip of FastSim's elastic law: within 3 % of the
                                        exact solver on flange patches, where Eq 8 misses F1 by up
                                        to 4 % of mu F3 */
-  RC_SLIP_RIGID = 2                 /* flexibility-weighted, turning to the rigid slip's own spin as
-                                       an element slides (the wheelset's default): flange patches
-                                       in full slip under spin within 3 % too */
+  RC_SLIP_RIGID = 2,                /* flexibility-weighted, turning to the rigid slip's own spin as
+                                       an element slides: flange patches in full slip under spin
+                                       within 3 % too */
+  RC_SLIP_ELASTIC = 3               /* rigid, and where the patch slips everywhere Coulomb's law
+                                       along the elastic slip (the wheelset's default): flange
+                                       patches in full slip within 0.2 % */
 } rc_slip_direction;
 
 /* All settings of a solver handle. Fill with rc_settings_default, change fields, pass to
@@ -445,7 +448,7 @@ typedef struct rc_wheelset_options {
                                   forces in the balance 1e-5 of the load); 0: every evaluation
                                   from a cold start (its numbers depend
                                   on the state only, as in the batch) */
-  int slip_direction;          /* nh-fastsim: rc_slip_direction; default RC_SLIP_RIGID (the
+  int slip_direction;          /* nh-fastsim: rc_slip_direction; default RC_SLIP_ELASTIC (the
                                   wheelset's, for its flange) */
   int solver_count;            /* 1 .. 4: the tangential solvers run on every patch */
   int solvers[4];              /* rc_method values, distinct; the first one's forces make the

@@ -131,8 +131,10 @@ struct WheelsetOptions {
   // the exact solver also on the flange, where Eq 8 misses by up to 4 %, and in full slip under spin,
   // where the flexibility-weighted direction misses by up to 30 %; and with the creepage coupling
   // (docs/FASTSIM.md "The creepage coupling"): K2's F1 per eta and spin, F2 per xi, on patches without
-  // symmetry (flanges, comet-shaped treads).
-  NhFastSimOptions nh_fastsim{.bound = {TractionBound{}.skew, SlipDirection::rigid_slip}, .creepage_coupling = true};
+  // symmetry (flanges, comet-shaped treads); and where a patch slips everywhere, Coulomb's law along
+  // the elastic slip (SlipDirection::elastic_slip; docs/FASTSIM.md "Where the exact solver slips
+  // everywhere: the elastic slip").
+  NhFastSimOptions nh_fastsim{.bound = {TractionBound{}.skew, SlipDirection::elastic_slip}, .creepage_coupling = true};
   RollingOptions rolling{};
   // The normal solver's relative residual: 5e-6 in a wheelset (1e-10 for a single patch). Along
   // 60 time steps of 1 µm (0.2 mm elements, y = 0 and −6.5 mm, by position and by load) the forces

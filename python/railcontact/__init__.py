@@ -33,7 +33,7 @@ abi_version = _core.abi_version()
 
 METHODS = {"nh-fastsim": 0, "fastsim": 1, "exact": 2, "exact-regularised": 3}
 #: nH-FastSim's slipping traction (the C API's rc_slip_direction; docs/FASTSIM.md "The slip direction").
-SLIP_DIRECTIONS = {"radial": 0, "flexibility-weighted": 1, "rigid-slip": 2}
+SLIP_DIRECTIONS = {"radial": 0, "flexibility-weighted": 1, "rigid-slip": 2, "elastic-slip": 3}
 #: how a wheelset patch's reference point and contact angle are averaged (rc_reference_weighting).
 REFERENCE_WEIGHTINGS = {"squared-gap": 0, "depth": 1}
 #: each wheelset patch's contact surface (rc_contact_surface, docs/WHEELSET.md §4).
@@ -532,9 +532,10 @@ class Wheelset:
     load; loads=None: by position (the state's z and roll give the overlap); balance_roll [False];
     tangential_in_balance [True]; allow_wheel_lift [False] (else NoContactError for a lifted
     wheel); warm_start [True] (each evaluation starts from the previous one's pressures; False:
-    every evaluation from a cold start, as in batch()); slip_direction ["rigid-slip"]
-    (nh-fastsim's slipping traction, within 3 % of the exact solver on the flange, also in full slip
-    under spin; "flexibility-weighted": without the turn to the rigid slip; "radial": Eq 8).
+    every evaluation from a cold start, as in batch()); slip_direction ["elastic-slip"]
+    (nh-fastsim's slipping traction: as "rigid-slip", and where a patch slips everywhere Coulomb's
+    law along the elastic slip, within 0.2 % of the exact solver there;
+    "rigid-slip": within 3 % on the flange, also in full slip under spin; "flexibility-weighted": without the turn to the rigid slip; "radial": Eq 8).
     balance_solver [None: the first of solvers] (the solver whose forces the load balance and free
     rolling use, one of solvers); reference_weighting ["squared-gap"] (each patch's reference point
     and contact angle as Kalker's CONTACT weights them; "depth": by the overlap depth, smoother onto
@@ -564,7 +565,7 @@ class Wheelset:
                  poisson_ratio: float = 0.3, element_size: float = 0.2e-3, solvers=("nh-fastsim",),
                  loads=(98100.0, 98100.0), balance_roll: bool = False, tangential_in_balance: bool = True,
                  allow_wheel_lift: bool = False, warm_start: bool = True,
-                 slip_direction: str = "rigid-slip", balance_solver=None,
+                 slip_direction: str = "elastic-slip", balance_solver=None,
                  reference_weighting: str = "squared-gap", contact_surface: str = "planar",
                  nominal_radius_at=None):
         if isinstance(solvers, str):

@@ -177,18 +177,22 @@ def test_two_wheelsets_on_two_threads_equal_serial():
 
 
 def test_slip_direction_on_the_flange():
-    """The wheelset's default is the rigid-slip direction; "flexibility-weighted" leaves out its turn
-    to the rigid slip and "radial" gives Eq 8: on the flange (y = -7 mm, deep slip with spin) the
+    """The wheelset's default is the elastic-slip direction; "rigid-slip" leaves out Coulomb's law
+    along the elastic slip where a patch slips everywhere, "flexibility-weighted" also the turn to
+    the rigid slip, and "radial" gives Eq 8: on the flange (y = -7 mm, deep slip with spin) the
     right wheel's force differs by more than 100 N between each two."""
     default = railcontact.Wheelset(element_size=COARSE, warm_start=False)
+    elastic = railcontact.Wheelset(element_size=COARSE, warm_start=False, slip_direction="elastic-slip")
     rigid = railcontact.Wheelset(element_size=COARSE, warm_start=False, slip_direction="rigid-slip")
     weighted = railcontact.Wheelset(element_size=COARSE, warm_start=False, slip_direction="flexibility-weighted")
     radial = railcontact.Wheelset(element_size=COARSE, warm_start=False, slip_direction="radial")
     d = default.evaluate(y=-7e-3).right.force_track_N
+    e = elastic.evaluate(y=-7e-3).right.force_track_N
     r = rigid.evaluate(y=-7e-3).right.force_track_N
     a = weighted.evaluate(y=-7e-3).right.force_track_N
     b = radial.evaluate(y=-7e-3).right.force_track_N
-    assert list(d) == list(r)
+    assert list(d) == list(e)
+    assert math.hypot(e[0] - r[0], e[1] - r[1]) > 100.0
     assert math.hypot(a[0] - b[0], a[1] - b[1]) > 100.0
     assert math.hypot(r[0] - a[0], r[1] - a[1]) > 100.0
     with pytest.raises(railcontact.InvalidInputError, match="slip_direction = 'sideways' is not one of radial"):
@@ -430,7 +434,7 @@ def test_a_table_is_used_only_with_the_settings_it_was_built_for(tabled):
                                  ({"element_size": 0.5e-3, "youngs_modulus": 1e11},
                                   "material E = 1e\\+11 Pa, nu = 0.3 .* differs from the table's E = 2.1e\\+11 Pa"),
                                  ({"element_size": 0.5e-3, "slip_direction": "radial"},
-                                  "slip-direction radial .* differs from the table's rigid-slip")):
+                                  "slip-direction radial .* differs from the table's elastic-slip")):
             with pytest.raises(railcontact.InvalidInputError, match=message):
                 railcontact.Wheelset(**options).load_table(path)
     finally:

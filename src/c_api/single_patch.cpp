@@ -171,10 +171,11 @@ SlipDirection slip_direction_of(int value, const char* structure) {
     case RC_SLIP_RADIAL: return SlipDirection::radial;
     case RC_SLIP_FLEXIBILITY_WEIGHTED: return SlipDirection::flexibility_weighted;
     case RC_SLIP_RIGID: return SlipDirection::rigid_slip;
+    case RC_SLIP_ELASTIC: return SlipDirection::elastic_slip;
     default: break;
   }
   throw Error(fmt::format("{}.slip_direction = {} is not an rc_slip_direction (0 radial, 1 flexibility-weighted, "
-                          "2 rigid-slip)",
+                          "2 rigid-slip, 3 elastic-slip)",
                           structure, value));
 }
 

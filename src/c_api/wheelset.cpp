@@ -413,6 +413,7 @@ rc_status rc_wheelset_options_default(rc_wheelset_options* o) {
     case rc::SlipDirection::radial: o->slip_direction = RC_SLIP_RADIAL; break;
     case rc::SlipDirection::flexibility_weighted: o->slip_direction = RC_SLIP_FLEXIBILITY_WEIGHTED; break;
     case rc::SlipDirection::rigid_slip: o->slip_direction = RC_SLIP_RIGID; break;
+    case rc::SlipDirection::elastic_slip: o->slip_direction = RC_SLIP_ELASTIC; break;
   }
   o->solver_count = 1;
   o->solvers[0] = RC_METHOD_NH_FASTSIM;

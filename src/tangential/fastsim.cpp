@@ -30,6 +30,7 @@
 
 #include "railcontact/error.hpp"
 #include "tangential/fastsim_strips.hpp"
+#include "tangential/full_slip.hpp"
 #include "tangential/matrix3_eigen.hpp"
 
 namespace railcontact {
@@ -94,6 +95,7 @@ struct detail::FastSimLayout {
   TractionBound bound;
   std::vector<double> bound_pressure_Pa;
   Matrix3 adhesion_force_matrix;              // S D B (Eq 19)
+  std::shared_ptr<const FullSlip> full_slip;  // SlipDirection::elastic_slip only (full_slip.hpp)
 };
 
 namespace {
@@ -358,7 +360,7 @@ struct Limiting {
 };
 Limiting limiting(const detail::FastSimLayout& layout, const MarchCoefficients& k, bool rigid_corrections) {
   const SlipDirection d = layout.bound.slip_direction;
-  const bool rigid = d == SlipDirection::rigid_slip && rigid_corrections;
+  const bool rigid = (d == SlipDirection::rigid_slip || d == SlipDirection::elastic_slip) && rigid_corrections;
   return {rigid || (d != SlipDirection::radial && k.rho1 != k.rho2), rigid};
 }
 
@@ -441,6 +443,26 @@ FastSimResult recorded_result(const TangentialForces& forces, MarchRecord record
   return result;
 }
 
+// SlipDirection::elastic_slip: the march's forces (and tractions, when recorded) moved towards
+// Coulomb's law along the elastic slip by the full-slip solver's weight (full_slip.hpp); the
+// adhesion fraction scaled by 1 − weight (the slip flags stay the march's).
+void blend_full_slip(const detail::FullSlipTractions& full, TangentialForces& forces, double& adhesion_fraction,
+                     FastSimResult* fields) {
+  if (!(full.weight > 0.0)) return;
+  const double w = full.weight;
+  forces.F1_N += w * (full.forces.F1_N - forces.F1_N);
+  forces.F2_N += w * (full.forces.F2_N - forces.F2_N);
+  forces.M3_Nm += w * (full.forces.M3_Nm - forces.M3_Nm);
+  adhesion_fraction *= 1.0 - w;
+  if (fields != nullptr) {
+    for (std::size_t e = 0; e < fields->p1_Pa.size(); ++e) {
+      fields->p1_Pa[e] += w * (full.p1_Pa[e] - fields->p1_Pa[e]);
+      fields->p2_Pa[e] += w * (full.p2_Pa[e] - fields->p2_Pa[e]);
+    }
+  }
+  require_finite_forces(forces);
+}
+
 }  // namespace
 
 const char* slip_direction_name(SlipDirection direction) {
@@ -448,14 +470,17 @@ const char* slip_direction_name(SlipDirection direction) {
     case SlipDirection::radial: return "radial";
     case SlipDirection::flexibility_weighted: return "flexibility-weighted";
     case SlipDirection::rigid_slip: return "rigid-slip";
+    case SlipDirection::elastic_slip: return "elastic-slip";
   }
   return "?";
 }
 
 SlipDirection parse_slip_direction(const std::string& name) {
-  for (SlipDirection d : {SlipDirection::radial, SlipDirection::flexibility_weighted, SlipDirection::rigid_slip})
+  for (SlipDirection d : {SlipDirection::radial, SlipDirection::flexibility_weighted, SlipDirection::rigid_slip,
+                          SlipDirection::elastic_slip})
     if (name == slip_direction_name(d)) return d;
-  throw Error(fmt::format("unknown slip direction '{}' (radial, flexibility-weighted, rigid-slip)", name));
+  throw Error(
+      fmt::format("unknown slip direction '{}' (radial, flexibility-weighted, rigid-slip, elastic-slip)", name));
 }
 
 FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
@@ -463,10 +488,10 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
   require(std::isfinite(bound.skew) && bound.skew >= 0.0 && bound.skew <= 1.0,
           [&] { return fmt::format("fastsim: the traction bound's skew = {} must lie in [0, 1]", bound.skew); });
   require(bound.slip_direction == SlipDirection::radial || bound.slip_direction == SlipDirection::flexibility_weighted ||
-              bound.slip_direction == SlipDirection::rigid_slip,
+              bound.slip_direction == SlipDirection::rigid_slip || bound.slip_direction == SlipDirection::elastic_slip,
           [&] {
             return fmt::format("fastsim: the slip direction {} is not one of radial (0), flexibility-weighted (1), "
-                               "rigid-slip (2)",
+                               "rigid-slip (2), elastic-slip (3)",
                                static_cast<int>(bound.slip_direction));
           });
   const Mesh& mesh = patch.mesh();
@@ -523,6 +548,7 @@ FastSim::FastSim(const ContactPatch& patch, TractionBound bound) {
                                 std::fabs(mesh.x1(run.i1_leading)) + 0.5 * mesh.dx1_m,
                                 std::fabs(mesh.x2(run.i2)) + 0.5 * mesh.dx2_m});
   layout->adhesion_force_matrix = detail::to_matrix3(marched_adhesion_force_matrix(*layout));
+  if (bound.slip_direction == SlipDirection::elastic_slip) layout->full_slip = std::make_shared<detail::FullSlip>(patch);
   layout_ = std::move(layout);
 }
 
@@ -533,6 +559,7 @@ const Matrix3& FastSim::adhesion_force_matrix() const { return layout_->adhesion
 
 TangentialForces FastSim::forces(const Creepage& creepage, const Flexibility& flexibility, double mu,
                                  const CreepageCoupling& coupling) const {
+  if (layout_->full_slip) return forces_and_adhesion(creepage, flexibility, mu, coupling).forces;
   const MarchCoefficients k = checked_coefficients(creepage, flexibility, mu, coupling);
   require_marchable(k, layout_->reach_m, creepage, flexibility);
   const TangentialForces forces = march_for<false>(*layout_, creepage, k, mu, nullptr);
@@ -550,6 +577,9 @@ FastSimResult FastSim::forces_and_adhesion(const Creepage& creepage, const Flexi
   require_finite_forces(result.forces);
   const std::size_t n = layout_->element_count;
   result.adhesion_fraction = static_cast<double>(n - count.slipping) / static_cast<double>(n);
+  if (layout_->full_slip)
+    blend_full_slip(layout_->full_slip->solve(creepage, mu, result.adhesion_fraction), result.forces,
+                    result.adhesion_fraction, nullptr);
   return result;
 }
 
@@ -559,7 +589,11 @@ FastSimResult FastSim::solve(const Creepage& creepage, const Flexibility& flexib
   require_marchable(k, layout_->reach_m, creepage, flexibility);
   MarchRecord record = empty_record(layout_->element_count);
   const TangentialForces forces = march_for<true>(*layout_, creepage, k, mu, &record);
-  return recorded_result(forces, std::move(record));
+  FastSimResult result = recorded_result(forces, std::move(record));
+  if (layout_->full_slip)
+    blend_full_slip(layout_->full_slip->solve(creepage, mu, result.adhesion_fraction), result.forces,
+                    result.adhesion_fraction, &result);
+  return result;
 }
 
 namespace {
@@ -610,7 +644,8 @@ StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layou
   lanes.c1.resize(layout.lane_strip.size());
   lanes.c2.resize(layout.lane_strip.size());
   lanes.c3.resize(layout.lane_strip.size());
-  const bool rigid = layout.bound.slip_direction == SlipDirection::rigid_slip;
+  const bool rigid = layout.bound.slip_direction == SlipDirection::rigid_slip ||
+                     layout.bound.slip_direction == SlipDirection::elastic_slip;
   if (rigid) {
     lanes.d1.resize(layout.lane_strip.size());
     lanes.d2.resize(layout.lane_strip.size());
@@ -643,7 +678,11 @@ FastSimResult FastSim::solve(const StripCreepages& creepages, const Flexibility&
   const TangentialForces forces = l.rigid      ? march<true, true, true, true, true, true>(layout, k, mu, &record, &lanes)
                                   : l.weighted ? march<true, true, true, true, true>(layout, k, mu, &record, &lanes)
                                                : march<true, false, true, true, true>(layout, k, mu, &record, &lanes);
-  return recorded_result(forces, std::move(record));
+  FastSimResult result = recorded_result(forces, std::move(record));
+  if (layout.full_slip)
+    blend_full_slip(layout.full_slip->solve(creepages, mu, result.adhesion_fraction), result.forces,
+                    result.adhesion_fraction, &result);
+  return result;
 }
 
 StripForces FastSim::strip_forces(const StripCreepages& creepages, const Flexibility& flexibility, double mu,
@@ -663,6 +702,26 @@ StripForces FastSim::strip_forces(const StripCreepages& creepages, const Flexibi
   require_finite_forces(out.forces);
   const std::size_t n = layout.element_count;
   out.adhesion_fraction = static_cast<double>(n - count.slipping) / static_cast<double>(n);
+  if (layout.full_slip) {
+    const detail::FullSlipTractions full = layout.full_slip->solve(creepages, mu, out.adhesion_fraction);
+    if (full.weight > 0.0) {
+      // Each strip's sums blended as the forces are.
+      const ContactPatch& patch = layout.full_slip->patch();
+      const auto n1 = static_cast<std::size_t>(patch.mesh().n1);
+      const double area = patch.mesh().element_area_m2();
+      std::vector<double> F1(out.F1_N.size(), 0.0), F2(out.F2_N.size(), 0.0);
+      for (std::size_t e = 0; e < full.p1_Pa.size(); ++e) {
+        const std::size_t strip = patch.elements().indices()[e] / n1;
+        F1[strip] += area * full.p1_Pa[e];
+        F2[strip] += area * full.p2_Pa[e];
+      }
+      for (std::size_t j = 0; j < F1.size(); ++j) {
+        out.F1_N[j] += full.weight * (F1[j] - out.F1_N[j]);
+        out.F2_N[j] += full.weight * (F2[j] - out.F2_N[j]);
+      }
+    }
+    blend_full_slip(full, out.forces, out.adhesion_fraction, nullptr);
+  }
   return out;
 }
 

@@ -338,7 +338,8 @@ void validate(const TangentialModelOptions& options) {
   });
   require(nh.bound.slip_direction == SlipDirection::radial ||
               nh.bound.slip_direction == SlipDirection::flexibility_weighted ||
-              nh.bound.slip_direction == SlipDirection::rigid_slip,
+              nh.bound.slip_direction == SlipDirection::rigid_slip ||
+              nh.bound.slip_direction == SlipDirection::elastic_slip,
           "tangential model: nh_fastsim.bound.slip_direction is not a SlipDirection");
   require(nh.match == FlexibilityMatch::term_by_term || nh.match == FlexibilityMatch::full_matrix ||
               nh.match == FlexibilityMatch::spin_from_moment,
