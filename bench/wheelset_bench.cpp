@@ -10,8 +10,8 @@
 //   BM_WheelsetStepRigidSlip   the time step with the rigid-slip direction instead of the elastic slip
 //   BM_WheelsetStepConformal   the time step on conformal contact surfaces (docs/WHEELSET.md §4)
 //   BM_WheelsetStage...        the time step's stages one by one (see stage_inputs below)
-//   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp; ...Radial:
-//                              with Eq 8's slip direction instead of the default): y within
+//   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp; ...Radial,
+//                              ...RigidSlip: with that slip direction instead of the default): y within
 //                              ±0.5 mm of the argument in 1 µm steps, 98.1 kN per wheel, 2 mrad of
 //                              yaw; the table (0.2 mm elements, y in 0.1 mm steps over ±0.5 mm,
 //                              90/100/110 kN) is built before the timing; ...Auto: the table
@@ -254,8 +254,10 @@ void wheelset_table_step(benchmark::State& state, SlipDirection slip_direction, 
   report(state, r);
 }
 
-// The wheelset's default slip direction (rigid-slip), and Eq 8's radial one.
+// The wheelset's default slip direction (elastic-slip), the rigid-slip one (without the full-slip
+// iteration) and Eq 8's radial one.
 void BM_WheelsetTable(benchmark::State& state) { wheelset_table_step(state, kDefaultSlipDirection); }
+void BM_WheelsetTableRigidSlip(benchmark::State& state) { wheelset_table_step(state, SlipDirection::rigid_slip); }
 void BM_WheelsetTableRadial(benchmark::State& state) { wheelset_table_step(state, SlipDirection::radial); }
 // With the tangential forces in the vertical balance, as the command line, the C API and Python
 // look the table up (a secant on the table's load: two or three lookups).
@@ -280,6 +282,7 @@ BENCHMARK(BM_WheelsetStepFullK2)->Arg(0)->Arg(-6500)->Unit(benchmark::kMilliseco
 BENCHMARK(BM_WheelsetStepConformal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepRigidSlip)->Arg(0)->Arg(-6500)->Arg(-6600)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetTable)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WheelsetTableRigidSlip)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableRadial)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableBalanced)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableAuto)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
