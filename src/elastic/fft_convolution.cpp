@@ -117,6 +117,13 @@ RealFft2d::RealFft2d(int n1, int n2, int rows) : n1_(n1), n2_(n2), rows_(rows) {
   if (plans_->inverse_by_forward) hartley_rows_ = FftwArray<double>(real_size());
 }
 
+RealFft2d::RealFft2d(const RealFft2d& same, SharePlans)
+    : n1_(same.n1_), n2_(same.n2_), rows_(same.rows_), plans_(same.plans_) {
+  forward_rows_ = FftwArray<std::complex<double>>(spectrum_size());  // zero-filled
+  inverse_rows_ = FftwArray<std::complex<double>>(spectrum_size());
+  if (plans_->inverse_by_forward) hartley_rows_ = FftwArray<double>(real_size());
+}
+
 void RealFft2d::forward(const double* real, std::complex<double>* spectrum) {
   // FFTW's r2c transforms leave their input intact (no FFTW_DESTROY_INPUT for r2c); the rows past
   // `rows` of forward_rows_ are never written and stay zero (the padding rows' transforms).
@@ -265,6 +272,16 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::shared_ptr<c
               kernel_spectra_->size() == static_cast<std::size_t>(components * components) &&
               kernel_spectra_->front().size() == fft_.spectrum_size(),
           "FFT convolution: kernel spectra of the wrong size");
+  allocate_buffers();
+}
+
+FftConvolution::FftConvolution(const FftConvolution& same, ShareKernels)
+    : n1_(same.n1_),
+      n2_(same.n2_),
+      components_(same.components_),
+      fft_(same.fft_, RealFft2d::SharePlans{}),
+      kernel_spectra_(same.kernel_spectra_),
+      sum_(fft_.spectrum_size()) {
   allocate_buffers();
 }
 

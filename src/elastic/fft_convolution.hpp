@@ -49,6 +49,10 @@ class FftwArray {
 class RealFft2d {
  public:
   RealFft2d(int n1, int n2, int rows);  // 0 < rows <= n2
+  // The size and plans of `same` (shared: no planning, no lookup of the per-thread plans), scratch
+  // arrays of its own (for another thread, or another buffer set of the same convolution).
+  struct SharePlans {};
+  RealFft2d(const RealFft2d& same, SharePlans);
 
   [[nodiscard]] int n1() const { return n1_; }
   [[nodiscard]] int n2() const { return n2_; }
@@ -102,6 +106,11 @@ class FftConvolution {
   // The kernels of another convolution of the same size (no tabulation, no transform), with
   // buffers of its own.
   FftConvolution(int n1, int n2, int components, std::shared_ptr<const KernelSpectra> kernel_spectra);
+  // The kernels and the transforms' plans of `same` (shared), buffers of its own: neither
+  // tabulation, transform nor planning (a convolution kept for its kernels, used by many threads
+  // or calls, each with its own buffers).
+  struct ShareKernels {};
+  FftConvolution(const FftConvolution& same, ShareKernels);
   [[nodiscard]] const std::shared_ptr<const KernelSpectra>& kernel_spectra() const { return kernel_spectra_; }
 
   [[nodiscard]] int components() const { return components_; }

@@ -124,7 +124,7 @@ InfluenceOperator::InfluenceOperator(const Mesh& mesh, const InfluenceOperator& 
     : mesh_(mesh),
       components_(same_kernels.components_),
       table_(same_kernels.table_),
-      convolution_(mesh.n1, mesh.n2, components_, same_kernels.convolution_.kernel_spectra()),
+      convolution_(same_kernels.convolution_, detail::FftConvolution::ShareKernels{}),
       padded_index_(same_kernels.padded_index_) {
   require(mesh.n1 == same_kernels.mesh_.n1 && mesh.n2 == same_kernels.mesh_.n2 &&
               mesh.dx1_m == same_kernels.mesh_.dx1_m && mesh.dx2_m == same_kernels.mesh_.dx2_m,

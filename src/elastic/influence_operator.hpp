@@ -21,7 +21,7 @@ class InfluenceOperator {
  public:
   // From a precomputed kernel table: components^2 blocks, each (2 n2 - 1) x (2 n1 - 1), m1 fastest.
   InfluenceOperator(const Mesh& mesh, int components, std::vector<double> table);
-  // The kernels of `same_kernels` (its table and spectra, shared) on `mesh`, which must have the
+  // The kernels of `same_kernels` (its table, spectra and FFT plans, shared) on `mesh`, which must have the
   // same n1, n2 and element size; buffers of its own. Costs no tabulation and no transform.
   InfluenceOperator(const Mesh& mesh, const InfluenceOperator& same_kernels);
 

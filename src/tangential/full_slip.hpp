@@ -11,10 +11,12 @@
 // marched patch's elements, whose tractions then follow w − e. Where the patch keeps an adhesion
 // zone no full-slip state exists and the iteration does not settle; a weight in [0, 1] says how far
 // its result can be trusted, and FastSim blends its own march into it:
-//   weight = S((0.3 − a)/0.1) S((m − 0.05)/0.05) S((0.006 − dF)/0.004),   S(t) = smoothstep on [0, 1],
-// a the march's adhesion fraction (the iteration runs only below 0.3), m the smallest |w − e| over
-// the root mean square of |w| (an adhesion zone appears where it reaches 0), dF the largest change
-// of the coarse forces over mu F3 in the last three steps (settled: below 2e-3). Where the iteration
+//   weight = S((0.3 − a)/0.1) S((0.03 − dF4)/0.015) S((m − 0.05)/0.05) S((0.006 − dF)/0.004),
+// S(t) the smoothstep on [0, 1], a the march's adhesion fraction (the iteration runs only below
+// 0.3), dF4 the change of the coarse forces over mu F3 in the fourth step (the iteration stops there
+// when it is 0.03 or more: the weight is then 0 whatever follows), m the smallest |w − e| over the
+// root mean square of |w| (an adhesion zone appears where it reaches 0), dF the largest change of
+// the coarse forces over mu F3 in the last three steps (settled: below 2e-3). Where the iteration
 // settles each factor is continuous in the creepages; where it does not, dF stays above 6e-3 (its
 // largest change over three steps: a chaotic iterate does not settle three times by chance).
 #include <memory>
