@@ -205,8 +205,9 @@ namespace railcontact {
 //    zero (an adhesion zone): continuous in the creepages. Only the creepages and the patch enter,
 //    not the flexibilities. On the steep flange patches that slip everywhere under spin it takes
 //    nH-FastSim from up to 7.3 % to within 0.2 % of mu F3 of the exact solver (docs/FASTSIM.md
-//    "Where the exact solver slips everywhere: the elastic slip"); it costs about 0.4 ms per solve
-//    where it runs, nothing elsewhere. The slip flags stay the march's; the adhesion fraction is
+//    "Where the exact solver slips everywhere: the elastic slip"); it costs about 0.25 ms per flange
+//    patch on the fly and 0.14 ms per table node where it runs, nothing elsewhere
+//    (docs/BENCHMARKS.md "The elastic slip where a patch slips everywhere"). The slip flags stay the march's; the adhesion fraction is
 //    scaled by 1 − weight.
 enum class SlipDirection { radial, flexibility_weighted, rigid_slip, elastic_slip };
 // "radial", "flexibility-weighted", "rigid-slip", "elastic-slip"; parse_slip_direction throws invalid_input for
