@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "elastic/influence_operator.hpp"
+#include "support/smoothstep.hpp"
 #include "tangential/cropped_patch.hpp"
 
 namespace railcontact::detail {
@@ -29,11 +30,6 @@ constexpr double kSlipFrom = 0.05, kSlipTo = 0.1;       // min |w − e| / rms |
 // (k = 0.10-0.20); a hunting run spent 59 % of its iterations on states whose weight came out 0.
 constexpr int kEarlyStep = 4;
 constexpr double kEarlyChangeFrom = 0.03, kEarlyChangeTo = 0.015;
-
-double smoothstep(double t) {
-  t = std::clamp(t, 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
 
 // p = −mu p3 s/|s| per element (0 where s = 0); returns F1, F2 (N) and M3 about the origin (N m).
 TangentialForces coulomb(const ContactPatch& patch, const std::vector<double>& s1, const std::vector<double>& s2,

@@ -18,6 +18,7 @@
 #include "railcontact/error.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/wheelset.hpp"
+#include "support/smoothstep.hpp"
 #include "wheel_rail/conformal_patch.hpp"
 #include "wheel_rail/contact_window.hpp"
 #include "wheel_rail/patch_tangential_model.hpp"
@@ -885,8 +886,7 @@ double conformal_surface_weight(ContactSurface surface, const ContactSurfaceSwit
   if (surface != ContactSurface::automatic) return surface == ContactSurface::conformal ? 1.0 : 0.0;
   const double measure = region.contact_angle_spread_rad / std::cos(region.contact_angle_rad);
   if (!std::isfinite(measure)) return 1.0;
-  const double t = std::clamp((measure - s.planar_up_to) / (s.conformal_from - s.planar_up_to), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);  // smoothstep: C¹ at both ends
+  return detail::smoothstep((measure - s.planar_up_to) / (s.conformal_from - s.planar_up_to));
 }
 
 void validate(const WheelsetOptions& o) {
