@@ -121,7 +121,7 @@ typedef enum rc_slip_direction {
                                        within 3 % too */
   RC_SLIP_ELASTIC = 3               /* rigid, and where the patch slips everywhere Coulomb's law
                                        along the elastic slip (the wheelset's default): flange
-                                       patches in full slip within 0.2 % */
+                                       patches in full slip within 0.5 % */
 } rc_slip_direction;
 
 /* All settings of a solver handle. Fill with rc_settings_default, change fields, pass to

@@ -534,7 +534,7 @@ class Wheelset:
     wheel); warm_start [True] (each evaluation starts from the previous one's pressures; False:
     every evaluation from a cold start, as in batch()); slip_direction ["elastic-slip"]
     (nh-fastsim's slipping traction: as "rigid-slip", and where a patch slips everywhere Coulomb's
-    law along the elastic slip, within 0.2 % of the exact solver there;
+    law along the elastic slip, within 0.5 % of the exact solver there;
     "rigid-slip": within 3 % on the flange, also in full slip under spin; "flexibility-weighted": without the turn to the rigid slip; "radial": Eq 8).
     balance_solver [None: the first of solvers] (the solver whose forces the load balance and free
     rolling use, one of solvers); reference_weighting ["squared-gap"] (each patch's reference point

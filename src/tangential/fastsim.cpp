@@ -358,9 +358,15 @@ void require_marchable(const MarchCoefficients& k, double reach_m, const Creepag
 struct Limiting {
   bool weighted, rigid;
 };
+// The slip directions whose march turns a sliding traction to the rigid slip (elastic_slip marches
+// as rigid_slip, then blends in the full-slip state).
+bool marches_to_rigid_slip(SlipDirection d) {
+  return d == SlipDirection::rigid_slip || d == SlipDirection::elastic_slip;
+}
+
 Limiting limiting(const detail::FastSimLayout& layout, const MarchCoefficients& k, bool rigid_corrections) {
   const SlipDirection d = layout.bound.slip_direction;
-  const bool rigid = (d == SlipDirection::rigid_slip || d == SlipDirection::elastic_slip) && rigid_corrections;
+  const bool rigid = marches_to_rigid_slip(d) && rigid_corrections;
   return {rigid || (d != SlipDirection::radial && k.rho1 != k.rho2), rigid};
 }
 
@@ -644,8 +650,7 @@ StripLaneCoefficients strip_lane_coefficients(const detail::FastSimLayout& layou
   lanes.c1.resize(layout.lane_strip.size());
   lanes.c2.resize(layout.lane_strip.size());
   lanes.c3.resize(layout.lane_strip.size());
-  const bool rigid = layout.bound.slip_direction == SlipDirection::rigid_slip ||
-                     layout.bound.slip_direction == SlipDirection::elastic_slip;
+  const bool rigid = marches_to_rigid_slip(layout.bound.slip_direction);
   if (rigid) {
     lanes.d1.resize(layout.lane_strip.size());
     lanes.d2.resize(layout.lane_strip.size());

@@ -27,7 +27,7 @@ constexpr double kSlipFrom = 0.05, kSlipTo = 0.1;       // min |w − e| / rms |
 // The change of the 4th step (of mu F3): weight 0 above 0.03, 1 below 0.015, where the iteration
 // then stops (its weight is 0 whatever the last steps give: nothing changes but the cost). Over the
 // sweep above it was 0.0085-0.011 where the weight rises and 0.020-0.054 where the iterate wanders
-// (k = 0.10-0.20); a hunting run spent 59 % of its iterations on states whose weight came out 0.
+// (k = 0.10-0.20); a short hunting run (--quick) spent 59 % of its iterations on states whose weight came out 0.
 constexpr int kEarlyStep = 4;
 constexpr double kEarlyChangeFrom = 0.03, kEarlyChangeTo = 0.015;
 
@@ -147,8 +147,6 @@ FullSlipTractions FullSlip::solve_with(const RigidSlip& rigid_slip, double mu, d
     }
   }
   const double m = std::sqrt(smallest_slip) / w_rms;
-  out.smallest_slip_ratio = m;
-  out.force_change = force_change;
   out.weight = gate * early * smoothstep((m - kSlipFrom) / (kSlipTo - kSlipFrom)) *
                smoothstep((kChangeFrom - force_change) / (kChangeFrom - kChangeTo));
   if (!(out.weight > 0.0) || !std::isfinite(force_change)) {

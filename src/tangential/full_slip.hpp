@@ -21,7 +21,6 @@
 // largest change over three steps: a chaotic iterate does not settle three times by chance).
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <vector>
 
 #include "railcontact/contact_patch.hpp"
@@ -36,9 +35,6 @@ struct FullSlipTractions {
   double weight = 0.0;               // of these tractions against the march's, in [0, 1]
   TangentialForces forces;           // of p1_Pa, p2_Pa (M3 about the patch's origin, as FastSim's)
   std::vector<double> p1_Pa, p2_Pa;  // per element of the marched patch, patch order (weight > 0)
-  // What the weight was made of (the iteration run): min |w − e| / rms |w|, and the largest change
-  // of the coarse forces over mu F3 in the last three steps.
-  double smallest_slip_ratio = 0.0, force_change = 0.0;
 };
 
 // One patch's full-slip solver. Immutable after construction but for the coarse copy and its
