@@ -311,7 +311,7 @@ namespace {
 // its complementarity residual on the whole area (one product there: no overlap left outside the
 // window) is within 10 times the solver's tolerance; otherwise nothing is returned and the whole
 // area is solved. The two solutions agree to the solver's tolerance (test
-// Wheelset.AWindowedTimeStepGivesTheWholeAreasSolution).
+// Wheelset/WindowedTimeStep.GivesTheWholeAreasSolution).
 struct WindowedSolution {
   NormalSolution normal;  // on the whole area's mesh
   std::size_t window_elements = 0;
@@ -343,11 +343,11 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
     return std::nullopt;
   std::vector<double> pressure = detail::paste_window(area.mesh, s.pressure_Pa, *window);
   // The check on the whole area: by the bound from the patch's earlier check where it proves no
-  // overlap outside the window (planar areas: the half-space's A33 on the tangent plane), which
-  // leaves the whole-area residual the window's; otherwise one product there, kept as the next
-  // steps' earlier check.
+  // overlap outside the window (the half-space's A33, on the tangent plane or on a conformal area's
+  // developed mesh alike), which leaves the whole-area residual the window's; otherwise one product
+  // there, kept as the next steps' earlier check.
   std::shared_ptr<const detail::WholeAreaCheck> check;
-  if (earlier && area.strips.empty()) {
+  if (earlier) {
     if (!warm.influence || !warm.influence->fits(area.mesh.dx1_m, area.mesh.dx2_m, options.material))
       warm.influence.emplace(area.mesh.dx1_m, area.mesh.dx2_m, options.material);
     if (detail::window_solution_holds_outside(area.mesh, area.h_m, *window, pressure, *earlier, *warm.influence))
