@@ -166,7 +166,7 @@ TEST(Wheelset, AWarmTimeStepByLoadSolvesWhatAFreshWheelsetSolves) {
 // the whole potential area (docs/WHEELSET.md §8): in flange contact, where the overlap reaches far
 // beyond the contact, the window is a fraction of the area, and the solution is the whole area's to
 // the solver's tolerance (a fresh Wheelset solves the whole area): forces within the tolerance
-// (1e-6) times F3 (measured 7.6e-8).
+// (the wheelset's normal tolerance) times F3.
 // On both contact surfaces: a conformal area is solved with the same coefficients on its developed
 // mesh, so the window's check by a bound holds there too. Three steps: the second's window makes
 // the check that the third's bound starts from.
