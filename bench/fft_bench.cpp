@@ -86,6 +86,47 @@ BENCHMARK(BM_FftRoundTrip_SmoothLength)->DenseRange(35, 143, 12)->Unit(benchmark
 BENCHMARK(BM_FftRoundTrip_FastLength)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_FftRoundTrip_FastLengthUnpruned)->DenseRange(35, 143, 12)->Unit(benchmark::kMicrosecond);
 
+// Which axis the rows run along (docs/FFT.md "Which axis the rows run along"): a convolution's
+// forward + inverse pair on an n1 x n2 grid (the arguments) with the rows along x1 (transform N1 x
+// N2, n2 rows non-zero) and along x2 (N2 x N1, n1 rows), and the convolution's own product
+// (FftConvolution::apply, counter rows_along_x2: the layout it chose). The grids are the
+// wheelset time step's: its contact windows at y = 0 (60 x 112, 64 x 112) and in flange contact
+// (224 x 20, 80 x 60, 240 x 72), and the whole potential area at y = 0 (96 x 144).
+void rows_along(benchmark::State& state, bool along_x2) {
+  const int n1 = static_cast<int>(state.range(0)), n2 = static_cast<int>(state.range(1));
+  const int N1 = railcontact::detail::fft_friendly_length(2 * n1 - 1);
+  const int N2 = railcontact::detail::fft_friendly_length(2 * n2 - 1);
+  railcontact::detail::RealFft2d fft = along_x2 ? railcontact::detail::RealFft2d(N2, N1, n1)
+                                                : railcontact::detail::RealFft2d(N1, N2, n2);
+  railcontact::detail::FftwArray<double> real(fft.real_size());
+  railcontact::detail::FftwArray<std::complex<double>> spectrum(fft.spectrum_size());
+  for (int k = 0; k < (along_x2 ? n1 * N2 : n2 * N1); ++k) real.data()[k] = (k % 7) * 0.1;
+  for (auto _ : state) {
+    fft.forward(real.data(), spectrum.data());
+    fft.inverse(spectrum.data(), real.data());
+    benchmark::DoNotOptimize(real.data());
+  }
+}
+void BM_FftRoundTrip_RowsAlongX1(benchmark::State& state) { rows_along(state, false); }
+void BM_FftRoundTrip_RowsAlongX2(benchmark::State& state) { rows_along(state, true); }
+void BM_FftConvolution_Apply(benchmark::State& state) {
+  const int n1 = static_cast<int>(state.range(0)), n2 = static_cast<int>(state.range(1));
+  const std::vector<double> kernel(static_cast<std::size_t>(2 * n1 - 1) * static_cast<std::size_t>(2 * n2 - 1), 1.0);
+  railcontact::detail::FftConvolution convolution(n1, n2, 1, kernel);
+  std::vector<double> in(static_cast<std::size_t>(n1) * static_cast<std::size_t>(n2), 1.0), out(in.size());
+  for (auto _ : state) {
+    convolution.apply(in, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["rows_along_x2"] = convolution.rows_along_x2();
+}
+#define RAILCONTACT_WINDOW_GRIDS                                                                            \
+  ->Args({60, 112})->Args({64, 112})->Args({96, 144})->Args({224, 20})->Args({80, 60})->Args({240, 72}) \
+      ->Unit(benchmark::kMicrosecond)
+BENCHMARK(BM_FftRoundTrip_RowsAlongX1) RAILCONTACT_WINDOW_GRIDS;
+BENCHMARK(BM_FftRoundTrip_RowsAlongX2) RAILCONTACT_WINDOW_GRIDS;
+BENCHMARK(BM_FftConvolution_Apply) RAILCONTACT_WINDOW_GRIDS;
+
 }  // namespace
 
 BENCHMARK_MAIN();

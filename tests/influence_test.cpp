@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "elastic/fft_convolution.hpp"
 #include "elastic/influence_operator.hpp"
 #include "elastic/influence_coefficients.hpp"
 
@@ -187,6 +188,23 @@ TEST(InfluenceOperator, FftEqualsDenseSteadyRolling) {
     InfluenceOperator op = make_steady_rolling_operator(mesh, kSteel, alpha);
     expect_fft_equals_dense(op, 7);
   }
+}
+
+// A convolution transforms its rows along x1 or along x2, whichever layout FFTW estimates cheaper
+// for the size (FftConvolution::rows_along_x2): the 37 x 29 mesh above along x1, the 29 x 37 and
+// 30 x 50 meshes here along x2 (transforms of 64 x 80 and 64 x 100). Both give the dense product.
+TEST(InfluenceOperator, FftEqualsDenseWithTheTransformRowsAlongX2) {
+  for (auto [n1, n2] : {std::pair{29, 37}, {30, 50}}) {
+    const Mesh mesh = Mesh::covering(-4e-3, 4e-3, -6e-3, 6e-3, n1, n2);
+    const std::vector<double> table((2 * n1 - 1) * (2 * n2 - 1), 1.0);
+    ASSERT_TRUE(detail::FftConvolution(n1, n2, 1, table).rows_along_x2()) << n1 << " x " << n2;
+    InfluenceOperator normal = make_normal_operator(mesh, kSteel);
+    expect_fft_equals_dense(normal, 11);
+    InfluenceOperator rolling = make_steady_rolling_operator(mesh, kSteel, 0.5);
+    expect_fft_equals_dense(rolling, 13);
+  }
+  const std::vector<double> table((2 * 37 - 1) * (2 * 29 - 1), 1.0);
+  EXPECT_FALSE(detail::FftConvolution(37, 29, 1, table).rows_along_x2());
 }
 
 // Small meshes transform at odd lengths (2 n - 1 itself when it is 7-smooth): the kernel's first and

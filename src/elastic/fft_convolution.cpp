@@ -54,6 +54,8 @@ struct RealFft2d::Plans {
                                          FFTW_BACKWARD, FFTW_ESTIMATE);
     check(forward != nullptr && forward_columns != nullptr && inverse_columns != nullptr &&
           (inverse_by_forward || inverse != nullptr));
+    estimated_cost = fftw_estimate_cost(forward) + fftw_estimate_cost(forward_columns) +
+                     fftw_estimate_cost(inverse_columns) + fftw_estimate_cost(inverse_by_forward ? forward : inverse);
   }
   ~Plans() { destroy(); }
   Plans(const Plans&) = delete;
@@ -74,6 +76,7 @@ struct RealFft2d::Plans {
   static constexpr int kInverseByForwardUpTo = 64 * 64;
   int n1, n2, rows;
   bool inverse_by_forward;
+  double estimated_cost = 0.0;  // FFTW's own estimate of a forward + inverse pair (deterministic)
   fftw_plan forward = nullptr;          // r2c along x1 on the first `rows` rows
   fftw_plan forward_columns = nullptr;  // c2c along x2, every column: strided rows -> contiguous columns
   fftw_plan inverse_columns = nullptr;  // its inverse: contiguous columns -> strided rows
@@ -105,6 +108,33 @@ std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2, int rows) {
   if (recent.size() == kKeptSizes) recent.erase(recent.begin());
   recent.push_back(std::make_shared<const RealFft2d::Plans>(n1, n2, rows));
   return recent.back();
+}
+
+// Whether a convolution of an n1 x n2 grid transforms its rows along x2 (x2 contiguous in the
+// padded arrays) rather than along x1: the layout of the two whose plans FFTW estimates cheaper.
+// The same work in flops, but FFTW_ESTIMATE's plans for the strided column transforms differ by
+// up to 2x with the length along the columns: the wheelset's contact window of 64 x 112 elements
+// (transform 128 x 224) costs 157 µs per forward + inverse pair with rows along x1 and 88 µs with
+// rows along x2 (docs/FFT.md "Which axis the rows run along"). FFTW's estimate is a deterministic
+// function of the sizes, so a size always gets the same layout (no timing enters a result).
+// Transforms of at most kInverseByForwardUpTo points keep rows along x1: their planning is most
+// of a small convolution's first use (docs/FFT.md), and a second layout would plan twice.
+bool transform_rows_along_x2(int n1, int n2) {
+  const int N1 = fft_friendly_length(2 * n1 - 1), N2 = fft_friendly_length(2 * n2 - 1);
+  if (N1 * N2 <= RealFft2d::Plans::kInverseByForwardUpTo || (N1 == N2 && n1 == n2)) return false;
+  struct Decision {
+    int n1, n2;
+    bool rows_along_x2;
+  };
+  constexpr std::size_t kKeptDecisions = 64;
+  thread_local std::vector<Decision> decided;
+  for (const Decision& d : decided)
+    if (d.n1 == n1 && d.n2 == n2) return d.rows_along_x2;
+  const double along_x1 = plans_for(N1, N2, n2)->estimated_cost;
+  const double along_x2 = plans_for(N2, N1, n1)->estimated_cost;
+  if (decided.size() == kKeptDecisions) decided.erase(decided.begin());
+  decided.push_back({n1, n2, along_x2 < along_x1});
+  return decided.back().rows_along_x2;
 }
 
 }  // namespace
@@ -218,19 +248,25 @@ int fft_friendly_length(int minimum) {
   return *std::lower_bound(std::begin(kFastLengths), std::end(kFastLengths), minimum);
 }
 
+RealFft2d FftConvolution::make_transform(int n1, int n2, bool rows_along_x2) {
+  const int N1 = fft_friendly_length(2 * n1 - 1), N2 = fft_friendly_length(2 * n2 - 1);
+  return rows_along_x2 ? RealFft2d(N2, N1, n1) : RealFft2d(N1, N2, n2);
+}
+
 FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const double> kernel_table,
                                bool symmetric_blocks)
     : n1_(n1),
       n2_(n2),
       components_(components),
-      fft_(fft_friendly_length(2 * n1 - 1), fft_friendly_length(2 * n2 - 1), n2),
+      rows_along_x2_(transform_rows_along_x2(n1, n2)),
+      fft_(make_transform(n1, n2, rows_along_x2_)),
       sum_(fft_.spectrum_size()) {
   const std::size_t w1 = static_cast<std::size_t>(2 * n1 - 1);
   const std::size_t w2 = static_cast<std::size_t>(2 * n2 - 1);
   require(kernel_table.size() == static_cast<std::size_t>(components * components) * w1 * w2,
           "FFT convolution: kernel table of the wrong size");
-  const int N1 = fft_.n1();
-  const int N2 = fft_.n2();
+  const int N1 = rows_along_x2_ ? fft_.n2() : fft_.n1();  // padded lengths along x1 and x2
+  const int N2 = rows_along_x2_ ? fft_.n1() : fft_.n2();
   const double normalisation = 1.0 / (static_cast<double>(N1) * N2);
   allocate_buffers();
   auto spectra = std::make_shared<KernelSpectra>(static_cast<std::size_t>(components * components));
@@ -251,11 +287,17 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::span<const d
       const double* block = kernel_table.data() + static_cast<std::size_t>(k * components + l) * w1 * w2;
       for (int m2 = -(n2 - 1); m2 <= n2 - 1; ++m2) {
         const double* row = block + static_cast<std::size_t>(m2 + n2 - 1) * w1;  // m1 = -(n1-1) first
-        double* out = real + static_cast<std::size_t>(m2 < 0 ? m2 + N2 : m2) * N1;
-        std::transform(row + (n1 - 1), row + w1, out, scaled);
-        std::transform(row, row + (n1 - 1), out + (N1 - (n1 - 1)), scaled);
+        const int wrapped2 = m2 < 0 ? m2 + N2 : m2;
+        if (!rows_along_x2_) {
+          double* out = real + static_cast<std::size_t>(wrapped2) * N1;
+          std::transform(row + (n1 - 1), row + w1, out, scaled);
+          std::transform(row, row + (n1 - 1), out + (N1 - (n1 - 1)), scaled);
+          continue;
+        }
+        for (int m1 = -(n1 - 1); m1 <= n1 - 1; ++m1)
+          real[static_cast<std::size_t>(m1 < 0 ? m1 + N1 : m1) * N2 + wrapped2] = scaled(row[m1 + n1 - 1]);
       }
-      fft_.forward_wrapped(real, spectrum.data());  // rows n2 .. N2 - n2 - 1 are zero
+      fft_.forward_wrapped(real, spectrum.data());  // the transform rows past the grid's and before the last ones are zero
     }
   }
   kernel_spectra_ = std::move(spectra);
@@ -265,7 +307,8 @@ FftConvolution::FftConvolution(int n1, int n2, int components, std::shared_ptr<c
     : n1_(n1),
       n2_(n2),
       components_(components),
-      fft_(fft_friendly_length(2 * n1 - 1), fft_friendly_length(2 * n2 - 1), n2),
+      rows_along_x2_(transform_rows_along_x2(n1, n2)),
+      fft_(make_transform(n1, n2, rows_along_x2_)),
       kernel_spectra_(std::move(kernel_spectra)),
       sum_(fft_.spectrum_size()) {
   require(kernel_spectra_ != nullptr &&
@@ -279,6 +322,7 @@ FftConvolution::FftConvolution(const FftConvolution& same, ShareKernels)
     : n1_(same.n1_),
       n2_(same.n2_),
       components_(same.components_),
+      rows_along_x2_(same.rows_along_x2_),
       fft_(same.fft_, RealFft2d::SharePlans{}),
       kernel_spectra_(same.kernel_spectra_),
       sum_(fft_.spectrum_size()) {
@@ -294,9 +338,11 @@ void FftConvolution::allocate_buffers() {
 }
 
 void FftConvolution::clear_inputs() {
-  const std::size_t stride = row_stride();
+  // The grid's rows of the transform (along x1 or x2) and their elements.
+  const auto stride = static_cast<std::size_t>(fft_.n1());
+  const int rows = rows_along_x2_ ? n1_ : n2_, length = rows_along_x2_ ? n2_ : n1_;
   for (FftwArray<double>& in : inputs_)
-    for (int i2 = 0; i2 < n2_; ++i2) std::fill_n(in.data() + static_cast<std::size_t>(i2) * stride, n1_, 0.0);
+    for (int r = 0; r < rows; ++r) std::fill_n(in.data() + static_cast<std::size_t>(r) * stride, length, 0.0);
 }
 
 namespace {
@@ -346,19 +392,30 @@ void FftConvolution::convolve(bool transpose) {
 void FftConvolution::apply(std::span<const double> in, std::span<double> out) {
   const std::size_t n = grid_size();
   require(in.size() == n * components_ && out.size() == n * components_, "FFT convolution: wrong field size");
-  const std::size_t stride = row_stride();
+  const auto stride = static_cast<std::size_t>(fft_.n1());
+  const auto n1 = static_cast<std::size_t>(n1_);
   for (int c = 0; c < components_; ++c) {
     const double* field = in.data() + static_cast<std::size_t>(c) * n;
     double* padded = input(c);
-    for (int i2 = 0; i2 < n2_; ++i2)
-      std::copy_n(field + static_cast<std::size_t>(i2) * n1_, n1_, padded + static_cast<std::size_t>(i2) * stride);
+    for (std::size_t i2 = 0; i2 < static_cast<std::size_t>(n2_); ++i2) {
+      if (rows_along_x2_) {
+        for (std::size_t i1 = 0; i1 < n1; ++i1) padded[i1 * stride + i2] = field[i2 * n1 + i1];
+      } else {
+        std::copy_n(field + i2 * n1, n1, padded + i2 * stride);
+      }
+    }
   }
   convolve(false);
   for (int c = 0; c < components_; ++c) {
     double* field = out.data() + static_cast<std::size_t>(c) * n;
     const double* padded = output(c);
-    for (int i2 = 0; i2 < n2_; ++i2)
-      std::copy_n(padded + static_cast<std::size_t>(i2) * stride, n1_, field + static_cast<std::size_t>(i2) * n1_);
+    for (std::size_t i2 = 0; i2 < static_cast<std::size_t>(n2_); ++i2) {
+      if (rows_along_x2_) {
+        for (std::size_t i1 = 0; i1 < n1; ++i1) field[i2 * n1 + i1] = padded[i1 * stride + i2];
+      } else {
+        std::copy_n(padded + i2 * stride, n1, field + i2 * n1);
+      }
+    }
   }
 }
 

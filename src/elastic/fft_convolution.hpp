@@ -96,6 +96,9 @@ int fft_friendly_length(int minimum);
 // by the convolutions with the same kernels).
 using KernelSpectra = std::vector<FftwArray<std::complex<double>>>;
 
+// The transform's rows run along x1 or x2, whichever layout FFTW estimates cheaper for the grid
+// size (docs/FFT.md "Which axis the rows run along"); callers address the padded arrays through
+// padded_index, so the layout is internal.
 class FftConvolution {
  public:
   // kernel_table: components^2 blocks (k, l), k slowest, each (2 n2 - 1) rows of (2 n1 - 1)
@@ -120,12 +123,19 @@ class FftConvolution {
   void apply(std::span<const double> in, std::span<double> out);
 
   // In-place interface for callers that scatter and gather themselves: grid point (i1, i2) of
-  // component c is input(c)[i2 * row_stride() + i1], likewise output(c). clear_inputs() zeroes
+  // component c is input(c)[padded_index(i1, i2)], likewise output(c). clear_inputs() zeroes
   // the grid part of the inputs (the padding is never written and stays zero); convolve()
   // computes every output from the inputs; with transpose, those of the transposed convolution
   // out_k(i) = sum_l sum_j K_lk(j - i) in_l(j): the same spectra, conjugated and with the blocks
   // swapped (a real kernel reversed in index has the conjugate spectrum), at the same cost.
-  [[nodiscard]] std::size_t row_stride() const { return static_cast<std::size_t>(fft_.n1()); }
+  [[nodiscard]] std::size_t padded_index(int i1, int i2) const {
+    const auto row_length = static_cast<std::size_t>(fft_.n1());
+    return rows_along_x2_ ? static_cast<std::size_t>(i1) * row_length + static_cast<std::size_t>(i2)
+                          : static_cast<std::size_t>(i2) * row_length + static_cast<std::size_t>(i1);
+  }
+  // Whether the transform's rows run along x2 (x2 contiguous in the padded arrays) rather than
+  // along x1: chosen per grid size by FFTW's estimate of the two layouts (fft_convolution.cpp).
+  [[nodiscard]] bool rows_along_x2() const { return rows_along_x2_; }
   double* input(int component) { return inputs_[static_cast<std::size_t>(component)].data(); }
   [[nodiscard]] const double* output(int component) const { return outputs_[static_cast<std::size_t>(component)].data(); }
   void clear_inputs();
@@ -133,13 +143,15 @@ class FftConvolution {
 
  private:
   int n1_, n2_, components_;
-  RealFft2d fft_;
+  bool rows_along_x2_;
+  RealFft2d fft_;  // rows along x1 (n1 = the padded length along x1) or, rows_along_x2_, along x2
   std::shared_ptr<const KernelSpectra> kernel_spectra_;          // [k * components + l]
   std::vector<FftwArray<double>> inputs_, outputs_;               // padded, per component
   std::vector<FftwArray<std::complex<double>>> input_spectra_;   // per component
   FftwArray<std::complex<double>> sum_;                          // spectrum of one output
 
   void allocate_buffers();
+  static RealFft2d make_transform(int n1, int n2, bool rows_along_x2);
 };
 
 }  // namespace railcontact::detail

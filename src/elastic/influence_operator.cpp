@@ -117,7 +117,8 @@ InfluenceOperator::InfluenceOperator(const Mesh& mesh, int components, std::vect
       padded_index_(mesh.size()) {
   const auto n1 = static_cast<std::size_t>(mesh.n1);
   for (std::size_t k = 0; k < padded_index_.size(); ++k)
-    padded_index_[k] = static_cast<std::uint32_t>(k / n1 * convolution_.row_stride() + k % n1);
+    padded_index_[k] = static_cast<std::uint32_t>(
+        convolution_.padded_index(static_cast<int>(k % n1), static_cast<int>(k / n1)));
 }
 
 InfluenceOperator::InfluenceOperator(const Mesh& mesh, const InfluenceOperator& same_kernels)
