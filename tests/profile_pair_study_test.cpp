@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli_run.hpp"
+#include "study/profile_pair_study.hpp"
 
 namespace {
 
@@ -54,9 +55,11 @@ TEST(ProfilePairStudy, SweepsEachSetUpToItsFlangeClimb) {
   // met (Fz within 0.01 % of μFz of the load the wheelset on the fly meets), Fx and Fy within 5 % of
   // μFz on this coarse recipe (1 mm elements, nodes 1 mm apart; 2.9 % measured), no state refused.
   EXPECT_EQ(pairs[0][16], "table_states");
+  EXPECT_EQ(pairs[0].back(), "table_refused_beyond_nadal");
   for (std::size_t k = 1; k < pairs.size(); ++k) {
     EXPECT_EQ(pairs[k][16], pairs[k][3]) << k;
     EXPECT_EQ(pairs[k][17], "0") << k;
+    EXPECT_EQ(pairs[k].back(), "0") << k;
   }
   const auto table = read_csv(dir.path() / "table_check.csv");
   ASSERT_EQ(table.size(), 1u + 2u * (7u + std::stoul(car[3])));
@@ -96,6 +99,20 @@ TEST(ProfilePairStudy, ASteepButContinuousFlangeRiseIsSweptAgainAndIsNoJump) {
   EXPECT_NEAR(std::stod(pairs[1][11]), -6.6, 1e-9);
   EXPECT_EQ(pairs[1][13], "1");
   EXPECT_EQ(pairs[1][12], "0");
+}
+
+// Nadal's limit (tan γ − μ)/(1 + μ tan γ) is tan(γ − arctan μ), the friction angle taken off the
+// flange angle: the classical 1.34 at 70° and μ = 0.3, and no climb resistance left (0) where the
+// contact angle equals the friction angle.
+TEST(ProfilePairStudy, NadalsLimitIsTheTangentOfTheFlangeAngleLessTheFrictionAngle) {
+  for (double gamma_deg : {50.0, 63.6, 70.0, 75.0})
+    for (double mu : {0.1, 0.3, 0.5}) {
+      const double gamma = gamma_deg * M_PI / 180.0;
+      EXPECT_NEAR(railcontact::study::nadal_limit(gamma, mu), std::tan(gamma - std::atan(mu)), 1e-12)
+          << gamma_deg << " deg, mu " << mu;
+    }
+  EXPECT_NEAR(railcontact::study::nadal_limit(70.0 * M_PI / 180.0, 0.3), 1.34, 0.005);
+  EXPECT_NEAR(railcontact::study::nadal_limit(std::atan(0.3), 0.3), 0.0, 1e-15);
 }
 
 }  // namespace

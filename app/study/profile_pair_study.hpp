@@ -34,4 +34,9 @@ struct ProfilePairStudyOptions {
 // read or whose centred wheelset has no contact.
 void run_profile_pair_study(const ProfilePairStudyOptions& options, std::ostream& log);
 
+// Nadal's flange-climb limit of Y/Q at a contact angle (rad) and friction coefficient:
+// (tan γ − μ)/(1 + μ tan γ). The study lists a state the wheelset table refuses apart (the flange
+// climbs there) when a wheel's Y/Q is beyond it at the contact angle of its steepest patch.
+double nadal_limit(double contact_angle_rad, double mu);
+
 }  // namespace railcontact::study
