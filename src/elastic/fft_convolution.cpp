@@ -94,7 +94,7 @@ void make_planner_thread_safe() {
 
 // The plans of the most recently used sizes on this thread (most recent last).
 std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2, int rows) {
-  constexpr std::size_t kKeptSizes = 16;
+  constexpr std::size_t kKeptSizes = 64;
   thread_local std::vector<std::shared_ptr<const RealFft2d::Plans>> recent;
   for (auto it = recent.begin(); it != recent.end(); ++it) {
     if ((*it)->n1 == n1 && (*it)->n2 == n2 && (*it)->rows == rows) {

@@ -42,7 +42,7 @@ class FftwArray {
 // instance): 1.2-1.5x faster than in place with a stride both ways, and planned in 30-150 µs
 // instead of 0.2-0.3 ms (docs/DEPENDENCIES.md "Spectrum layout"). Only element-wise products of
 // spectra of the same layout are taken (FftConvolution), so the layout is internal.
-// Plans are immutable and shared: the plans of the last 16 sizes are kept per thread (planning a
+// Plans are immutable and shared: the plans of the last 64 sizes are kept per thread (planning a
 // known size again costs FFTW ~30 µs, 28 of the 35 µs of a 12 x 16 mesh's operator set-up,
 // docs/DEPENDENCIES.md); this changes no result. An instance is used by one thread at a time
 // (its scratch arrays).
