@@ -112,10 +112,8 @@ std::shared_ptr<const RealFft2d::Plans> plans_for(int n1, int n2, int rows) {
 
 // Whether a convolution of an n1 x n2 grid transforms its rows along x2 (x2 contiguous in the
 // padded arrays) rather than along x1: the layout of the two whose plans FFTW estimates cheaper.
-// The same work in flops, but FFTW_ESTIMATE's plans for the strided column transforms differ by
-// up to 2x with the length along the columns: the wheelset's contact window of 64 x 112 elements
-// (transform 128 x 224) costs 157 µs per forward + inverse pair with rows along x1 and 88 µs with
-// rows along x2 (docs/FFT.md "Which axis the rows run along"). FFTW's estimate is a deterministic
+// The same work in flops, but FFTW_ESTIMATE's plans for the strided column transforms differ with
+// the length along the columns (measured: docs/FFT.md "Which axis the rows run along"). FFTW's estimate is a deterministic
 // function of the sizes, so a size always gets the same layout (no timing enters a result).
 // Transforms of at most kInverseByForwardUpTo points keep rows along x1: their planning is most
 // of a small convolution's first use (docs/FFT.md), and a second layout would plan twice.
