@@ -488,6 +488,10 @@ void print_patch_text(const WheelsetPatch& p) {
     fmt::print("    contact surface: planar and conformal blended, conformal weight {:.3f}\n", p.conformal_weight);
   else if (p.surface == ContactSurface::conformal)
     fmt::print("    contact surface: conformal\n");
+  if (p.coupling_lift_m > 0.0)
+    fmt::print("    coupled with the wheel's other patches: their pressure lifts this one by up to {:.2f} µm "
+               "(docs/WHEELSET.md §5)\n",
+               p.coupling_lift_m * 1e6);
   // A planar patch whose rail normal turns far from its tangent plane: the note names the remedy
   // (a patch on the curved surface, or blended towards it, is solved as the angle varies).
   const double variation = contact_angle_variation_rad(p.region);

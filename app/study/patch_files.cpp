@@ -101,6 +101,7 @@ nlohmann::json wheelset_patch_json(const WheelsetPatch& p) {
       {"pressure_centre_from_reference_m", {p.pressure_centre_x1_m, p.pressure_centre_x2_m}},
       {"contact_surface", contact_surface_name(p.surface)},
       {"conformal_weight", p.conformal_weight},
+      {"coupling_lift_m", p.coupling_lift_m},
       {"pressure_force_track_N", vector_json(p.pressure_force_track_N)},
   };
   // A conformal patch: the turn of its strips in contact from the contact frame (rad).

@@ -117,6 +117,20 @@ struct WheelLoads {
   bool balance_roll = false;
 };
 
+// The elastic coupling between a wheel's separate patches (docs/WHEELSET.md §5 "Coupled patches"):
+// the pressure on each patch lifts the others' surfaces, by the half-space's influence of a point
+// load. Its weight fades with the distance between the patches' overlaps (in the track's
+// cross-section, y and z): 1 up to full_distance_m, a smoothstep down to 0 at end_distance_m, so the
+// forces stay continuous where two overlaps come within the merge distance
+// (ContactSearchOptions::merge_distance_m) and become one patch, coupled by its own mesh. Kalker's
+// CONTACT solves patches closer than its D_SEP (8 mm by default) on one grid, coupled, and separate
+// ones without coupling: the fade is centred on that. Both 0: no coupling.
+struct PatchCouplingOptions {
+  double full_distance_m = 6e-3;
+  double end_distance_m = 10e-3;
+};
+void validate(const PatchCouplingOptions& options);
+
 struct WheelsetOptions {
   Material material{2.1e11, 0.3};
   double friction_coefficient = 0.3;
@@ -143,6 +157,7 @@ struct WheelsetOptions {
   // of 8.2 at 1e-6 (docs/WHEELSET.md §8, build/bench/wheelset_normal_tolerance).
   NormalOptions normal{.tolerance = 5e-6};
   ContactSearchOptions search{};
+  PatchCouplingOptions patch_coupling{};
   ContactSurface contact_surface = ContactSurface::planar;
   ContactSurfaceSwitch contact_surface_switch{};  // for ContactSurface::automatic
   // By load (default, 98.1 kN per wheel) or, when empty, by position.
@@ -190,6 +205,9 @@ struct WheelsetPatch {
   double rolling_radius_m = 0.0;       // distance of Q from the axle: the radius ξ uses
   double rolling_speed_m_per_s = 0.0;  // V_ref = (V + Ω rolling_radius_m)/2, the creepages' divisor
   double normal_force_N = 0.0;     // F3: the pressure's integral (on a conformal patch over the curved surface)
+  // The largest normal displacement the wheel's other patches impose on this one where it may touch
+  // (m; PatchCouplingOptions): 0 for a patch solved on its own.
+  double coupling_lift_m = 0.0;
   ContactSurface surface = ContactSurface::planar;  // planar or conformal (the latter when blended)
   // The conformal surface's weight in this patch's results (conformal_surface_weight): 0 planar, 1
   // conformal. Between (ContactSurface::automatic in its blend band) the two surfaces were solved

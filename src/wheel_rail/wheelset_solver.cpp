@@ -21,6 +21,7 @@
 #include "support/smoothstep.hpp"
 #include "wheel_rail/conformal_patch.hpp"
 #include "wheel_rail/contact_window.hpp"
+#include "wheel_rail/patch_coupling.hpp"
 #include "wheel_rail/patch_tangential_model.hpp"
 #include "wheel_rail/wheelset_assembly.hpp"
 #include "tangential/cropped_patch.hpp"
@@ -84,6 +85,7 @@ struct NormalPatch : SurfaceSolution {
   InterpenetrationRegion region;
   double conformal_weight = 0.0;  // conformal_surface_weight; this is the conformal surface when > 0
   std::optional<SurfaceSolution> planar;  // the planar surface to blend with
+  double coupling_lift_m = 0.0;  // WheelsetPatch::coupling_lift_m
 };
 
 // The pressure's resultant on the wheel, track frame (WheelsetPatch::pressure_force_track_N).
@@ -375,22 +377,30 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
 }
 
 // The normal problem of a region on one contact surface's area. h is measured at this position
-// (negative where the bodies overlap): the approach is zero. In a time step (warm_start) first on
-// the previous contact's window; else (or if the check fails) on the whole potential area.
-SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const InterpenetrationRegion& region,
-                              const WheelsetOptions& options, detail::WheelsetWarmStart& warm, bool warm_start,
-                              const WheelsetPosition* predict_at = nullptr) {
+// (negative where the bodies overlap): the approach is zero; where `lift_m` is given (the other
+// patches' elastic coupling, couple_patches) h + lift is solved, and the area keeps its geometric h.
+// With a start (`initial`: in a time step the last pressure, predicted) first on its window (with
+// the `earlier` check's bound); else (or if the check fails) on the whole potential area.
+struct SurfaceStart {
+  std::vector<double> initial;
+  std::shared_ptr<const detail::WholeAreaCheck> earlier;
+};
+SurfaceSolution solve_surface(TangentPlaneArea area, const std::vector<double>& lift_m, WheelSide side,
+                              const InterpenetrationRegion& region, const WheelsetOptions& options,
+                              detail::WheelsetWarmStart& warm, const SurfaceStart& start) {
   SurfaceSolution p;
   p.area = std::move(area);
-  const std::vector<double> initial =
-      warm_start ? warm.initial_pressure(side, region.rail_profile_y_m, p.area.mesh, predict_at) : std::vector<double>{};
-  const detail::WheelsetWarmStart::Previous* earlier = warm_start ? warm.nearest(side, region.rail_profile_y_m) : nullptr;
-  std::optional<WindowedSolution> windowed =
-      solve_in_contact_window(p.area, initial, earlier ? earlier->check : nullptr, options, warm);
+  std::vector<double> geometric_h;
+  if (!lift_m.empty()) {
+    geometric_h = p.area.h_m;
+    for (std::size_t e = 0; e < lift_m.size(); ++e) p.area.h_m[e] += lift_m[e];
+  }
+  std::optional<WindowedSolution> windowed = solve_in_contact_window(p.area, start.initial, start.earlier, options, warm);
   p.normal = windowed ? std::move(windowed->normal)
-                      : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, initial);
+                      : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, start.initial);
   p.solved_mesh_elements = windowed ? windowed->window_elements : p.area.mesh.size();
   if (windowed) p.check = std::move(windowed->check);
+  if (!lift_m.empty()) p.area.h_m = std::move(geometric_h);
   if (!p.normal.converged) {
     throw Error(ErrorKind::not_converged,
                 fmt::format("wheelset: the normal problem of the {} wheel's patch at y_p = {:.2f} mm did not "
@@ -398,6 +408,86 @@ SurfaceSolution solve_surface(TangentPlaneArea area, WheelSide side, const Inter
                             side_name(side), region.rail_profile_y_m / kMm, p.normal.iterations, p.normal.residual));
   }
   return p;
+}
+
+// The weights of the elastic coupling between a wheel's patches (n × n, patch_coupling_weight of
+// their overlaps' distance); empty when no two are coupled.
+std::vector<double> coupling_weights(const WheelContactSearch& search, const std::vector<NormalPatch>& patches,
+                                     const PatchCouplingOptions& options) {
+  const std::size_t n = patches.size();
+  if (n < 2 || options.end_distance_m <= 0.0) return {};
+  std::vector<double> weight(n * n, 0.0);
+  bool coupled = false;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double w = detail::patch_coupling_weight(
+          detail::overlap_distance_m(search, patches[i].region, patches[j].region), options);
+      weight[i * n + j] = weight[j * n + i] = w;
+      coupled = coupled || w > 0.0;
+    }
+  return coupled ? weight : std::vector<double>{};
+}
+
+// The normal problems of a wheel's coupled patches (docs/WHEELSET.md §5 "Coupled patches"):
+// Gauss–Seidel sweeps over the patches, each solved with its h raised by the displacement the
+// others' latest pressures impose (patch_coupling.hpp; before a patch's first solve its start, in a
+// time step the last step's coupled pressure), from its own last pressure, until no patch's normal
+// force moves by more than the normal solver's tolerance (its own precision: 5e-6 in a wheelset) of
+// the wheel's. A patch blending two surfaces has both lifted by the others' primary surfaces.
+constexpr int kMaximumCouplingSweeps = 20;
+void solve_coupled(const std::vector<double>& weight, WheelSide side, const WheelsetPosition& position,
+                   std::vector<NormalPatch>& patches, const std::vector<SurfaceStart>& starts,
+                   const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
+  const std::size_t n = patches.size();
+  std::vector<detail::SurfacePoints> points(n), planar_points(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    points[i] = detail::surface_points(patches[i].region, patches[i].area);
+    if (patches[i].planar) planar_points[i] = detail::surface_points(patches[i].region, patches[i].planar->area);
+  }
+  // The displacement the others' pressures (solved, or their starts) impose on patch i's surface.
+  const auto lift = [&](std::size_t i, const TangentPlaneArea& area, const detail::SurfacePoints& target,
+                        bool solved) {
+    std::vector<double> u(area.h_m.size(), 0.0);
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j == i || weight[i * n + j] <= 0.0) continue;
+      const bool j_solved = solved || j < i;
+      const std::vector<double>& pressure = j_solved ? patches[j].normal.pressure_Pa : starts[j].initial;
+      if (pressure.empty()) continue;
+      detail::add_coupling_displacement(detail::pressure_blocks(patches[j].area, points[j], pressure), target,
+                                        weight[i * n + j], options.material, area.h_m, u);
+    }
+    return u;
+  };
+  std::vector<double> force(n, 0.0);
+  for (int sweep = 0;; ++sweep) {
+    double change = 0.0, total = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      NormalPatch& p = patches[i];
+      const std::vector<double> u = lift(i, p.area, points[i], sweep > 0);
+      p.coupling_lift_m = 0.0;
+      for (std::size_t e = 0; e < u.size(); ++e)
+        if (p.area.h_m[e] < 0.0) p.coupling_lift_m = std::max(p.coupling_lift_m, u[e]);
+      const SurfaceStart start = sweep == 0 ? starts[i] : SurfaceStart{p.normal.pressure_Pa, p.check};
+      static_cast<SurfaceSolution&>(p) = solve_surface(std::move(p.area), u, side, p.region, options, warm, start);
+      if (p.planar) {
+        const std::vector<double> v = lift(i, p.planar->area, planar_points[i], sweep > 0);
+        const SurfaceStart planar_start =
+            sweep == 0 ? SurfaceStart{} : SurfaceStart{p.planar->normal.pressure_Pa, p.planar->check};
+        p.planar = solve_surface(std::move(p.planar->area), v, side, p.region, options, warm, planar_start);
+      }
+      change = std::max(change, std::abs(p.normal.normal_force_N - force[i]));
+      force[i] = p.normal.normal_force_N;
+      total += force[i];
+    }
+    if (sweep > 0 && change <= options.normal.tolerance * total) return;
+    if (sweep == kMaximumCouplingSweeps) {
+      throw Error(ErrorKind::not_converged,
+                  fmt::format("wheelset: the elastic coupling of the {} wheel's {} patches at y = {:.3f} mm, z = "
+                              "{:.4f} mm did not settle in {} sweeps (last change {:.3g} N of {:.6g} N)",
+                              side_name(side), n, position.lateral_displacement_m / kMm,
+                              position.vertical_displacement_m / kMm, kMaximumCouplingSweeps, change, total));
+    }
+  }
 }
 
 // Each patch starts from the linear prediction of its last solutions (initial_pressure).
@@ -423,14 +513,31 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     p.region = region;
     p.conformal_weight = conformal_surface_weight(options.contact_surface, options.contact_surface_switch, region);
     const bool conformal = p.conformal_weight > 0.0;
-    static_cast<SurfaceSolution&>(p) = solve_surface(
-        conformal ? track.conformal_contact_area(position, region, options.element_size_m)
-                  : track.potential_contact_area(position, region, options.element_size_m),
-        side, region, options, warm, true, &position);
-    if (conformal && p.conformal_weight < 1.0)
-      p.planar = solve_surface(track.potential_contact_area(position, region, options.element_size_m), side, region,
-                               options, warm, false);
+    p.area = conformal ? track.conformal_contact_area(position, region, options.element_size_m)
+                       : track.potential_contact_area(position, region, options.element_size_m);
+    if (conformal && p.conformal_weight < 1.0) {
+      p.planar.emplace();
+      p.planar->area = track.potential_contact_area(position, region, options.element_size_m);
+    }
     patches.push_back(std::move(p));
+  }
+  // Each patch's primary surface starts from the prediction of its last solutions; a blend's planar
+  // surface afresh.
+  std::vector<SurfaceStart> starts;
+  for (const NormalPatch& p : patches) {
+    const detail::WheelsetWarmStart::Previous* earlier = warm.nearest(side, p.region.rail_profile_y_m);
+    starts.push_back({warm.initial_pressure(side, p.region.rail_profile_y_m, p.area.mesh, &position),
+                      earlier ? earlier->check : nullptr});
+  }
+  const std::vector<double> weight = coupling_weights(search, patches, options.patch_coupling);
+  if (!weight.empty()) {
+    solve_coupled(weight, side, position, patches, starts, options, warm);
+  } else {
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      NormalPatch& p = patches[i];
+      static_cast<SurfaceSolution&>(p) = solve_surface(std::move(p.area), {}, side, p.region, options, warm, starts[i]);
+      if (p.planar) p.planar = solve_surface(std::move(p.planar->area), {}, side, p.region, options, warm, {});
+    }
   }
   warm.remember(side, position, patches);
   return patches;
@@ -666,6 +773,7 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
   for (const NormalPatch& n : normal) {
     WheelsetPatch patch = finish_patch(side, motion, centre, n.region, n, options);
     patch.conformal_weight = n.conformal_weight;
+    patch.coupling_lift_m = n.coupling_lift_m;
     if (n.planar) {
       WheelsetPatch planar = finish_patch(side, motion, centre, n.region, *n.planar, options);
       std::shared_ptr<const WheelsetPatch> conformal_surface;
@@ -889,6 +997,16 @@ double conformal_surface_weight(ContactSurface surface, const ContactSurfaceSwit
   return detail::smoothstep((measure - s.planar_up_to) / (s.conformal_from - s.planar_up_to));
 }
 
+void validate(const PatchCouplingOptions& o) {
+  require(std::isfinite(o.full_distance_m) && std::isfinite(o.end_distance_m) && o.full_distance_m >= 0.0 &&
+              o.end_distance_m >= o.full_distance_m && o.end_distance_m <= 0.05,
+          [&] {
+            return fmt::format("wheelset: the patch coupling's distances {:g} mm (full) and {:g} mm (end) must "
+                               "satisfy 0 <= full <= end <= 50 mm (both 0: no coupling)",
+                               o.full_distance_m / kMm, o.end_distance_m / kMm);
+          });
+}
+
 void validate(const WheelsetOptions& o) {
   validate(o.material);
   require(std::isfinite(o.friction_coefficient) && o.friction_coefficient > 0.0 && o.friction_coefficient <= 2.0,
@@ -909,6 +1027,7 @@ void validate(const WheelsetOptions& o) {
   }
   validate(o.rolling);
   validate(o.search);
+  validate(o.patch_coupling);
   validate(o.contact_surface_switch);
   if (o.loads) {
     validate_normal_force(o.loads->right_N, "wheelset: the right wheel's vertical load");
