@@ -10,6 +10,10 @@
 //   BM_WheelsetStepRigidSlip   the time step with the rigid-slip direction instead of the elastic slip
 //   BM_WheelsetStepConformal   the time step on conformal contact surfaces (docs/WHEELSET.md §4)
 //   BM_WheelsetStage...        the time step's stages one by one (see stage_inputs below)
+//   BM_WheelsetCoupledStep     the time step of S1002 on UIC60 at 1:30 (data/wheel_rail/
+//                              s1002_uic60_1in30.json) at y = -5.0 mm, where the right wheel's tread
+//                              and flange root are separate patches 3.9 mm apart: argument 1 with
+//                              their elastic coupling (docs/WHEELSET.md §5 "Coupled patches"), 0 without
 //   BM_WheelsetTable           the time step from a wheelset table (wheelset_table.hpp; ...Radial,
 //                              ...RigidSlip: with that slip direction instead of the default): y within
 //                              ±0.5 mm of the argument in 1 µm steps, 98.1 kN per wheel, 2 mrad of
@@ -23,10 +27,12 @@
 // all included.
 #include <benchmark/benchmark.h>
 
+#include <string>
 #include <vector>
 
 #include "railcontact/normal.hpp"
 #include "railcontact/tangential.hpp"
+#include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
 #include "railcontact/wheelset_table.hpp"
 
@@ -123,6 +129,30 @@ void BM_WheelsetCold(benchmark::State& state) {
   WheelsetResult r;
   for (auto _ : state) {
     Wheelset wheelset(prototype);  // a copy starts cold
+    r = wheelset.evaluate(s);
+    benchmark::DoNotOptimize(r.force_track_N);
+  }
+  report(state, r);
+}
+
+// The time step where a wheel has two patches within the coupling distance, with and without the
+// coupling (the argument), by position at the loaded state of a rigid axle.
+void BM_WheelsetCoupledStep(benchmark::State& state) {
+  const WheelsetTrack t(load_wheel_rail_pair(
+      read_wheel_rail_setup(std::string(RAILCONTACT_DATA_DIR) + "/wheel_rail/s1002_uic60_1in30.json")));
+  WheelsetOptions balanced;
+  balanced.loads = WheelLoads{98.1e3, 98.1e3, true};
+  WheelsetState s;
+  s.position.lateral_displacement_m = -5.0e-3;
+  s.position = Wheelset(t, balanced).evaluate(s).state.position;
+  const double y0 = s.position.lateral_displacement_m;
+  WheelsetOptions options = by_position();
+  if (state.range(0) == 0) options.patch_coupling = {0.0, 0.0};
+  Wheelset wheelset(t, options);
+  WheelsetResult r = wheelset.evaluate(s);
+  long step = 0;
+  for (auto _ : state) {
+    s.position.lateral_displacement_m = stepped_y_m(y0, ++step);
     r = wheelset.evaluate(s);
     benchmark::DoNotOptimize(r.force_track_N);
   }
@@ -275,6 +305,7 @@ BENCHMARK(BM_WheelsetStageArea)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecon
 BENCHMARK(BM_WheelsetStageNormal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStageTangential)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetCoupledStep)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoadBalanced)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStepExact)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);

@@ -73,8 +73,10 @@ const WheelsetTable& table() {
   return t;
 }
 
-// A table file as an older format wrote it: without format 6's contact surface and conformal parts.
+// A table file as an older format wrote it: without format 6's contact surface and conformal parts
+// (and format 8's patch coupling).
 nlohmann::json before_format_6(nlohmann::json file) {
+  file.erase("patch_coupling");
   file.erase("contact_surface");
   file.erase("contact_surface_switch");
   for (nlohmann::json& node : file["nodes"])
@@ -352,13 +354,23 @@ TEST(WheelsetTable, MismatchesNameEverySettingItWasNotBuiltFor) {
   old.erase("creepage_point");
   old["format_version"] = 3;
   const std::vector<WheelsetTableMismatch> recipe = parse_wheelset_table(old.dump(), "t.json").mismatches(built);
-  ASSERT_EQ(recipe.size(), 2u);
+  ASSERT_EQ(recipe.size(), 3u);
   EXPECT_EQ(recipe[0].setting, WheelsetTableSetting::nh_fastsim_recipe);
   EXPECT_EQ(recipe[0].table, "1 or 2, not recorded");
   // ... and its contact definition (format 4 and older: depth-weighted reference points, creepages
   // on the rail surface) from this railcontact's; so does a table built with the depth weighting.
   EXPECT_EQ(recipe[1].setting, WheelsetTableSetting::contact_definition);
   EXPECT_NE(recipe[1].table.find("depth reference point, creepages on the rail surface"), std::string::npos);
+  // ... and its separate patches were not coupled (format 7 and older).
+  EXPECT_EQ(recipe[2].setting, WheelsetTableSetting::patch_coupling);
+  EXPECT_EQ(recipe[2].requested, "full up to 6 mm apart, none from 10 mm");
+  EXPECT_EQ(recipe[2].table, "none");
+  WheelsetOptions uncoupled = built;
+  uncoupled.patch_coupling = {0.0, 0.0};
+  const std::vector<WheelsetTableMismatch> coupling = table().mismatches(uncoupled);
+  ASSERT_EQ(coupling.size(), 1u);
+  EXPECT_EQ(coupling[0].setting, WheelsetTableSetting::patch_coupling);
+  EXPECT_EQ(coupling[0].requested, "none");
   WheelsetOptions depth = built;
   depth.search.weighting = ReferenceWeighting::depth;
   const std::vector<WheelsetTableMismatch> weighting = table().mismatches(depth);
@@ -488,8 +500,17 @@ TEST(WheelsetTableFile, MalformedFilesAreRefusedNamingTheKey) {
   // Format 3 names the slip direction; format 1-2 files evaluate with the radial one (Eq 8).
   // Format 4 records the nH-FastSim recipe; older files load with recipe 0 (not recorded).
   nlohmann::json slip = nlohmann::json::parse(wheelset_table_json(table()));
-  EXPECT_EQ(slip["format_version"], 7);
+  EXPECT_EQ(slip["format_version"], 8);
   EXPECT_EQ(slip["contact_surface"], "planar");
+  EXPECT_EQ(slip["patch_coupling"], nlohmann::json::array({0.006, 0.01}));
+  nlohmann::json coupling = slip;
+  coupling["patch_coupling"] = {0.006};
+  EXPECT_NE(message(coupling.dump()).find("patch_coupling must be a list of 2 numbers"), std::string::npos)
+      << message(coupling.dump());
+  coupling["patch_coupling"] = {0.01, 0.006};
+  EXPECT_NE(message(coupling.dump()).find("patch_coupling: wheelset: the patch coupling's distances 10 mm (full) and 6 mm"),
+            std::string::npos)
+      << message(coupling.dump());
   EXPECT_TRUE(slip["nodes"][0]["wheels"][0][0]["conformal"].is_null());
   nlohmann::json band = slip;
   band["contact_surface_switch"] = {0.03, 0.02};
@@ -548,7 +569,7 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
   std::ofstream(v2) << old_format.dump();
   const auto evaluate = [](const std::string& file, const std::string& extra) {
     const CommandResult r = run_cli("wheelset --table " + file +
-                                    " --y-m -0.0053 --load-N 100000 --frictionless-balance --json --table-override recipe contact-definition" + extra);
+                                    " --y-m -0.0053 --load-N 100000 --frictionless-balance --json --table-override recipe contact-definition patch-coupling" + extra);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return nlohmann::json::parse(r.out);
   };
@@ -562,7 +583,7 @@ TEST(WheelsetTableCli, EvaluatesWithTheTablesSlipDirection) {
       << refused.err;
   EXPECT_EQ(weighted["wheelset_table_overrides"][0]["setting"], "recipe");
   const CommandResult noted = run_cli("wheelset --table " + v3 +
-                                      " --y-m -0.0053 --load-N 100000 --frictionless-balance --json --table-override recipe contact-definition");
+                                      " --y-m -0.0053 --load-N 100000 --frictionless-balance --json --table-override recipe contact-definition patch-coupling");
   EXPECT_NE(noted.err.find("note: " + v3 + ": the table was built with an older nH-FastSim recipe"), std::string::npos)
       << noted.err;
   EXPECT_EQ(weighted["nh_fastsim_slip_direction"], "flexibility-weighted");

@@ -224,6 +224,7 @@ std::optional<std::string> requested_by(WheelsetTableSetting setting, const Whee
     case WheelsetTableSetting::nh_fastsim_recipe: return std::string("this railcontact's");
     case WheelsetTableSetting::contact_definition: return std::string("this railcontact's");
     case WheelsetTableSetting::contact_surface: return option_or_case("--contact-surface", "[mesh] contact_surface");
+    case WheelsetTableSetting::patch_coupling: return std::string("this railcontact's");
   }
   return std::nullopt;
 }

@@ -199,6 +199,9 @@ struct WheelsetTableMetadata {
   // surface, its switch.
   ContactSurface contact_surface = ContactSurface::planar;
   ContactSurfaceSwitch contact_surface_switch{};
+  // The elastic coupling of a wheel's separate patches in the build (format version 8; older: none,
+  // {0, 0}).
+  PatchCouplingOptions patch_coupling{0.0, 0.0};
   std::string railcontact_version;
   std::string created_utc;
 };
@@ -257,15 +260,16 @@ enum class WheelsetTableSetting {
   nh_fastsim_recipe,       // kNhFastSimRecipe of the build (this railcontact computes with today's)
   contact_definition,      // the reference point's weighting and where the creepages are taken
   contact_surface,         // planar, conformal or automatic (with its switch)
+  patch_coupling,          // the elastic coupling of separate patches (WheelsetOptions::patch_coupling)
 };
 inline constexpr WheelsetTableSetting kWheelsetTableSettings[] = {
     WheelsetTableSetting::material,           WheelsetTableSetting::element_size,
     WheelsetTableSetting::flexibility_coarsening, WheelsetTableSetting::collocation_offset,
     WheelsetTableSetting::slip_direction,     WheelsetTableSetting::traction_bound_skew,
     WheelsetTableSetting::nh_fastsim_recipe, WheelsetTableSetting::contact_definition,
-    WheelsetTableSetting::contact_surface};
+    WheelsetTableSetting::contact_surface,    WheelsetTableSetting::patch_coupling};
 // "material", "element-size", "flexibility-coarsening", "collocation-offset", "slip-direction",
-// "traction-bound-skew", "recipe", "contact-definition", "contact-surface".
+// "traction-bound-skew", "recipe", "contact-definition", "contact-surface", "patch-coupling".
 const char* wheelset_table_setting_name(WheelsetTableSetting setting);
 // Throws Error (invalid_input) naming the allowed names.
 WheelsetTableSetting parse_wheelset_table_setting(const std::string& name);

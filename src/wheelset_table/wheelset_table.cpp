@@ -701,6 +701,7 @@ const char* wheelset_table_setting_name(WheelsetTableSetting setting) {
     case WheelsetTableSetting::nh_fastsim_recipe: return "recipe";
     case WheelsetTableSetting::contact_definition: return "contact-definition";
     case WheelsetTableSetting::contact_surface: return "contact-surface";
+    case WheelsetTableSetting::patch_coupling: return "patch-coupling";
   }
   return "?";
 }
@@ -764,6 +765,14 @@ std::vector<WheelsetTableMismatch> WheelsetTable::mismatches(const WheelsetOptio
        (!same(a.planar_up_to, b.planar_up_to) || !same(a.conformal_from, b.conformal_from))))
     add(WheelsetTableSetting::contact_surface, surface(options.contact_surface, a),
         surface(metadata_.contact_surface, b));
+  const auto coupling = [](const PatchCouplingOptions& c) {
+    if (c.end_distance_m <= 0.0) return std::string("none");
+    return fmt::format("full up to {:g} mm apart, none from {:g} mm", c.full_distance_m * 1e3, c.end_distance_m * 1e3);
+  };
+  const PatchCouplingOptions& pc = options.patch_coupling;
+  const PatchCouplingOptions& tc = metadata_.patch_coupling;
+  if (!same(pc.full_distance_m, tc.full_distance_m) || !same(pc.end_distance_m, tc.end_distance_m))
+    add(WheelsetTableSetting::patch_coupling, coupling(pc), coupling(tc));
   return found;
 }
 

@@ -481,6 +481,7 @@ WheelsetTable build_wheelset_table(const WheelsetTrack& track, const WheelsetTab
   metadata.creepage_on_wheel_surface = true;
   metadata.contact_surface = wheelset_options.contact_surface;
   metadata.contact_surface_switch = wheelset_options.contact_surface_switch;
+  metadata.patch_coupling = wheelset_options.patch_coupling;
   metadata.railcontact_version = RC_VERSION_STRING;
   metadata.created_utc = options.created_utc.empty() ? detail::utc_now() : options.created_utc;
   if (solved == 0) throw Error(fmt::format("wheelset table: no node could be solved; the first: {}", first_failure));

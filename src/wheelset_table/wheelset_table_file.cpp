@@ -26,8 +26,8 @@ constexpr const char* kFormat = "railcontact wheelset table";
 // 3: slip_direction (1-2: the radial one); 4: nh_fastsim_recipe; 5: reference_weighting and
 // creepage_point (older: depth, the rail surface); 6: contact_surface, contact_surface_switch and
 // each patch's "conformal" part (older: planar); 7: each runtime copy's "creepage_coupling" (older:
-// none).
-constexpr int kFormatVersion = 7;
+// none); 8: patch_coupling (older: separate patches not coupled).
+constexpr int kFormatVersion = 8;
 // The largest file read (a table of 91 y values × 3 loads at 400 runtime elements is about 12 MB).
 constexpr std::uintmax_t kMaxTableFileBytes = 512u << 20;  // 512 MiB
 // At most this many nodes (as a build makes) and elements per runtime mesh.
@@ -346,6 +346,17 @@ WheelsetTableMetadata read_metadata(StrictJsonReader& r, int format_version) {
       r.fail(fmt::format("contact_surface_switch: {}", e.what()));
     }
   }
+  // Format versions 1 to 7: separate patches solved on their own.
+  if (format_version >= 8) {
+    const std::vector<double> distances = r.numbers("patch_coupling");
+    if (distances.size() != 2) r.fail("patch_coupling must be a list of 2 numbers (full_distance_m, end_distance_m)");
+    m.patch_coupling = {distances[0], distances[1]};
+    try {
+      validate(m.patch_coupling);
+    } catch (const Error& e) {
+      r.fail(fmt::format("patch_coupling: {}", e.what()));
+    }
+  }
   return m;
 }
 
@@ -397,6 +408,7 @@ std::string wheelset_table_json(const WheelsetTable& table) {
                     {"contact_surface", contact_surface_name(m.contact_surface)},
                     {"contact_surface_switch",
                      json::array({m.contact_surface_switch.planar_up_to, m.contact_surface_switch.conformal_from})},
+                    {"patch_coupling", json::array({m.patch_coupling.full_distance_m, m.patch_coupling.end_distance_m})},
                     {"nominal_rolling_radius_m", table.nominal_rolling_radius_m()},
                     {"y_m", table.grid().y_m},
                     {"yaw_rad", table.grid().yaw_rad},
