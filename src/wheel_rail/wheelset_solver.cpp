@@ -830,6 +830,12 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
   detail::HeightIteration height;
   double& stiffness = warm.stiffness_N_per_m[side == WheelSide::right ? 0 : 1];
   height.seed_stiffness_N_per_m = stiffness;
+  // The bracket of δ around the target (force below it at lo_m, above at hi_m), and the trial
+  // nearest to it: where the force jumps across the target (two patches merging into one planar
+  // patch, docs/WHEELSET.md §3) the bracket is halved until it closes on the jump.
+  double lo_m = 0.0, hi_m = std::numeric_limits<double>::infinity(), F_lo = 0.0, F_hi = 0.0;
+  double best_residual = std::numeric_limits<double>::infinity(), best_delta = 0.0;
+  std::vector<NormalPatch> best;
   for (iterations = 1; iterations <= kMaximumLoadIterations; ++iterations) {
     position.vertical_displacement_m = touching - delta;
     patches = solve_normal(track, side, position, options, warm);
@@ -841,7 +847,28 @@ double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition
       overlap_m = stiffness > 0.0 ? delta + (target_N - force) / stiffness : delta;
       return position.vertical_displacement_m;
     }
-    const double next = height.next_overlap_m(delta, force, target_N, iterations);
+    if (force > 0.0 && std::abs(force - target_N) < best_residual) {
+      best_residual = std::abs(force - target_N);
+      best_delta = delta;
+      best = patches;
+    }
+    if (force > 0.0 && force < target_N && delta >= lo_m) lo_m = delta, F_lo = force;
+    if (force > target_N && delta <= hi_m) hi_m = delta, F_hi = force;
+    double next = height.next_overlap_m(delta, force, target_N, iterations);
+    const double slope = height.stiffness_N_per_m > 0.0 ? height.stiffness_N_per_m : stiffness;
+    // A jump: more than the stiffness explains by 1e-4 of the target (not the solver's rounding
+    // around a root that the load tolerance asks to 1e-10).
+    if (std::isfinite(hi_m) && lo_m > 0.0 && slope > 0.0 &&
+        F_hi - F_lo > 1.5 * slope * (hi_m - lo_m) + 1e-4 * target_N) {
+      if ((hi_m - lo_m) * slope <= kBracketTolerance * target_N) {
+        // Closed on the jump: the trial nearest to the target.
+        patches = std::move(best);
+        position.vertical_displacement_m = touching - best_delta;
+        overlap_m = best_delta;
+        return position.vertical_displacement_m;
+      }
+      next = 0.5 * (lo_m + hi_m);
+    }
     require_overlap_within_limit(side, delta, force, target_N);
     delta = next;
   }
@@ -866,6 +893,10 @@ void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const Wheel
                          const WheelsetOptions& options, double& overlap_m, double& tangential_N, WheelResult& wheel,
                          detail::WheelsetWarmStart& warm) {
   constexpr double kTangentialTrialRange = 1e-2;  // of the load
+  // After this many trials every trial solves T: where F jumps across the load by more than the
+  // range (two patches merging into one planar patch, docs/WHEELSET.md §3), no trial comes within
+  // it, and the bracket that closes on the jump needs trials on both sides.
+  constexpr int kTrialsBeforeEveryT = 6;
   const std::size_t k = side == WheelSide::right ? 0 : 1;
   const std::size_t solver = balance_index(options);
   const double touching = detail::touching_vertical_displacement_m(
@@ -887,7 +918,8 @@ void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const Wheel
     trial.position.vertical_displacement_m = touching - delta;
     std::vector<NormalPatch> patches = solve_normal(track, side, trial.position, options, warm);
     const double N = normal_vertical_force(patches);
-    const bool with_T = N > 0.0 && std::abs(N + T - load_N) <= kTangentialTrialRange * load_N;
+    const bool with_T =
+        N > 0.0 && (std::abs(N + T - load_N) <= kTangentialTrialRange * load_N || iteration > kTrialsBeforeEveryT);
     if (with_T) {
       wheel = finish_wheel(track, side, trial, patches, options);
       T = tangential_vertical_force(wheel, solver);
