@@ -76,7 +76,7 @@ struct ContactSearchOptions {
   double locus_step_m = 0.1e-3;
   // Interpenetration regions closer than this along the rail profile are one patch (docs/WHEELSET.md §3) ...
   double merge_distance_m = 2.0e-3;
-  // ... unless their contact angles differ by more than this.
+  // ... unless their contact angles (at their facing ends) differ by more than this.
   double merge_angle_rad = 0.35;
 };
 void validate(const ContactSearchOptions& options);

@@ -70,21 +70,16 @@ std::vector<LocusRun> overlap_runs(const std::vector<ContactLocusSample>& locus,
 }
 
 // Neighbouring runs closer along the rail than the merge distance and closer in contact angle than
-// the merge angle (ContactSearchOptions) as one (docs/WHEELSET.md §3): the angles compared are the
-// runs' own contact angles (averaged as their regions' are, by `angle_of(first, last)`), as Kalker's
-// CONTACT compares its patches', not those at the runs' facing ends, which on a profile that
-// curves steadily from flange root to flange lie close even where the runs' do not.
-template <class AngleOf>
+// the merge angle (ContactSearchOptions) as one (docs/WHEELSET.md §3).
 std::vector<LocusRun> merged_runs(const std::vector<LocusRun>& runs, const std::vector<ContactLocusSample>& locus,
-                                  const ContactSearchOptions& options, const AngleOf& angle_of) {
+                                  const ContactSearchOptions& options) {
   std::vector<LocusRun> merged;
   for (const LocusRun& r : runs) {
     if (!merged.empty()) {
       const ContactLocusSample& a = locus[merged.back().last];
       const ContactLocusSample& b = locus[r.first];
       if (std::abs(b.rail_profile_y_m - a.rail_profile_y_m) < options.merge_distance_m &&
-          std::abs(angle_of(r.first, r.last) - angle_of(merged.back().first, merged.back().last)) <
-              options.merge_angle_rad) {
+          std::abs(b.contact_angle_rad - a.contact_angle_rad) < options.merge_angle_rad) {
         merged.back().last = r.last;
         continue;
       }
@@ -384,10 +379,7 @@ WheelContactSearch contact_search(const WheelsetTrack& track, WheelLocus& locus,
 
   // Runs of overlapping samples (vertical gap < 0), neighbours close along the rail and similar in
   // contact angle merged into one (docs/WHEELSET.md §3).
-  const auto angle_of = [&](std::size_t first, std::size_t last) {
-    return w.region(search.locus, first, last, options.weighting).contact_angle_rad;
-  };
-  std::vector<LocusRun> merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options, angle_of);
+  std::vector<LocusRun> merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
   // An on-demand locus computed across each region and beside it (regions merged across a gap
   // hold samples that do not overlap).
   if (!locus.computed.empty()) {
@@ -402,7 +394,7 @@ WheelContactSearch contact_search(const WheelsetTrack& track, WheelLocus& locus,
     }
     if (filled) {
       lift();
-      merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options, angle_of);
+      merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
     }
   }
   for (const LocusRun& r : merged) {
