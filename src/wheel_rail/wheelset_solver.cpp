@@ -378,7 +378,7 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
 
 // The normal problem of a region on one contact surface's area. h is measured at this position
 // (negative where the bodies overlap): the approach is zero; where `lift_m` is given (the other
-// patches' elastic coupling, couple_patches) h + lift is solved, and the area keeps its geometric h.
+// patches' elastic coupling, solve_coupled) h + lift is solved, and the area keeps its geometric h.
 // With a start (`initial`: in a time step the last pressure, predicted) first on its window (with
 // the `earlier` check's bound); else (or if the check fails) on the whole potential area.
 struct SurfaceStart {
