@@ -74,9 +74,10 @@ struct ContactSearchOptions {
   ReferenceWeighting weighting = ReferenceWeighting::squared_gap;
   // Spacing of the contact-locus samples along the wheel profile (arc length).
   double locus_step_m = 0.1e-3;
-  // Interpenetration regions closer than this along the rail profile are one patch (docs/WHEELSET.md §3) ...
+  // Interpenetration regions (runs of the locus's overlap, cut at their necks) closer than this
+  // along the rail profile are one patch (docs/WHEELSET.md §3) ...
   double merge_distance_m = 2.0e-3;
-  // ... unless their contact angles (at their facing ends) differ by more than this.
+  // ... unless their own contact angles (averaged over each) differ by more than this.
   double merge_angle_rad = 0.35;
 };
 void validate(const ContactSearchOptions& options);

@@ -69,17 +69,65 @@ std::vector<LocusRun> overlap_runs(const std::vector<ContactLocusSample>& locus,
   return runs;
 }
 
-// Neighbouring runs closer along the rail than the merge distance and closer in contact angle than
-// the merge angle (ContactSearchOptions) as one (docs/WHEELSET.md §3).
-std::vector<LocusRun> merged_runs(const std::vector<LocusRun>& runs, const std::vector<ContactLocusSample>& locus,
-                                  const ContactSearchOptions& options) {
-  std::vector<LocusRun> merged;
+// How far a neck must rise above the shallower of the two humps it parts for the humps to be
+// pieces of their own (docs/WHEELSET.md §3): about the elastic approach of a loaded patch (0.05–0.1
+// mm at 98.1 kN), so that the contact's own deformation does not bridge it. S1002 on UIC60 has
+// necks of at most 0.017 mm between its flange and flange root (at +10 mrad, y = −6.54 …
+// −6.60 mm); Car7358 on upright UIC60 one of 0.14–0.17 mm (+10 mrad, y = −7.0 … −7.1 mm).
+constexpr double kNeckProminence_m = 0.05e-3;
+
+// Each run cut at its necks: an interior sample whose vertical gap is higher than its neighbours'
+// (a local maximum, though still overlapping) and at least kNeckProminence_m higher than the
+// deepest sample of the shallower hump on either side of it (up to the next such neck or the run's
+// end) parts two humps of the overlap, which may lie on different parts of the profile (a flange
+// root and a flange that have met). The humps are pieces for merged_runs, which joins them again
+// unless their contact angles differ. Lowering the wheel moves every gap alike, so a neck and its
+// prominence stay as they are while the wheel settles into the rail: the pieces, and so the
+// patches, do not change with the height at which the load is met.
+std::vector<LocusRun> cut_at_necks(const std::vector<LocusRun>& runs, const std::vector<ContactLocusSample>& locus) {
+  const auto gap = [&](std::size_t k) { return locus[k].vertical_gap_m; };
+  std::vector<LocusRun> pieces;
   for (const LocusRun& r : runs) {
+    // The run's local maxima of the gap, in order, and the deepest gap between consecutive ones.
+    std::vector<std::size_t> maxima;
+    for (std::size_t k = r.first + 1; k < r.last; ++k)
+      if (gap(k) > gap(k - 1) && gap(k) >= gap(k + 1)) maxima.push_back(k);
+    std::size_t first = r.first;
+    for (std::size_t m = 0; m < maxima.size(); ++m) {
+      const std::size_t k = maxima[m];
+      // The deepest gap before k (since the last cut) and after it (up to the next maximum that
+      // would be a cut, or the run's end: the hump beyond k as far as it goes).
+      double before = gap(first), after = gap(k + 1);
+      for (std::size_t i = first; i < k; ++i) before = std::min(before, gap(i));
+      for (std::size_t i = k + 1; i <= r.last; ++i) {
+        if (gap(i) > gap(k)) break;  // beyond a higher neck
+        after = std::min(after, gap(i));
+      }
+      if (gap(k) - std::max(before, after) >= kNeckProminence_m) {
+        pieces.push_back({first, k});
+        first = k + 1;
+      }
+    }
+    pieces.push_back({first, r.last});
+  }
+  return pieces;
+}
+
+// Neighbouring pieces closer along the rail than the merge distance (0 for the two humps at a neck)
+// and closer in contact angle than the merge angle (ContactSearchOptions) as one (docs/WHEELSET.md
+// §3). The angles compared are the pieces' own contact angles, averaged as their regions' are
+// (`angle_of(first, last)`), as Kalker's CONTACT compares its patches'.
+template <class AngleOf>
+std::vector<LocusRun> merged_runs(const std::vector<LocusRun>& runs, const std::vector<ContactLocusSample>& locus,
+                                  const ContactSearchOptions& options, const AngleOf& angle_of) {
+  std::vector<LocusRun> merged;
+  for (const LocusRun& r : cut_at_necks(runs, locus)) {
     if (!merged.empty()) {
       const ContactLocusSample& a = locus[merged.back().last];
       const ContactLocusSample& b = locus[r.first];
       if (std::abs(b.rail_profile_y_m - a.rail_profile_y_m) < options.merge_distance_m &&
-          std::abs(b.contact_angle_rad - a.contact_angle_rad) < options.merge_angle_rad) {
+          std::abs(angle_of(r.first, r.last) - angle_of(merged.back().first, merged.back().last)) <
+              options.merge_angle_rad) {
         merged.back().last = r.last;
         continue;
       }
@@ -379,7 +427,10 @@ WheelContactSearch contact_search(const WheelsetTrack& track, WheelLocus& locus,
 
   // Runs of overlapping samples (vertical gap < 0), neighbours close along the rail and similar in
   // contact angle merged into one (docs/WHEELSET.md §3).
-  std::vector<LocusRun> merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
+  const auto angle_of = [&](std::size_t first, std::size_t last) {
+    return w.region(search.locus, first, last, options.weighting).contact_angle_rad;
+  };
+  std::vector<LocusRun> merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options, angle_of);
   // An on-demand locus computed across each region and beside it (regions merged across a gap
   // hold samples that do not overlap).
   if (!locus.computed.empty()) {
@@ -394,7 +445,7 @@ WheelContactSearch contact_search(const WheelsetTrack& track, WheelLocus& locus,
     }
     if (filled) {
       lift();
-      merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options);
+      merged = merged_runs(overlap_runs(search.locus, valid, where), search.locus, options, angle_of);
     }
   }
   for (const LocusRun& r : merged) {

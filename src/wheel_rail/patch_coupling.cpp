@@ -12,8 +12,13 @@ namespace railcontact::detail {
 
 namespace {
 
-// The edge of the block the coupling's source gathers (see pressure_blocks).
+// The edge of the block the coupling's source gathers (see pressure_blocks), and the distance from
+// a block's centre within which a target takes the block's elements one by one.
 constexpr double kBlockSize_m = 1e-3;
+constexpr double kNearField_m = 2.0 * kBlockSize_m;
+// 4 ln(1 + √2): a uniform pressure p on a square of side s displaces its centre by
+// (1 − ν)/(πG) p s × this, as a point load p s² at the distance s / this would.
+constexpr double kSquareCentreFactor = 3.5254943480781717;
 
 // Where the vertical gap crosses zero between locus samples `inside` (overlapping) and `outside`.
 Vector3 overlap_end(const std::vector<ContactLocusSample>& locus, std::size_t inside, std::size_t outside) {
@@ -82,6 +87,8 @@ PressureBlocks pressure_blocks(const TangentPlaneArea& area, const SurfacePoints
   const int b1 = std::max(1, static_cast<int>(std::lround(kBlockSize_m / mesh.dx1_m)));
   const int b2 = std::max(1, static_cast<int>(std::lround(kBlockSize_m / mesh.dx2_m)));
   PressureBlocks blocks;
+  blocks.element_core_m = std::sqrt(mesh.dx1_m * mesh.dx2_m) / kSquareCentreFactor;
+  blocks.first_element.push_back(0);
   for (int j2 = 0; j2 < mesh.n2; j2 += b2) {
     for (int j1 = 0; j1 < mesh.n1; j1 += b1) {
       double force = 0.0;
@@ -92,6 +99,8 @@ PressureBlocks pressure_blocks(const TangentPlaneArea& area, const SurfacePoints
           const double f = pressure_Pa[e] * mesh.element_area_m2();
           if (!(f > 0.0)) continue;
           force += f;
+          blocks.element_point_m.push_back(points.point_m[e]);
+          blocks.element_force_N.push_back(f);
           for (std::size_t i = 0; i < 3; ++i) {
             centre[i] += f * points.point_m[e][i];
             normal[i] += f * points.normal[e][i];
@@ -107,6 +116,7 @@ PressureBlocks pressure_blocks(const TangentPlaneArea& area, const SurfacePoints
       blocks.centre_m.push_back(centre);
       blocks.normal.push_back(normal);
       blocks.force_N.push_back(force);
+      blocks.first_element.push_back(blocks.element_force_N.size());
     }
   }
   return blocks;
@@ -129,16 +139,40 @@ void add_coupling_displacement(const PressureBlocks& source, const SurfacePoints
     y[k] = target.point_m[index[k]][1];
     z[k] = target.point_m[index[k]][2];
   }
+  std::vector<std::size_t> near;
+  const double core2 = source.element_core_m * source.element_core_m;
   for (std::size_t b = 0; b < source.force_N.size(); ++b) {
     const double cx = source.centre_m[b][0], cy = source.centre_m[b][1], cz = source.centre_m[b][2];
     const double fx = source.force_N[b] * source.normal[b][0], fy = source.force_N[b] * source.normal[b][1],
                  fz = source.force_N[b] * source.normal[b][2];
+    bool any_near = false;
     for (std::size_t k = 0; k < n; ++k) {
       const double dx = x[k] - cx, dy = y[k] - cy, dz = z[k] - cz;
-      const double inverse_r = 1.0 / std::sqrt(dx * dx + dy * dy + dz * dz);
+      const double r2 = dx * dx + dy * dy + dz * dz;
+      const bool is_near = r2 < kNearField_m * kNearField_m;
+      any_near |= is_near;
+      const double inverse_r = is_near ? 0.0 : 1.0 / std::sqrt(r2);
       vx[k] += fx * inverse_r;
       vy[k] += fy * inverse_r;
       vz[k] += fz * inverse_r;
+    }
+    if (!any_near) continue;
+    // The near targets: the block's elements one by one.
+    near.clear();
+    for (std::size_t k = 0; k < n; ++k) {
+      const double dx = x[k] - cx, dy = y[k] - cy, dz = z[k] - cz;
+      if (dx * dx + dy * dy + dz * dz < kNearField_m * kNearField_m) near.push_back(k);
+    }
+    for (const std::size_t k : near) {
+      double sum = 0.0;
+      for (std::size_t e = source.first_element[b]; e < source.first_element[b + 1]; ++e) {
+        const Vector3& p = source.element_point_m[e];
+        const double ex = x[k] - p[0], ey = y[k] - p[1], ez = z[k] - p[2];
+        sum += source.element_force_N[e] / std::sqrt(std::max(ex * ex + ey * ey + ez * ez, core2));
+      }
+      vx[k] += source.normal[b][0] * sum;
+      vy[k] += source.normal[b][1] * sum;
+      vz[k] += source.normal[b][2] * sum;
     }
   }
   // Along each element's normal.
