@@ -70,9 +70,9 @@ std::vector<LocusRun> overlap_runs(const std::vector<ContactLocusSample>& locus,
 }
 
 // How far a neck must rise above the shallower of the two humps it parts for the humps to be
-// pieces of their own (docs/WHEELSET.md §3): about the elastic approach of a loaded patch (0.05–0.1
-// mm at 98.1 kN), so that the contact's own deformation does not bridge it. S1002 on UIC60 has
-// necks of at most 0.017 mm between its flange and flange root (at +10 mrad, y = −6.54 …
+// pieces of their own (docs/WHEELSET.md §3): of the order of a loaded patch's elastic approach
+// (0.073 mm at 98.1 kN), so that the contact's own deformation does not bridge it. S1002 on UIC60
+// has necks of at most 0.017 mm between its flange and flange root (at +10 mrad, y = −6.54 …
 // −6.60 mm); Car7358 on upright UIC60 one of 0.14–0.17 mm (+10 mrad, y = −7.0 … −7.1 mm).
 constexpr double kNeckProminence_m = 0.05e-3;
 
