@@ -16,6 +16,26 @@
 namespace railcontact {
 namespace {
 
+// A square flat area of n × n elements of 0.2 mm centred on the origin, every element overlapping,
+// in the plane z = 0 with its normal along z: its elements' centres and normals.
+struct FlatArea {
+  TangentPlaneArea area;
+  detail::SurfacePoints points;
+};
+FlatArea flat_area(int n) {
+  FlatArea f;
+  f.area.mesh.n1 = f.area.mesh.n2 = n;
+  f.area.mesh.dx1_m = f.area.mesh.dx2_m = 0.2e-3;
+  f.area.mesh.x1_first_m = f.area.mesh.x2_first_m = -0.1e-3 * (n - 1);
+  f.area.h_m.assign(static_cast<std::size_t>(n * n), -1e-5);
+  InterpenetrationRegion region;
+  region.x1_axis = {1.0, 0.0, 0.0};
+  region.x2_axis = {0.0, 1.0, 0.0};
+  region.x3_axis = {0.0, 0.0, 1.0};
+  f.points = detail::surface_points(region, f.area);
+  return f;
+}
+
 TEST(PatchCoupling, WeightIsOneUpToTheFullDistanceAndFadesToZeroAtTheEnd) {
   const PatchCouplingOptions o;  // 6 and 10 mm
   EXPECT_EQ(detail::patch_coupling_weight(2e-3, o), 1.0);
@@ -38,17 +58,9 @@ TEST(PatchCoupling, WeightIsOneUpToTheFullDistanceAndFadesToZeroAtTheEnd) {
 // by (1 − ν)/(πG) F / r.
 TEST(PatchCoupling, DisplacementFarFromAPatchIsBoussinesqsPointLoad) {
   const Material material{2.1e11, 0.3};
-  TangentPlaneArea area;
-  area.mesh.n1 = 10;
-  area.mesh.n2 = 10;
-  area.mesh.dx1_m = area.mesh.dx2_m = 0.2e-3;
-  area.mesh.x1_first_m = area.mesh.x2_first_m = -0.9e-3;
-  area.h_m.assign(100, -1e-5);
-  InterpenetrationRegion region;
-  region.x1_axis = {1.0, 0.0, 0.0};
-  region.x2_axis = {0.0, 1.0, 0.0};
-  region.x3_axis = {0.0, 0.0, 1.0};
-  const detail::SurfacePoints points = detail::surface_points(region, area);
+  const FlatArea flat = flat_area(10);
+  const TangentPlaneArea& area = flat.area;
+  const detail::SurfacePoints& points = flat.points;
   std::vector<double> pressure(100, 0.0);
   double force = 0.0;
   for (int i2 = 0; i2 < 10; ++i2)
@@ -87,16 +99,9 @@ TEST(PatchCoupling, DisplacementFarFromAPatchIsBoussinesqsPointLoad) {
 // here); the block as one point load would miss them by infinity and 1.7 %.
 TEST(PatchCoupling, ANearTargetTakesTheBlocksElementsOneByOne) {
   const Material material{2.1e11, 0.3};
-  TangentPlaneArea area;
-  area.mesh.n1 = area.mesh.n2 = 5;
-  area.mesh.dx1_m = area.mesh.dx2_m = 0.2e-3;
-  area.mesh.x1_first_m = area.mesh.x2_first_m = -0.4e-3;
-  area.h_m.assign(25, -1e-5);
-  InterpenetrationRegion region;
-  region.x1_axis = {1.0, 0.0, 0.0};
-  region.x2_axis = {0.0, 1.0, 0.0};
-  region.x3_axis = {0.0, 0.0, 1.0};
-  const detail::SurfacePoints points = detail::surface_points(region, area);
+  const FlatArea flat = flat_area(5);
+  const TangentPlaneArea& area = flat.area;
+  const detail::SurfacePoints& points = flat.points;
   constexpr double p_Pa = 1e9, side_m = 1e-3;
   const std::vector<double> pressure(25, p_Pa);
   const detail::PressureBlocks blocks = detail::pressure_blocks(area, points, pressure);

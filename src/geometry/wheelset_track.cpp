@@ -88,7 +88,7 @@ std::vector<LocusRun> cut_at_necks(const std::vector<LocusRun>& runs, const std:
   const auto gap = [&](std::size_t k) { return locus[k].vertical_gap_m; };
   std::vector<LocusRun> pieces;
   for (const LocusRun& r : runs) {
-    // The run's local maxima of the gap, in order, and the deepest gap between consecutive ones.
+    // The run's local maxima of the gap, in order.
     std::vector<std::size_t> maxima;
     for (std::size_t k = r.first + 1; k < r.last; ++k)
       if (gap(k) > gap(k - 1) && gap(k) >= gap(k + 1)) maxima.push_back(k);
