@@ -63,6 +63,10 @@ NormalSolution solve_normal_contact_at_approach(const Mesh& mesh, const std::vec
                                                 double approach_m, const Material& material,
                                                 const NormalOptions& options = {});
 
+namespace detail {
+struct NormalSolverAccess;  // a time step's start from known products (src/normal/known_product.hpp)
+}
+
 // The same solver as a reusable plan: the influence operator (kernel table, FFT plans) and the
 // iteration workspace are built once for a mesh and material and reused by every solve()
 // (e.g. along a wheel-rail contact sweep on a fixed mesh). Not thread-safe: one per thread.
@@ -92,6 +96,7 @@ class NormalContactSolver {
                                                 std::vector<double>* displacement_m = nullptr);
 
  private:
+  friend struct detail::NormalSolverAccess;
   struct Plan;
   std::unique_ptr<Plan> plan_;
 };

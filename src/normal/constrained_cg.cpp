@@ -44,8 +44,9 @@ ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, st
 
 ConstrainedCgReport ConstrainedConjugateGradient::solve_at_approach(InfluenceOperator& A, std::span<const double> h,
                                                                     double approach_m, std::span<double> p,
-                                                                    double tolerance, int max_iterations) {
-  return iterate(A, h, 0.0, approach_m, p, tolerance, max_iterations);
+                                                                    double tolerance, int max_iterations,
+                                                                    std::span<const double> product) {
+  return iterate(A, h, 0.0, approach_m, p, tolerance, max_iterations, product);
 }
 
 ConstrainedConjugateGradient::ContactSet ConstrainedConjugateGradient::mark_contact_set(std::span<const double> p,
@@ -162,7 +163,8 @@ bool ConstrainedConjugateGradient::update_pressure_product(InfluenceOperator& A,
 
 ConstrainedCgReport ConstrainedConjugateGradient::iterate(InfluenceOperator& A, std::span<const double> h,
                                                           double pressure_sum, std::optional<double> fixed_approach,
-                                                          std::span<double> p, double tolerance, int max_iterations) {
+                                                          std::span<double> p, double tolerance, int max_iterations,
+                                                          std::span<const double> product) {
   const bool load_given = !fixed_approach.has_value();
   // Pressure per unit penetration for elements entering the set: a quarter of the pressure that
   // closes the gap of one element alone, 1 / A33(0, 0). Elements enter in groups, and a group
@@ -170,8 +172,13 @@ ConstrainedCgReport ConstrainedConjugateGradient::iterate(InfluenceOperator& A, 
   // two-patch cases, factors 0.05 to 1 converge alike, 2 and above can make the set cycle.
   const double entry_step = 0.25 / A.kernel(0, 0, 0, 0);
 
-  A.apply_on_grid(p, u_);
   int recursive_updates = 0;  // updates of u_ = A p by recursion since its last product by FFT
+  if (product.size() == u_.size()) {
+    std::copy(product.begin(), product.end(), u_.begin());
+    recursive_updates = 1;
+  } else {
+    A.apply_on_grid(p, u_);
+  }
   bool set_stable = false;    // the last update left the contact set unchanged
   double G_old = 0.0;
   ConstrainedCgReport report;

@@ -48,13 +48,22 @@ class ConstrainedConjugateGradient {
   // The same problem with the approach delta prescribed instead of the load (PK's displacement-
   // driven variant): minimise 1/2 p.A p + (h - delta).p subject to p >= 0, i.e. the steps above
   // without the means over Ic and without the load scaling. p: initial guess (>= 0, may be zero).
+  // With `product` given (A p of the initial p, to rounding: a time step's start from the last
+  // steps' products, wheel_rail/wheelset_solver.cpp) the first product by FFT is left out; it counts
+  // as one recursive update of A p.
   ConstrainedCgReport solve_at_approach(InfluenceOperator& A, std::span<const double> h, double approach_m,
-                                        std::span<double> p, double tolerance, int max_iterations);
+                                        std::span<double> p, double tolerance, int max_iterations,
+                                        std::span<const double> product = {});
+  // A p of the last solve's p (m), to rounding: the product the iteration ended with.
+  [[nodiscard]] std::span<const double> product() const { return u_; }
+  // Up to this many elements A p is updated element by element (each mesh.size() multiply-adds)
+  // rather than by a product on the whole grid.
+  static constexpr std::size_t kLargestElementUpdate = 16;
 
  private:
   ConstrainedCgReport iterate(InfluenceOperator& A, std::span<const double> h, double pressure_sum,
                               std::optional<double> fixed_approach, std::span<double> p, double tolerance,
-                              int max_iterations);
+                              int max_iterations, std::span<const double> product = {});
 
   // The steps of one iteration (see the top of this header), on the work vectors below.
   struct ContactSet {
@@ -107,9 +116,6 @@ class ConstrainedConjugateGradient {
   std::vector<double> contact_mask_;  // 1 on Ic, 0 elsewhere: the sums over Ic as vectorised products
   // Elements whose pressure left the step's p − τ t in the last update, with the difference.
   std::vector<std::pair<std::size_t, double>> moved_;
-  // Up to this many such elements A p is updated element by element (each mesh.size()
-  // multiply-adds) rather than by a product on the whole grid.
-  static constexpr std::size_t kLargestElementUpdate = 16;
   // The most recursive updates of A p after which it decides convergence without a product by FFT.
   static constexpr int kLargestRecursion = 64;
 };

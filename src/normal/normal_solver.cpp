@@ -10,6 +10,7 @@
 #include "elastic/influence_operator.hpp"
 #include "normal/constrained_cg.hpp"
 #include "normal/initial_pressure.hpp"
+#include "normal/known_product.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/normal.hpp"
 
@@ -137,7 +138,16 @@ NormalSolution NormalContactSolver::solve(const std::vector<double>& h, double n
 
 NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>& h, double approach_m,
                                                       const std::vector<double>& initial_pressure_Pa) {
-  const Mesh& mesh = plan_->mesh;
+  return detail::NormalSolverAccess::solve_at_approach(*this, h, approach_m, initial_pressure_Pa, nullptr, nullptr);
+}
+
+namespace detail {
+
+NormalSolution NormalSolverAccess::solve_at_approach(NormalContactSolver& solver, const std::vector<double>& h,
+                                                     double approach_m, const std::vector<double>& initial_pressure_Pa,
+                                                     const KnownProduct* known, std::vector<double>* final_product_m) {
+  NormalContactSolver::Plan& plan = *solver.plan_;
+  const Mesh& mesh = plan.mesh;
   validate_problem(mesh, h, kMinimumNormalForce_N);
   require(std::isfinite(approach_m) && std::abs(approach_m) < 1.0, [&] {
     return fmt::format("normal contact: the approach {} m must be finite and below 1 m in size", approach_m);
@@ -154,8 +164,26 @@ NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>&
     // Only where the bodies overlap: elsewhere the old pressure would have to leave the set first.
     solution.pressure_Pa[k] = h[k] < approach_m ? p : 0.0;
   }
-  const detail::ConstrainedCgReport report = plan_->cg.solve_at_approach(
-      plan_->A, h, approach_m, solution.pressure_Pa, plan_->options.tolerance, plan_->options.max_iterations);
+  // The start's product from the known one: A p0 = A p_known + A (p0 − p_known), the difference
+  // element by element where it is non-zero (few: the prediction's elements clamped at zero).
+  std::vector<double>& start_product = plan.work;
+  bool product_known = known != nullptr && known->pressure_Pa.size() == mesh.size() &&
+                       known->displacement_m.size() == mesh.size();
+  if (product_known) {
+    std::size_t differing = 0;
+    for (std::size_t k = 0; k < mesh.size() && product_known; ++k)
+      if (solution.pressure_Pa[k] != known->pressure_Pa[k])
+        product_known = ++differing <= ConstrainedConjugateGradient::kLargestElementUpdate;
+  }
+  if (product_known) {
+    std::copy(known->displacement_m.begin(), known->displacement_m.end(), start_product.begin());
+    for (std::size_t k = 0; k < mesh.size(); ++k)
+      if (solution.pressure_Pa[k] != known->pressure_Pa[k])
+        plan.A.add_element_product(k, solution.pressure_Pa[k] - known->pressure_Pa[k], start_product);
+  }
+  const ConstrainedCgReport report = plan.cg.solve_at_approach(
+      plan.A, h, approach_m, solution.pressure_Pa, plan.options.tolerance, plan.options.max_iterations,
+      product_known ? std::span<const double>(start_product.data(), mesh.size()) : std::span<const double>{});
   solution.iterations = report.iterations;
   solution.approach_m = approach_m;
   solution.residual = report.residual;
@@ -163,8 +191,14 @@ NormalSolution NormalContactSolver::solve_at_approach(const std::vector<double>&
   const double sum = count_contact(mesh, solution);
   solution.normal_force_N = mesh.element_area_m2() * sum;
   solution.converged = report.converged;
+  if (final_product_m != nullptr) {
+    const std::span<const double> u = plan.cg.product();
+    final_product_m->assign(u.begin(), u.begin() + static_cast<std::ptrdiff_t>(mesh.size()));
+  }
   return solution;
 }
+
+}  // namespace detail
 
 double NormalContactSolver::complementarity_residual(const std::vector<double>& h, double approach_m,
                                                     const std::vector<double>& pressure_Pa,

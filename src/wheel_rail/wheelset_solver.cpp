@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geometry/wheel_locus.hpp"
+#include "normal/known_product.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/normal.hpp"
 #include "railcontact/wheelset.hpp"
@@ -69,6 +70,13 @@ std::size_t balance_index(const WheelsetOptions& options) {
   return static_cast<std::size_t>(it - options.solvers.begin());
 }
 
+// A normal solve's pressure and its product u = A p on the mesh it was solved on (a contact window
+// or the whole area): the next time step's start takes its product from these (known_product.hpp).
+struct SolvedMesh {
+  Mesh mesh;
+  std::vector<double> pressure_Pa, displacement_m;
+};
+
 // A patch's normal problem on one contact surface at a position.
 struct SurfaceSolution {
   TangentPlaneArea area;                 // planar, or conformal (with its strips)
@@ -77,6 +85,7 @@ struct SurfaceSolution {
   // Solved on a window: the whole-area check that proved it (made now, or an earlier one the
   // bound held against), for the next step's window (contact_window.hpp).
   std::shared_ptr<const detail::WholeAreaCheck> check;
+  std::shared_ptr<const SolvedMesh> solved;  // the pressure and its product as solved
 };
 
 // One patch's normal problem: on the surface the options choose, and, where the automatic surface
@@ -126,6 +135,7 @@ struct WheelsetWarmStart {
     std::vector<double> pressure_Pa;
     WheelsetPosition position;
     std::uint64_t evaluation = 0;
+    std::shared_ptr<const SolvedMesh> solved;  // as solved, with its product
   };
   struct Previous {
     double rail_profile_y_m;
@@ -237,31 +247,41 @@ struct WheelsetWarmStart {
   // linear prediction p + r (p − p_older), r the new step's length along the last one's (in
   // [0, kLargestPredictionRatio]; 0 when the steps turn back), floored at zero: along a 1 µm drift
   // it halves the conjugate-gradient iterations (docs/WHEELSET.md §8 "The prediction").
+  // The solutions a start combines (`last`, and `older` where r > 0), for its product
+  // (predicted_product).
+  struct StartSources {
+    std::shared_ptr<const SolvedMesh> last, older;  // older only where r > 0
+    double r = 0.0;
+  };
   std::vector<double> initial_pressure(WheelSide side, double rail_profile_y_m, const Mesh& mesh,
-                                       const WheelsetPosition* at) const {
+                                       const WheelsetPosition* at, StartSources* from = nullptr) const {
     const Previous* best = nearest(side, rail_profile_y_m);
     if (!best || best->last.mesh.dx1_m != mesh.dx1_m) return {};
     std::vector<double> p = moved_onto(best->last, mesh);
+    if (from != nullptr) *from = {best->last.solved, nullptr, 0.0};
     if (at == nullptr || !best->older || best->older->mesh.dx1_m != mesh.dx1_m) return p;
     const double r = step_ratio(best->older->position, best->last.position, *at);
     if (r <= 0.0) return p;
     const std::vector<double> older = moved_onto(*best->older, mesh);
-    for (std::size_t k = 0; k < p.size(); ++k) p[k] = std::max(0.0, p[k] + r * (p[k] - older[k]));
+    for (std::size_t k = 0; k < p.size(); ++k) p[k] = std::max(0.0, prediction(p[k], older[k], r));
+    if (from != nullptr) *from = {best->last.solved, best->older->solved, r};
     return p;
   }
+  // The linear prediction of one element's pressure (or product) from its last two solutions.
+  static double prediction(double last, double older, double r) { return last + r * (last - older); }
 
   // A solution's pressure on another mesh of the same element size, zero where it did not reach.
   static std::vector<double> moved_onto(const Solved& from, const Mesh& mesh) {
     const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - from.mesh.x1_first_m) / mesh.dx1_m));
     const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - from.mesh.x2_first_m) / mesh.dx2_m));
     std::vector<double> p(mesh.size(), 0.0);
+    // Row by row: the columns i1 in [lo1, hi1) lie on `from`'s mesh.
+    const int lo1 = std::clamp(-shift1, 0, mesh.n1), hi1 = std::clamp(from.mesh.n1 - shift1, lo1, mesh.n1);
     for (int i2 = 0; i2 < mesh.n2; ++i2) {
       const int j2 = i2 + shift2;
-      if (j2 < 0 || j2 >= from.mesh.n2) continue;
-      for (int i1 = 0; i1 < mesh.n1; ++i1) {
-        const int j1 = i1 + shift1;
-        if (j1 >= 0 && j1 < from.mesh.n1) p[mesh.index(i1, i2)] = from.pressure_Pa[from.mesh.index(j1, j2)];
-      }
+      if (j2 < 0 || j2 >= from.mesh.n2 || lo1 == hi1) continue;
+      const auto source = from.pressure_Pa.begin() + static_cast<std::ptrdiff_t>(from.mesh.index(lo1 + shift1, j2));
+      std::copy(source, source + (hi1 - lo1), p.begin() + static_cast<std::ptrdiff_t>(mesh.index(lo1, i2)));
     }
     return p;
   }
@@ -292,7 +312,7 @@ struct WheelsetWarmStart {
   void remember(WheelSide side, const WheelsetPosition& position, const std::vector<NormalPatch>& patches) {
     std::vector<Previous> list;
     for (const NormalPatch& p : patches) {
-      Previous n{p.region.rail_profile_y_m, Solved{p.area.mesh, p.normal.pressure_Pa, position, evaluation},
+      Previous n{p.region.rail_profile_y_m, Solved{p.area.mesh, p.normal.pressure_Pa, position, evaluation, p.solved},
                  std::nullopt, p.check};
       if (const Previous* earlier = nearest(side, p.region.rail_profile_y_m))
         n.older = earlier->last.evaluation == evaluation ? earlier->older : std::optional<Solved>(earlier->last);
@@ -318,8 +338,59 @@ struct WindowedSolution {
   NormalSolution normal;  // on the whole area's mesh
   std::size_t window_elements = 0;
   std::shared_ptr<const detail::WholeAreaCheck> check;  // the check that proved it
+  std::shared_ptr<const SolvedMesh> solved;     // on the window
 };
+
+// The start's prediction q = p + r (p − p_older) on `mesh` (before its floor at zero: the linear
+// combination) and its product, the same combination of the two solutions' products, both moved
+// onto `mesh` by whole elements as the pressures are (docs/WHEELSET.md §8 "The start's product").
+// Nothing when a product does not cover the mesh, the element sizes differ, or a solution's pressure
+// reaches beyond the mesh (its part there would be in the product but not in the start).
+std::optional<detail::KnownProduct> predicted_product(const detail::WheelsetWarmStart::StartSources& from,
+                                                      const Mesh& mesh) {
+  if (!from.last || (from.r > 0.0 && !from.older)) return std::nullopt;
+  detail::KnownProduct known{std::vector<double>(mesh.size()), std::vector<double>(mesh.size())};
+  std::vector<double> older_pressure, older_displacement;
+  const auto move = [&](const SolvedMesh& solved, std::vector<double>& pressure,
+                        std::vector<double>& displacement) {
+    const Mesh& m = solved.mesh;
+    if (m.dx1_m != mesh.dx1_m || m.dx2_m != mesh.dx2_m) return false;
+    const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - m.x1_first_m) / mesh.dx1_m));
+    const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - m.x2_first_m) / mesh.dx2_m));
+    if (shift1 < 0 || shift2 < 0 || shift1 + mesh.n1 > m.n1 || shift2 + mesh.n2 > m.n2) return false;
+    for (int j2 = 0; j2 < m.n2; ++j2) {
+      const auto row = solved.pressure_Pa.begin() + static_cast<std::ptrdiff_t>(m.index(0, j2));
+      const bool on = j2 >= shift2 && j2 < shift2 + mesh.n2;
+      // No pressure left behind: zero on the rows and columns that do not reach `mesh`.
+      const auto zero = [](auto first, auto last) { return std::all_of(first, last, [](double p) { return p == 0.0; }); };
+      if (!on) {
+        if (!zero(row, row + m.n1)) return false;
+        continue;
+      }
+      if (!zero(row, row + shift1) || !zero(row + shift1 + mesh.n1, row + m.n1)) return false;
+      const auto at = static_cast<std::ptrdiff_t>(mesh.index(0, j2 - shift2));
+      std::copy(row + shift1, row + shift1 + mesh.n1, pressure.begin() + at);
+      const auto u = solved.displacement_m.begin() + static_cast<std::ptrdiff_t>(m.index(shift1, j2));
+      std::copy(u, u + mesh.n1, displacement.begin() + at);
+    }
+    return true;
+  };
+  if (!move(*from.last, known.pressure_Pa, known.displacement_m)) return std::nullopt;
+  if (from.r > 0.0) {
+    older_pressure.resize(mesh.size());
+    older_displacement.resize(mesh.size());
+    if (!move(*from.older, older_pressure, older_displacement)) return std::nullopt;
+    for (std::size_t k = 0; k < mesh.size(); ++k) {
+      known.pressure_Pa[k] = detail::WheelsetWarmStart::prediction(known.pressure_Pa[k], older_pressure[k], from.r);
+      known.displacement_m[k] =
+          detail::WheelsetWarmStart::prediction(known.displacement_m[k], older_displacement[k], from.r);
+    }
+  }
+  return known;
+}
+
 std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& area, const std::vector<double>& initial,
+                                                        const detail::WheelsetWarmStart::StartSources& from,
                                                         const std::shared_ptr<const detail::WholeAreaCheck>& earlier,
                                                         const WheelsetOptions& options,
                                                         detail::WheelsetWarmStart& warm) {
@@ -332,10 +403,12 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
   if (!window) return std::nullopt;
   const Mesh mesh = detail::window_mesh(area.mesh, *window);
   NormalSolution s;
+  auto solved = std::make_shared<SolvedMesh>();
   try {
-    s = warm.plan(mesh, options)
-            .solve_at_approach(detail::cut_window(area.mesh, area.h_m, *window), 0.0,
-                               detail::cut_window(area.mesh, initial, *window));
+    const std::optional<detail::KnownProduct> known = predicted_product(from, mesh);
+    s = detail::NormalSolverAccess::solve_at_approach(
+        warm.plan(mesh, options), detail::cut_window(area.mesh, area.h_m, *window), 0.0,
+        detail::cut_window(area.mesh, initial, *window), known ? &*known : nullptr, &solved->displacement_m);
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::not_converged) throw;
     return std::nullopt;  // a breakdown on the window: the whole area decides
@@ -343,6 +416,8 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
   if (!s.converged || s.elements_in_contact == 0 ||
       detail::contact_on_inner_window_edge(area.mesh, *window, s.pressure_Pa))
     return std::nullopt;
+  solved->mesh = mesh;
+  solved->pressure_Pa = s.pressure_Pa;
   std::vector<double> pressure = detail::paste_window(area.mesh, s.pressure_Pa, *window);
   // The check on the whole area: by the bound from the patch's earlier check where it proves no
   // overlap outside the window (the half-space's A33, on the tangent plane or on a conformal area's
@@ -373,7 +448,7 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
       if (s.pressure_Pa[area.mesh.index(i1, i2)] > 0.0 &&
           (i1 == 0 || i2 == 0 || i1 == area.mesh.n1 - 1 || i2 == area.mesh.n2 - 1))
         s.touches_border = true;
-  return WindowedSolution{std::move(s), mesh.size(), std::move(check)};
+  return WindowedSolution{std::move(s), mesh.size(), std::move(check), std::move(solved)};
 }
 
 // The normal problem of a region on one contact surface's area. h is measured at this position
@@ -384,6 +459,7 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
 struct SurfaceStart {
   std::vector<double> initial;
   std::shared_ptr<const detail::WholeAreaCheck> earlier;
+  detail::WheelsetWarmStart::StartSources from;  // the solutions `initial` combines
 };
 SurfaceSolution solve_surface(TangentPlaneArea area, const std::vector<double>& lift_m, WheelSide side,
                               const InterpenetrationRegion& region, const WheelsetOptions& options,
@@ -395,11 +471,21 @@ SurfaceSolution solve_surface(TangentPlaneArea area, const std::vector<double>& 
     geometric_h = p.area.h_m;
     for (std::size_t e = 0; e < lift_m.size(); ++e) p.area.h_m[e] += lift_m[e];
   }
-  std::optional<WindowedSolution> windowed = solve_in_contact_window(p.area, start.initial, start.earlier, options, warm);
-  p.normal = windowed ? std::move(windowed->normal)
-                      : warm.plan(p.area.mesh, options).solve_at_approach(p.area.h_m, 0.0, start.initial);
+  std::optional<WindowedSolution> windowed =
+      solve_in_contact_window(p.area, start.initial, start.from, start.earlier, options, warm);
+  if (windowed) {
+    p.normal = std::move(windowed->normal);
+    p.check = std::move(windowed->check);
+    p.solved = std::move(windowed->solved);
+  } else {
+    auto solved = std::make_shared<SolvedMesh>();
+    p.normal = detail::NormalSolverAccess::solve_at_approach(warm.plan(p.area.mesh, options), p.area.h_m, 0.0,
+                                                             start.initial, nullptr, &solved->displacement_m);
+    solved->mesh = p.area.mesh;
+    solved->pressure_Pa = p.normal.pressure_Pa;
+    p.solved = std::move(solved);
+  }
   p.solved_mesh_elements = windowed ? windowed->window_elements : p.area.mesh.size();
-  if (windowed) p.check = std::move(windowed->check);
   if (!lift_m.empty()) p.area.h_m = std::move(geometric_h);
   if (!p.normal.converged) {
     throw Error(ErrorKind::not_converged,
@@ -467,12 +553,14 @@ void solve_coupled(const std::vector<double>& weight, WheelSide side, const Whee
       p.coupling_lift_m = 0.0;
       for (std::size_t e = 0; e < u.size(); ++e)
         if (p.area.h_m[e] < 0.0) p.coupling_lift_m = std::max(p.coupling_lift_m, u[e]);
-      const SurfaceStart start = sweep == 0 ? starts[i] : SurfaceStart{p.normal.pressure_Pa, p.check};
+      const SurfaceStart start =
+          sweep == 0 ? starts[i] : SurfaceStart{p.normal.pressure_Pa, p.check, {p.solved, nullptr, 0.0}};
       static_cast<SurfaceSolution&>(p) = solve_surface(std::move(p.area), u, side, p.region, options, warm, start);
       if (p.planar) {
         const std::vector<double> v = lift(i, p.planar->area, planar_points[i], sweep > 0);
         const SurfaceStart planar_start =
-            sweep == 0 ? SurfaceStart{} : SurfaceStart{p.planar->normal.pressure_Pa, p.planar->check};
+            sweep == 0 ? SurfaceStart{}
+                       : SurfaceStart{p.planar->normal.pressure_Pa, p.planar->check, {p.planar->solved, nullptr, 0.0}};
         p.planar = solve_surface(std::move(p.planar->area), v, side, p.region, options, warm, planar_start);
       }
       change = std::max(change, std::abs(p.normal.normal_force_N - force[i]));
@@ -526,8 +614,10 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
   std::vector<SurfaceStart> starts;
   for (const NormalPatch& p : patches) {
     const detail::WheelsetWarmStart::Previous* earlier = warm.nearest(side, p.region.rail_profile_y_m);
-    starts.push_back({warm.initial_pressure(side, p.region.rail_profile_y_m, p.area.mesh, &position),
-                      earlier ? earlier->check : nullptr});
+    SurfaceStart start;
+    start.initial = warm.initial_pressure(side, p.region.rail_profile_y_m, p.area.mesh, &position, &start.from);
+    start.earlier = earlier ? earlier->check : nullptr;
+    starts.push_back(std::move(start));
   }
   const std::vector<double> weight = coupling_weights(search, patches, options.patch_coupling);
   if (!weight.empty()) {
