@@ -240,19 +240,21 @@ struct WheelsetWarmStart {
     return best;
   }
 
-  // The start of a patch's normal solve on `mesh`: the previous pressure of the nearest earlier
-  // patch of this wheel, moved onto the new mesh element by element (both meshes have their element
-  // centres at integer multiples of the element size from their reference points); empty when
-  // there is none. With `at` given and the same patch solved in an earlier evaluation too, the
-  // linear prediction p + r (p − p_older), r the new step's length along the last one's (in
-  // [0, kLargestPredictionRatio]; 0 when the steps turn back), floored at zero: along a 1 µm drift
-  // it halves the conjugate-gradient iterations (docs/WHEELSET.md §8 "The prediction").
   // The solutions a start combines (`last`, and `older` where r > 0), for its product
   // (predicted_product).
   struct StartSources {
     std::shared_ptr<const SolvedMesh> last, older;  // older only where r > 0
     double r = 0.0;
   };
+
+  // The start of a patch's normal solve on `mesh`: the previous pressure of the nearest earlier
+  // patch of this wheel, moved onto the new mesh element by element (both meshes have their element
+  // centres at integer multiples of the element size from their reference points); empty when
+  // there is none. With `at` given and the same patch solved in an earlier evaluation too, the
+  // linear prediction p + r (p − p_older), r the new step's length along the last one's (in
+  // [0, kLargestPredictionRatio]; 0 when the steps turn back), floored at zero: along a 1 µm drift
+  // it halves the conjugate-gradient iterations (docs/WHEELSET.md §8 "The prediction"). With `from`
+  // given, the solutions it combined are written there, for its product (predicted_product).
   std::vector<double> initial_pressure(WheelSide side, double rail_profile_y_m, const Mesh& mesh,
                                        const WheelsetPosition* at, StartSources* from = nullptr) const {
     const Previous* best = nearest(side, rail_profile_y_m);
