@@ -470,14 +470,25 @@ void expect_error_mentioning(Call call, const std::string& expected) {
   }
 }
 
+// Hertz's problem of a wheel of 0.46 m on a crown of 0.3 m under the wheel load, on 41 x 41 elements
+// over 1.2 times its semi-axes.
+struct HertzGrid {
+  HertzContact hertz;
+  Mesh mesh;
+  std::vector<double> h;
+};
+HertzGrid hertz_grid_41() {
+  const double A = 1.0 / (2 * 0.46), B = 1.0 / (2 * 0.3);
+  const HertzContact hertz = hertz_from_curvatures(A, B, kLoad_N, kSteel);
+  const Mesh mesh = Mesh::covering(-1.2 * hertz.a_m, 1.2 * hertz.a_m, -1.2 * hertz.b_m, 1.2 * hertz.b_m, 41, 41);
+  return {hertz, mesh, quadratic_distance(mesh, A, B)};
+}
+
 // complementarity_residual (the check of a wheelset's contact window, docs/WHEELSET.md §8): a
 // converged solution's residual is the solver's own; a pressure that leaves contact out or one that
 // is not a solution is far from it; bad input is refused, naming it.
 TEST(NormalContact, ComplementarityResidualChecksAGivenPressure) {
-  const double A = 1.0 / (2 * 0.46), B = 1.0 / (2 * 0.3);
-  const HertzContact hertz = hertz_from_curvatures(A, B, kLoad_N, kSteel);
-  const Mesh mesh = Mesh::covering(-1.2 * hertz.a_m, 1.2 * hertz.a_m, -1.2 * hertz.b_m, 1.2 * hertz.b_m, 41, 41);
-  const std::vector<double> h = quadratic_distance(mesh, A, B);
+  const auto [hertz, mesh, h] = hertz_grid_41();
   NormalContactSolver solver(mesh, kSteel);
   const NormalSolution s = solver.solve_at_approach(h, hertz.approach_m);
   ASSERT_TRUE(s.converged);
@@ -500,17 +511,13 @@ TEST(NormalContact, ComplementarityResidualChecksAGivenPressure) {
       "approach inf m for the residual must be finite");
 }
 
-
 // A time step's start from a known product (normal/known_product.hpp, docs/WHEELSET.md §8 "The
 // start's product"): the solution's product is A p; a start from a prediction with negative
 // elements (floored at zero by the solver, its product corrected element by element) or with more
 // of them than the correction takes (then a product by FFT) gives the solution of a start without
 // it. A wrong correction would leave the iteration with a wrong A p and another pressure.
 TEST(NormalContact, AStartFromAKnownProductGivesTheSameSolution) {
-  const double A = 1.0 / (2 * 0.46), B = 1.0 / (2 * 0.3);
-  const HertzContact hertz = hertz_from_curvatures(A, B, kLoad_N, kSteel);
-  const Mesh mesh = Mesh::covering(-1.2 * hertz.a_m, 1.2 * hertz.a_m, -1.2 * hertz.b_m, 1.2 * hertz.b_m, 41, 41);
-  const std::vector<double> h = quadratic_distance(mesh, A, B);
+  const auto [hertz, mesh, h] = hertz_grid_41();
   NormalContactSolver solver(mesh, kSteel);
   std::vector<double> product;
   const NormalSolution first =
@@ -526,8 +533,6 @@ TEST(NormalContact, AStartFromAKnownProductGivesTheSameSolution) {
   // (a deeper approach changes the contact set by many elements, and a product by FFT would hide a
   // wrong start).
   InfluenceOperator op = make_normal_operator(mesh, kSteel);
-  const double deeper_m = hertz.approach_m;
-  const NormalSolution& reference = first;
   for (const int negative : {5, 40}) {
     detail::KnownProduct known{first.pressure_Pa, {}};
     const double p_max = *std::max_element(first.pressure_Pa.begin(), first.pressure_Pa.end());
@@ -537,20 +542,20 @@ TEST(NormalContact, AStartFromAKnownProductGivesTheSameSolution) {
     std::vector<double> start = known.pressure_Pa;
     for (double& p : start) p = std::max(0.0, p);
     const NormalSolution with_known =
-        detail::NormalSolverAccess::solve_at_approach(solver, h, deeper_m, start, &known, nullptr);
-    const NormalSolution without = solver.solve_at_approach(h, deeper_m, start);
+        detail::NormalSolverAccess::solve_at_approach(solver, h, hertz.approach_m, start, &known, nullptr);
+    const NormalSolution without = solver.solve_at_approach(h, hertz.approach_m, start);
     ASSERT_TRUE(with_known.converged && without.converged) << negative;
-    EXPECT_LT(rel_diff(with_known.normal_force_N, reference.normal_force_N), 1e-9) << negative;
+    EXPECT_LT(rel_diff(with_known.normal_force_N, first.normal_force_N), 1e-9) << negative;
     EXPECT_LT(rel_diff(with_known.normal_force_N, without.normal_force_N), 1e-9) << negative;
-    EXPECT_EQ(with_known.elements_in_contact, reference.elements_in_contact) << negative;
+    EXPECT_EQ(with_known.elements_in_contact, first.elements_in_contact) << negative;
     for (std::size_t k = 0; k < mesh.size(); ++k)
       EXPECT_NEAR(with_known.pressure_Pa[k], without.pressure_Pa[k], 1e-8 * p_max) << negative << " " << k;
     // Two iterations from either start product follow the same path: the iteration corrects a wrong
     // start only when many elements change at once, so a converged solution alone would not show it.
     NormalContactSolver two(mesh, kSteel, NormalOptions{1e-10, 2});
     const NormalSolution early_known =
-        detail::NormalSolverAccess::solve_at_approach(two, h, deeper_m, start, &known, nullptr);
-    const NormalSolution early = two.solve_at_approach(h, deeper_m, start);
+        detail::NormalSolverAccess::solve_at_approach(two, h, hertz.approach_m, start, &known, nullptr);
+    const NormalSolution early = two.solve_at_approach(h, hertz.approach_m, start);
     for (std::size_t k = 0; k < mesh.size(); ++k)
       EXPECT_NEAR(early_known.pressure_Pa[k], early.pressure_Pa[k], 1e-9 * p_max) << negative << " " << k;
   }

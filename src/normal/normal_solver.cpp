@@ -165,21 +165,20 @@ NormalSolution NormalSolverAccess::solve_at_approach(NormalContactSolver& solver
     solution.pressure_Pa[k] = h[k] < approach_m ? p : 0.0;
   }
   // The start's product from the known one: A p0 = A p_known + A (p0 − p_known), the difference
-  // element by element where it is non-zero (few: the prediction's elements clamped at zero).
+  // element by element where it is non-zero (few: the prediction's elements floored at zero).
   std::vector<double>& start_product = plan.work;
   bool product_known = known != nullptr && known->pressure_Pa.size() == mesh.size() &&
                        known->displacement_m.size() == mesh.size();
-  if (product_known) {
-    std::size_t differing = 0;
-    for (std::size_t k = 0; k < mesh.size() && product_known; ++k)
-      if (solution.pressure_Pa[k] != known->pressure_Pa[k])
-        product_known = ++differing <= ConstrainedConjugateGradient::kLargestElementUpdate;
-  }
+  std::vector<std::size_t> differing;
+  for (std::size_t k = 0; k < mesh.size() && product_known; ++k)
+    if (solution.pressure_Pa[k] != known->pressure_Pa[k]) {
+      differing.push_back(k);
+      product_known = differing.size() <= ConstrainedConjugateGradient::kLargestElementUpdate;
+    }
   if (product_known) {
     std::copy(known->displacement_m.begin(), known->displacement_m.end(), start_product.begin());
-    for (std::size_t k = 0; k < mesh.size(); ++k)
-      if (solution.pressure_Pa[k] != known->pressure_Pa[k])
-        plan.A.add_element_product(k, solution.pressure_Pa[k] - known->pressure_Pa[k], start_product);
+    for (const std::size_t k : differing)
+      plan.A.add_element_product(k, solution.pressure_Pa[k] - known->pressure_Pa[k], start_product);
   }
   const ConstrainedCgReport report = plan.cg.solve_at_approach(
       plan.A, h, approach_m, solution.pressure_Pa, plan.options.tolerance, plan.options.max_iterations,
@@ -193,7 +192,7 @@ NormalSolution NormalSolverAccess::solve_at_approach(NormalContactSolver& solver
   solution.converged = report.converged;
   if (final_product_m != nullptr) {
     const std::span<const double> u = plan.cg.product();
-    final_product_m->assign(u.begin(), u.begin() + static_cast<std::ptrdiff_t>(mesh.size()));
+    final_product_m->assign(u.begin(), u.end());
   }
   return solution;
 }

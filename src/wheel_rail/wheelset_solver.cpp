@@ -360,11 +360,11 @@ std::optional<detail::KnownProduct> predicted_product(const detail::WheelsetWarm
     const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - m.x1_first_m) / mesh.dx1_m));
     const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - m.x2_first_m) / mesh.dx2_m));
     if (shift1 < 0 || shift2 < 0 || shift1 + mesh.n1 > m.n1 || shift2 + mesh.n2 > m.n2) return false;
+    // No pressure left behind: zero on the rows and columns that do not reach `mesh`.
+    const auto zero = [](auto first, auto last) { return std::all_of(first, last, [](double p) { return p == 0.0; }); };
     for (int j2 = 0; j2 < m.n2; ++j2) {
       const auto row = solved.pressure_Pa.begin() + static_cast<std::ptrdiff_t>(m.index(0, j2));
       const bool on = j2 >= shift2 && j2 < shift2 + mesh.n2;
-      // No pressure left behind: zero on the rows and columns that do not reach `mesh`.
-      const auto zero = [](auto first, auto last) { return std::all_of(first, last, [](double p) { return p == 0.0; }); };
       if (!on) {
         if (!zero(row, row + m.n1)) return false;
         continue;
