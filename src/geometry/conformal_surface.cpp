@@ -117,7 +117,8 @@ TangentPlaneArea WheelsetTrack::conformal_contact_area(const WheelsetPosition& p
       strip_x2[j] = strips[j].x2_m;
       try {
         geometry::undeformed_distance_on_strips(w, region, mesh, strip_x2, h, &roots);
-        for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, static_cast<int>(j))] *= std::cos(strips[j].angle_rad);
+        const double cos_angle = std::cos(strips[j].angle_rad);
+        for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, static_cast<int>(j))] *= cos_angle;
       } catch (const Error&) {
         strips[j].possible_contact = false;
         for (int i1 = 0; i1 < mesh.n1; ++i1) h[mesh.index(i1, static_cast<int>(j))] = kNotInContact_m;

@@ -2,6 +2,8 @@
 #include "tangential/full_slip.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <tuple>
 #include <utility>
@@ -31,24 +33,41 @@ constexpr double kSlipFrom = 0.05, kSlipTo = 0.1;       // min |w − e| / rms |
 constexpr int kEarlyStep = 4;
 constexpr double kEarlyChangeFrom = 0.03, kEarlyChangeTo = 0.015;
 
+// Element centres of a patch, in the order of its elements (ContactPatch::x1, x2 without the
+// division by the mesh's row length per element: the loops below run 8 times per solve).
+struct Centres {
+  std::vector<double> x1_m, x2_m;
+  explicit Centres(const ContactPatch& patch) : x1_m(patch.elements().count()), x2_m(patch.elements().count()) {
+    for (std::size_t e = 0; e < x1_m.size(); ++e) {
+      x1_m[e] = patch.x1(e);
+      x2_m[e] = patch.x2(e);
+    }
+  }
+};
+
 // p = −mu p3 s/|s| per element (0 where s = 0); returns F1, F2 (N) and M3 about the origin (N m).
-TangentialForces coulomb(const ContactPatch& patch, const std::vector<double>& s1, const std::vector<double>& s2,
-                         double mu, std::vector<double>& p1, std::vector<double>& p2) {
-  const std::vector<double>& p3 = patch.pressure_Pa();
+TangentialForces coulomb(const ContactPatch& patch, const Centres& centres, const std::vector<double>& s1,
+                         const std::vector<double>& s2, double mu, std::vector<double>& p1, std::vector<double>& p2) {
+  const double* p3 = patch.pressure_Pa().data();
+  const double *x1 = centres.x1_m.data(), *x2 = centres.x2_m.data();
+  const double *a = s1.data(), *b = s2.data();
+  double *q1 = p1.data(), *q2 = p2.data();
+  const std::size_t n = patch.pressure_Pa().size();
+  double F1 = 0.0, F2 = 0.0, M3 = 0.0;
+  for (std::size_t e = 0; e < n; ++e) {
+    const double size = std::sqrt(a[e] * a[e] + b[e] * b[e]);  // slips of order 1e-3: no overflow
+    const double scale = size > 0.0 ? -mu * p3[e] / size : 0.0;
+    q1[e] = scale * a[e];
+    q2[e] = scale * b[e];
+    F1 += q1[e];
+    F2 += q2[e];
+    M3 += x1[e] * q2[e] - x2[e] * q1[e];
+  }
   const double area = patch.mesh().element_area_m2();
   TangentialForces f;
-  for (std::size_t e = 0; e < p3.size(); ++e) {
-    const double size = std::sqrt(s1[e] * s1[e] + s2[e] * s2[e]);  // slips of order 1e-3: no overflow
-    const double scale = size > 0.0 ? -mu * p3[e] / size : 0.0;
-    p1[e] = scale * s1[e];
-    p2[e] = scale * s2[e];
-    f.F1_N += p1[e];
-    f.F2_N += p2[e];
-    f.M3_Nm += patch.x1(e) * p2[e] - patch.x2(e) * p1[e];
-  }
-  f.F1_N *= area;
-  f.F2_N *= area;
-  f.M3_Nm *= area;
+  f.F1_N = F1 * area;
+  f.F2_N = F2 * area;
+  f.M3_Nm = M3 * area;
   return f;
 }
 
@@ -78,9 +97,19 @@ struct Strips {
 
 }  // namespace
 
+// Where a marched patch's element takes the elastic slip from: bilinear between the four coarse
+// grid elements around its centre (clamped to the grid), their grid indices and weights.
+struct Bilinear {
+  std::array<std::uint32_t, 4> at;
+  std::array<double, 4> weight;
+};
+
 struct FullSlip::Coarse {
   ContactPatch patch;
   InfluenceOperator kernels;  // R on the coarse mesh (alpha = 0); each solve takes its own buffers
+  Centres centres;            // of the coarse patch's elements
+  Centres fine_centres;       // of the marched patch's elements
+  std::vector<Bilinear> fine_from_coarse;
 };
 
 FullSlip::FullSlip(const ContactPatch& patch) : patch_(patch) {}
@@ -91,7 +120,22 @@ const FullSlip::Coarse& FullSlip::coarse() const {
     const int factor = automatic_coarsening(patch_.elements().count());
     ContactPatch copy = factor > 1 ? coarsened(patch_, factor) : patch_;
     InfluenceOperator R = make_steady_rolling_operator(copy.mesh(), copy.material(), 0.0);
-    coarse_ = std::make_unique<Coarse>(Coarse{std::move(copy), std::move(R)});
+    Centres centres(copy), fine(patch_);
+    const Mesh& cm = copy.mesh();
+    std::vector<Bilinear> stencils(fine.x1_m.size());
+    for (std::size_t e = 0; e < stencils.size(); ++e) {
+      const double a1 = std::clamp((fine.x1_m[e] - cm.x1_first_m) / cm.dx1_m, 0.0, cm.n1 - 1.0);
+      const double a2 = std::clamp((fine.x2_m[e] - cm.x2_first_m) / cm.dx2_m, 0.0, cm.n2 - 1.0);
+      const int i1 = static_cast<int>(a1), i2 = static_cast<int>(a2);
+      const double t1 = a1 - i1, t2 = a2 - i2;
+      const auto at = [&](int j1, int j2) {
+        return static_cast<std::uint32_t>(cm.index(std::min(j1, cm.n1 - 1), std::min(j2, cm.n2 - 1)));
+      };
+      stencils[e] = {{at(i1, i2), at(i1 + 1, i2), at(i1, i2 + 1), at(i1 + 1, i2 + 1)},
+                     {(1 - t1) * (1 - t2), t1 * (1 - t2), (1 - t1) * t2, t1 * t2}};
+    }
+    coarse_ = std::make_unique<Coarse>(
+        Coarse{std::move(copy), std::move(R), std::move(centres), std::move(fine), std::move(stencils)});
   });
   return *coarse_;
 }
@@ -111,7 +155,7 @@ FullSlipTractions FullSlip::solve_with(const RigidSlip& rigid_slip, double mu, d
   std::vector<double> w1(n), w2(n), s1(n), s2(n), p1(n), p2(n);
   double w_squares = 0.0;
   for (std::size_t e = 0; e < n; ++e) {
-    std::tie(w1[e], w2[e]) = rigid_slip.at(cp.x1(e), cp.x2(e));
+    std::tie(w1[e], w2[e]) = rigid_slip.at(c.centres.x1_m[e], c.centres.x2_m[e]);
     w_squares += w1[e] * w1[e] + w2[e] * w2[e];
   }
   const double w_rms = std::sqrt(w_squares / static_cast<double>(n));
@@ -120,7 +164,7 @@ FullSlipTractions FullSlip::solve_with(const RigidSlip& rigid_slip, double mu, d
   if (!(w_rms > 0.0) || !(w_rms < 1e100)) return out;
   const double mu_F3 = mu * cp.normal_force_N();
 
-  TangentialForces before = coulomb(cp, w1, w2, mu, p1, p2);  // p_0: along the rigid slip
+  TangentialForces before = coulomb(cp, c.centres, w1, w2, mu, p1, p2);  // p_0: along the rigid slip
   std::vector<double> grid(2 * cm.size(), 0.0), product(2 * cm.size()), elastic(2 * cm.size(), 0.0);
   double force_change = 0.0, smallest_slip = 0.0, early = 1.0;
   for (int k = 1; k <= kProducts; ++k) {
@@ -137,7 +181,7 @@ FullSlipTractions FullSlip::solve_with(const RigidSlip& rigid_slip, double mu, d
       s2[e] = w2[e] - elastic[cm.size() + index[e]];
       smallest_slip = std::min(smallest_slip, s1[e] * s1[e] + s2[e] * s2[e]);
     }
-    const TangentialForces now = coulomb(cp, s1, s2, mu, p1, p2);
+    const TangentialForces now = coulomb(cp, c.centres, s1, s2, mu, p1, p2);
     const double change = std::hypot(now.F1_N - before.F1_N, now.F2_N - before.F2_N) / mu_F3;
     if (k > kProducts - kSettledSteps) force_change = std::max(force_change, change);
     before = now;
@@ -158,28 +202,21 @@ FullSlipTractions FullSlip::solve_with(const RigidSlip& rigid_slip, double mu, d
   // R p is defined on the whole coarse grid, in contact or not).
   const std::size_t fine = patch_.elements().count();
   std::vector<double> f1(fine), f2(fine);
-  const auto value = [&](int component, int i1, int i2) {
-    i1 = std::clamp(i1, 0, cm.n1 - 1);
-    i2 = std::clamp(i2, 0, cm.n2 - 1);
-    return elastic[static_cast<std::size_t>(component) * cm.size() + cm.index(i1, i2)];
-  };
+  const double *e1 = elastic.data(), *e2 = elastic.data() + cm.size();
   for (std::size_t e = 0; e < fine; ++e) {
-    const double x1 = patch_.x1(e), x2 = patch_.x2(e);
-    const double a1 = std::clamp((x1 - cm.x1_first_m) / cm.dx1_m, 0.0, cm.n1 - 1.0);
-    const double a2 = std::clamp((x2 - cm.x2_first_m) / cm.dx2_m, 0.0, cm.n2 - 1.0);
-    const int i1 = static_cast<int>(a1), i2 = static_cast<int>(a2);
-    const double t1 = a1 - i1, t2 = a2 - i2;
-    double e12[2];
-    for (int component = 0; component < 2; ++component)
-      e12[component] = (1 - t1) * (1 - t2) * value(component, i1, i2) + t1 * (1 - t2) * value(component, i1 + 1, i2) +
-                       (1 - t1) * t2 * value(component, i1, i2 + 1) + t1 * t2 * value(component, i1 + 1, i2 + 1);
+    const Bilinear& b = c.fine_from_coarse[e];
+    const double x1 = c.fine_centres.x1_m[e], x2 = c.fine_centres.x2_m[e];
+    const double elastic1 = b.weight[0] * e1[b.at[0]] + b.weight[1] * e1[b.at[1]] + b.weight[2] * e1[b.at[2]] +
+                            b.weight[3] * e1[b.at[3]];
+    const double elastic2 = b.weight[0] * e2[b.at[0]] + b.weight[1] * e2[b.at[1]] + b.weight[2] * e2[b.at[2]] +
+                            b.weight[3] * e2[b.at[3]];
     const auto [w1e, w2e] = rigid_slip.at(x1, x2);
-    f1[e] = w1e - e12[0];
-    f2[e] = w2e - e12[1];
+    f1[e] = w1e - elastic1;
+    f2[e] = w2e - elastic2;
   }
   out.p1_Pa.resize(fine);
   out.p2_Pa.resize(fine);
-  out.forces = coulomb(patch_, f1, f2, mu, out.p1_Pa, out.p2_Pa);
+  out.forces = coulomb(patch_, c.fine_centres, f1, f2, mu, out.p1_Pa, out.p2_Pa);
   return out;
 }
 

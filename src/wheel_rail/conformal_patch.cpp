@@ -111,11 +111,17 @@ ConformalSolve solve_conformal_patch(TangentialSolver solver, const Interpenetra
   // F3 = Σ (p2 sin Δ + p3 cos Δ) S (in the solve frame; F2 mirrored back below).
   const double S = cropped.element_area_m2();
   const auto n1 = static_cast<std::size_t>(cropped.n1);
+  // cos Δ and sin Δ once per strip of the cropped patch, not per element.
+  std::vector<double> strip_cos(column.size()), strip_sin(column.size());
+  for (std::size_t i2 = 0; i2 < column.size(); ++i2) {
+    strip_cos[i2] = std::cos(solve_angle[column[i2]]);
+    strip_sin[i2] = std::sin(solve_angle[column[i2]]);
+  }
   double F1 = 0.0, F2 = 0.0, F3 = 0.0;
   const auto& indices = contact.elements().indices();
   for (std::size_t e = 0; e < indices.size(); ++e) {
-    const double angle = solve_angle[column[indices[e] / n1]];
-    const double c = std::cos(angle), sn = std::sin(angle), p3 = contact.pressure_Pa()[e];
+    const std::size_t strip = indices[e] / n1;
+    const double c = strip_cos[strip], sn = strip_sin[strip], p3 = contact.pressure_Pa()[e];
     F1 += s.p1_Pa[e] * S;
     F2 += (s.p2_Pa[e] * c - p3 * sn) * S;
     F3 += (s.p2_Pa[e] * sn + p3 * c) * S;
