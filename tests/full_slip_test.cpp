@@ -1,7 +1,7 @@
 // Coulomb's law along the elastic slip where a patch slips everywhere (SlipDirection::elastic_slip,
 // src/tangential/full_slip.hpp). References: the exact solver (Kalker's theory; where it slips
 // everywhere, the full-slip state is its unique solution) and the rigid-slip march, which the
-// elastic slip must leave untouched where the patch keeps an adhesion zone.
+// elastic slip must leave untouched where the patch keeps a large adhesion zone.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -53,14 +53,15 @@ const FlangeState& flange() {
 Creepage scaled(const Creepage& c, double k) { return {k * c.xi, k * c.eta, k * c.phi}; }
 
 // Where the exact solver slips everywhere the rigid-slip march misses the steep spinning flange by
-// 7-14 % of mu F3; the elastic slip brings it within 0.3 %, at the state itself and at 0.3 of its
-// creepages (nearer the onset of adhesion, where the fixed point needs its damping).
+// 7-14 % of mu F3; the elastic slip brings it within 0.3 %, at the state itself and at 0.3 and 0.2
+// of its creepages (at the onset of full slip, k ≈ 0.19, where the fixed point needs its damping
+// and Anderson's mixing to settle within eight products).
 TEST(FullSlip, TheFlangeThatSlipsEverywhereIsTheExactSolversWithinThreeTenthsOfAPercent) {
   const FlangeState& f = flange();
   const double mu_F3 = kMu * f.patch.normal_force_N();
   const NhFastSim rigid(f.patch, options(SlipDirection::rigid_slip));
   const NhFastSim elastic(f.patch, options(SlipDirection::elastic_slip));
-  for (const double k : {0.3, 1.0}) {
+  for (const double k : {0.2, 0.3, 1.0}) {
     const Creepage c = scaled(f.creepage, k);
     const RollingSolution exact = solve_rolling_exact(f.patch, c, kMu);
     EXPECT_EQ(exact.adhesion_fraction, 0.0) << k;
@@ -82,10 +83,13 @@ TEST(FullSlip, TheFlangeThatSlipsEverywhereIsTheExactSolversWithinThreeTenthsOfA
   }
 }
 
-// From partial slip into full slip the creepages scaled by k = 0.10 ... 0.40 in steps of 0.0025:
-// below k = 0.15 (an adhesion zone, or a fixed point that has not settled) the elastic slip leaves
-// the march as it is, to the last bit; the blend moves the forces by at most 1.5 % of mu F3 per step
-// (no jump where its weight rises, measured: 1.27 % at k = 0.255), and from k = 0.3 the weight is 1.
+// From partial slip into full slip the creepages scaled by k = 0.05 ... 0.40 in steps of 0.0025:
+// where the march keeps 30 % of the patch in adhesion or more (k < 0.09 here) the elastic slip
+// leaves it as it is, to the last bit; the blend moves the forces by at most 2.5 % of mu F3 per step
+// (no jump where its weight rises, measured: 1.9 %, at k = 0.16-0.17 where the weight passes 0.5
+// and the march misses by 15 %),
+// and from k = 0.19, where the exact solver slips everywhere, the weight is 1 and the forces are
+// the exact solver's within 0.35 % (the test above).
 TEST(FullSlip, TheBlendIsContinuousFromPartialIntoFullSlip) {
   const FlangeState& f = flange();
   const double mu_F3 = kMu * f.patch.normal_force_N();
@@ -93,45 +97,62 @@ TEST(FullSlip, TheBlendIsContinuousFromPartialIntoFullSlip) {
   const NhFastSim elastic(f.patch, options(SlipDirection::elastic_slip));
   TangentialForces before{};
   double largest_step = 0.0;
-  for (int i = 0; i <= 120; ++i) {
-    const double k = 0.1 + 0.0025 * i;
+  int kept = 0;
+  for (int i = 0; i <= 140; ++i) {
+    const double k = 0.05 + 0.0025 * i;
     const Creepage c = scaled(f.creepage, k);
     const TangentialForces e = elastic.forces(c, kMu);
-    if (k < 0.15) {
-      const TangentialForces r = rigid.forces(c, kMu);
-      EXPECT_EQ(e.F1_N, r.F1_N) << k;
-      EXPECT_EQ(e.F2_N, r.F2_N) << k;
+    const FastSimResult r = rigid.solve(c, kMu);
+    if (r.adhesion_fraction >= 0.3) {
+      ++kept;
+      EXPECT_EQ(e.F1_N, r.forces.F1_N) << k;
+      EXPECT_EQ(e.F2_N, r.forces.F2_N) << k;
     }
     if (i > 0) largest_step = std::max(largest_step, std::hypot(e.F1_N - before.F1_N, e.F2_N - before.F2_N));
     before = e;
   }
-  EXPECT_LT(largest_step, 0.015 * mu_F3);
-  EXPECT_GT(largest_step, 0.002 * mu_F3);  // the blend does move the forces
+  EXPECT_GE(kept, 10);                               // the march's partial slip is in the sweep
+  EXPECT_LT(largest_step, 0.025 * mu_F3);
+  EXPECT_GT(largest_step, 0.005 * mu_F3);  // the blend does move the forces
 }
 
 // An elliptical patch: in partial slip the elastic slip changes nothing; in full slip with spin it
-// is the exact solver's within 0.5 % of mu F3 (measured: −0.30 / +0.16 %; the rigid-slip march
-// +0.10 / −2.08 %). With the spin's pole inside the patch (the same creepages with the spin 3 /m)
-// the exact solver keeps a small adhesion zone at the pole, no full-slip state exists, and the
-// march stays as it is.
+// is the exact solver's within 0.8 % of mu F3 (measured: −0.30 / +0.17 % and −0.48 / +0.59 %; the
+// rigid-slip march +0.10 / −2.08 % and +0.33 / −3.02 %). With the spin's pole inside the patch the
+// exact solver keeps a small adhesion zone at the pole (0.2 and 0.3 % of the area), where the
+// rigid slip vanishes; the full-slip iterate settles all the same, within 2 % of mu F3 (measured
+// −0.21 / +0.99 % and −0.08 / +1.48 %) where the march misses F2 by 4.8 and 5.1 %.
 TEST(FullSlip, AnEllipseInPartialSlipKeepsTheMarchAndInFullSlipIsExact) {
   const double a = 6e-3, b = 4e-3, F3 = 98.1e3;
   const ContactPatch patch = hertzian_patch(elliptical_contact_with_count(a, b, 3000), a, b, F3, Material{});
   const double mu_F3 = kMu * F3;
   const NhFastSim rigid(patch, options(SlipDirection::rigid_slip));
   const NhFastSim elastic(patch, options(SlipDirection::elastic_slip));
-  for (const Creepage& c : {Creepage{1e-4, -1e-4, 0.05}, Creepage{8e-3, 6e-3, 3.0}}) {
-    const TangentialForces r = rigid.forces(c, kMu), e = elastic.forces(c, kMu);
-    EXPECT_EQ(e.F1_N, r.F1_N) << c.phi;
-    EXPECT_EQ(e.F2_N, r.F2_N) << c.phi;
+  {
+    const Creepage small{1e-4, -1e-4, 0.05};
+    const TangentialForces r = rigid.forces(small, kMu), e = elastic.forces(small, kMu);
+    EXPECT_EQ(e.F1_N, r.F1_N);
+    EXPECT_EQ(e.F2_N, r.F2_N);
   }
-  const Creepage large{1.6e-2, 1.2e-2, 4.0};
-  const RollingSolution exact = solve_rolling_exact(patch, large, kMu);
-  EXPECT_EQ(exact.adhesion_fraction, 0.0);
-  const TangentialForces e = elastic.forces(large, kMu), r = rigid.forces(large, kMu);
-  EXPECT_NEAR(e.F1_N, exact.forces.F1_N, 5e-3 * mu_F3);
-  EXPECT_NEAR(e.F2_N, exact.forces.F2_N, 5e-3 * mu_F3);
-  EXPECT_GT(std::abs(r.F2_N - exact.forces.F2_N), 0.015 * mu_F3);
+  struct Case {
+    Creepage creepage;
+    double tolerance;  // of mu F3
+    bool adhesion;     // the exact solver keeps an adhesion zone at the spin's pole
+  };
+  for (const Case& k : {Case{{1.6e-2, 1.2e-2, 4.0}, 8e-3, false}, Case{{8e-3, 6e-3, 3.0}, 8e-3, false},
+                        Case{{8e-3, 6e-3, 4.0}, 2e-2, true}, Case{{4e-3, 3e-3, 3.0}, 2e-2, true}}) {
+    const RollingSolution exact = solve_rolling_exact(patch, k.creepage, kMu);
+    if (k.adhesion) {
+      EXPECT_GT(exact.adhesion_fraction, 0.0) << k.creepage.phi;
+      EXPECT_LT(exact.adhesion_fraction, 0.01) << k.creepage.phi;
+    } else {
+      EXPECT_EQ(exact.adhesion_fraction, 0.0) << k.creepage.phi;
+    }
+    const TangentialForces e = elastic.forces(k.creepage, kMu), r = rigid.forces(k.creepage, kMu);
+    EXPECT_NEAR(e.F1_N, exact.forces.F1_N, k.tolerance * mu_F3) << k.creepage.phi;
+    EXPECT_NEAR(e.F2_N, exact.forces.F2_N, k.tolerance * mu_F3) << k.creepage.phi;
+    EXPECT_GT(std::abs(r.F2_N - exact.forces.F2_N), 0.015 * mu_F3) << k.creepage.phi;
+  }
 }
 
 }  // namespace

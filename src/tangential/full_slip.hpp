@@ -5,20 +5,20 @@
 // In full slip every element's traction is −mu p3 s/|s| with the slip s = w − R p (docs/METHOD.md
 // §6: w the rigid slip, R the steady-rolling operator, p the traction on the wheel). That state
 // solves the exact problem whenever it exists (the solution is unique), and it is found by a fixed
-// point on a coarse copy of the patch:
-//   p_0 = −mu p3 w/|w|,   e_1 = R p_0,   e_k+1 = e_k/2 + R p_k/2,   p_k = −mu p3 (w − e_k)/|w − e_k|,
-// eight products of R (FFT), the elastic slip e of the last one interpolated bilinearly onto the
-// marched patch's elements, whose tractions then follow w − e. Where the patch keeps an adhesion
-// zone no full-slip state exists and the iteration does not settle; a weight in [0, 1] says how far
-// its result can be trusted, and FastSim blends its own march into it:
-//   weight = S((0.3 − a)/0.1) S((0.03 − dF4)/0.015) S((m − 0.05)/0.05) S((0.006 − dF)/0.004),
+// point e = R p(e), p(e) = −mu p3 (w − e)/|w − e|, on a coarse copy of the patch:
+//   p_0 = −mu p3 w/|w|,   e_1 = R p_0,   e_k+1 = e_k + r f_k − (ΔE + r ΔF) γ_k,   f_k = R p(e_k) − e_k,
+// r = 1/2, with Anderson's mixing over the last three steps (ΔE, ΔF: the differences of the
+// iterates and of their residuals; γ_k fits f_k by ΔF in least squares): eight products of R (FFT),
+// the elastic slip e of the last one interpolated bilinearly onto the marched patch's elements,
+// whose tractions then follow w − e. Where the patch keeps an adhesion zone no full-slip state
+// exists and the iterate does not settle; a weight in [0, 1] says how far its result can be
+// trusted, and FastSim blends its own march into it:
+//   weight = S((0.3 − a)/0.1) S((0.08 − dF)/0.065),
 // S(t) the smoothstep on [0, 1], a the march's adhesion fraction (the iteration runs only below
-// 0.3), dF4 the change of the coarse forces over mu F3 in the fourth step (the iteration stops there
-// when it is 0.03 or more: the weight is then 0 whatever follows), m the smallest |w − e| over the
-// root mean square of |w| (an adhesion zone appears where it reaches 0), dF the largest change of
-// the coarse forces over mu F3 in the last three steps (settled: below 2e-3). Where the iteration
-// settles each factor is continuous in the creepages; where it does not, dF stays above 6e-3 (its
-// largest change over three steps: a chaotic iterate does not settle three times by chance).
+// 0.3), dF the largest change of the coarse forces over mu F3 in the last three steps (settled:
+// below 0.015). Where the exact solver slips everywhere, or keeps an adhesion zone of a few tenths
+// of a percent (at a spin's pole inside the patch), the iterate settles; as the adhesion zone
+// grows it wanders, and dF with it (docs/FASTSIM.md).
 #include <memory>
 #include <mutex>
 #include <vector>
