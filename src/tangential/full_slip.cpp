@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
-#include <cmath>
 #include <tuple>
 #include <utility>
 
