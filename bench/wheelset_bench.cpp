@@ -298,6 +298,10 @@ void BM_WheelsetTableBalanced(benchmark::State& state) {
 void BM_WheelsetTableAuto(benchmark::State& state) {
   wheelset_table_step(state, kDefaultSlipDirection, false, ContactSurface::automatic);
 }
+// The same with the rigid-slip direction: what the curved surface costs a lookup by itself.
+void BM_WheelsetTableAutoRigidSlip(benchmark::State& state) {
+  wheelset_table_step(state, SlipDirection::rigid_slip, false, ContactSurface::automatic);
+}
 
 BENCHMARK(BM_WheelsetTimeStep)->Arg(0)->Arg(-6300)->Arg(-6400)->Arg(-6500)->Arg(-6600)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStageSearch)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
@@ -317,6 +321,7 @@ BENCHMARK(BM_WheelsetTableRigidSlip)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicro
 BENCHMARK(BM_WheelsetTableRadial)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableBalanced)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_WheelsetTableAuto)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_WheelsetTableAutoRigidSlip)->Arg(0)->Arg(-6800)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

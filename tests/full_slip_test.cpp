@@ -12,6 +12,7 @@
 #include "railcontact/tangential.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/wheelset.hpp"
+#include "tangential/full_slip.hpp"
 
 namespace railcontact {
 namespace {
@@ -114,6 +115,29 @@ TEST(FullSlip, TheBlendIsContinuousFromPartialIntoFullSlip) {
   EXPECT_GE(kept, 10);                               // the march's partial slip is in the sweep
   EXPECT_LT(largest_step, 0.025 * mu_F3);
   EXPECT_GT(largest_step, 0.005 * mu_F3);  // the blend does move the forces
+}
+
+// The iteration stops once it has settled (its last three steps changed the forces by less than
+// 0.015 of mu F3, the last two by less than 0.001) and the weight is then 1: deep in full slip after
+// five or six products (measured: 5 at k = 1 and 1.5). Near the onset of full slip it settles more
+// slowly and takes all eight (k = 0.2, weight 1 all the same); where an adhesion zone grows its
+// iterate wanders, it takes all eight, and the weight says how far it is trusted.
+TEST(FullSlip, TheIterationStopsEarlyOnlyOnceItHasSettled) {
+  const FlangeState& f = flange();
+  const detail::FullSlip full_slip(f.patch);
+  const detail::FullSlipTractions onset = full_slip.solve(scaled(f.creepage, 0.2), kMu, 0.0);
+  EXPECT_EQ(onset.weight, 1.0);
+  EXPECT_EQ(onset.products, 8);
+  for (const double k : {1.0, 1.5}) {
+    const detail::FullSlipTractions t = full_slip.solve(scaled(f.creepage, k), kMu, 0.0);
+    EXPECT_EQ(t.weight, 1.0) << k;
+    EXPECT_GE(t.products, 4) << k;
+    EXPECT_LT(t.products, 8) << k;
+  }
+  const detail::FullSlipTractions wandering = full_slip.solve(scaled(f.creepage, 0.15), kMu, 0.0);
+  EXPECT_GT(wandering.weight, 0.0);
+  EXPECT_LT(wandering.weight, 1.0);
+  EXPECT_EQ(wandering.products, 8);
 }
 
 // An elliptical patch: in partial slip the elastic slip changes nothing; in full slip with spin it

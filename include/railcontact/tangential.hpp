@@ -199,15 +199,15 @@ namespace railcontact {
 //  - elastic_slip (the wheelset's default): rigid_slip, and where the patch slips everywhere the
 //    tractions of Coulomb's law along the elastic slip s = w − R p (w the rigid slip, R the
 //    steady-rolling operator; docs/METHOD.md §6), solved on a coarse copy of the patch by a fixed
-//    point with Anderson's mixing, eight products of R (src/tangential/full_slip.hpp). The march's
-//    result moves to them by a weight in [0, 1] that is 0 unless the march's adhesion fraction is
+//    point with Anderson's mixing, at most eight products of R (src/tangential/full_slip.hpp). The
+//    march's result moves to them by a weight in [0, 1] that is 0 unless the march's adhesion fraction is
 //    below 0.3 and rises as the fixed point settles (1 where its forces changed by less than 0.015
 //    of mu F3 over its last three steps, 0 from 0.08): continuous in the creepages. Only the
 //    creepages and the patch enter, not the flexibilities. On the steep flange patches that slip
 //    everywhere under spin it takes nH-FastSim from up to 7.3 % to within 0.5 % of mu F3 of the
 //    exact solver, and at the onset of full slip on flange roots from up to 3.6 % to within 0.9 %
 //    (docs/FASTSIM.md "The elastic slip where a patch slips everywhere"); it costs about 0.2 ms per
-//    flange patch on the fly and 0.13 ms per table node where it runs, nothing elsewhere
+//    flange patch on the fly and 0.1 ms per table node where it runs, nothing elsewhere
 //    (docs/BENCHMARKS.md "The elastic slip where a patch slips everywhere"). The slip flags stay
 //    the march's; the adhesion fraction is scaled by 1 − weight.
 enum class SlipDirection { radial, flexibility_weighted, rigid_slip, elastic_slip };

@@ -8,11 +8,12 @@
 // point e = R p(e), p(e) = −mu p3 (w − e)/|w − e|, on a coarse copy of the patch:
 //   p_0 = −mu p3 w/|w|,   e_1 = R p_0,   e_k+1 = e_k + r f_k − (ΔE + r ΔF) γ_k,   f_k = R p(e_k) − e_k,
 // r = 1/2, with Anderson's mixing over the last three steps (ΔE, ΔF: the differences of the
-// iterates and of their residuals; γ_k fits f_k by ΔF in least squares): eight products of R (FFT),
-// the elastic slip e of the last one interpolated bilinearly onto the marched patch's elements,
-// whose tractions then follow w − e. Where the patch keeps an adhesion zone no full-slip state
-// exists and the iterate does not settle; a weight in [0, 1] says how far its result can be
-// trusted, and FastSim blends its own march into it:
+// iterates and of their residuals; γ_k fits f_k by ΔF in least squares): at most eight products of R
+// (FFT), fewer once it has settled (full_slip.cpp), the elastic slip e of the last one
+// interpolated bilinearly onto the marched patch's elements, whose tractions then follow w − e.
+// Where the patch keeps an adhesion zone no full-slip state exists and the iterate does not
+// settle; a weight in [0, 1] says how far its result can be trusted, and FastSim blends its own
+// march into it:
 //   weight = S((0.3 − a)/0.1) S((0.08 − dF)/0.065),
 // S(t) the smoothstep on [0, 1], a the march's adhesion fraction (the iteration runs only below
 // 0.3), dF the largest change of the coarse forces over mu F3 in the last three steps (settled:
@@ -33,6 +34,7 @@ namespace railcontact::detail {
 
 struct FullSlipTractions {
   double weight = 0.0;               // of these tractions against the march's, in [0, 1]
+  int products = 0;                  // of R the iteration took (at most 8; fewer once settled)
   TangentialForces forces;           // of p1_Pa, p2_Pa (M3 about the patch's origin, as FastSim's)
   std::vector<double> p1_Pa, p2_Pa;  // per element of the marched patch, patch order (weight > 0)
 };
