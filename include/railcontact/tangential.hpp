@@ -200,8 +200,8 @@ namespace railcontact {
 //    tractions of Coulomb's law along the elastic slip s = w − R p (w the rigid slip, R the
 //    steady-rolling operator; docs/METHOD.md §6), solved on a coarse copy of the patch by a fixed
 //    point with Anderson's mixing, at most eight products of R (src/tangential/full_slip.hpp). The
-//    march's result moves to them by a weight in [0, 1] that is 0 unless the march's adhesion fraction is
-//    below 0.3 and rises as the fixed point settles (1 where its forces changed by less than 0.015
+//    march's result moves to them by a weight in [0, 1] that is 0 unless the march's adhesion
+//    fraction is below 0.3 and rises as the fixed point settles (1 where its forces changed by less than 0.015
 //    of mu F3 over its last three steps, 0 from 0.08): continuous in the creepages. Only the
 //    creepages and the patch enter, not the flexibilities. On the steep flange patches that slip
 //    everywhere under spin it takes nH-FastSim from up to 7.3 % to within 0.5 % of mu F3 of the
