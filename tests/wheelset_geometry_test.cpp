@@ -57,6 +57,30 @@ TEST(WheelsetGeometry, FirstTouchAgreesWithTheZeroYawPair) {
   EXPECT_NEAR(track.contact_search(WheelSide::right, at(0.0, 0.0)).min_vertical_gap_m, 0.0, 1e-9);
 }
 
+// Each valid locus sample keeps the rail profile's parameter at its lateral position (the region's
+// tangent-plane box reads the rail point from it): the profile there is the sample's position and
+// its height gives the sample's vertical gap.
+TEST(WheelsetGeometry, EachLocusSampleKeepsItsRailParameter) {
+  const WheelsetTrack& track = s1002_uic60();
+  int valid = 0;
+  for (const WheelsetPosition& p : {at(0.0, -0.05e-3), at(-6.5e-3, -0.05e-3, 0.0, 3e-3), at(4e-3, 0.0, 1e-3, -2e-3)}) {
+    for (const WheelSide side : {WheelSide::right, WheelSide::left}) {
+      const WheelContactSearch s = track.contact_search(side, p);
+      const SmoothProfile& rail = track.pair(side).rail();
+      for (std::size_t k = 0; k < s.locus.size(); ++k) {
+        const ContactLocusSample& sample = s.locus[k];
+        if (std::isnan(sample.rail_parameter_m)) continue;
+        ++valid;
+        const ProfileCurvePoint q = rail.at(sample.rail_parameter_m);
+        ASSERT_NEAR(q.y_m, sample.rail_profile_y_m, 1e-12) << k;
+        EXPECT_NEAR(sample.point_track_m[2] + q.z_m, sample.vertical_gap_m, 1e-12) << k;
+        EXPECT_NEAR(sample.rail_parameter_m, rail.parameter_at(sample.rail_profile_y_m), 1e-12) << k;
+      }
+    }
+  }
+  EXPECT_GT(valid, 1000);
+}
+
 // The exact undeformed distance on the mesh agrees with the 2-D pair's at zero yaw, where the
 // wheel is lowered by the same overlap (both measure along the same normal when the contact
 // angles agree: compare at the pair's first touch with the region's own angle).

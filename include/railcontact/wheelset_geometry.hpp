@@ -90,6 +90,9 @@ struct ContactLocusSample {
   double rolling_radius_m = 0.0;   // the wheel's radius there
   Vector3 point_track_m{};         // the locus point on the wheel, track frame
   double rail_profile_y_m = 0.0;   // the rail profile point at the locus point's lateral position
+  // Its arc-length parameter on the smoothed rail profile; NaN where the sample found no rail
+  // below it (a sample that is not valid).
+  double rail_parameter_m = std::numeric_limits<double>::quiet_NaN();
   double vertical_gap_m = 0.0;     // locus z − rail z (negative: interpenetration)
   double contact_angle_rad = 0.0;  // of the rail's normal there (positive: leaning to the track centre)
 };

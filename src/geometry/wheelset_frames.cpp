@@ -154,8 +154,10 @@ bool WheelOnRail::locus_sample(double wheel_parameter_m, ContactLocusSample& sam
   // The rail below the locus point.
   const double y_rail = sign_ * sample.point_track_m[1] - rail_offset_m_;
   if (!(y_rail > rail_->y_min_m() && y_rail < rail_->y_max_m())) return false;
-  const ProfileCurvePoint q = rail_->at(rail_->parameter_at(y_rail));
+  const double rail_parameter = rail_->parameter_at(y_rail);
+  const ProfileCurvePoint q = rail_->at(rail_parameter);
   sample.rail_profile_y_m = y_rail;
+  sample.rail_parameter_m = rail_parameter;
   sample.vertical_gap_m = sample.point_track_m[2] + q.z_m;  // locus z − (−z_p)
   sample.contact_angle_rad = std::atan2(-q.dz_ds, q.dy_ds);
   return true;
@@ -175,7 +177,11 @@ InterpenetrationRegion WheelOnRail::region(const std::vector<ContactLocusSample>
 }
 
 Vector3 WheelOnRail::rail_point_track_m(double x_m, double rail_profile_y_m) const {
-  const ProfileCurvePoint q = rail_->at(rail_->parameter_at(rail_profile_y_m));
+  return rail_point_at_parameter_m(x_m, rail_->parameter_at(rail_profile_y_m));
+}
+
+Vector3 WheelOnRail::rail_point_at_parameter_m(double x_m, double rail_parameter_m) const {
+  const ProfileCurvePoint q = rail_->at(rail_parameter_m);
   return {x_m, sign_ * (rail_offset_m_ + q.y_m), -q.z_m};
 }
 
@@ -200,7 +206,9 @@ void WheelOnRail::set_tangent_plane_box(const std::vector<ContactLocusSample>& l
   const std::size_t lo = first > 0 ? first - 1 : first, hi = std::min(last + 1, locus.size() - 1);
   for (std::size_t k = lo; k <= hi; ++k) {
     const ContactLocusSample& s = locus[k];
-    const Vector3 rail_point = rail_point_track_m(x_reference_m, s.rail_profile_y_m);
+    // The rail point as locus_sample found it (its parameter kept), or from the profile position.
+    const Vector3 rail_point = std::isnan(s.rail_parameter_m) ? rail_point_track_m(x_reference_m, s.rail_profile_y_m)
+                                                               : rail_point_at_parameter_m(x_reference_m, s.rail_parameter_m);
     const double x2 = dot(add(rail_point, r.reference_point_track_m, -1.0), r.x2_axis);
     r.x2_min_m = std::min(r.x2_min_m, x2);
     r.x2_max_m = std::max(r.x2_max_m, x2);

@@ -70,6 +70,7 @@ class WheelOnRail {
   // Stages of region(): the rail surface point at track x and rail profile position y (track
   // frame); the reference point and contact frame from the region's averages; the bounding box.
   [[nodiscard]] Vector3 rail_point_track_m(double x_m, double rail_profile_y_m) const;
+  [[nodiscard]] Vector3 rail_point_at_parameter_m(double x_m, double rail_parameter_m) const;  // the same, its parameter known
   void set_contact_frame(double x_reference_m, InterpenetrationRegion& r) const;
   void set_tangent_plane_box(const std::vector<ContactLocusSample>& locus, std::size_t first, std::size_t last,
                              double x_reference_m, InterpenetrationRegion& r) const;

@@ -48,12 +48,14 @@ ContactPatch::ContactPatch(const Mesh& input_mesh, const std::vector<double>& pr
   const auto& idx = elements_.indices();
   const auto n1 = static_cast<std::size_t>(mesh.n1);
   for (std::size_t e = 0; e < idx.size();) {
+    // One division per run: a run ends at a gap or at the end of its strip (row).
+    const std::size_t strip = idx[e] / n1, strip_end = (strip + 1) * n1;
     std::size_t last = e;
-    while (last + 1 < idx.size() && idx[last + 1] == idx[last] + 1 && idx[last + 1] / n1 == idx[e] / n1) ++last;
+    while (last + 1 < idx.size() && idx[last + 1] == idx[last] + 1 && idx[last + 1] < strip_end) ++last;
     StripRun run;
-    run.i2 = static_cast<int>(idx[e] / n1);
-    run.i1_trailing = static_cast<int>(idx[e] % n1);
-    run.i1_leading = static_cast<int>(idx[last] % n1);
+    run.i2 = static_cast<int>(strip);
+    run.i1_trailing = static_cast<int>(idx[e] - strip * n1);
+    run.i1_leading = static_cast<int>(idx[last] - strip * n1);
     run.first = e;
     run.x1_trailing_m = mesh.x1(run.i1_trailing) - 0.5 * mesh.dx1_m;
     run.x1_leading_m = mesh.x1(run.i1_leading) + 0.5 * mesh.dx1_m;

@@ -1,6 +1,7 @@
 // A contact patch cut out of a potential-contact-area mesh (see the header).
 #include "tangential/cropped_patch.hpp"
 
+#include "mesh/element_rows.hpp"
 #include "railcontact/error.hpp"
 
 #include <algorithm>
@@ -11,9 +12,9 @@ namespace railcontact::detail {
 
 IndexBox bounding_box(const Mesh& mesh, const std::vector<std::size_t>& elements) {
   IndexBox box{mesh.n1, -1, mesh.n2, -1};
+  ElementRows rows(static_cast<std::size_t>(mesh.n1));
   for (std::size_t k : elements) {
-    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
-    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+    const auto [i1, i2] = rows.at(k);
     box.lo1 = std::min(box.lo1, i1);
     box.hi1 = std::max(box.hi1, i1);
     box.lo2 = std::min(box.lo2, i2);
@@ -31,9 +32,9 @@ ContactPatch cropped_patch(const Mesh& mesh, const std::vector<double>& pressure
   crop.x1_first_m = mesh.x1(std::min(box.lo1, mesh.n1 - 1));
   crop.x2_first_m = mesh.x2(std::min(box.lo2, mesh.n2 - 1));
   std::vector<double> p(crop.size(), 0.0);
+  ElementRows rows(static_cast<std::size_t>(mesh.n1));
   for (std::size_t k : elements) {
-    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
-    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+    const auto [i1, i2] = rows.at(k);
     p[crop.index(i1 - box.lo1, i2 - box.lo2)] = pressure_Pa[k];
   }
   return ContactPatch(crop, p, material);
@@ -59,9 +60,9 @@ ContactPatch block_aligned_patch(const Mesh& mesh, const std::vector<double>& pr
   crop.x1_first_m = static_cast<double>(first1) * mesh.dx1_m;
   crop.x2_first_m = static_cast<double>(first2) * mesh.dx2_m;
   std::vector<double> p(crop.size(), 0.0);
+  ElementRows rows(static_cast<std::size_t>(mesh.n1));
   for (std::size_t k : elements) {
-    const int i1 = static_cast<int>(k % static_cast<std::size_t>(mesh.n1));
-    const int i2 = static_cast<int>(k / static_cast<std::size_t>(mesh.n1));
+    const auto [i1, i2] = rows.at(k);
     p[crop.index(static_cast<int>(global1(i1) - first1), static_cast<int>(global2(i2) - first2))] = pressure_Pa[k];
   }
   return ContactPatch(crop, p, material);

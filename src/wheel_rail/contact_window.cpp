@@ -160,22 +160,28 @@ bool window_solution_holds_outside(const Mesh& mesh, const std::vector<double>& 
       hi2 = std::max(hi2, i2);
     }
   }
+  // Every element outside the window: a row's columns before and after the window where the row
+  // crosses it, the whole row elsewhere.
   for (int i2 = 0; i2 < mesh.n2; ++i2) {
     const bool row_inside = i2 >= window.lo2 && i2 < window.lo2 + window.n2;
     const bool row_on = on_check_row(i2);
     const double* h = h_m.data() + static_cast<std::size_t>(i2) * n1;
     const double* u = row_on ? check.displacement_m.data() + check_row(i2) : nullptr;  // from column on1_lo
-    for (int i1 = 0; i1 < mesh.n1; ++i1) {
-      if (h[i1] >= 0.0) continue;  // A p >= 0
-      if (row_inside && i1 >= window.lo1 && i1 < window.lo1 + window.n1) continue;
-      if (!row_on || i1 < on1_lo || i1 >= on1_hi) return false;
-      double lower = u[i1 - on1_lo];
-      if (pressure_change_Pa > 0.0) {
-        const int d1 = std::max({0, lo1 - i1, i1 - hi1}), d2 = std::max({0, lo2 - i2, i2 - hi2});
-        lower -= influence.at(d1, d2) * pressure_change_Pa;
+    const auto holds = [&](int from1, int to1) {
+      for (int i1 = from1; i1 < to1; ++i1) {
+        if (h[i1] >= 0.0) continue;  // A p >= 0
+        if (!row_on || i1 < on1_lo || i1 >= on1_hi) return false;
+        double lower = u[i1 - on1_lo];
+        if (pressure_change_Pa > 0.0) {
+          const int d1 = std::max({0, lo1 - i1, i1 - hi1}), d2 = std::max({0, lo2 - i2, i2 - hi2});
+          lower -= influence.at(d1, d2) * pressure_change_Pa;
+        }
+        if (h[i1] + lower < 0.0) return false;
       }
-      if (h[i1] + lower < 0.0) return false;
-    }
+      return true;
+    };
+    const bool row_holds = row_inside ? holds(0, window.lo1) && holds(window.lo1 + window.n1, mesh.n1) : holds(0, mesh.n1);
+    if (!row_holds) return false;
   }
   return true;
 }

@@ -2,6 +2,7 @@
 // normal problem per patch (by position, or by load through the wheel's height), the kinematic
 // creepages at each patch's reference point, the tangential solvers, and the forces in the track
 // frame.
+#include <Eigen/Core>
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -724,10 +725,10 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
     // The elements row by row from the last row: in increasing order on the mirrored mesh.
     solve_elements.clear();
     for (auto row_end = elements.end(); row_end != elements.begin();) {
-      const std::size_t row = *(row_end - 1) / n1;
+      const std::size_t row = *(row_end - 1) / n1, row_first = row * n1;  // one division per row
       auto row_begin = row_end;
-      while (row_begin != elements.begin() && *(row_begin - 1) / n1 == row) --row_begin;
-      for (auto k = row_begin; k != row_end; ++k) solve_elements.push_back((n2 - 1 - row) * n1 + *k % n1);
+      while (row_begin != elements.begin() && *(row_begin - 1) >= row_first) --row_begin;
+      for (auto k = row_begin; k != row_end; ++k) solve_elements.push_back((n2 - 1 - row) * n1 + (*k - row_first));
       row_end = row_begin;
     }
   }
@@ -765,6 +766,15 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
   if (options.keep_tractions) patch.patch = std::move(contact);
 }
 
+// The smallest or largest of a field's values (finite, not empty), by Eigen's vectorised reduction: a
+// scalar loop carries the running extreme from element to element (about 4 cycles each over a
+// potential area's 10 000+ elements).
+enum class Extreme { smallest, largest };
+double largest_or_smallest(const std::vector<double>& values, Extreme extreme) {
+  const Eigen::Map<const Eigen::ArrayXd> v(values.data(), static_cast<Eigen::Index>(values.size()));
+  return extreme == Extreme::smallest ? v.minCoeff() : v.maxCoeff();
+}
+
 // One patch on one contact surface with its creepages and tangential solutions.
 WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const Vector3& centre,
                            const InterpenetrationRegion& region, const SurfaceSolution& n,
@@ -775,7 +785,7 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   // The creepage point Q on the undeformed wheel surface: the reference point P moved into the
   // rail along the normal by the approach, the largest rigid overlap of the patch (as Kalker's
   // CONTACT takes it; docs/WHEEL_RAIL.md §12).
-  patch.approach_m = std::max(0.0, -*std::min_element(n.area.h_m.begin(), n.area.h_m.end()));
+  patch.approach_m = std::max(0.0, -largest_or_smallest(n.area.h_m, Extreme::smallest));
   for (std::size_t i = 0; i < 3; ++i)
     patch.creepage_point_track_m[i] = region.reference_point_track_m[i] - patch.approach_m * region.x3_axis[i];
   ContactFrame frame;
@@ -795,10 +805,8 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   patch.normal_mesh_elements = n.solved_mesh_elements;
   const Mesh& mesh = n.area.mesh;
   patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
-  // The largest pressure in a loop of its own: beside push_back's call the maximum would be
-  // stored and reloaded at every element.
   const std::vector<double>& pressure_Pa = n.normal.pressure_Pa;
-  patch.max_pressure_Pa = std::max(0.0, *std::max_element(pressure_Pa.begin(), pressure_Pa.end()));
+  patch.max_pressure_Pa = std::max(0.0, largest_or_smallest(pressure_Pa, Extreme::largest));
   std::vector<std::size_t> elements;
   elements.reserve(patch.elements_in_contact);
   for (std::size_t k = 0; k < pressure_Pa.size(); ++k)
