@@ -15,7 +15,7 @@
 //   BM_NhFastSimStage_*           its stages one by one (the profile breakdown)
 //   BM_FastSimWithKnownFlexibilities  the march alone (flexibilities known: the table's cost)
 //   BM_Exact                      solve_rolling_exact, inexact Newton (the default)
-//   BM_ExactFixedKrylovTolerance  the same with every GMRES solve to 1e-6 (before 2026-11-25)
+//   BM_ExactFixedKrylovTolerance  the same with every GMRES solve to 1e-6 (the exact Newton's alternative)
 // Counters: elements in contact, GMRES/Newton iterations.
 #include <benchmark/benchmark.h>
 

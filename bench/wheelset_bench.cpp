@@ -47,10 +47,9 @@ const WheelsetTrack& track() {
 
 // A state at y where both wheels carry 98.1 kN vertically: the wheelset's height and roll solved
 // together (WheelLoads::balance_roll), the state of a rigid axle under its load. In flange contact
-// (y = -6.3 ... -6.6 mm) the flange then carries F3 = 147-267 kN. (Until 2026-11-25 the height and
-// roll came from each wheel's own height at zero roll; at y = -6.8 mm that state pressed the
-// flange with F3 = 1.13 MN on 8683 elements, six times the physical load: with both loads balanced
-// the flange climbs there.)
+// (y = -6.3 ... -6.6 mm) the flange then carries F3 = 147-267 kN. Each wheel's own height at zero
+// roll is not such a state: at y = -6.8 mm it presses the flange with F3 = 1.13 MN, six times the
+// physical load (with both loads balanced the flange climbs there; docs/WHEELSET.md §8).
 WheelsetState loaded_state(double y_m) {
   WheelsetOptions balanced;
   balanced.loads = WheelLoads{98.1e3, 98.1e3, true};
