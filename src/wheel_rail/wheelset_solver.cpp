@@ -766,13 +766,11 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
   if (options.keep_tractions) patch.patch = std::move(contact);
 }
 
-// The smallest or largest of a field's values (finite, not empty), by Eigen's vectorised reduction: a
-// scalar loop carries the running extreme from element to element (about 4 cycles each over a
-// potential area's 10 000+ elements).
-enum class Extreme { smallest, largest };
-double largest_or_smallest(const std::vector<double>& values, Extreme extreme) {
-  const Eigen::Map<const Eigen::ArrayXd> v(values.data(), static_cast<Eigen::Index>(values.size()));
-  return extreme == Extreme::smallest ? v.minCoeff() : v.maxCoeff();
+// A field over a mesh as an Eigen array, for its vectorised reductions (minCoeff, maxCoeff): a
+// scalar loop carries the running extreme from element to element, over a potential area's 10 000+
+// elements.
+Eigen::Map<const Eigen::ArrayXd> as_array(const std::vector<double>& field) {
+  return {field.data(), static_cast<Eigen::Index>(field.size())};
 }
 
 // One patch on one contact surface with its creepages and tangential solutions.
@@ -785,7 +783,7 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   // The creepage point Q on the undeformed wheel surface: the reference point P moved into the
   // rail along the normal by the approach, the largest rigid overlap of the patch (as Kalker's
   // CONTACT takes it; docs/WHEEL_RAIL.md §12).
-  patch.approach_m = std::max(0.0, -largest_or_smallest(n.area.h_m, Extreme::smallest));
+  patch.approach_m = std::max(0.0, -as_array(n.area.h_m).minCoeff());
   for (std::size_t i = 0; i < 3; ++i)
     patch.creepage_point_track_m[i] = region.reference_point_track_m[i] - patch.approach_m * region.x3_axis[i];
   ContactFrame frame;
@@ -806,7 +804,7 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   const Mesh& mesh = n.area.mesh;
   patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
   const std::vector<double>& pressure_Pa = n.normal.pressure_Pa;
-  patch.max_pressure_Pa = std::max(0.0, largest_or_smallest(pressure_Pa, Extreme::largest));
+  patch.max_pressure_Pa = std::max(0.0, as_array(pressure_Pa).maxCoeff());
   std::vector<std::size_t> elements;
   elements.reserve(patch.elements_in_contact);
   for (std::size_t k = 0; k < pressure_Pa.size(); ++k)
