@@ -39,13 +39,16 @@ ConstrainedConjugateGradient::ConstrainedConjugateGradient(const Mesh& mesh)
 ConstrainedCgReport ConstrainedConjugateGradient::solve(InfluenceOperator& A, std::span<const double> h,
                                                         double pressure_sum, std::span<double> p, double tolerance,
                                                         int max_iterations) {
+  preconditioner_.set_gamma(ContactLaplacianPreconditioner::kDefaultGamma);
   return iterate(A, h, pressure_sum, std::nullopt, p, tolerance, max_iterations);
 }
 
 ConstrainedCgReport ConstrainedConjugateGradient::solve_at_approach(InfluenceOperator& A, std::span<const double> h,
                                                                     double approach_m, std::span<double> p,
                                                                     double tolerance, int max_iterations,
-                                                                    std::span<const double> product) {
+                                                                    std::span<const double> product,
+                                                                    double preconditioner_gamma) {
+  preconditioner_.set_gamma(preconditioner_gamma);
   return iterate(A, h, 0.0, approach_m, p, tolerance, max_iterations, product);
 }
 

@@ -50,10 +50,12 @@ class ConstrainedConjugateGradient {
   // without the means over Ic and without the load scaling. p: initial guess (>= 0, may be zero).
   // With `product` given (A p of the initial p, to rounding: a time step's start from the last
   // steps' products, wheel_rail/wheelset_solver.cpp) the first product by FFT is left out; it counts
-  // as one recursive update of A p.
+  // as one recursive update of A p. `preconditioner_gamma`: ContactLaplacianPreconditioner's gamma
+  // for this solve (its kTimeStepGamma for a time step's predicted start).
   ConstrainedCgReport solve_at_approach(InfluenceOperator& A, std::span<const double> h, double approach_m,
                                         std::span<double> p, double tolerance, int max_iterations,
-                                        std::span<const double> product = {});
+                                        std::span<const double> product = {},
+                                        double preconditioner_gamma = ContactLaplacianPreconditioner::kDefaultGamma);
   // A p of the last solve's p (m), to rounding: the product the iteration ended with.
   [[nodiscard]] std::span<const double> product() const { return u_; }
   // Up to this many elements A p is updated element by element (each mesh.size() multiply-adds)

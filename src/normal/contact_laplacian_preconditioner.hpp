@@ -13,6 +13,10 @@
 // gamma in [2, 3], 17 at gamma = 1 or 5). The same construction preconditions the tangential
 // solvers (src/tangential/steady_rolling_preconditioner.hpp). M is symmetric positive definite
 // on Ic, so conjugate gradients may use it.
+// A time step's start, the last steps' pressures predicted (wheel_rail/wheelset_solver.cpp), is
+// close: the error left lies at the contact's edges, where elements enter and leave, and a
+// smaller gamma (kTimeStepGamma, 1), whose M weights the short wavelengths more, takes fewer
+// iterations (docs/NORMAL.md "Preconditioner").
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -23,7 +27,10 @@ namespace railcontact::detail {
 
 class ContactLaplacianPreconditioner {
  public:
-  explicit ContactLaplacianPreconditioner(const Mesh& mesh, double gamma = 2.5);
+  static constexpr double kDefaultGamma = 2.5;
+  static constexpr double kTimeStepGamma = 1.0;  // a time step's predicted start (by position)
+  explicit ContactLaplacianPreconditioner(const Mesh& mesh, double gamma = kDefaultGamma);
+  void set_gamma(double gamma) { gamma_ = gamma; }
 
   // z = (c0 - Laplacian_h) r on the elements with contact_mask = 1 (r taken as 0 where it is 0),
   // z = 0 elsewhere; c0 from the number of contact elements. Grid vectors (mesh size).

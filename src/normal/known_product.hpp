@@ -16,6 +16,12 @@ struct KnownProduct {
   std::vector<double> displacement_m;
 };
 
+// What a solve's start is: a pressure given by itself (a user's, a height trial's at another
+// approach, none), or a time step's prediction from the last steps' pressures, whose error lies at
+// the contact's edges (the preconditioner then takes ContactLaplacianPreconditioner::
+// kTimeStepGamma).
+enum class StartKind { given, time_step_prediction };
+
 struct NormalSolverAccess {
   // NormalContactSolver::solve_at_approach. With `known` given, the start (initial_pressure_Pa where
   // the bodies overlap) differs from known's pressure in at most
@@ -25,7 +31,8 @@ struct NormalSolverAccess {
   // rounding) is written there.
   static NormalSolution solve_at_approach(NormalContactSolver& solver, const std::vector<double>& h, double approach_m,
                                           const std::vector<double>& initial_pressure_Pa, const KnownProduct* known,
-                                          std::vector<double>* final_product_m);
+                                          std::vector<double>* final_product_m,
+                                          StartKind start = StartKind::given);
 };
 
 }  // namespace railcontact::detail

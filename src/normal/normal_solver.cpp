@@ -145,7 +145,8 @@ namespace detail {
 
 NormalSolution NormalSolverAccess::solve_at_approach(NormalContactSolver& solver, const std::vector<double>& h,
                                                      double approach_m, const std::vector<double>& initial_pressure_Pa,
-                                                     const KnownProduct* known, std::vector<double>* final_product_m) {
+                                                     const KnownProduct* known, std::vector<double>* final_product_m,
+                                                     StartKind start) {
   NormalContactSolver::Plan& plan = *solver.plan_;
   const Mesh& mesh = plan.mesh;
   validate_problem(mesh, h, kMinimumNormalForce_N);
@@ -182,7 +183,9 @@ NormalSolution NormalSolverAccess::solve_at_approach(NormalContactSolver& solver
   }
   const ConstrainedCgReport report = plan.cg.solve_at_approach(
       plan.A, h, approach_m, solution.pressure_Pa, plan.options.tolerance, plan.options.max_iterations,
-      product_known ? std::span<const double>(start_product.data(), mesh.size()) : std::span<const double>{});
+      product_known ? std::span<const double>(start_product.data(), mesh.size()) : std::span<const double>{},
+      start == StartKind::time_step_prediction ? ContactLaplacianPreconditioner::kTimeStepGamma
+                                               : ContactLaplacianPreconditioner::kDefaultGamma);
   solution.iterations = report.iterations;
   solution.approach_m = approach_m;
   solution.residual = report.residual;

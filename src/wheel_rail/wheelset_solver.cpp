@@ -246,6 +246,9 @@ struct WheelsetWarmStart {
   struct StartSources {
     std::shared_ptr<const SolvedMesh> last, older;  // older only where r > 0
     double r = 0.0;
+    // A time step's start (`last` solved in an earlier evaluation), or a trial's of this
+    // evaluation (by load: the height iteration's last trial, at another approach).
+    StartKind kind = StartKind::given;
   };
 
   // The start of a patch's normal solve on `mesh`: the previous pressure of the nearest earlier
@@ -261,13 +264,14 @@ struct WheelsetWarmStart {
     const Previous* best = nearest(side, rail_profile_y_m);
     if (!best || best->last.mesh.dx1_m != mesh.dx1_m) return {};
     std::vector<double> p = moved_onto(best->last, mesh);
-    if (from != nullptr) *from = {best->last.solved, nullptr, 0.0};
+    const StartKind kind = best->last.evaluation == evaluation ? StartKind::given : StartKind::time_step_prediction;
+    if (from != nullptr) *from = {best->last.solved, nullptr, 0.0, kind};
     if (at == nullptr || !best->older || best->older->mesh.dx1_m != mesh.dx1_m) return p;
     const double r = step_ratio(best->older->position, best->last.position, *at);
     if (r <= 0.0) return p;
     const std::vector<double> older = moved_onto(*best->older, mesh);
     for (std::size_t k = 0; k < p.size(); ++k) p[k] = std::max(0.0, prediction(p[k], older[k], r));
-    if (from != nullptr) *from = {best->last.solved, best->older->solved, r};
+    if (from != nullptr) *from = {best->last.solved, best->older->solved, r, kind};
     return p;
   }
   // The linear prediction of one element's pressure (or product) from its last two solutions.
@@ -411,7 +415,8 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
     const std::optional<detail::KnownProduct> known = predicted_product(from, mesh);
     s = detail::NormalSolverAccess::solve_at_approach(
         warm.plan(mesh, options), detail::cut_window(area.mesh, area.h_m, *window), 0.0,
-        detail::cut_window(area.mesh, initial, *window), known ? &*known : nullptr, &solved->displacement_m);
+        detail::cut_window(area.mesh, initial, *window), known ? &*known : nullptr, &solved->displacement_m,
+        from.kind);
   } catch (const Error& e) {
     if (e.kind() != ErrorKind::not_converged) throw;
     return std::nullopt;  // a breakdown on the window: the whole area decides
@@ -483,7 +488,8 @@ SurfaceSolution solve_surface(TangentPlaneArea area, const std::vector<double>& 
   } else {
     auto solved = std::make_shared<SolvedMesh>();
     p.normal = detail::NormalSolverAccess::solve_at_approach(warm.plan(p.area.mesh, options), p.area.h_m, 0.0,
-                                                             start.initial, nullptr, &solved->displacement_m);
+                                                             start.initial, nullptr, &solved->displacement_m,
+                                                             start.from.kind);
     solved->mesh = p.area.mesh;
     solved->pressure_Pa = p.normal.pressure_Pa;
     p.solved = std::move(solved);
@@ -619,6 +625,10 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     const detail::WheelsetWarmStart::Previous* earlier = warm.nearest(side, p.region.rail_profile_y_m);
     SurfaceStart start;
     start.initial = warm.initial_pressure(side, p.region.rail_profile_y_m, p.area.mesh, &position, &start.from);
+    // By load every solve of a patch keeps the default preconditioner: the height iteration's
+    // secants between its trials need the trials' errors alike (with the time step's on the first
+    // trial only, a balanced step took 3-11 % more normal solves, docs/NORMAL.md "Preconditioner").
+    if (options.loads) start.from.kind = detail::StartKind::given;
     start.earlier = earlier ? earlier->check : nullptr;
     starts.push_back(std::move(start));
   }
