@@ -252,8 +252,8 @@ void expect_patches_near(const WheelsetResult& got, const WheelsetResult& refere
 // By position a time step starts each patch's normal solve from the linear prediction of its last
 // two solutions (docs/WHEELSET.md §8 "The prediction"): along a drift of 1 µm per step the third
 // step, predicted, takes fewer conjugate-gradient iterations than the second, started from the
-// first step's pressure alone (0.2 mm elements, both wheels' patches: 5 against 20 at y = 0, 6
-// against 11 at −6.5 mm), and gives a fresh Wheelset's solution to the solver's tolerance. A step that turns back is not
+// first step's pressure alone (0.2 mm elements, both wheels' patches: 3 against 15 at y = 0, 4
+// against 9 at −6.5 mm), and gives a fresh Wheelset's solution to the solver's tolerance. A step that turns back is not
 // predicted (the plain warm start), and gives the fresh solution too.
 TEST(Wheelset, APredictedTimeStepTakesFewerIterationsAndGivesTheSameSolution) {
   WheelsetOptions o = coarse();
@@ -289,9 +289,10 @@ TEST(Wheelset, APredictedTimeStepTakesFewerIterationsAndGivesTheSameSolution) {
 // The wheelset's own normal tolerance (WheelsetOptions::normal, 5e-6; docs/WHEELSET.md §8) keeps a
 // time step's forces far inside the accuracy targets (0.1 % of F3, 0.2 % of μF3): along ten steps
 // of 1 µm by position at 0.2 mm elements the last step lies within 1e-5 of F3 and 5e-4 of μF3 of
-// a fresh solve to 1e-12 (measured: 2e-6 and 5e-8, and up to 1.7e-4 of μF3 where an element at
-// the contact's edge is in contact in one and not the other). A default loosened to 1e-4 fails it
-// (F3 1.2e-5 off at y = 0; build/bench/wheelset_normal_tolerance).
+// a fresh solve to 1e-12 (measured: 1.0e-6 and 5.9e-8 at y = 0, and up to 3.6e-4 of μF3 where an
+// element at the contact's edge is in contact in one and not the other, docs/WHEELSET.md §8). A
+// default loosened to 1e-4 fails it (F3 2.3e-5 off at −6.5 mm; a scratch program repeating this
+// test's steps).
 TEST(Wheelset, ItsNormalToleranceKeepsATimeStepWithinTheAccuracyTargets) {
   WheelsetOptions o;
   o.loads.reset();

@@ -152,9 +152,9 @@ struct WheelsetOptions {
   RollingOptions rolling{};
   // The normal solver's relative residual: 5e-6 in a wheelset (1e-10 for a single patch). Along
   // 60 time steps of 1 µm (0.2 mm elements, y = 0 and −6.5 mm, by position and by load) the forces
-  // lie within 2e-6 of F3 and 1.7e-4 of μF3 of a solve to 1e-12, twelve times below the accuracy
-  // targets, and a time step by position needs 5.6 conjugate-gradient iterations at y = 0 instead
-  // of 8.2 at 1e-6 (docs/WHEELSET.md §8, build/bench/wheelset_normal_tolerance).
+  // lie within 1e-6 of F3 and 6.0e-4 of μF3 of a solve to 1e-12, more than three times below the
+  // accuracy targets, and a time step by position needs 4.8 conjugate-gradient iterations at y = 0
+  // instead of 7.4 at 1e-6 (docs/WHEELSET.md §8, build/bench/wheelset_normal_tolerance).
   NormalOptions normal{.tolerance = 5e-6};
   ContactSearchOptions search{};
   PatchCouplingOptions patch_coupling{};

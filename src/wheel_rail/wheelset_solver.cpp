@@ -246,8 +246,7 @@ struct WheelsetWarmStart {
   struct StartSources {
     std::shared_ptr<const SolvedMesh> last, older;  // older only where r > 0
     double r = 0.0;
-    // A time step's start (`last` solved in an earlier evaluation), or a trial's of this
-    // evaluation (by load: the height iteration's last trial, at another approach).
+    // How the solve is preconditioned (set by solve_normal: a time step's prediction by position).
     StartKind kind = StartKind::given;
   };
 
@@ -264,14 +263,13 @@ struct WheelsetWarmStart {
     const Previous* best = nearest(side, rail_profile_y_m);
     if (!best || best->last.mesh.dx1_m != mesh.dx1_m) return {};
     std::vector<double> p = moved_onto(best->last, mesh);
-    const StartKind kind = best->last.evaluation == evaluation ? StartKind::given : StartKind::time_step_prediction;
-    if (from != nullptr) *from = {best->last.solved, nullptr, 0.0, kind};
+    if (from != nullptr) *from = {best->last.solved, nullptr, 0.0};
     if (at == nullptr || !best->older || best->older->mesh.dx1_m != mesh.dx1_m) return p;
     const double r = step_ratio(best->older->position, best->last.position, *at);
     if (r <= 0.0) return p;
     const std::vector<double> older = moved_onto(*best->older, mesh);
     for (std::size_t k = 0; k < p.size(); ++k) p[k] = std::max(0.0, prediction(p[k], older[k], r));
-    if (from != nullptr) *from = {best->last.solved, best->older->solved, r, kind};
+    if (from != nullptr) *from = {best->last.solved, best->older->solved, r};
     return p;
   }
   // The linear prediction of one element's pressure (or product) from its last two solutions.
@@ -625,10 +623,11 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
     const detail::WheelsetWarmStart::Previous* earlier = warm.nearest(side, p.region.rail_profile_y_m);
     SurfaceStart start;
     start.initial = warm.initial_pressure(side, p.region.rail_profile_y_m, p.area.mesh, &position, &start.from);
-    // By load every solve of a patch keeps the default preconditioner: the height iteration's
+    // By position a patch is solved once per evaluation, from the last steps' pressures: the time
+    // step's preconditioner. By load every solve keeps the default one: the height iteration's
     // secants between its trials need the trials' errors alike (with the time step's on the first
     // trial only, a balanced step took 3-11 % more normal solves, docs/NORMAL.md "Preconditioner").
-    if (options.loads) start.from.kind = detail::StartKind::given;
+    if (!options.loads && !start.initial.empty()) start.from.kind = detail::StartKind::time_step_prediction;
     start.earlier = earlier ? earlier->check : nullptr;
     starts.push_back(std::move(start));
   }
