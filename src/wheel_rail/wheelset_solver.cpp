@@ -130,13 +130,13 @@ struct WheelsetWarmStart {
   // A patch's solution, the position it was solved at and the evaluation it was solved in;
   // `older` the same patch's last solution in an earlier evaluation (the step before, for the
   // linear prediction of initial_pressure; by load the heights' iterates of one evaluation do not
-  // count as steps).
+  // count as steps). The pressure is kept as solved (on its contact window, zero outside it, or on
+  // the whole area), shared, not copied: a whole area's field is 110 kB at y = 0.
   struct Solved {
-    Mesh mesh;
-    std::vector<double> pressure_Pa;
     WheelsetPosition position;
     std::uint64_t evaluation = 0;
     std::shared_ptr<const SolvedMesh> solved;  // as solved, with its product
+    [[nodiscard]] const Mesh& mesh() const { return solved->mesh; }
   };
   struct Previous {
     double rail_profile_y_m;
@@ -261,13 +261,13 @@ struct WheelsetWarmStart {
   std::vector<double> initial_pressure(WheelSide side, double rail_profile_y_m, const Mesh& mesh,
                                        const WheelsetPosition* at, StartSources* from = nullptr) const {
     const Previous* best = nearest(side, rail_profile_y_m);
-    if (!best || best->last.mesh.dx1_m != mesh.dx1_m) return {};
-    std::vector<double> p = moved_onto(best->last, mesh);
+    if (!best || best->last.mesh().dx1_m != mesh.dx1_m) return {};
+    std::vector<double> p = moved_onto(*best->last.solved, mesh);
     if (from != nullptr) *from = {best->last.solved, nullptr, 0.0};
-    if (at == nullptr || !best->older || best->older->mesh.dx1_m != mesh.dx1_m) return p;
+    if (at == nullptr || !best->older || best->older->mesh().dx1_m != mesh.dx1_m) return p;
     const double r = step_ratio(best->older->position, best->last.position, *at);
     if (r <= 0.0) return p;
-    const std::vector<double> older = moved_onto(*best->older, mesh);
+    const std::vector<double> older = moved_onto(*best->older->solved, mesh);
     for (std::size_t k = 0; k < p.size(); ++k) p[k] = std::max(0.0, prediction(p[k], older[k], r));
     if (from != nullptr) *from = {best->last.solved, best->older->solved, r};
     return p;
@@ -276,7 +276,7 @@ struct WheelsetWarmStart {
   static double prediction(double last, double older, double r) { return last + r * (last - older); }
 
   // A solution's pressure on another mesh of the same element size, zero where it did not reach.
-  static std::vector<double> moved_onto(const Solved& from, const Mesh& mesh) {
+  static std::vector<double> moved_onto(const SolvedMesh& from, const Mesh& mesh) {
     const int shift1 = static_cast<int>(std::lround((mesh.x1_first_m - from.mesh.x1_first_m) / mesh.dx1_m));
     const int shift2 = static_cast<int>(std::lround((mesh.x2_first_m - from.mesh.x2_first_m) / mesh.dx2_m));
     std::vector<double> p(mesh.size(), 0.0);
@@ -317,7 +317,7 @@ struct WheelsetWarmStart {
   void remember(WheelSide side, const WheelsetPosition& position, const std::vector<NormalPatch>& patches) {
     std::vector<Previous> list;
     for (const NormalPatch& p : patches) {
-      Previous n{p.region.rail_profile_y_m, Solved{p.area.mesh, p.normal.pressure_Pa, position, evaluation, p.solved},
+      Previous n{p.region.rail_profile_y_m, Solved{position, evaluation, p.solved},
                  std::nullopt, p.check};
       if (const Previous* earlier = nearest(side, p.region.rail_profile_y_m))
         n.older = earlier->last.evaluation == evaluation ? earlier->older : std::optional<Solved>(earlier->last);
@@ -448,12 +448,12 @@ std::optional<WindowedSolution> solve_in_contact_window(const TangentPlaneArea& 
     check = std::move(made);
   }
   s.pressure_Pa = std::move(pressure);
+  // Loaded elements on the area's border: its first and last rows and columns.
+  const Mesh& m = area.mesh;
+  const auto loaded = [&](int i1, int i2) { return s.pressure_Pa[m.index(i1, i2)] > 0.0; };
   s.touches_border = false;
-  for (int i2 = 0; i2 < area.mesh.n2; ++i2)
-    for (int i1 = 0; i1 < area.mesh.n1; ++i1)
-      if (s.pressure_Pa[area.mesh.index(i1, i2)] > 0.0 &&
-          (i1 == 0 || i2 == 0 || i1 == area.mesh.n1 - 1 || i2 == area.mesh.n2 - 1))
-        s.touches_border = true;
+  for (int i1 = 0; i1 < m.n1 && !s.touches_border; ++i1) s.touches_border = loaded(i1, 0) || loaded(i1, m.n2 - 1);
+  for (int i2 = 0; i2 < m.n2 && !s.touches_border; ++i2) s.touches_border = loaded(0, i2) || loaded(m.n1 - 1, i2);
   return WindowedSolution{std::move(s), mesh.size(), std::move(check), std::move(solved)};
 }
 
@@ -722,25 +722,29 @@ void solve_planar(WheelSide side, const InterpenetrationRegion& region, const Me
   const bool mirror = side == WheelSide::left;
   const double s2 = mirror ? -1.0 : 1.0;
   Mesh solve_mesh = mesh;
-  std::vector<double> solve_pressure = pressure_Pa;
-  std::vector<std::size_t> solve_elements = elements;
+  // The right wheel's fields as they are; the left wheel's mirrored copies.
+  std::vector<double> mirrored_pressure;
+  std::vector<std::size_t> mirrored_elements;
   if (mirror) {
     // Row i2 (constant x2) becomes row n2 - 1 - i2; an element keeps its place along the row.
     solve_mesh.x2_first_m = -mesh.x2(mesh.n2 - 1);
     const auto n1 = static_cast<std::size_t>(mesh.n1), n2 = static_cast<std::size_t>(mesh.n2);
+    mirrored_pressure.resize(pressure_Pa.size());
     for (std::size_t i2 = 0; i2 < n2; ++i2)
       std::copy_n(pressure_Pa.begin() + static_cast<std::ptrdiff_t>(i2 * n1), n1,
-                  solve_pressure.begin() + static_cast<std::ptrdiff_t>((n2 - 1 - i2) * n1));
+                  mirrored_pressure.begin() + static_cast<std::ptrdiff_t>((n2 - 1 - i2) * n1));
     // The elements row by row from the last row: in increasing order on the mirrored mesh.
-    solve_elements.clear();
+    mirrored_elements.reserve(elements.size());
     for (auto row_end = elements.end(); row_end != elements.begin();) {
       const std::size_t row = *(row_end - 1) / n1, row_first = row * n1;  // one division per row
       auto row_begin = row_end;
       while (row_begin != elements.begin() && *(row_begin - 1) >= row_first) --row_begin;
-      for (auto k = row_begin; k != row_end; ++k) solve_elements.push_back((n2 - 1 - row) * n1 + (*k - row_first));
+      for (auto k = row_begin; k != row_end; ++k) mirrored_elements.push_back((n2 - 1 - row) * n1 + (*k - row_first));
       row_end = row_begin;
     }
   }
+  const std::vector<double>& solve_pressure = mirror ? mirrored_pressure : pressure_Pa;
+  const std::vector<std::size_t>& solve_elements = mirror ? mirrored_elements : elements;
   // nH-FastSim's coarse patch with its blocks anchored to the reference point (not to the patch's
   // corner, which jumps by an element as elements enter): the forces then change continuously.
   // Otherwise the patch cropped to its elements.
