@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry/wheel_locus.hpp"
+#include "geometry/wheelset_frames.hpp"
 #include "railcontact/error.hpp"
 #include "railcontact/wheel_rail.hpp"
 #include "railcontact/geometry.hpp"
@@ -358,6 +359,59 @@ TEST(WheelsetGeometry, ConicalWheelOnARoundRailGivesTheClassicRollingRadiusDiffe
   for (double y : {-4e-3, -1e-3, 2e-3, 5e-3}) {
     const double dr = radius_at(WheelSide::left, y) - radius_at(WheelSide::right, y);
     EXPECT_NEAR(dr, 2.0 * std::tan(gamma0) * y, 0.002 * std::abs(2.0 * std::tan(gamma0) * y)) << "y = " << y;
+  }
+}
+
+
+// The area grows on each side where the overlap comes within the border of its edge, and only
+// there: one overlapping element within the border's band of one edge at a time (in the middle of
+// that edge, so that no other edge's band holds it), found in a border row or in a row between.
+TEST(WheelsetGeometry, ThePotentialAreaGrowsOnTheSideTheOverlapReachesAndOnlyThere) {
+  InterpenetrationRegion region;
+  region.side = WheelSide::right;
+  region.x1_min_m = -2e-3;
+  region.x1_max_m = 2e-3;
+  region.x2_min_m = -3e-3;
+  region.x2_max_m = 3e-3;
+  constexpr double dx = 0.2e-3;
+  constexpr int border = 2;
+  const geometry::GrowingArea growing{region, dx, dx, border, "test area", "in the tangent plane"};
+  // The first mesh, without an overlap: its edges.
+  const TangentPlaneArea first = geometry::grown_area(
+      growing, [](const Mesh& mesh, TangentPlaneArea& area) { area.h_m.assign(mesh.size(), 1.0); });
+  ASSERT_EQ(first.growth_steps, 0);
+  const Mesh& m = first.mesh;
+  const double x1_mid = m.x1(m.n1 / 2), x2_mid = m.x2(m.n2 / 2);
+  struct Case {
+    const char* edge;
+    double x1_m, x2_m;  // the overlapping point: the edge's second element inwards
+  };
+  const Case cases[] = {{"low x1", m.x1(1), x2_mid},
+                        {"high x1", m.x1(m.n1 - 2), x2_mid},
+                        {"low x2", x1_mid, m.x2(1)},
+                        {"high x2", x1_mid, m.x2(m.n2 - 2)}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.edge);
+    const TangentPlaneArea grown = geometry::grown_area(growing, [&](const Mesh& mesh, TangentPlaneArea& area) {
+      area.h_m.assign(mesh.size(), 1.0);
+      const int i1 = static_cast<int>(std::lround((c.x1_m - mesh.x1_first_m) / dx));
+      const int i2 = static_cast<int>(std::lround((c.x2_m - mesh.x2_first_m) / dx));
+      area.h_m[mesh.index(i1, i2)] = -1e-6;
+    });
+    EXPECT_EQ(grown.growth_steps, 1);
+    // Elements added on each side. A reached side grows by a quarter of the mesh (at least the
+    // border); the high sides may also take the granule's rounding (fewer elements: the right
+    // wheel's extra elements go to +x1 and +x2), the low sides nothing else.
+    const Mesh& g = grown.mesh;
+    const auto added = [&](double from_m, double to_m) { return static_cast<int>(std::lround((to_m - from_m) / dx)); };
+    const int low1 = added(g.x1_first_m, m.x1_first_m), high1 = added(m.x1(m.n1 - 1), g.x1(g.n1 - 1));
+    const int low2 = added(g.x2_first_m, m.x2_first_m), high2 = added(m.x2(m.n2 - 1), g.x2(g.n2 - 1));
+    const int grow1 = std::max(border, m.n1 / 4), grow2 = std::max(border, m.n2 / 4);
+    const std::string edge = c.edge;
+    EXPECT_EQ(low1, edge == "low x1" ? grow1 : 0);
+    EXPECT_EQ(low2, edge == "low x2" ? grow2 : 0);
+    EXPECT_EQ(high1 >= grow1, edge == "high x1") << high1;
+    EXPECT_EQ(high2 >= grow2, edge == "high x2") << high2;
   }
 }
 

@@ -267,14 +267,24 @@ TangentPlaneArea grown_area(const GrowingArea& g, const AreaFiller& fill) {
     area.mesh = mesh;
     area.growth_steps = step;
     fill(mesh, area);
+    // Overlap within `border` elements of each edge: the border's rows whole, the first and last
+    // `border` columns of the rows between (the interior, most of a large area, is not read).
     bool low1 = false, high1 = false, low2 = false, high2 = false;
     for (int i2 = 0; i2 < mesh.n2; ++i2) {
-      for (int i1 = 0; i1 < mesh.n1; ++i1) {
-        if (!(area.h_m[mesh.index(i1, i2)] < 0.0)) continue;
-        low1 = low1 || i1 < border;
-        high1 = high1 || i1 >= mesh.n1 - border;
-        low2 = low2 || i2 < border;
-        high2 = high2 || i2 >= mesh.n2 - border;
+      const auto scan = [&](int from1, int to1) {
+        for (int i1 = from1; i1 < to1; ++i1) {
+          if (!(area.h_m[mesh.index(i1, i2)] < 0.0)) continue;
+          low1 = low1 || i1 < border;
+          high1 = high1 || i1 >= mesh.n1 - border;
+          low2 = low2 || i2 < border;
+          high2 = high2 || i2 >= mesh.n2 - border;
+        }
+      };
+      if (i2 < border || i2 >= mesh.n2 - border) {
+        scan(0, mesh.n1);
+      } else {
+        scan(0, std::min(border, mesh.n1));
+        scan(std::max(border, mesh.n1 - border), mesh.n1);
       }
     }
     if (!(low1 || high1 || low2 || high2)) return area;
