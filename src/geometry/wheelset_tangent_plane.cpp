@@ -155,8 +155,8 @@ void undeformed_distance_on_strips(const WheelOnRail& w, const InterpenetrationR
   // run of strips on, each root starts from their linear extrapolation in x2: the middle root from
   // their middle roots, the others from their shapes along x1 (a root's offset from its strip's
   // middle root, which changes slowly from strip to strip) added to this strip's middle root.
-  // Newton's first step then ends most roots: 1.09 profile evaluations per root at y = 0 against
-  // 1.75 with the march's extrapolation along the strip alone (docs/WHEELSET.md §8).
+  // Newton's first step then ends most roots, where the march's extrapolation along the strip
+  // alone left a second step to many (the counts: docs/WHEELSET.md §8).
   struct StripSolution {
     double x2_m = 0.0;
     std::vector<double> t, u;  // by column i1 (the root columns only)
