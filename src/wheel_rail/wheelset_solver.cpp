@@ -317,6 +317,9 @@ struct WheelsetWarmStart {
   void remember(WheelSide side, const WheelsetPosition& position, const std::vector<NormalPatch>& patches) {
     std::vector<Previous> list;
     for (const NormalPatch& p : patches) {
+      // A Solved reads its mesh and pressure from its solution (solve_surface always makes one); a
+      // patch without one is not a start.
+      if (!p.solved) continue;
       Previous n{p.region.rail_profile_y_m, Solved{position, evaluation, p.solved},
                  std::nullopt, p.check};
       if (const Previous* earlier = nearest(side, p.region.rail_profile_y_m))
