@@ -20,6 +20,11 @@
 //                              yaw; the table (0.2 mm elements, y in 0.1 mm steps over ±0.5 mm,
 //                              90/100/110 kN) is built before the timing; ...Auto: the table
 //                              built on the automatic contact surface
+//   BM_WheelsetStageBreakdown  the time step by position (as BM_WheelsetTimeStep) and, with
+//                              argument ...1 appended (BreakdownByLoad), the time step by load
+//                              (as BM_WheelsetByLoad), its stages timed inside the step
+//                              (Wheelset::time_stages): counters in ms per step (docs/WHEELSET.md
+//                              §8 "Where a step's time goes")
 // Counters: patches, elements in contact, and the normal solver's iterations per patch of the last
 // evaluation.
 // The argument is y in micrometres (BM_WheelsetByLoad and BM_WheelsetTable: each wheel's own height
@@ -27,6 +32,7 @@
 // all included.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -258,6 +264,45 @@ void BM_WheelsetStageTangential(benchmark::State& state) {
     }
 }
 
+// The time step's own stages, timed inside the step (Wheelset::time_stages): ms per step in each,
+// the same states and steps as BM_WheelsetTimeStep (by position) and BM_WheelsetByLoad (by load).
+void stage_breakdown(benchmark::State& state, bool by_load) {
+  WheelsetState s;
+  WheelsetOptions options;
+  if (by_load) {
+    s.position.lateral_displacement_m = static_cast<double>(state.range(0)) * 1e-6;
+  } else {
+    s = loaded_state(static_cast<double>(state.range(0)) * 1e-6);
+    options = by_position();
+  }
+  const double y0 = s.position.lateral_displacement_m;
+  Wheelset wheelset(track(), options);
+  WheelsetResult r = wheelset.evaluate(s);
+  wheelset.time_stages(true);
+  long step = 0;
+  double normal_solves = 0.0;  // by load: of both wheels' height iterations, over the steps
+  for (auto _ : state) {
+    s.position.lateral_displacement_m = stepped_y_m(y0, ++step);
+    r = wheelset.evaluate(s);
+    benchmark::DoNotOptimize(r.force_track_N);
+    normal_solves += r.wheels[0].load_iterations + r.wheels[1].load_iterations;
+  }
+  report(state, r);
+  const WheelsetStageTimes& t = wheelset.stage_times();
+  const double per_step_ms = 1e3 / static_cast<double>(std::max(1L, t.evaluations));
+  state.counters["search_ms"] = t.search_s * per_step_ms;
+  state.counters["area_ms"] = t.area_s * per_step_ms;
+  state.counters["normal_ms"] = t.normal_s * per_step_ms;
+  state.counters["height_ms"] = t.height_s * per_step_ms;
+  state.counters["kinematics_ms"] = t.kinematics_s * per_step_ms;
+  state.counters["tangential_ms"] = t.tangential_s * per_step_ms;
+  state.counters["assembly_ms"] = t.assembly_s * per_step_ms;
+  state.counters["stages_ms"] = t.total_s() * per_step_ms;
+  if (by_load) state.counters["normal_solves_per_wheel"] = normal_solves / (2.0 * static_cast<double>(step));
+}
+void BM_WheelsetStageBreakdown(benchmark::State& state) { stage_breakdown(state, false); }
+void BM_WheelsetStageBreakdownByLoad(benchmark::State& state) { stage_breakdown(state, true); }
+
 // The wheelset's default slip direction for nH-FastSim (WheelsetOptions).
 const SlipDirection kDefaultSlipDirection = WheelsetOptions{}.nh_fastsim.bound.slip_direction;
 
@@ -307,6 +352,8 @@ BENCHMARK(BM_WheelsetStageSearch)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisec
 BENCHMARK(BM_WheelsetStageArea)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStageNormal)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetStageTangential)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStageBreakdown)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WheelsetStageBreakdownByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCold)->Arg(0)->Arg(-6500)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetCoupledStep)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_WheelsetByLoad)->Arg(0)->Arg(-6800)->Unit(benchmark::kMillisecond);

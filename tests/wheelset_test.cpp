@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -460,6 +461,49 @@ TEST(Wheelset, ResetWarmStartGivesAFreshWheelsetsNumbers) {
     for (const WheelsetPatch& p : warm.wheels[w].patches) warm_iterations += p.normal_iterations;
   }
   EXPECT_LT(warm_iterations, cold_iterations);  // the step before the reset was warm
+}
+
+// Timing the stages (Wheelset::time_stages) changes no number; its stages add up to the time
+// spent in evaluate (each interval counted once: measured around the calls, within what lies
+// outside the clock, a function call and the result's return); by position the height stage has
+// no time, by load it has; timing is off by default, and switching it zeroes the times.
+TEST(Wheelset, StageTimesAddUpToTheEvaluationsAndChangeNoNumber) {
+  for (const bool by_load : {false, true}) {
+    WheelsetOptions o = coarse();
+    if (!by_load) o.loads.reset();
+    Wheelset timed(track(), o), plain(track(), o);
+    timed.time_stages(true);
+    // By position at the height and roll of a rigid axle carrying its loads.
+    WheelsetOptions balanced = coarse();
+    balanced.loads = WheelLoads{98.1e3, 98.1e3, true};
+    WheelsetState s = Wheelset(track(), balanced).evaluate(state_at(-3e-3, 1e-3)).state;
+    double wall_s = 0.0;
+    constexpr int kSteps = 4;
+    for (int k = 0; k < kSteps; ++k, s.position.lateral_displacement_m += 1e-6) {
+      const auto start = std::chrono::steady_clock::now();
+      const WheelsetResult a = timed.evaluate(s);
+      wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const WheelsetResult b = plain.evaluate(s);
+      for (int w = 0; w < 2; ++w)
+        for (int i = 0; i < 3; ++i) EXPECT_EQ(a.wheels[w].force_track_N[i], b.wheels[w].force_track_N[i]);
+      EXPECT_EQ(a.state.position.vertical_displacement_m, b.state.position.vertical_displacement_m);
+    }
+    const WheelsetStageTimes& t = timed.stage_times();
+    EXPECT_EQ(t.evaluations, kSteps);
+    for (const double stage_s : {t.search_s, t.area_s, t.normal_s, t.kinematics_s, t.tangential_s, t.assembly_s})
+      EXPECT_GT(stage_s, 0.0) << (by_load ? "by load" : "by position");
+    if (by_load)
+      EXPECT_GT(t.height_s, 0.0);
+    else
+      EXPECT_EQ(t.height_s, 0.0);
+    EXPECT_LE(t.total_s(), wall_s);
+    EXPECT_GE(t.total_s(), 0.95 * wall_s) << "the stages leave time out";
+    EXPECT_EQ(plain.stage_times().evaluations, 0);
+    EXPECT_EQ(plain.stage_times().total_s(), 0.0);
+    timed.time_stages(true);
+    EXPECT_EQ(timed.stage_times().evaluations, 0);
+    EXPECT_EQ(timed.stage_times().total_s(), 0.0);
+  }
 }
 
 TEST(Wheelset, APatchThatAppearsStartsFromZeroForce) {

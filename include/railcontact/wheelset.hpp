@@ -259,6 +259,25 @@ struct WheelsetResult {
   int free_rolling_iterations = 0;
 };
 
+// Where a Wheelset's evaluations spent their time (Wheelset::time_stages; docs/WHEELSET.md §8
+// "Where a step's time goes"): wall-clock seconds per stage, summed over the evaluations since the
+// timing was switched on. Each interval counts in exactly one stage, the innermost one running
+// (the normal problems a height iteration's trials solve count as normal, not as height), so the
+// stages add up to the evaluations' time (total_s).
+struct WheelsetStageTimes {
+  double search_s = 0.0;      // contact search: each wheel's contact locus and its overlap regions
+  double area_s = 0.0;        // the potential contact areas and their undeformed distance h
+  double normal_s = 0.0;      // normal problems (contact windows, their checks, whole areas, coupling), warm start
+  double height_s = 0.0;      // by load: the heights' and balances' own work (first touch, steps), not their trials'
+  double kinematics_s = 0.0;  // each patch's creepage point, frame, kinematic creepages and rolling speed
+  double tangential_s = 0.0;  // the tangential solvers, with their patches made from the pressure
+  double assembly_s = 0.0;    // the rest: checks of the input, the patches' other numbers, the forces summed
+  long evaluations = 0;       // Wheelset::evaluate calls timed (free rolling's inner evaluations not counted)
+  [[nodiscard]] double total_s() const {
+    return search_s + area_s + normal_s + height_s + kinematics_s + tangential_s + assembly_s;
+  }
+};
+
 namespace detail {
 struct WheelsetWarmStart;
 }
@@ -287,6 +306,11 @@ class Wheelset {
   // options, to the last digit. For a jump in the state (a new simulation, a restart from a saved
   // state) after which the previous pressures are no guide.
   void reset_warm_start();
+  // Times the stages of every evaluation from now on (on) or stops (off); either way the times
+  // start again from zero. Off by default: timing costs two clock readings per stage of a patch
+  // (well under a microsecond a step). Copies start with timing as the original's, from zero.
+  void time_stages(bool on);
+  [[nodiscard]] const WheelsetStageTimes& stage_times() const { return stage_times_; }
 
  private:
   // evaluate() at a given rotation of the wheels (not free rolling).
@@ -294,6 +318,8 @@ class Wheelset {
   WheelsetTrack track_;
   WheelsetOptions options_;
   std::unique_ptr<detail::WheelsetWarmStart> warm_;
+  bool time_stages_ = false;
+  WheelsetStageTimes stage_times_;
 };
 
 // The wheelset's motion of a state (the rigid-body velocities the kinematic creepages need), with

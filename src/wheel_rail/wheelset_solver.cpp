@@ -25,6 +25,7 @@
 #include "wheel_rail/contact_window.hpp"
 #include "wheel_rail/patch_coupling.hpp"
 #include "wheel_rail/patch_tangential_model.hpp"
+#include "wheel_rail/stage_clock.hpp"
 #include "wheel_rail/wheelset_assembly.hpp"
 #include "tangential/cropped_patch.hpp"
 #include "wheel_rail/wheel_height.hpp"
@@ -150,6 +151,7 @@ struct WheelsetWarmStart {
   std::optional<NormalInfluenceBound> influence;  // for the windows' bound, made at the first
   std::uint64_t clock = 0;
   std::uint64_t evaluation = 0;  // counts Wheelset::evaluate_rolling calls
+  StageClock* stage_clock = nullptr;  // the running evaluation's, when its stages are timed
   // By load: each wheel's last overlap below its first touch, its contact stiffness dF/dδ and the
   // tangential forces' vertical part its last balance settled on, the first guesses of the next
   // evaluation's height iteration and balance when that evaluation is a time step away
@@ -592,8 +594,10 @@ void solve_coupled(const std::vector<double>& weight, WheelSide side, const Whee
 std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
                                       const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
   validate(position);
+  std::optional<detail::StageClock::Scope> stage(std::in_place, warm.stage_clock, detail::WheelsetStage::search);
   const WheelContactSearch search = detail::contact_search(
       track, warm.locus_at(track, side, position, options.search.locus_step_m), position, options.search);
+  stage.emplace(warm.stage_clock, detail::WheelsetStage::area);
   std::vector<NormalPatch> patches;
   for (const InterpenetrationRegion& region : search.regions) {
     // Bodies pressed this far into each other carry more than the largest normal force accepted
@@ -621,6 +625,7 @@ std::vector<NormalPatch> solve_normal(const WheelsetTrack& track, WheelSide side
   }
   // Each patch's primary surface starts from the prediction of its last solutions; a blend's planar
   // surface afresh.
+  stage.emplace(warm.stage_clock, detail::WheelsetStage::normal);
   std::vector<SurfaceStart> starts;
   for (const NormalPatch& p : patches) {
     const detail::WheelsetWarmStart::Previous* earlier = warm.nearest(side, p.region.rail_profile_y_m);
@@ -792,10 +797,11 @@ Eigen::Map<const Eigen::ArrayXd> as_array(const std::vector<double>& field) {
 // One patch on one contact surface with its creepages and tangential solutions.
 WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const Vector3& centre,
                            const InterpenetrationRegion& region, const SurfaceSolution& n,
-                           const WheelsetOptions& options) {
+                           const WheelsetOptions& options, detail::StageClock* clock) {
   WheelsetPatch patch;
   patch.side = side;
   patch.region = region;
+  std::optional<detail::StageClock::Scope> stage(std::in_place, clock, detail::WheelsetStage::kinematics);
   // The creepage point Q on the undeformed wheel surface: the reference point P moved into the
   // rail along the normal by the approach, the largest rigid overlap of the patch (as Kalker's
   // CONTACT takes it; docs/WHEEL_RAIL.md §12).
@@ -811,6 +817,7 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   check_kinematic_creepage(patch.creepage, motion, frame, side);
   patch.rolling_speed_m_per_s = rolling_speed_m_per_s(motion, frame);
   patch.rolling_radius_m = distance_from_axle_m(frame.point_from_wheelset_centre_m, motion);
+  stage.reset();
   patch.normal_force_N = n.normal.normal_force_N;
   patch.pressure_force_track_N = pressure_force_track_N(region, n);
   patch.surface = n.area.strips.empty() ? ContactSurface::planar : ContactSurface::conformal;
@@ -821,6 +828,7 @@ WheelsetPatch finish_patch(WheelSide side, const WheelsetMotion& motion, const V
   patch.area_m2 = static_cast<double>(patch.elements_in_contact) * mesh.element_area_m2();
   const std::vector<double>& pressure_Pa = n.normal.pressure_Pa;
   patch.max_pressure_Pa = std::max(0.0, as_array(pressure_Pa).maxCoeff());
+  stage.emplace(clock, detail::WheelsetStage::tangential);
   std::vector<std::size_t> elements;
   elements.reserve(patch.elements_in_contact);
   for (std::size_t k = 0; k < pressure_Pa.size(); ++k)
@@ -877,7 +885,9 @@ WheelsetPatch blended(const WheelsetPatch& planar, WheelsetPatch conformal, doub
 
 // The patches of a wheel with their creepages and tangential solutions.
 WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const WheelsetState& state,
-                         std::vector<NormalPatch>& normal, const WheelsetOptions& options) {
+                         std::vector<NormalPatch>& normal, const WheelsetOptions& options,
+                         detail::StageClock* clock) {
+  const detail::StageClock::Scope stage(clock, detail::WheelsetStage::assembly);
   WheelResult wheel;
   wheel.side = side;
   wheel.vertical_displacement_m = state.position.vertical_displacement_m;
@@ -885,11 +895,11 @@ WheelResult finish_wheel(const WheelsetTrack& track, WheelSide side, const Wheel
   const Vector3 centre{0.0, state.position.lateral_displacement_m,
                        track.nominal_axle_height_m() + state.position.vertical_displacement_m};
   for (const NormalPatch& n : normal) {
-    WheelsetPatch patch = finish_patch(side, motion, centre, n.region, n, options);
+    WheelsetPatch patch = finish_patch(side, motion, centre, n.region, n, options, clock);
     patch.conformal_weight = n.conformal_weight;
     patch.coupling_lift_m = n.coupling_lift_m;
     if (n.planar) {
-      WheelsetPatch planar = finish_patch(side, motion, centre, n.region, *n.planar, options);
+      WheelsetPatch planar = finish_patch(side, motion, centre, n.region, *n.planar, options, clock);
       std::shared_ptr<const WheelsetPatch> conformal_surface;
       if (options.keep_tractions) {
         auto own = std::make_shared<WheelsetPatch>(patch);
@@ -932,14 +942,23 @@ void require_overlap_within_limit(WheelSide side, double overlap_m, double force
   });
 }
 
+// The vertical displacement at which the wheel first touches its rail, from its contact locus (a
+// stage of the contact search).
+double first_touch(const WheelsetTrack& track, WheelSide side, const WheelsetPosition& position,
+                   const WheelsetOptions& options, detail::WheelsetWarmStart& warm) {
+  const detail::StageClock::Scope stage(warm.stage_clock, detail::WheelsetStage::search);
+  return detail::touching_vertical_displacement_m(track,
+                                                  warm.locus_at(track, side, position, options.search.locus_step_m));
+}
+
 // The wheel's height at which its normal forces carry `target_N` vertically: Newton-like steps on
 // the overlap δ below first touch, F ∝ δ^(3/2) (Hertz) first, then secant steps. overlap_m: the
 // first guess of δ in, the δ found out (corrected by a Newton step with the contact stiffness).
 double solve_height(const WheelsetTrack& track, WheelSide side, WheelsetPosition position, double target_N,
                     const WheelsetOptions& options, double& overlap_m, std::vector<NormalPatch>& patches,
                     int& iterations, detail::WheelsetWarmStart& warm) {
-  const double touching =
-      detail::touching_vertical_displacement_m(track, warm.locus_at(track, side, position, options.search.locus_step_m));
+  const detail::StageClock::Scope height_stage(warm.stage_clock, detail::WheelsetStage::height);
+  const double touching = first_touch(track, side, position, options, warm);
   double delta = overlap_m;
   detail::HeightIteration height;
   double& stiffness = warm.stiffness_N_per_m[side == WheelSide::right ? 0 : 1];
@@ -1013,8 +1032,8 @@ void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const Wheel
   constexpr int kTrialsBeforeEveryT = 6;
   const std::size_t k = side == WheelSide::right ? 0 : 1;
   const std::size_t solver = balance_index(options);
-  const double touching = detail::touching_vertical_displacement_m(
-      track, warm.locus_at(track, side, state.position, options.search.locus_step_m));
+  const detail::StageClock::Scope height_stage(warm.stage_clock, detail::WheelsetStage::height);
+  const double touching = first_touch(track, side, state.position, options, warm);
   WheelsetState trial = state;
   double delta = overlap_m, T = tangential_N;
   int tangential_trials = 0;
@@ -1035,7 +1054,7 @@ void balance_wheel_total(const WheelsetTrack& track, WheelSide side, const Wheel
     const bool with_T =
         N > 0.0 && (std::abs(N + T - load_N) <= kTangentialTrialRange * load_N || iteration > kTrialsBeforeEveryT);
     if (with_T) {
-      wheel = finish_wheel(track, side, trial, patches, options);
+      wheel = finish_wheel(track, side, trial, patches, options, warm.stage_clock);
       T = tangential_vertical_force(wheel, solver);
       ++tangential_trials;
     }
@@ -1189,17 +1208,26 @@ Wheelset::Wheelset(WheelsetTrack track, WheelsetOptions options)
 }
 Wheelset::~Wheelset() = default;
 Wheelset::Wheelset(const Wheelset& other)
-    : track_(other.track_), options_(other.options_), warm_(std::make_unique<detail::WheelsetWarmStart>()) {}
+    : track_(other.track_),
+      options_(other.options_),
+      warm_(std::make_unique<detail::WheelsetWarmStart>()),
+      time_stages_(other.time_stages_) {}
 Wheelset& Wheelset::operator=(const Wheelset& other) {
   if (this != &other) {
     track_ = other.track_;
     options_ = other.options_;
     warm_ = std::make_unique<detail::WheelsetWarmStart>();
+    time_stages_ = other.time_stages_;
+    stage_times_ = {};
   }
   return *this;
 }
 Wheelset::Wheelset(Wheelset&&) noexcept = default;
 void Wheelset::reset_warm_start() { warm_ = std::make_unique<detail::WheelsetWarmStart>(); }
+void Wheelset::time_stages(bool on) {
+  time_stages_ = on;
+  stage_times_ = {};
+}
 Wheelset& Wheelset::operator=(Wheelset&&) noexcept = default;
 
 void validate(const WheelsetVelocity& v, const WheelsetVelocityNames& names) {
@@ -1267,7 +1295,25 @@ double axle_moment_Nm(const WheelsetTrack& track, const WheelsetResult& r, std::
 
 }  // namespace
 
+namespace {
+
+// The evaluation's stage clock in the warm start while the evaluation runs (none after it).
+struct RunningStageClock {
+  RunningStageClock(detail::WheelsetWarmStart& warm, detail::StageClock* clock) : warm_(warm) {
+    warm_.stage_clock = clock;
+  }
+  ~RunningStageClock() { warm_.stage_clock = nullptr; }
+  RunningStageClock(const RunningStageClock&) = delete;
+  RunningStageClock& operator=(const RunningStageClock&) = delete;
+  detail::WheelsetWarmStart& warm_;
+};
+
+}  // namespace
+
 WheelsetResult Wheelset::evaluate(const WheelsetState& input) {
+  std::optional<detail::StageClock> clock;
+  if (time_stages_) clock.emplace(stage_times_);
+  const RunningStageClock running(*warm_, clock ? &*clock : nullptr);
   validate(input.position);
   validate(input.velocity);
   if (!input.velocity.free_rolling) return evaluate_rolling(input);
@@ -1380,7 +1426,7 @@ void evaluate_by_position(const WheelsetTrack& track, const WheelsetOptions& opt
                           WheelsetResult& result) {
   for (std::size_t k = 0; k < 2; ++k) {
     std::vector<NormalPatch> normal = solve_normal(track, kSides[k], result.state.position, options, warm);
-    result.wheels[k] = finish_wheel(track, kSides[k], result.state, normal, options);
+    result.wheels[k] = finish_wheel(track, kSides[k], result.state, normal, options, warm.stage_clock);
   }
 }
 
@@ -1410,6 +1456,7 @@ void evaluate_by_load(const WheelsetTrack& track, const WheelsetOptions& options
 
 void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, detail::WheelsetWarmStart& warm,
                    bool stepped, WheelsetResult& result) {
+  const detail::StageClock::Scope height_stage(warm.stage_clock, detail::WheelsetStage::height);
   const WheelsetState input = result.state;
   const std::array<double, 2> loads{options.loads->right_N, options.loads->left_N};
   if (!stepped) warm.stiffness_N_per_m = {0.0, 0.0};
@@ -1466,7 +1513,7 @@ void balance_loads(const WheelsetTrack& track, const WheelsetOptions& options, d
     for (std::size_t k = 0; k < 2; ++k) {
       WheelsetState wheel_state = state;
       wheel_state.position.vertical_displacement_m = heights[k];
-      result.wheels[k] = finish_wheel(track, kSides[k], wheel_state, normal[k], options);
+      result.wheels[k] = finish_wheel(track, kSides[k], wheel_state, normal[k], options, warm.stage_clock);
       result.wheels[k].load_iterations = solves[k];
       if (options.tangential_forces_in_vertical_balance)
         new_tangential[k] = tangential_vertical_force(result.wheels[k], balance_index(options));
