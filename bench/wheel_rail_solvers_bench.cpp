@@ -12,13 +12,22 @@
 //   BM_NhFastSimOnTheFlyAfterExact  BM_NhFastSimOnTheFly interleaved with other work, as in a time
 //                                 step: before each timed call (memo emptied) the exact solver solves
 //                                 the same patch, untimed, and leaves the caches full of its own data
+//   BM_NhFastSimOnTheFlyAfterCacheFlush  the same after writing N MB (the argument), untimed, before
+//                                 each timed call (memo emptied): 1 and 8 MB evict the core's L1 and
+//                                 L2, 64 MB the whole 32 MB L3 too
 //   BM_NhFastSimStage_*           its stages one by one (the profile breakdown)
+//   BM_NhFastSimStageAfterCacheFlush  each stage (the argument: 0 FastSim's set-up, 1 coarsening,
+//                                 2 K2's force rows, 3 the coarse FastSim and the match, 4 the march,
+//                                 5 all, as BM_NhFastSimOnTheFly) warm (second argument 0) or after
+//                                 writing 64 MB before each timed call (1): where a cold cache costs
 //   BM_FastSimWithKnownFlexibilities  the march alone (flexibilities known: the table's cost)
 //   BM_Exact                      solve_rolling_exact, inexact Newton (the default)
 //   BM_ExactFixedKrylovTolerance  the same with every GMRES solve to 1e-6 (the exact Newton's alternative)
 // Counters: elements in contact, GMRES/Newton iterations.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <map>
 #include <vector>
 
@@ -198,6 +207,70 @@ void BM_NhFastSimOnTheFlyAfterExact(benchmark::State& state) {
 }
 // A fixed count: the untimed exact solves (tens of ms each) would otherwise run for minutes.
 BENCHMARK(BM_NhFastSimOnTheFlyAfterExact)->Arg(4700)->Iterations(40)->Unit(benchmark::kMicrosecond);
+
+// Writes `megabytes` MB, one byte per cache line: the caches then hold this buffer, not the solver's
+// code and data.
+void flush_caches(std::size_t megabytes) {
+  static std::vector<char> buffer;
+  buffer.resize(std::max(buffer.size(), megabytes << 20));
+  static char value = 0;
+  ++value;
+  for (std::size_t i = 0; i < (megabytes << 20); i += 64) buffer[i] = value;
+  benchmark::ClobberMemory();
+}
+
+void BM_NhFastSimOnTheFlyAfterCacheFlush(benchmark::State& state) {
+  const Case& c = comparison_case(4700);
+  for (auto _ : state) {
+    state.PauseTiming();
+    flush_caches(static_cast<std::size_t>(state.range(0)));
+    forget_remembered_adjoints();
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(NhFastSim(c.patch.patch).forces(c.creepage, kMu));
+  }
+  count_elements(state, c);
+}
+BENCHMARK(BM_NhFastSimOnTheFlyAfterCacheFlush)->Arg(1)->Arg(8)->Arg(64)->Iterations(200)->Unit(benchmark::kMicrosecond);
+
+void BM_NhFastSimStageAfterCacheFlush(benchmark::State& state) {
+  const Case& c = comparison_case(4700);
+  const ContactPatch& patch = c.patch.patch;
+  const CoarseBlocks blocks = NhFastSim::automatic_coarse_blocks(patch);
+  const ContactPatch coarse = coarsened(patch, blocks);
+  AdhesionOptions options;  // K2's force rows as NhFastSim solves them (BM_NhFastSimStage_ForceRowsOfK2)
+  options.part = CreepageMatrixPart::force_rows;
+  options.tolerance = 3e-3;
+  const AdhesionTuning tuning{AdhesionPreconditioner::marching_half_laplacian, 1.5};
+  const NhFastSim nh(patch);
+  const auto stage = [&] {
+    switch (state.range(0)) {
+      case 0: benchmark::DoNotOptimize(FastSim(patch)); break;
+      case 1: benchmark::DoNotOptimize(coarsened(patch, blocks)); break;
+      case 2:
+        forget_remembered_adjoints();
+        benchmark::DoNotOptimize(solve_full_adhesion(coarse.elements(), coarse.material(), options, tuning));
+        break;
+      case 3: benchmark::DoNotOptimize(nh_fastsim_flexibility(FastSim(coarse), *nh.creepage_matrix())); break;
+      case 4: benchmark::DoNotOptimize(nh.forces(c.creepage, kMu)); break;
+      default:
+        forget_remembered_adjoints();
+        benchmark::DoNotOptimize(NhFastSim(patch).forces(c.creepage, kMu));
+    }
+  };
+  static const char* const kNames[] = {"FastSim set-up", "coarsening", "K2 force rows", "coarse FastSim + match",
+                                       "march", "all"};
+  state.SetLabel(kNames[std::clamp<std::int64_t>(state.range(0), 0, 5)]);
+  for (auto _ : state) {
+    state.PauseTiming();
+    if (state.range(1) == 1) flush_caches(64);
+    state.ResumeTiming();
+    stage();
+  }
+}
+BENCHMARK(BM_NhFastSimStageAfterCacheFlush)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {0, 1}})
+    ->Iterations(200)
+    ->Unit(benchmark::kMicrosecond);
 
 void run_exact(benchmark::State& state, bool inexact_newton) {
   const Case& c = comparison_case(static_cast<int>(state.range(0)));
