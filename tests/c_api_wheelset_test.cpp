@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cmath>
 #include <limits>
@@ -214,6 +215,50 @@ TEST(CApiWheelset, ResetWarmStartGivesAFreshHandlesNumbers) {
     }
   }
   EXPECT_EQ(rc_wheelset_reset_warm_start(nullptr), RC_INVALID_INPUT);
+}
+
+// rc_wheelset_time_stages: the stage times of the evaluations since it was switched on, summed
+// over them also where each evaluation starts cold (warm_start = 0: a new C++ Wheelset each
+// time), within the time measured around the calls; the numbers those of an untimed handle; off
+// by default; switching zeroes them; a null handle or output refused.
+TEST(CApiWheelset, StageTimesAddUpOverTheEvaluations) {
+  for (const int warm_start : {1, 0}) {
+    CWheelset timed(true, warm_start), plain(true, warm_start);
+    rc_wheelset_stage_times t{};
+    ASSERT_EQ(rc_wheelset_stage_times_get(timed.h, &t), RC_OK);
+    EXPECT_EQ(t.evaluations, 0);
+    ASSERT_EQ(rc_wheelset_time_stages(timed.h, 1), RC_OK);
+    double wall_s = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const rc_wheelset_state s = c_state(1e-6 * k);
+      rc_wheelset_result a{}, b{};
+      const auto start = std::chrono::steady_clock::now();
+      ASSERT_EQ(rc_wheelset_evaluate(timed.h, &s, &a), RC_OK) << timed.error();
+      wall_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ASSERT_EQ(rc_wheelset_evaluate(plain.h, &s, &b), RC_OK) << plain.error();
+      expect_same(a, b);
+    }
+    ASSERT_EQ(rc_wheelset_stage_times_get(timed.h, &t), RC_OK);
+    EXPECT_EQ(t.evaluations, 3) << "warm_start " << warm_start;
+    const double total_s =
+        t.search_s + t.area_s + t.normal_s + t.height_s + t.kinematics_s + t.tangential_s + t.assembly_s;
+    for (const double stage_s : {t.search_s, t.area_s, t.normal_s, t.height_s, t.tangential_s})
+      EXPECT_GT(stage_s, 0.0) << "warm_start " << warm_start;
+    EXPECT_LE(total_s, wall_s);
+    EXPECT_GE(total_s, 0.9 * wall_s);
+    ASSERT_EQ(rc_wheelset_stage_times_get(plain.h, &t), RC_OK);
+    EXPECT_EQ(t.evaluations, 0);
+    ASSERT_EQ(rc_wheelset_time_stages(timed.h, 0), RC_OK);
+    ASSERT_EQ(rc_wheelset_stage_times_get(timed.h, &t), RC_OK);
+    EXPECT_EQ(t.evaluations, 0);
+    EXPECT_EQ(t.normal_s, 0.0);
+  }
+  rc_wheelset_stage_times t{};
+  EXPECT_EQ(rc_wheelset_time_stages(nullptr, 1), RC_INVALID_INPUT);
+  EXPECT_EQ(rc_wheelset_stage_times_get(nullptr, &t), RC_INVALID_INPUT);
+  CWheelset c;
+  EXPECT_EQ(rc_wheelset_stage_times_get(c.h, nullptr), RC_INVALID_INPUT);
+  EXPECT_NE(c.error().find("rc_wheelset_stage_times_get: times"), std::string::npos) << c.error();
 }
 
 TEST(CApiWheelset, ProfileFilesGiveTheDefaultTrack) {

@@ -575,6 +575,25 @@ RC_API rc_status rc_wheelset_evaluate(rc_wheelset* wheelset, const rc_wheelset_s
    track and options, to the last digit. For a jump in the state (a new run, a restart). The last
    result stays readable. */
 RC_API rc_status rc_wheelset_reset_warm_start(rc_wheelset* wheelset);
+/* Where the wheelset's evaluations spent their time (rc_wheelset_time_stages; docs/WHEELSET.md §8
+   "Where a step's time goes"): wall-clock seconds per stage, summed over the rc_wheelset_evaluate
+   calls since timing was switched on (failed ones too). Each interval counts in one stage, the
+   innermost running, so the stages add up to the evaluations' time. */
+typedef struct rc_wheelset_stage_times {
+  double search_s;      /* contact search: each wheel's contact locus, its overlap regions, first touch */
+  double area_s;        /* the potential contact areas and their undeformed distance */
+  double normal_s;      /* normal problems (contact windows, their checks, whole areas, coupling) */
+  double height_s;      /* BY_LOAD: the heights' and balances' own steps (their trials' stages not) */
+  double kinematics_s;  /* each patch's creepage point, frame, kinematic creepages */
+  double tangential_s;  /* the tangential solvers, with their patches made from the pressure */
+  double assembly_s;    /* the rest: checks of the input, the patches' other numbers, the sums */
+  long long evaluations; /* rc_wheelset_evaluate calls timed */
+} rc_wheelset_stage_times;
+/* Times the stages of every rc_wheelset_evaluate from now on (on != 0) or stops (on == 0); either
+   way the times start again from zero. Off by default; on costs two clock readings per stage of a
+   patch. Batches and the wheelset table are not timed. */
+RC_API rc_status rc_wheelset_time_stages(rc_wheelset* wheelset, int on);
+RC_API rc_status rc_wheelset_stage_times_get(const rc_wheelset* wheelset, rc_wheelset_stage_times* times);
 /* The last evaluation's totals and solved state. */
 RC_API rc_status rc_wheelset_result_get(const rc_wheelset* wheelset, rc_wheelset_result* result);
 /* The wheels' angular velocity of the last evaluation (rad/s, + rolling forward): RC_ROTATION_FREE's

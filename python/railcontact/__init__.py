@@ -680,6 +680,23 @@ class Wheelset:
         restart)."""
         self._core.reset_warm_start()
 
+    def time_stages(self, on: bool = True) -> None:
+        """Times the stages of every evaluate() from now on (on=True) or stops (on=False); either
+        way the times start again from zero (stage_times()). Off by default; batches and the
+        wheelset table are not timed."""
+        self._core.time_stages(_check.flag("on", on))
+
+    def stage_times(self) -> dict:
+        """Where the evaluate() calls since time_stages(True) spent their time, wall-clock
+        seconds per stage (docs/WHEELSET.md §8 "Where a step's time goes"): search_s (contact
+        search), area_s (potential areas and their undeformed distance), normal_s (normal
+        problems), height_s (by load: the heights' and balances' own steps), kinematics_s,
+        tangential_s (the tangential solvers), assembly_s (the rest), with evaluations (the calls
+        timed) and total_s (their sum: each interval counts in one stage)."""
+        times = dict(self._core.stage_times())
+        times["total_s"] = sum(value for key, value in times.items() if key.endswith("_s"))
+        return times
+
     def batch(self, states, *, threads: int = 0, errors: str = "raise") -> list:
         """Many states at once on `threads` threads (0: all hardware threads), one wheelset per
         thread, each state from a cold start: the numbers equal those of a loop of evaluate() with

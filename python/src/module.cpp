@@ -704,6 +704,26 @@ class WheelsetHandle {
     lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_reset_warm_start(handle_)); }).raise_if_failed();
   }
 
+  void time_stages(bool on) {
+    lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_time_stages(handle_, on ? 1 : 0)); })
+        .raise_if_failed();
+  }
+
+  py::dict stage_times() {
+    rc_wheelset_stage_times t{};
+    lock_.exclusive("Wheelset", [&] { return outcome(rc_wheelset_stage_times_get(handle_, &t)); }).raise_if_failed();
+    py::dict d;
+    d["search_s"] = t.search_s;
+    d["area_s"] = t.area_s;
+    d["normal_s"] = t.normal_s;
+    d["height_s"] = t.height_s;
+    d["kinematics_s"] = t.kinematics_s;
+    d["tangential_s"] = t.tangential_s;
+    d["assembly_s"] = t.assembly_s;
+    d["evaluations"] = t.evaluations;
+    return d;
+  }
+
   py::dict evaluate(const DoubleArray& row) { return evaluate_row(row, false); }
   py::dict evaluate_table(const DoubleArray& row) { return evaluate_row(row, true); }
 
@@ -866,6 +886,8 @@ PYBIND11_MODULE(_core, m) {
       .def("set_options", &WheelsetHandle::set_options)
       .def("evaluate", &WheelsetHandle::evaluate)
       .def("reset_warm_start", &WheelsetHandle::reset_warm_start)
+      .def("time_stages", &WheelsetHandle::time_stages)
+      .def("stage_times", &WheelsetHandle::stage_times)
       .def("batch", &WheelsetHandle::batch)
       .def("build_table", &WheelsetHandle::build_table)
       .def("load_table", &WheelsetHandle::load_table)

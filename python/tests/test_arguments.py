@@ -212,6 +212,8 @@ CALLS = {
                                       "vertical_velocity": number(), "roll_rate": number(), **STATE,
                                       "free_rolling": flag()}),
     "Wheelset.reset_warm_start": dict(get=wheelset_call("reset_warm_start"), base={}, params={}),
+    "Wheelset.time_stages": dict(get=wheelset_call("time_stages"), base={}, params={"on": flag()}),
+    "Wheelset.stage_times": dict(get=wheelset_call("stage_times"), base={}, params={}),
     "Wheelset.batch": dict(get=wheelset_call("batch"), base={"states": np.zeros((1, 4))},
                            params={"states": array(np.zeros(4), out_of_range=np.zeros((1, 12))),
                                    "threads": integer(-1), "errors": choice()}),

@@ -7,6 +7,7 @@ import ctypes
 import math
 import os
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -157,6 +158,28 @@ def test_reset_warm_start_gives_a_fresh_wheelsets_numbers():
         for p, q in zip(a.wheels[w].patches, b.wheels[w].patches):
             assert (p.F1_N, p.F2_N, p.M3_Nm, p.normal_force_N, p.normal_iterations) == \
                 (q.F1_N, q.F2_N, q.M3_Nm, q.normal_force_N, q.normal_iterations)
+
+
+def test_stage_times_add_up_to_the_evaluations_and_change_no_number():
+    timed, plain = railcontact.Wheelset(element_size=COARSE), railcontact.Wheelset(element_size=COARSE)
+    assert timed.stage_times()["evaluations"] == 0
+    timed.time_stages(True)
+    wall = 0.0
+    for k in range(3):
+        start = time.perf_counter()
+        a = timed.evaluate(y=-3e-3 + 1e-6 * k)
+        wall += time.perf_counter() - start
+        b = plain.evaluate(y=-3e-3 + 1e-6 * k)
+        assert np.array_equal(a.force_track_N, b.force_track_N)
+    t = timed.stage_times()
+    assert t["evaluations"] == 3
+    stages = ("search_s", "area_s", "normal_s", "height_s", "kinematics_s", "tangential_s", "assembly_s")
+    assert all(t[name] > 0.0 for name in stages)  # by load: every stage runs
+    assert t["total_s"] == pytest.approx(sum(t[name] for name in stages))
+    assert 0.8 * wall <= t["total_s"] <= wall  # the rest of the time is Python's and the binding's
+    timed.time_stages(False)
+    assert timed.stage_times()["evaluations"] == 0 and timed.stage_times()["total_s"] == 0.0
+    assert plain.stage_times()["evaluations"] == 0
 
 
 def test_two_wheelsets_on_two_threads_equal_serial():

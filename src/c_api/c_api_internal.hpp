@@ -205,6 +205,10 @@ struct rc_wheelset {
   // rc_wheelset_table_set_refinement: WheelsetTableRefinement::lateral_force_fraction of the next
   // builds (0: none).
   double table_refinement = railcontact::kWheelsetTableRefinementDefault;  // rc_wheelset_table_set_refinement's default
+  // rc_wheelset_time_stages: on, and the stage times of the evaluations since (each evaluation's
+  // added from its Wheelset, which set_track, set_options and warm_start = 0 replace).
+  bool time_stages = false;
+  railcontact::WheelsetStageTimes stage_times;
   mutable railcontact::c_api::LastError error;  // set by const calls too
   rc_wheelset();
 };

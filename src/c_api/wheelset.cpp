@@ -518,6 +518,38 @@ rc_status rc_wheelset_get_options(const rc_wheelset* w, rc_wheelset_options* opt
   return RC_OK;
 }
 
+namespace {
+
+// With rc_wheelset_time_stages on: times one evaluation of `wheelset` and adds its stage times to
+// the handle's when it ends, also by an exception.
+class TimedEvaluation {
+ public:
+  TimedEvaluation(rc_wheelset& w, rc::Wheelset& wheelset) : w_(w), wheelset_(wheelset) {
+    if (w_.time_stages) wheelset_.time_stages(true);
+  }
+  ~TimedEvaluation() {
+    if (!w_.time_stages) return;
+    const rc::WheelsetStageTimes& t = wheelset_.stage_times();
+    rc::WheelsetStageTimes& sum = w_.stage_times;
+    sum.search_s += t.search_s;
+    sum.area_s += t.area_s;
+    sum.normal_s += t.normal_s;
+    sum.height_s += t.height_s;
+    sum.kinematics_s += t.kinematics_s;
+    sum.tangential_s += t.tangential_s;
+    sum.assembly_s += t.assembly_s;
+    sum.evaluations += t.evaluations;
+  }
+  TimedEvaluation(const TimedEvaluation&) = delete;
+  TimedEvaluation& operator=(const TimedEvaluation&) = delete;
+
+ private:
+  rc_wheelset& w_;
+  rc::Wheelset& wheelset_;
+};
+
+}  // namespace
+
 rc_status rc_wheelset_evaluate(rc_wheelset* w, const rc_wheelset_state* state, rc_wheelset_result* result) {
   if (w == nullptr) return RC_INVALID_INPUT;
   return guarded(&w->error, [&] {
@@ -526,8 +558,28 @@ rc_status rc_wheelset_evaluate(rc_wheelset* w, const rc_wheelset_state* state, r
     rc::Wheelset& wheelset = require_wheelset(w);
     w->last.reset();
     if (w->options.warm_start == 0) wheelset = rc::Wheelset(wheelset);  // a copy starts cold
+    const TimedEvaluation timed(*w, wheelset);
     w->last = wheelset.evaluate(s);
     if (result != nullptr) *result = result_of(*w->last);
+  });
+}
+
+rc_status rc_wheelset_time_stages(rc_wheelset* w, int on) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    w->time_stages = on != 0;
+    w->stage_times = {};
+    if (w->wheelset) w->wheelset->time_stages(w->time_stages);
+  });
+}
+
+rc_status rc_wheelset_stage_times_get(const rc_wheelset* w, rc_wheelset_stage_times* times) {
+  if (w == nullptr) return RC_INVALID_INPUT;
+  return guarded(&w->error, [&] {
+    require_pointer(times, "rc_wheelset_stage_times_get: times");
+    const rc::WheelsetStageTimes& t = w->stage_times;
+    *times = rc_wheelset_stage_times{t.search_s,       t.area_s,       t.normal_s,   t.height_s,
+                                     t.kinematics_s,   t.tangential_s, t.assembly_s, t.evaluations};
   });
 }
 
