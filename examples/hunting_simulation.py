@@ -220,6 +220,8 @@ def main():
     progress = Progress(len(models) * len(compare_speeds), "model runs")
     for contact in models:
         contact.seconds, contact.evaluations = 0.0, 0
+        if not contact.use_table:
+            contact.wheelset.time_stages(True)  # where an evaluation on the fly spends its time
         run_start = time.perf_counter()
         for v in compare_speeds:
             t, y, psi, status = simulate(contact, v, 3e-3, compare_duration)
@@ -230,7 +232,12 @@ def main():
     cost = [{"model": c.name, "evaluations": c.evaluations,
              "us_per_evaluation": 1e6 * c.seconds / max(1, c.evaluations),
              "share_of_simulation_in_contact": c.seconds / max(c.total_seconds, 1e-12),
-             "simulation_seconds": c.total_seconds} for c in models]
+             "simulation_seconds": c.total_seconds,
+             # On the fly: µs per evaluation in each of the wheelset's stages (docs/WHEELSET.md §8).
+             "stage_us_per_evaluation": {} if c.use_table else
+             {name[:-2]: 1e6 * value / max(1, c.evaluations)
+              for name, value in c.wheelset.stage_times().items() if name.endswith("_s") and name != "total_s"}}
+            for c in models]
 
     # Outputs.
     with open(os.path.join(args.out, "hunting.csv"), "w") as f:
@@ -322,6 +329,9 @@ def main():
         print(f"  {c['model']:<22} {c['us_per_evaluation']:9.1f} us per contact evaluation, "
               f"{100 * c['share_of_simulation_in_contact']:5.1f} % of the simulation in contact "
               f"({c['evaluations']} evaluations, {c['simulation_seconds']:.1f} s)")
+        if c["stage_us_per_evaluation"]:
+            stages = sorted(c["stage_us_per_evaluation"].items(), key=lambda item: -item[1])
+            print("    " + ", ".join(f"{name} {us:.0f}" for name, us in stages) + " us")
     print(f"  table: {table_seconds:.1f} s to build or load; the speed sweep took {sim_seconds:.1f} s")
     return 0
 

@@ -40,6 +40,14 @@ def test_hunting_example_quick(tmp_path):
     assert set(cost) == {"table", "on-the-fly nh-fastsim", "on-the-fly fastsim"}, sorted(cost)
     for c in cost.values():
         assert c["evaluations"] > 0 and 0.0 < c["us_per_evaluation"] < 1e7, c
+    # On the fly the stages' times add up to most of the evaluations' (the rest is Python's and the
+    # binding's); by load every stage runs.
+    for name in ("on-the-fly nh-fastsim", "on-the-fly fastsim"):
+        stages = cost[name]["stage_us_per_evaluation"]
+        assert set(stages) == {"search", "area", "normal", "height", "kinematics", "tangential", "assembly"}, stages
+        assert all(us > 0.0 for us in stages.values()), stages
+        assert 0.5 * cost[name]["us_per_evaluation"] < sum(stages.values()) <= cost[name]["us_per_evaluation"], cost[name]
+    assert cost["table"]["stage_us_per_evaluation"] == {}
     # The three models over the same first 20 ms at 70 m/s: the same motion to a few micrometres.
     runs = np.genfromtxt(out / "hunting_runs.csv", delimiter=",", names=True, dtype=None, encoding=None)
     ends = {m: runs["y_m"][runs["model"] == m][-1] for m in set(runs["model"])}
