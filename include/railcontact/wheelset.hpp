@@ -276,6 +276,18 @@ struct WheelsetStageTimes {
   [[nodiscard]] double total_s() const {
     return search_s + area_s + normal_s + height_s + kinematics_s + tangential_s + assembly_s;
   }
+  // Adds the times and evaluations of `other` (timings of several Wheelsets, one after another).
+  WheelsetStageTimes& operator+=(const WheelsetStageTimes& other) {
+    search_s += other.search_s;
+    area_s += other.area_s;
+    normal_s += other.normal_s;
+    height_s += other.height_s;
+    kinematics_s += other.kinematics_s;
+    tangential_s += other.tangential_s;
+    assembly_s += other.assembly_s;
+    evaluations += other.evaluations;
+    return *this;
+  }
 };
 
 namespace detail {

@@ -528,17 +528,7 @@ class TimedEvaluation {
     if (w_.time_stages) wheelset_.time_stages(true);
   }
   ~TimedEvaluation() {
-    if (!w_.time_stages) return;
-    const rc::WheelsetStageTimes& t = wheelset_.stage_times();
-    rc::WheelsetStageTimes& sum = w_.stage_times;
-    sum.search_s += t.search_s;
-    sum.area_s += t.area_s;
-    sum.normal_s += t.normal_s;
-    sum.height_s += t.height_s;
-    sum.kinematics_s += t.kinematics_s;
-    sum.tangential_s += t.tangential_s;
-    sum.assembly_s += t.assembly_s;
-    sum.evaluations += t.evaluations;
+    if (w_.time_stages) w_.stage_times += wheelset_.stage_times();
   }
   TimedEvaluation(const TimedEvaluation&) = delete;
   TimedEvaluation& operator=(const TimedEvaluation&) = delete;

@@ -1293,10 +1293,6 @@ double axle_moment_Nm(const WheelsetTrack& track, const WheelsetResult& r, std::
   return moment;
 }
 
-}  // namespace
-
-namespace {
-
 // The evaluation's stage clock in the warm start while the evaluation runs (none after it).
 struct RunningStageClock {
   RunningStageClock(detail::WheelsetWarmStart& warm, detail::StageClock* clock) : warm_(warm) {
